@@ -1,0 +1,62 @@
+//! Parsers for compound command-line values.
+
+use cable_dict::pose::{Pose, pose_from_mm_deg};
+
+/// A comma-separated list of finite numbers given as one argument.
+#[derive(Debug, Clone)]
+pub struct NumberList(pub Vec<f64>);
+
+/// Parses `a,b,c,…` as one [`NumberList`] argument.
+pub fn number_list_arg(text: &str) -> Result<NumberList, String> {
+    number_list(text).map(NumberList)
+}
+
+/// Parses `a,b,c,…` into numbers, naming the bad item.
+pub fn number_list(text: &str) -> Result<Vec<f64>, String> {
+    text.split(',')
+        .enumerate()
+        .map(|(i, item)| {
+            let item = item.trim();
+            let value: f64 = item
+                .parse()
+                .map_err(|_| format!("item {} ('{item}') is not a number", i + 1))?;
+            if value.is_finite() {
+                Ok(value)
+            } else {
+                Err(format!("item {} ('{item}') is not a finite number", i + 1))
+            }
+        })
+        .collect()
+}
+
+/// Parses a guide frame `x,y,z,roll,pitch,yaw` (mm, deg; URDF roll–pitch–yaw).
+pub fn guide_frame(text: &str) -> Result<Pose, String> {
+    let values = number_list(text)?;
+    let [x, y, z, roll, pitch, yaw] = values[..] else {
+        return Err(format!(
+            "expected 6 comma-separated numbers x,y,z,roll,pitch,yaw (mm, deg), got {}",
+            values.len()
+        ));
+    };
+    Ok(pose_from_mm_deg([x, y, z], [roll, pitch, yaw]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn guide_frame_reads_mm_and_degrees() {
+        let pose = guide_frame("100, -50, 20, 0, 90, 0").unwrap();
+        let z = pose.rotation * nalgebra::Vector3::z();
+        assert!((z - nalgebra::Vector3::x()).norm() < 1e-15);
+        assert!((pose.translation.vector.x - 0.1).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bad_lists_name_the_item() {
+        assert!(guide_frame("1,2,3").unwrap_err().contains("got 3"));
+        assert!(number_list("1,x,3").unwrap_err().contains("item 2"));
+        assert!(number_list("1,nan").unwrap_err().contains("finite"));
+    }
+}

@@ -1,0 +1,93 @@
+//! Command-line interface: argument definitions and dispatch to one module per subcommand.
+
+mod args;
+mod fk;
+mod robot_info;
+mod segment;
+
+use clap::{Parser, Subcommand};
+
+/// Finds the shortest safe external cable path for an industrial robot arm.
+///
+/// Units on the command line: millimetres and degrees. Exit codes: 0 success, 1 the input is
+/// valid but has no answer (e.g. a cable too short for its guides), 2 invalid input.
+#[derive(Debug, Parser)]
+#[command(name = "cable-dict", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// List a robot's links, joints, limits and collision shapes.
+    RobotInfo(robot_info::Args),
+    /// Forward kinematics: the pose of every link for given joint angles.
+    Fk(fk::Args),
+    /// Shape and stress of one cable segment between two guide frames.
+    Segment(segment::Args),
+}
+
+/// Why a command failed, and the exit code that says so.
+pub struct Failure {
+    /// Process exit code: 1 no answer, 2 invalid input.
+    pub code: u8,
+    /// The message chain.
+    pub error: anyhow::Error,
+}
+
+impl Failure {
+    /// The input (a file or an argument) is invalid.
+    fn input(error: impl Into<anyhow::Error>) -> Self {
+        Failure {
+            code: 2,
+            error: error.into(),
+        }
+    }
+
+    /// The input is valid but the problem has no answer.
+    fn unsolved(error: impl Into<anyhow::Error>) -> Self {
+        Failure {
+            code: 1,
+            error: error.into(),
+        }
+    }
+}
+
+/// Runs the parsed command.
+pub fn run(cli: Cli) -> Result<(), Failure> {
+    match cli.command {
+        Command::RobotInfo(args) => robot_info::run(args),
+        Command::Fk(args) => fk::run(args),
+        Command::Segment(args) => segment::run(args),
+    }
+}
+
+/// Prints a value as pretty JSON on standard output.
+fn print_json(value: &impl serde::Serialize) -> Result<(), Failure> {
+    let text = serde_json::to_string_pretty(value)
+        .map_err(|e| Failure::unsolved(anyhow::anyhow!("cannot encode the JSON output: {e}")))?;
+    emit(&(text + "\n"))
+}
+
+/// Writes a command's whole output to standard output. A reader that went away early
+/// (`| head`) is not an error.
+fn emit(text: &str) -> Result<(), Failure> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    match stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.flush())
+    {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Failure::unsolved(
+            anyhow::anyhow!("cannot write to standard output: {e}"),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// A number for people: rounded to 1e-9 so that unit conversions print as typed (120, not
+/// 119.99999999999999), and without a negative zero.
+fn tidy(value: f64) -> f64 {
+    (value * 1e9).round() / 1e9 + 0.0
+}

@@ -1,0 +1,104 @@
+//! Mesh files referenced by a URDF: path resolution without ROS, and STL reading.
+
+use super::TriMesh;
+use nalgebra::{Point3, Vector3};
+use std::path::{Path, PathBuf};
+
+/// Reads the STL mesh `uri` (relative to `base_dir`, `file://` or `package://`) and scales it.
+pub(super) fn load_mesh(
+    uri: &str,
+    scale: Vector3<f64>,
+    base_dir: &Path,
+) -> Result<TriMesh, String> {
+    let file = resolve_mesh_uri(uri, base_dir)?;
+    let is_stl = file
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("stl"));
+    if !is_stl {
+        return Err(format!(
+            "mesh '{uri}': only STL meshes are supported; convert it or use primitive shapes"
+        ));
+    }
+    let mut reader = std::fs::File::open(&file)
+        .map(std::io::BufReader::new)
+        .map_err(|e| format!("mesh '{uri}': cannot open {}: {e}", file.display()))?;
+    let stl = stl_io::read_stl(&mut reader).map_err(|e| {
+        format!(
+            "mesh '{uri}': {} is not a readable STL file: {e}",
+            file.display()
+        )
+    })?;
+    if stl.faces.is_empty() {
+        return Err(format!("mesh '{uri}': {} has no triangles", file.display()));
+    }
+    let vertices: Vec<Point3<f64>> = stl
+        .vertices
+        .iter()
+        .map(|v| Point3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2])))
+        .map(|p| Point3::from(p.coords.component_mul(&scale)))
+        .collect();
+    if vertices
+        .iter()
+        .any(|p| !p.coords.iter().all(|c| c.is_finite()))
+    {
+        return Err(format!(
+            "mesh '{uri}': {} has non-finite vertices",
+            file.display()
+        ));
+    }
+    let triangles = stl
+        .faces
+        .iter()
+        .map(|f| f.vertices.map(|i| i as u32))
+        .collect();
+    Ok(TriMesh {
+        file,
+        vertices,
+        triangles,
+    })
+}
+
+/// Resolves a URDF mesh filename to a file that exists.
+///
+/// `package://name/rest` is found by walking up from `base_dir` for a folder that is called
+/// `name` or contains a folder `name`, so a robot description works from a plain checkout
+/// without a ROS installation.
+fn resolve_mesh_uri(uri: &str, base_dir: &Path) -> Result<PathBuf, String> {
+    let path = if let Some(rest) = uri.strip_prefix("package://") {
+        let (package, relative) = rest.split_once('/').unwrap_or((rest, ""));
+        find_package(package, base_dir)
+            .ok_or_else(|| {
+                format!(
+                    "mesh '{uri}': no folder named '{package}' found in {} or any folder above it",
+                    base_dir.display()
+                )
+            })?
+            .join(relative)
+    } else if let Some(absolute) = uri.strip_prefix("file://") {
+        PathBuf::from(absolute)
+    } else {
+        base_dir.join(uri)
+    };
+    if path.is_file() {
+        Ok(path)
+    } else {
+        Err(format!(
+            "mesh '{uri}': file {} does not exist",
+            path.display()
+        ))
+    }
+}
+
+fn find_package(package: &str, base_dir: &Path) -> Option<PathBuf> {
+    let start = base_dir
+        .canonicalize()
+        .unwrap_or_else(|_| base_dir.to_path_buf());
+    start.ancestors().find_map(|dir| {
+        if dir.file_name().is_some_and(|n| n == package) {
+            Some(dir.to_path_buf())
+        } else {
+            let inside = dir.join(package);
+            inside.is_dir().then_some(inside)
+        }
+    })
+}

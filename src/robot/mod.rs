@@ -1,0 +1,181 @@
+//! The robot arm: its kinematic tree, forward kinematics and collision geometry.
+//!
+//! A [`Robot`] is loaded from a URDF file ([`Robot::from_urdf_file`]) and validated once, so
+//! every later computation can index links and joints without checks. Links and joints are
+//! stored in topological order (every parent before its children), which lets forward
+//! kinematics run as one pass over the joints.
+//!
+//! The *joint vector* holds one value per actuated joint (revolute, continuous or prismatic,
+//! and not a mimic joint) in the order the joints appear in the URDF document: radians for
+//! rotary joints, metres for prismatic ones.
+
+mod collision;
+mod error;
+mod kinematics;
+mod load;
+mod mesh;
+
+pub use collision::{Collider, Shape, TriMesh};
+pub use error::{JointVectorError, RobotError};
+
+use crate::pose::Pose;
+use nalgebra::{Unit, Vector3};
+use std::path::PathBuf;
+
+/// A robot arm as a tree of rigid links connected by joints.
+#[derive(Debug, Clone)]
+pub struct Robot {
+    /// The `name` attribute of the URDF `<robot>` element.
+    pub name: String,
+    /// The URDF file it was loaded from (for messages).
+    pub source: PathBuf,
+    /// Links in topological order; `links[0]` is the root (base).
+    pub links: Vec<Link>,
+    /// Joints in topological order: a joint comes after the joint of its parent link.
+    pub joints: Vec<Joint>,
+    /// For each joint-vector entry, the index into `joints` of the joint it drives.
+    pub actuated: Vec<usize>,
+}
+
+/// A rigid body of the arm with its collision geometry.
+#[derive(Debug, Clone)]
+pub struct Link {
+    /// The URDF link name.
+    pub name: String,
+    /// Index into [`Robot::joints`] of the joint whose child this link is; `None` for the root.
+    pub parent_joint: Option<usize>,
+    /// Collision shapes, posed in this link's frame.
+    pub colliders: Vec<Collider>,
+}
+
+/// The kind of relative motion a joint allows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JointKind {
+    /// Rotation about the axis within limits.
+    Revolute,
+    /// Rotation about the axis without limits.
+    Continuous,
+    /// Translation along the axis within limits.
+    Prismatic,
+    /// No motion.
+    Fixed,
+}
+
+impl JointKind {
+    /// The URDF `type` attribute for this kind.
+    pub fn urdf_name(self) -> &'static str {
+        match self {
+            JointKind::Revolute => "revolute",
+            JointKind::Continuous => "continuous",
+            JointKind::Prismatic => "prismatic",
+            JointKind::Fixed => "fixed",
+        }
+    }
+
+    /// True for joints whose value is an angle (radians), false for lengths (metres).
+    pub fn is_rotary(self) -> bool {
+        matches!(self, JointKind::Revolute | JointKind::Continuous)
+    }
+
+    /// Factor from SI to the unit people read (deg per rad, or mm per m) and its name.
+    pub fn display_unit(self) -> (f64, &'static str) {
+        if self.is_rotary() {
+            (180.0 / std::f64::consts::PI, "deg")
+        } else {
+            (1e3, "mm")
+        }
+    }
+}
+
+/// Where a joint's value comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum JointDrive {
+    /// A fixed joint: no value.
+    None,
+    /// The joint-vector entry `index`.
+    Actuated {
+        /// Index into the joint vector.
+        index: usize,
+    },
+    /// `multiplier · q[index] + offset`, following another (actuated) joint.
+    Mimic {
+        /// Index into the joint vector of the mimicked joint.
+        index: usize,
+        /// Gear ratio (dimensionless, or m/rad across kinds).
+        multiplier: f64,
+        /// Offset in the joint's own unit (rad or m).
+        offset: f64,
+    },
+}
+
+/// Position limits of a joint, in its own unit (rad for rotary, m for prismatic joints).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointLimits {
+    /// Lowest allowed value.
+    pub lower: f64,
+    /// Highest allowed value.
+    pub upper: f64,
+    /// Speed limit (rad/s or m/s); `None` where the URDF gives none (0 or missing).
+    pub velocity: Option<f64>,
+}
+
+/// A joint between a parent and a child link.
+#[derive(Debug, Clone)]
+pub struct Joint {
+    /// The URDF joint name.
+    pub name: String,
+    /// Motion type.
+    pub kind: JointKind,
+    /// Index into [`Robot::links`] of the parent link.
+    pub parent_link: usize,
+    /// Index into [`Robot::links`] of the child link.
+    pub child_link: usize,
+    /// Pose of the joint frame in the parent link frame (the URDF `<origin>`).
+    pub origin: Pose,
+    /// Unit axis of rotation or translation in the joint frame.
+    pub axis: Unit<Vector3<f64>>,
+    /// Position limits; `None` for continuous and fixed joints.
+    pub limits: Option<JointLimits>,
+    /// What drives the joint.
+    pub drive: JointDrive,
+}
+
+impl Robot {
+    /// Loads and validates a URDF file (see [`Robot::from_urdf_str`] for what is checked).
+    pub fn from_urdf_file(path: impl AsRef<std::path::Path>) -> Result<Robot, RobotError> {
+        load::from_file(path.as_ref())
+    }
+
+    /// Loads a URDF document; `source` names it in messages and anchors relative mesh paths.
+    ///
+    /// Refused with a located message: XML or URDF syntax errors, duplicate names, joints that
+    /// reference unknown links, links with two parents, several roots or cycles, zero axes,
+    /// unsupported joint types (floating, planar, spherical), inverted or empty limits, mimic
+    /// joints that follow a non-actuated joint, non-positive shape dimensions, mesh files that
+    /// are missing or not STL, and robots with no movable joint.
+    pub fn from_urdf_str(text: &str, source: &std::path::Path) -> Result<Robot, RobotError> {
+        load::from_str(text, source)
+    }
+
+    /// Number of entries in a joint vector.
+    pub fn dof(&self) -> usize {
+        self.actuated.len()
+    }
+
+    /// The joint driven by joint-vector entry `index`.
+    pub fn actuated_joint(&self, index: usize) -> &Joint {
+        &self.joints[self.actuated[index]]
+    }
+
+    /// Index of the link called `name`.
+    pub fn link_index(&self, name: &str) -> Option<usize> {
+        self.links.iter().position(|l| l.name == name)
+    }
+
+    /// Index into the joint vector of the actuated joint called `name`.
+    pub fn actuated_index(&self, name: &str) -> Option<usize> {
+        self.actuated
+            .iter()
+            .position(|&j| self.joints[j].name == name)
+    }
+}

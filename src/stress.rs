@@ -1,0 +1,123 @@
+//! Stress metrics of a cable shape: how far it is stretched and how tightly it bends.
+//!
+//! A shape is the polyline of the discrete cable's nodes from one guide to the next. The guide
+//! axes act as clamped sub-segments before the first and after the last node, so the joints
+//! at the guides count like every other joint.
+
+use nalgebra::{Point3, Vector3};
+
+/// The tightest bend of a shape and where it is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BendRadius {
+    /// `l_ss / angle` at the sharpest joint (m); `f64::INFINITY` for a straight cable.
+    pub radius_m: f64,
+    /// Node index of that joint: 0 at the start guide, `S` at the end guide.
+    pub node: usize,
+}
+
+/// Smallest bend radius `l_ss / θ` over all joints, θ the angle between adjacent
+/// sub-segments, including the joints between the guide axes and the first/last sub-segment.
+///
+/// `nodes` runs from the start guide origin to the end guide origin; the tangents are the
+/// guides' +z axes. Fewer than two nodes is a cable without joints: radius infinite.
+pub fn min_bend_radius(
+    nodes: &[Point3<f64>],
+    start_tangent: &Vector3<f64>,
+    end_tangent: &Vector3<f64>,
+    pitch_m: f64,
+) -> BendRadius {
+    let chords = nodes.windows(2).map(|w| w[1] - w[0]);
+    let directions: Vec<Vector3<f64>> = std::iter::once(*start_tangent)
+        .chain(chords)
+        .chain(std::iter::once(*end_tangent))
+        .collect();
+    let sharpest = directions
+        .windows(2)
+        .map(|d| angle_between(&d[0], &d[1]))
+        .enumerate()
+        .fold((0, 0.0_f64), |best, (node, angle)| {
+            if angle > best.1 { (node, angle) } else { best }
+        });
+    let (node, angle) = if nodes.len() < 2 { (0, 0.0) } else { sharpest };
+    BendRadius {
+        radius_m: if angle > 0.0 {
+            pitch_m / angle
+        } else {
+            f64::INFINITY
+        },
+        node,
+    }
+}
+
+/// Centerline length of the shape divided by the cable's natural length (1 = unstretched).
+pub fn stretch(nodes: &[Point3<f64>], natural_length_m: f64) -> f64 {
+    let length: f64 = nodes.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+    length / natural_length_m
+}
+
+/// Angle between two vectors in [0, π], accurate for small and near-π angles.
+fn angle_between(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
+    a.cross(b).norm().atan2(a.dot(b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Nodes on a circle of radius `r` with chord `l`, starting at the origin heading +x.
+    fn circle_polyline(r: f64, l: f64, n: usize) -> Vec<Point3<f64>> {
+        let step = 2.0 * (l / (2.0 * r)).asin();
+        (0..=n)
+            .map(|k| {
+                let phi = k as f64 * step;
+                Point3::new(r * phi.sin(), r * (1.0 - phi.cos()), 0.0)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn bend_radius_of_a_polygon_on_a_circle_is_chord_over_turning_angle() {
+        let (r, l) = (0.06, 0.01);
+        let nodes = circle_polyline(r, l, 12);
+        // Guide tangents along the chords of the neighbouring (virtual) sub-segments, so the
+        // guide joints turn like the interior ones.
+        let turn = 2.0 * (l / (2.0 * r)).asin();
+        let first = (nodes[1] - nodes[0]).normalize();
+        let start = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), -turn) * first;
+        let last = (nodes[12] - nodes[11]).normalize();
+        let end = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), turn) * last;
+        let bend = min_bend_radius(&nodes, &start, &end, l);
+        assert!(
+            (bend.radius_m - l / turn).abs() < 1e-12,
+            "{}",
+            bend.radius_m
+        );
+        // l/θ approaches the circle radius as (l/R)² → 0.
+        assert!((bend.radius_m - r).abs() / r < (l / r).powi(2) / 20.0);
+    }
+
+    #[test]
+    fn a_straight_cable_has_infinite_radius_and_unit_stretch() {
+        let nodes: Vec<_> = (0..=5)
+            .map(|k| Point3::new(0.0, 0.0, 0.01 * k as f64))
+            .collect();
+        let z = Vector3::z();
+        assert_eq!(
+            min_bend_radius(&nodes, &z, &z, 0.01).radius_m,
+            f64::INFINITY
+        );
+        assert!((stretch(&nodes, 0.05) - 1.0).abs() < 1e-12);
+        assert!((stretch(&nodes, 0.04) - 1.25).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_guide_joint_is_located() {
+        let nodes: Vec<_> = (0..=3)
+            .map(|k| Point3::new(0.01 * k as f64, 0.0, 0.0))
+            .collect();
+        // The end guide points 90° away from the cable: the kink is at the last node.
+        let bend = min_bend_radius(&nodes, &Vector3::x(), &Vector3::y(), 0.01);
+        assert_eq!(bend.node, 3);
+        assert!((bend.radius_m - 0.01 / std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    }
+}
