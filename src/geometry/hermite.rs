@@ -95,6 +95,10 @@ const MAX_PANEL_DEPTH: u32 = 50;
 /// alike and the panel is bisected down to this tolerance. Measured: ≤ 2e-15 relative error
 /// on bends, loops, hairpins and α up to 10× the chord (see the tests).
 const PANEL_REL_TOL: f64 = 1e-10;
+/// Panels of the fixed quadrature used by the first, cheap phase of the α root find.
+const COARSE_PANELS: usize = 2;
+/// The cheap phase stops at this relative residual; the adaptive phase takes it from there.
+const COARSE_REL_TOL: f64 = 1e-9;
 /// Iteration limit of the α root find (Newton, doubling and bisection steps together).
 const MAX_ALPHA_ITERATIONS: usize = 200;
 /// The α root find gives up beyond this multiple of (target + chord): no finite-length
@@ -333,6 +337,17 @@ impl HermiteCurve {
         total
     }
 
+    /// Arc length and `dL/dα` from a fixed set of Kronrod panels, without error control: the
+    /// cheap first phase of the α root find.
+    fn coarse_arc_length_with_alpha_derivative(&self) -> (f64, f64) {
+        (0..COARSE_PANELS).fold((0.0, 0.0), |(length, slope), i| {
+            let a = i as f64 / COARSE_PANELS as f64;
+            let b = (i + 1) as f64 / COARSE_PANELS as f64;
+            let sums = self.kronrod_panel(&Panel::new(a, b, 0));
+            (length + sums.length, slope + sums.length_alpha)
+        })
+    }
+
     /// Kronrod sums of `|p'|` and `p'·∂p'/∂α / |p'|` over a panel, and the gap between the
     /// Kronrod and Gauss values of the former. Written over fixed arrays of scalars so that
     /// the compiler vectorizes the square roots and divisions.
@@ -409,7 +424,7 @@ impl HermiteCurve {
                 slope,
             });
         }
-        NewtonBracket::new(target_m, chord, tolerance).solve(self.clone())
+        NewtonBracket::solve(target_m, chord, tolerance, self.clone())
     }
 
     fn check_arc_length_problem(&self, target_m: f64, chord: f64) -> Result<(), ArcLengthError> {
@@ -492,13 +507,38 @@ impl NewtonBracket {
         }
     }
 
-    fn solve(mut self, mut curve: HermiteCurve) -> Result<ArcLengthFit, ArcLengthError> {
+    /// Two phases: Newton on the cheap fixed-panel arc length (also convex in α) to a loose
+    /// tolerance, then Newton on the adaptive arc length from there, usually one step and one
+    /// confirming evaluation. The bracket restarts between phases because the two quadratures
+    /// differ slightly. A failed coarse phase just leaves the precise one its default start.
+    fn solve(
+        target: f64,
+        chord: f64,
+        tolerance: f64,
+        mut curve: HermiteCurve,
+    ) -> Result<ArcLengthFit, ArcLengthError> {
+        let coarse_tolerance = tolerance.max(COARSE_REL_TOL * target);
         // The cable length itself is a typical tangent scale for a natural-looking curve.
-        let mut alpha = self.target;
+        let start = Self::new(target, chord, coarse_tolerance)
+            .run(&mut curve, target, Quadrature::Coarse)
+            .map_or(target, |fit| fit.alpha_m);
+        Self::new(target, chord, tolerance).run(&mut curve, start, Quadrature::Adaptive)
+    }
+
+    fn run(
+        mut self,
+        curve: &mut HermiteCurve,
+        start: f64,
+        quadrature: Quadrature,
+    ) -> Result<ArcLengthFit, ArcLengthError> {
+        let mut alpha = start;
         let mut previous_residual = f64::INFINITY;
         for _ in 0..MAX_ALPHA_ITERATIONS {
             curve.set_alpha(alpha);
-            let (length, slope) = curve.arc_length_with_alpha_derivative();
+            let (length, slope) = match quadrature {
+                Quadrature::Coarse => curve.coarse_arc_length_with_alpha_derivative(),
+                Quadrature::Adaptive => curve.arc_length_with_alpha_derivative(),
+            };
             let residual = length - self.target;
             if residual.abs() < self.tolerance {
                 return Ok(ArcLengthFit {
@@ -535,7 +575,12 @@ impl NewtonBracket {
         let newton_ok = slope > 0.0 && newton.is_finite();
         match self.hi {
             None => {
-                let doubled = 2.0 * alpha;
+                // Doubling from α = 0 would stall: restart from the target length.
+                let doubled = if alpha > 0.0 {
+                    2.0 * alpha
+                } else {
+                    self.target
+                };
                 let next = if newton_ok && newton > alpha {
                     newton.min(doubled)
                 } else {
@@ -556,6 +601,15 @@ impl NewtonBracket {
             }
         }
     }
+}
+
+/// Arc-length quadrature used by a Newton phase.
+#[derive(Debug, Clone, Copy)]
+enum Quadrature {
+    /// Fixed Kronrod panels: cheap, accurate to ~1e-10 on ordinary bends.
+    Coarse,
+    /// Adaptive Gauss–Kronrod: ~1e-15 relative.
+    Adaptive,
 }
 
 #[cfg(test)]
