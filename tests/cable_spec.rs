@@ -5,7 +5,9 @@ use cable_dict::cable::CableSpec;
 use std::path::Path;
 
 fn bundled(name: &str) -> CableSpec {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("cables").join(name);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("cables")
+        .join(name);
     CableSpec::from_file(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -50,27 +52,69 @@ fn refusal(text: &str) -> String {
 fn non_positive_and_non_finite_values_are_refused_with_field_and_line() {
     let cases = [
         ("diameter_mm = 8.0", "diameter_mm = 0.0", 2, "diameter_mm"),
-        ("mass_per_length_kg_m = 0.26", "mass_per_length_kg_m = -0.26", 3, "mass_per_length_kg_m"),
-        ("bending_stiffness_nm_per_rad = 0.051", "bending_stiffness_nm_per_rad = nan", 4, "bending_stiffness_nm_per_rad"),
-        ("torsion_stiffness_nm_per_rad = 1.5", "torsion_stiffness_nm_per_rad = inf", 5, "torsion_stiffness_nm_per_rad"),
-        ("min_bend_radius_mm = 48.0", "min_bend_radius_mm = -inf", 6, "min_bend_radius_mm"),
-        ("sub_segment_pitch_mm = 10.0", "sub_segment_pitch_mm = 0", 7, "sub_segment_pitch_mm"),
+        (
+            "mass_per_length_kg_m = 0.26",
+            "mass_per_length_kg_m = -0.26",
+            3,
+            "mass_per_length_kg_m",
+        ),
+        (
+            "bending_stiffness_nm_per_rad = 0.051",
+            "bending_stiffness_nm_per_rad = nan",
+            4,
+            "bending_stiffness_nm_per_rad",
+        ),
+        (
+            "torsion_stiffness_nm_per_rad = 1.5",
+            "torsion_stiffness_nm_per_rad = inf",
+            5,
+            "torsion_stiffness_nm_per_rad",
+        ),
+        (
+            "min_bend_radius_mm = 48.0",
+            "min_bend_radius_mm = -inf",
+            6,
+            "min_bend_radius_mm",
+        ),
+        (
+            "sub_segment_pitch_mm = 10.0",
+            "sub_segment_pitch_mm = 0",
+            7,
+            "sub_segment_pitch_mm",
+        ),
     ];
     for (good, bad, line, field) in cases {
         let message = refusal(&GOOD.replace(good, bad));
-        assert!(message.starts_with(&format!("c.toml:{line}: `{field}`")), "«{message}»");
-        assert!(message.contains("must be a finite number > 0"), "«{message}»");
+        assert!(
+            message.starts_with(&format!("c.toml:{line}: `{field}`")),
+            "«{message}»"
+        );
+        assert!(
+            message.contains("must be a finite number > 0"),
+            "«{message}»"
+        );
     }
 }
 
 #[test]
 fn missing_unknown_and_mistyped_keys_are_refused() {
     let missing = refusal(&GOOD.replace("min_bend_radius_mm = 48.0\n", ""));
-    assert!(missing.contains("c.toml") && missing.contains("min_bend_radius_mm"), "«{missing}»");
+    assert!(
+        missing.contains("c.toml") && missing.contains("min_bend_radius_mm"),
+        "«{missing}»"
+    );
     let typo = refusal(&GOOD.replace("diameter_mm", "diametre_mm"));
-    assert!(typo.contains("c.toml:2") && typo.contains("diametre_mm"), "«{typo}»");
+    assert!(
+        typo.contains("c.toml:2") && typo.contains("diametre_mm"),
+        "«{typo}»"
+    );
     let text = refusal(&GOOD.replace("= 48.0", "= \"48\""));
     assert!(text.contains("c.toml:6"), "«{text}»");
-    let unreadable = CableSpec::from_file("no/such/cable.toml").expect_err("missing file").to_string();
-    assert!(unreadable.contains("no/such/cable.toml") && unreadable.contains("cannot read"), "«{unreadable}»");
+    let unreadable = CableSpec::from_file("no/such/cable.toml")
+        .expect_err("missing file")
+        .to_string();
+    assert!(
+        unreadable.contains("no/such/cable.toml") && unreadable.contains("cannot read"),
+        "«{unreadable}»"
+    );
 }

@@ -3,7 +3,10 @@
 use serde_json::Value;
 use std::process::{Command, Output};
 
-const URDF: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/robots/viper_s850/viper_s850.urdf");
+const URDF: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/robots/viper_s850/viper_s850.urdf"
+);
 const CABLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/cables/smc_le_cp_3.toml");
 
 fn run(args: &[&str]) -> Output {
@@ -15,17 +18,29 @@ fn run(args: &[&str]) -> Output {
 
 fn json(args: &[&str]) -> Value {
     let output = run(args);
-    assert!(output.status.success(), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     serde_json::from_slice(&output.stdout).expect("valid JSON")
 }
 
 fn numbers(value: &Value) -> Vec<f64> {
-    value.as_array().expect("array").iter().map(|v| v.as_f64().expect("number")).collect()
+    value
+        .as_array()
+        .expect("array")
+        .iter()
+        .map(|v| v.as_f64().expect("number"))
+        .collect()
 }
 
 fn failure(args: &[&str]) -> (i32, String) {
     let output = run(args);
-    (output.status.code().unwrap_or(-1), String::from_utf8_lossy(&output.stderr).into_owned())
+    (
+        output.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
 }
 
 #[test]
@@ -39,7 +54,12 @@ fn fk_json_gives_the_flange_of_the_dh_table_at_zero() {
     for (got, want) in numbers(&tool0["position_m"]).iter().zip(expected) {
         assert!((got - want).abs() < 1e-12);
     }
-    for (r, row) in tool0["rotation"].as_array().expect("rows").iter().enumerate() {
+    for (r, row) in tool0["rotation"]
+        .as_array()
+        .expect("rows")
+        .iter()
+        .enumerate()
+    {
         for (c, v) in numbers(row).iter().enumerate() {
             assert!((v - if r == c { 1.0 } else { 0.0 }).abs() < 1e-12);
         }
@@ -52,8 +72,16 @@ fn fk_rotation_is_row_major_link_to_base() {
     let report = json(&["fk", URDF, "--joints-deg", "90,0,0,0,0,0", "--json"]);
     let link_1 = &report["links"][1];
     assert_eq!(link_1["name"], "link_1");
-    let rows: Vec<Vec<f64>> = link_1["rotation"].as_array().expect("rows").iter().map(numbers).collect();
-    assert!((rows[1][0] - 1.0).abs() < 1e-12 && (rows[0][1] + 1.0).abs() < 1e-12, "{rows:?}");
+    let rows: Vec<Vec<f64>> = link_1["rotation"]
+        .as_array()
+        .expect("rows")
+        .iter()
+        .map(numbers)
+        .collect();
+    assert!(
+        (rows[1][0] - 1.0).abs() < 1e-12 && (rows[0][1] + 1.0).abs() < 1e-12,
+        "{rows:?}"
+    );
 }
 
 #[test]
@@ -67,7 +95,12 @@ fn robot_info_lists_the_actuated_joints() {
         .filter(|j| !j["joint_vector_index"].is_null())
         .map(|j| j["name"].as_str().expect("name"))
         .collect();
-    assert_eq!(names, ["joint_1", "joint_2", "joint_3", "joint_4", "joint_5", "joint_6"]);
+    assert_eq!(
+        names,
+        [
+            "joint_1", "joint_2", "joint_3", "joint_4", "joint_5", "joint_6"
+        ]
+    );
 }
 
 #[test]
@@ -75,42 +108,135 @@ fn segment_json_runs_from_guide_to_guide_in_pitch_steps() {
     let start = [0.0, 0.0, 0.0];
     let end = [250.0, 100.0, 50.0];
     let report = json(&[
-        "segment", "--cable", CABLE, "--length-mm", "400", "--start", "0,0,0,0,90,0", "--end",
-        "250,100,50,0,90,0", "--json",
+        "segment",
+        "--cable",
+        CABLE,
+        "--length-mm",
+        "400",
+        "--start",
+        "0,0,0,0,90,0",
+        "--end",
+        "250,100,50,0,90,0",
+        "--json",
     ]);
     assert_eq!(report["stage"], "connected");
     assert_eq!(report["length_mm"], 400.0);
-    let nodes: Vec<Vec<f64>> = report["nodes_mm"].as_array().expect("nodes").iter().map(numbers).collect();
+    let nodes: Vec<Vec<f64>> = report["nodes_mm"]
+        .as_array()
+        .expect("nodes")
+        .iter()
+        .map(numbers)
+        .collect();
     assert_eq!(nodes.len(), 41);
-    let distance = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>().sqrt();
+    let distance = |a: &[f64], b: &[f64]| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    };
     assert!(distance(&nodes[0], &start) < 1e-6 && distance(&nodes[40], &end) < 1e-6);
     for pair in nodes.windows(2) {
-        assert!((distance(&pair[0], &pair[1]) - 10.0).abs() < 1e-6, "spacing in mm");
+        assert!(
+            (distance(&pair[0], &pair[1]) - 10.0).abs() < 1e-6,
+            "spacing in mm"
+        );
     }
     // Both guides have pitch 90°: their +z (third column) is world +x.
     let frames = report["frames"].as_array().expect("frames");
     assert_eq!(frames.len(), 41);
     for frame in [&frames[0], &frames[40]] {
-        let rows: Vec<Vec<f64>> = frame.as_array().expect("rows").iter().map(numbers).collect();
-        assert!((rows[0][2] - 1.0).abs() < 1e-9 && rows[1][2].abs() < 1e-9 && rows[2][2].abs() < 1e-9);
+        let rows: Vec<Vec<f64>> = frame
+            .as_array()
+            .expect("rows")
+            .iter()
+            .map(numbers)
+            .collect();
+        assert!(
+            (rows[0][2] - 1.0).abs() < 1e-9 && rows[1][2].abs() < 1e-9 && rows[2][2].abs() < 1e-9
+        );
     }
     let stretch = report["metrics"]["stretch"].as_f64().expect("stretch");
     assert!((stretch - 1.0).abs() < 1e-9, "nodes 10 mm apart: stretch 1");
-    assert!(report["metrics"]["min_bend_radius_mm"].as_f64().expect("bent") > 0.0);
+    assert!(
+        report["metrics"]["min_bend_radius_mm"]
+            .as_f64()
+            .expect("bent")
+            > 0.0
+    );
 }
 
 #[test]
 fn exit_codes_separate_no_answer_from_bad_input() {
-    let too_short = failure(&["segment", "--cable", CABLE, "--length-mm", "200", "--start", "0,0,0,0,0,0", "--end", "0,0,300,0,0,0"]);
+    let too_short = failure(&[
+        "segment",
+        "--cable",
+        CABLE,
+        "--length-mm",
+        "200",
+        "--start",
+        "0,0,0,0,0,0",
+        "--end",
+        "0,0,300,0,0,0",
+    ]);
     assert_eq!(too_short.0, 1, "{}", too_short.1);
-    assert!(too_short.1.contains("too short") && too_short.1.contains("1.500"), "{}", too_short.1);
+    assert!(
+        too_short.1.contains("too short") && too_short.1.contains("1.500"),
+        "{}",
+        too_short.1
+    );
 
     let cases: [(&[&str], &str); 5] = [
-        (&["segment", "--cable", CABLE, "--length-mm", "405", "--start", "0,0,0,0,0,0", "--end", "0,0,300,0,0,0"], "whole number of 10 mm"),
-        (&["segment", "--cable", "missing.toml", "--length-mm", "400", "--start", "0,0,0,0,0,0", "--end", "0,0,300,0,0,0"], "missing.toml"),
-        (&["segment", "--cable", CABLE, "--length-mm", "400", "--start", "0,0,0,0,0", "--end", "0,0,300,0,0,0"], "expected 6 comma-separated numbers"),
-        (&["fk", URDF, "--joints-deg", "0,0,0,0,130,0"], "joint 'joint_5': 130 deg is outside its limits [-120, 120] deg"),
-        (&["fk", URDF, "--joints-deg", "0,0,0"], "expected 6 joint values"),
+        (
+            &[
+                "segment",
+                "--cable",
+                CABLE,
+                "--length-mm",
+                "405",
+                "--start",
+                "0,0,0,0,0,0",
+                "--end",
+                "0,0,300,0,0,0",
+            ],
+            "whole number of 10 mm",
+        ),
+        (
+            &[
+                "segment",
+                "--cable",
+                "missing.toml",
+                "--length-mm",
+                "400",
+                "--start",
+                "0,0,0,0,0,0",
+                "--end",
+                "0,0,300,0,0,0",
+            ],
+            "missing.toml",
+        ),
+        (
+            &[
+                "segment",
+                "--cable",
+                CABLE,
+                "--length-mm",
+                "400",
+                "--start",
+                "0,0,0,0,0",
+                "--end",
+                "0,0,300,0,0,0",
+            ],
+            "expected 6 comma-separated numbers",
+        ),
+        (
+            &["fk", URDF, "--joints-deg", "0,0,0,0,130,0"],
+            "joint 'joint_5': 130 deg is outside its limits [-120, 120] deg",
+        ),
+        (
+            &["fk", URDF, "--joints-deg", "0,0,0"],
+            "expected 6 joint values",
+        ),
     ];
     for (args, expected) in cases {
         let (code, stderr) = failure(args);

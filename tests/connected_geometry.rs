@@ -585,9 +585,9 @@ fn loops_and_coincident_guides_connect() {
             guide([0.1, 0.0, 0.0], [0.0, 0.0, -1.0], [1.0, 0.0, 0.0]),
         ),
         (
-            "side by side, both up",
+            "side by side, skew tangents",
             guide([0.0; 3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]),
-            guide([0.1, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]),
+            guide([0.1, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]),
         ),
     ];
     for (label, start, end) in cases {
@@ -673,4 +673,35 @@ fn random_guide_pairs_connect_or_report_too_short() {
         "random pairs: {connected} connected, {too_short} too short, {kinked} bent tighter than the pitch"
     );
     assert!(connected > 100);
+}
+
+/// Coaxial guides with slack: the Hermite curve stays on their axis, so it can only take the
+/// extra length by folding back on itself. The result is either such a folded rigid chain or
+/// a NoSolution that says so — a known limit of the Hermite family, reported, not hidden.
+#[test]
+fn coaxial_guides_with_slack_fold_or_report_the_fold() {
+    let start = guide([0.0; 3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    for distance in [0.39, 0.35, 0.3] {
+        let end = guide([0.0, 0.0, distance], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+        match connect(&start, &end, 40, PITCH) {
+            Ok(geometry) => {
+                check_geometry(&start, &end, 40, &geometry);
+                let off_axis = geometry
+                    .nodes
+                    .iter()
+                    .map(|n| n.x.hypot(n.y))
+                    .fold(0.0, f64::max);
+                println!(
+                    "coaxial {distance} m: folded chain, alpha {:.4} m",
+                    geometry.alpha_m
+                );
+                assert!(off_axis < 1e-12);
+            }
+            Err(ConnectError::NoSolution { reason }) => {
+                println!("coaxial {distance} m: {reason}");
+                assert!(reason.contains("folds back"), "{reason}");
+            }
+            Err(other) => panic!("{other}"),
+        }
+    }
 }

@@ -31,7 +31,11 @@ const MIXED: &str = r#"<robot name="mixed">
 #[test]
 fn revolute_prismatic_fixed_and_mimic_joints_follow_their_closed_forms() {
     let robot = load(MIXED).expect("valid URDF");
-    assert_eq!(robot.dof(), 2, "the mimic and fixed joints are not in the joint vector");
+    assert_eq!(
+        robot.dof(),
+        2,
+        "the mimic and fixed joints are not in the joint vector"
+    );
     let (q1, q2) = (0.7, 0.3);
     let poses = robot.link_poses(&[q1, q2]).expect("2 values");
     let pose = |name: &str| poses[robot.link_index(name).expect("link")];
@@ -55,9 +59,16 @@ fn joint_vectors_are_checked_for_length_finiteness_and_limits() {
     let robot = load(MIXED).expect("valid URDF");
     assert!(matches!(
         robot.link_poses(&[0.1]),
-        Err(JointVectorError::Length { expected: 2, got: 1, .. })
+        Err(JointVectorError::Length {
+            expected: 2,
+            got: 1,
+            ..
+        })
     ));
-    assert!(matches!(robot.link_poses(&[f64::NAN, 0.0]), Err(JointVectorError::NotFinite { .. })));
+    assert!(matches!(
+        robot.link_poses(&[f64::NAN, 0.0]),
+        Err(JointVectorError::NotFinite { .. })
+    ));
     match robot.check_limits(&[0.0, 0.6]) {
         Err(JointVectorError::OutOfLimits { joint, unit, .. }) => {
             assert_eq!(joint, "j2");
@@ -65,7 +76,10 @@ fn joint_vectors_are_checked_for_length_finiteness_and_limits() {
         }
         other => panic!("expected OutOfLimits for j2, got {other:?}"),
     }
-    assert!(robot.check_limits(&[1.0, 0.5]).is_ok(), "limits are inclusive");
+    assert!(
+        robot.check_limits(&[1.0, 0.5]).is_ok(),
+        "limits are inclusive"
+    );
     // Beyond limits is still computable where the caller does not ask for checking.
     assert!(robot.link_poses(&[5.0, 2.0]).is_ok());
 }
@@ -92,7 +106,10 @@ fn refusals_name_the_file_the_line_and_the_problem() {
     for (what, urdf, expected) in cases {
         let message = refusal(&urdf);
         assert!(message.contains(expected), "{what}: got «{message}»");
-        assert!(message.starts_with("test.urdf"), "{what}: no file name in «{message}»");
+        assert!(
+            message.starts_with("test.urdf"),
+            "{what}: no file name in «{message}»"
+        );
     }
 }
 
@@ -112,15 +129,26 @@ fn a_cycle_and_a_second_parent_are_refused() {
 #[test]
 fn malformed_xml_and_xacro_are_refused_with_the_file_name() {
     assert!(refusal("<robot name='r'><link name='a'>").starts_with("test.urdf: not a valid URDF"));
-    let xacro = r#"<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"/></robot>"#;
+    let xacro =
+        r#"<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"/></robot>"#;
     assert!(refusal(xacro).contains("xacro"));
     let dir = tempfile::tempdir().expect("temp dir");
     let path = dir.path().join("arm.urdf.xacro");
     std::fs::write(&path, MIXED).expect("write");
-    let message = Robot::from_urdf_file(&path).expect_err("xacro by name").to_string();
-    assert!(message.contains("arm.urdf.xacro") && message.contains("xacro robot.urdf.xacro"), "{message}");
-    let missing = Robot::from_urdf_file(dir.path().join("none.urdf")).expect_err("missing file").to_string();
-    assert!(missing.contains("none.urdf") && missing.contains("cannot read"), "{missing}");
+    let message = Robot::from_urdf_file(&path)
+        .expect_err("xacro by name")
+        .to_string();
+    assert!(
+        message.contains("arm.urdf.xacro") && message.contains("xacro robot.urdf.xacro"),
+        "{message}"
+    );
+    let missing = Robot::from_urdf_file(dir.path().join("none.urdf"))
+        .expect_err("missing file")
+        .to_string();
+    assert!(
+        missing.contains("none.urdf") && missing.contains("cannot read"),
+        "{missing}"
+    );
 }
 
 #[test]
@@ -138,15 +166,37 @@ fn primitive_shapes_keep_urdf_dimensions_and_bad_ones_are_refused() {
     let robot = load(&shapes).expect("valid shapes");
     let colliders = &robot.links[robot.link_index("b").expect("b")].colliders;
     assert_eq!(colliders.len(), 4);
-    assert!(matches!(colliders[0].shape, Shape::Box { half_extents_m } if half_extents_m == Vector3::new(0.1, 0.2, 0.3)));
+    assert!(
+        matches!(colliders[0].shape, Shape::Box { half_extents_m } if half_extents_m == Vector3::new(0.1, 0.2, 0.3))
+    );
     assert!((colliders[0].origin.translation.vector.z - 0.1).abs() < 1e-15);
-    assert!(matches!(colliders[1].shape, Shape::Cylinder { radius_m: 0.05, length_m: 0.3 }));
-    assert!(matches!(colliders[2].shape, Shape::Sphere { radius_m: 0.07 }));
-    assert!(matches!(colliders[3].shape, Shape::Capsule { radius_m: 0.02, length_m: 0.1 }));
+    assert!(matches!(
+        colliders[1].shape,
+        Shape::Cylinder {
+            radius_m: 0.05,
+            length_m: 0.3
+        }
+    ));
+    assert!(matches!(
+        colliders[2].shape,
+        Shape::Sphere { radius_m: 0.07 }
+    ));
+    assert!(matches!(
+        colliders[3].shape,
+        Shape::Capsule {
+            radius_m: 0.02,
+            length_m: 0.1
+        }
+    ));
 
     let bad = shapes.replace(r#"radius="0.07""#, r#"radius="-0.07""#);
     let message = refusal(&bad);
-    assert!(message.contains("<link name=\"b\">") && message.contains("<collision> #3") && message.contains("sphere radius"), "{message}");
+    assert!(
+        message.contains("<link name=\"b\">")
+            && message.contains("<collision> #3")
+            && message.contains("sphere radius"),
+        "{message}"
+    );
 }
 
 /// A unit right tetrahedron as ASCII STL (vertices in millimetres).
@@ -174,16 +224,27 @@ fn stl_meshes_resolve_relative_and_package_paths_and_are_scaled() {
     std::fs::create_dir_all(package.join("urdf")).expect("mkdir");
     std::fs::write(package.join("meshes/t.stl"), TETRAHEDRON_STL).expect("write stl");
 
-    for filename in ["../meshes/t.stl", "package://my_robot_description/meshes/t.stl"] {
+    for filename in [
+        "../meshes/t.stl",
+        "package://my_robot_description/meshes/t.stl",
+    ] {
         let urdf_path = package.join("urdf/robot.urdf");
         std::fs::write(&urdf_path, mesh_robot(filename)).expect("write urdf");
         let robot = Robot::from_urdf_file(&urdf_path).unwrap_or_else(|e| panic!("{filename}: {e}"));
         let collider = &robot.links[robot.link_index("b").expect("b")].colliders[0];
-        let Shape::Mesh(mesh) = &collider.shape else { panic!("{filename}: not a mesh") };
+        let Shape::Mesh(mesh) = &collider.shape else {
+            panic!("{filename}: not a mesh")
+        };
         assert_eq!(mesh.triangles.len(), 4, "{filename}");
-        let extent = mesh.vertices.iter().fold(Vector3::zeros(), |m: Vector3<f64>, p| m.sup(&p.coords));
+        let extent = mesh
+            .vertices
+            .iter()
+            .fold(Vector3::zeros(), |m: Vector3<f64>, p| m.sup(&p.coords));
         // 10 mm scaled by (0.001, 0.002, 0.001).
-        assert!((extent - Vector3::new(0.010, 0.020, 0.010)).norm() < 1e-9, "{filename}: {extent:?}");
+        assert!(
+            (extent - Vector3::new(0.010, 0.020, 0.010)).norm() < 1e-9,
+            "{filename}: {extent:?}"
+        );
     }
 }
 
@@ -194,15 +255,23 @@ fn missing_unreadable_and_non_stl_meshes_are_refused() {
     std::fs::write(dir.path().join("arm.dae"), "<COLLADA/>").expect("write");
     let cases = [
         ("meshes/none.stl", "does not exist"),
-        ("package://no_such_package/none.stl", "no folder named 'no_such_package'"),
+        (
+            "package://no_such_package/none.stl",
+            "no folder named 'no_such_package'",
+        ),
         ("junk.stl", "not a readable STL file"),
         ("arm.dae", "only STL meshes are supported"),
     ];
     for (filename, expected) in cases {
         let urdf_path = dir.path().join("robot.urdf");
         std::fs::write(&urdf_path, mesh_robot(filename)).expect("write urdf");
-        let message = Robot::from_urdf_file(&urdf_path).expect_err(filename).to_string();
+        let message = Robot::from_urdf_file(&urdf_path)
+            .expect_err(filename)
+            .to_string();
         assert!(message.contains(expected), "{filename}: «{message}»");
-        assert!(message.contains("robot.urdf:1: <link name=\"b\">"), "{filename}: «{message}»");
+        assert!(
+            message.contains("robot.urdf:1: <link name=\"b\">"),
+            "{filename}: «{message}»"
+        );
     }
 }

@@ -6,7 +6,10 @@
 use cable_dict::robot::Robot;
 use nalgebra::{Matrix3, Matrix4, Vector3};
 
-const URDF: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/robots/viper_s850/viper_s850.urdf");
+const URDF: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/robots/viper_s850/viper_s850.urdf"
+);
 
 /// Standard DH rows (d mm, a mm, alpha deg) of the Viper s850; theta_i = q_i, no offsets.
 const DH: [(f64, f64, f64); 6] = [
@@ -33,23 +36,41 @@ fn dh_matrix(theta: f64, d: f64, a: f64, alpha: f64) -> Matrix4<f64> {
     let (st, ct) = theta.sin_cos();
     let (sa, ca) = alpha.sin_cos();
     Matrix4::new(
-        ct, -st * ca, st * sa, a * ct, //
-        st, ct * ca, -ct * sa, a * st, //
-        0.0, sa, ca, d, //
-        0.0, 0.0, 0.0, 1.0,
+        ct,
+        -st * ca,
+        st * sa,
+        a * ct, //
+        st,
+        ct * ca,
+        -ct * sa,
+        a * st, //
+        0.0,
+        sa,
+        ca,
+        d, //
+        0.0,
+        0.0,
+        0.0,
+        1.0,
     )
 }
 
 fn dh_flange(q: &[f64; 6]) -> Matrix4<f64> {
-    q.iter().zip(DH).fold(Matrix4::identity(), |t, (&theta, (d, a, alpha))| {
-        t * dh_matrix(theta, d * 1e-3, a * 1e-3, alpha.to_radians())
-    })
+    q.iter()
+        .zip(DH)
+        .fold(Matrix4::identity(), |t, (&theta, (d, a, alpha))| {
+            t * dh_matrix(theta, d * 1e-3, a * 1e-3, alpha.to_radians())
+        })
 }
 
 /// Angle of a rotation matrix, from `atan2(sin, cos)` — unlike `acos` of the trace it stays
 /// accurate near zero, where the comparison is made.
 fn rotation_angle(r: &Matrix3<f64>) -> f64 {
-    let axis_times_sin = Vector3::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]);
+    let axis_times_sin = Vector3::new(
+        r[(2, 1)] - r[(1, 2)],
+        r[(0, 2)] - r[(2, 0)],
+        r[(1, 0)] - r[(0, 1)],
+    );
     (axis_times_sin.norm() / 2.0).atan2((r.trace() - 1.0) / 2.0)
 }
 
@@ -77,7 +98,9 @@ fn configurations() -> Vec<[f64; 6]> {
     ];
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
     for _ in 0..10 {
-        configs.push(std::array::from_fn(|i| lower[i] + (upper[i] - lower[i]) * rng.next()));
+        configs.push(std::array::from_fn(|i| {
+            lower[i] + (upper[i] - lower[i]) * rng.next()
+        }));
     }
     configs
 }
@@ -90,7 +113,9 @@ fn flange_pose_equals_the_dh_closed_form() {
     assert!(configs.len() >= 12);
     let (mut worst_position, mut worst_angle) = (0.0_f64, 0.0_f64);
     for q in &configs {
-        robot.check_limits(q).expect("test configurations are within limits");
+        robot
+            .check_limits(q)
+            .expect("test configurations are within limits");
         let pose = robot.link_poses(q).expect("6 joints")[tool0];
         let reference = dh_flange(q);
         let position_error = (pose.translation.vector - reference.fixed_view::<3, 1>(0, 3)).norm();
@@ -99,10 +124,16 @@ fn flange_pose_equals_the_dh_closed_form() {
         let angle = rotation_angle(&relative);
         worst_position = worst_position.max(position_error);
         worst_angle = worst_angle.max(angle);
-        assert!(position_error < 1e-9, "q = {q:?}: position off by {position_error} m");
+        assert!(
+            position_error < 1e-9,
+            "q = {q:?}: position off by {position_error} m"
+        );
         assert!(angle < 1e-9, "q = {q:?}: orientation off by {angle} rad");
     }
-    println!("worst over {} configurations: {worst_position:e} m, {worst_angle:e} rad", configs.len());
+    println!(
+        "worst over {} configurations: {worst_position:e} m, {worst_angle:e} rad",
+        configs.len()
+    );
 }
 
 #[test]
@@ -113,8 +144,16 @@ fn urdf_limits_are_the_published_ranges() {
         let joint = robot.actuated_joint(i);
         assert_eq!(joint.name, format!("joint_{}", i + 1));
         let limits = joint.limits.expect("revolute joints have limits");
-        assert!((limits.lower.to_degrees() - lower).abs() < 1e-9, "{}", joint.name);
-        assert!((limits.upper.to_degrees() - upper).abs() < 1e-9, "{}", joint.name);
+        assert!(
+            (limits.lower.to_degrees() - lower).abs() < 1e-9,
+            "{}",
+            joint.name
+        );
+        assert!(
+            (limits.upper.to_degrees() - upper).abs() < 1e-9,
+            "{}",
+            joint.name
+        );
     }
 }
 
@@ -122,13 +161,26 @@ fn urdf_limits_are_the_published_ranges() {
 fn zero_pose_matches_the_described_posture() {
     let robot = Robot::from_urdf_file(URDF).expect("bundled URDF loads");
     let poses = robot.link_poses(&[0.0; 6]).expect("6 joints");
-    let origin = |name: &str| poses[robot.link_index(name).expect("link exists")].translation.vector;
+    let origin = |name: &str| {
+        poses[robot.link_index(name).expect("link exists")]
+            .translation
+            .vector
+    };
     let upper_arm = origin("link_3") - origin("link_2");
     let forearm = origin("link_5") - origin("link_4");
-    assert!(upper_arm.normalize().dot(&Vector3::x()) > 1.0 - 1e-12, "upper arm along +X");
-    assert!(forearm.normalize().dot(&Vector3::z()) > 1.0 - 1e-12, "forearm along +Z");
+    assert!(
+        upper_arm.normalize().dot(&Vector3::x()) > 1.0 - 1e-12,
+        "upper arm along +X"
+    );
+    assert!(
+        forearm.normalize().dot(&Vector3::z()) > 1.0 - 1e-12,
+        "forearm along +Z"
+    );
     let flange = poses[robot.link_index("tool0").expect("tool0 exists")];
-    assert!((flange.rotation * Vector3::z() - Vector3::z()).norm() < 1e-12, "flange faces +Z");
+    assert!(
+        (flange.rotation * Vector3::z() - Vector3::z()).norm() < 1e-12,
+        "flange faces +Z"
+    );
     // Flange position from the DH table alone: x = a1 + a2 + a3, z = d1 + d4 + d6.
     let expected = Vector3::new(0.075 + 0.365 - 0.090, 0.0, 0.335 + 0.405 + 0.080);
     assert!((flange.translation.vector - expected).norm() < 1e-12);
@@ -137,7 +189,15 @@ fn zero_pose_matches_the_described_posture() {
 #[test]
 fn every_arm_link_has_collision_geometry() {
     let robot = Robot::from_urdf_file(URDF).expect("bundled URDF loads");
-    for name in ["base_link", "link_1", "link_2", "link_3", "link_4", "link_5", "link_6"] {
+    for name in [
+        "base_link",
+        "link_1",
+        "link_2",
+        "link_3",
+        "link_4",
+        "link_5",
+        "link_6",
+    ] {
         let link = &robot.links[robot.link_index(name).expect("link exists")];
         assert!(!link.colliders.is_empty(), "{name} has no collision shape");
     }

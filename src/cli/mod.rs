@@ -12,7 +12,7 @@ use clap::{Parser, Subcommand};
 /// Units on the command line: millimetres and degrees. Exit codes: 0 success, 1 the input is
 /// valid but has no answer (e.g. a cable too short for its guides), 2 invalid input.
 #[derive(Debug, Parser)]
-#[command(name = "cable-dict", version, about, long_about = None)]
+#[command(name = "cable-dict", version)]
 pub struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -10,6 +10,9 @@
 
 use nalgebra::{Matrix3, Point3, Rotation3, Unit, Vector3};
 
+/// Largest round-off drift of the normal (squared length from 1, plus its component along the
+/// tangent) tolerated before it is re-orthonormalized.
+const NORM_DRIFT_LIMIT: f64 = 1e-14;
 /// Squared norms below this are treated as zero (a repeated point or tangent).
 const DEGENERATE_SQUARED_NORM: f64 = 1e-300;
 
@@ -36,7 +39,13 @@ pub fn double_reflection(
     for i in 0..count - 1 {
         let (tangent, next_tangent) = (tangents[i].into_inner(), tangents[i + 1].into_inner());
         normal = reflect_step(points[i + 1] - points[i], tangent, next_tangent, normal);
-        normal = orthogonal_normal(&Unit::new_unchecked(normal), &tangents[i + 1]);
+        // Reflections preserve lengths and angles; only round-off drift needs removing. The
+        // check is off the critical path (the branch is predicted), and the projection and
+        // square root are paid only when the drift shows (or the input is degenerate).
+        let drift = next_tangent.dot(&normal).abs() + (normal.norm_squared() - 1.0).abs();
+        if drift.is_nan() || drift > NORM_DRIFT_LIMIT {
+            normal = orthogonal_normal(&Unit::new_unchecked(normal), &tangents[i + 1]);
+        }
         frames.push(frame(&normal, &tangents[i + 1]));
     }
     frames
@@ -69,7 +78,7 @@ fn reflect_pair(
     b: &Vector3<f64>,
 ) -> Option<(Vector3<f64>, Vector3<f64>)> {
     let c = mirror.norm_squared();
-    if !(c > DEGENERATE_SQUARED_NORM) {
+    if c.is_nan() || c <= DEGENERATE_SQUARED_NORM {
         return None;
     }
     let scale = 2.0 / c;
