@@ -35,6 +35,31 @@ fn numbers(value: &Value) -> Vec<f64> {
         .collect()
 }
 
+/// Arguments of a `segment` run.
+fn segment<'a>(cable: &'a str, length_mm: &'a str, start: &'a str, end: &'a str) -> Vec<&'a str> {
+    vec![
+        "segment",
+        "--cable",
+        cable,
+        "--length-mm",
+        length_mm,
+        "--start",
+        start,
+        "--end",
+        end,
+    ]
+}
+
+/// A JSON array of number arrays (a row-major matrix, or a list of points).
+fn matrix(value: &Value) -> Vec<Vec<f64>> {
+    value
+        .as_array()
+        .expect("array of arrays")
+        .iter()
+        .map(numbers)
+        .collect()
+}
+
 fn failure(args: &[&str]) -> (i32, String) {
     let output = run(args);
     (
@@ -54,13 +79,8 @@ fn fk_json_gives_the_flange_of_the_dh_table_at_zero() {
     for (got, want) in numbers(&tool0["position_m"]).iter().zip(expected) {
         assert!((got - want).abs() < 1e-12);
     }
-    for (r, row) in tool0["rotation"]
-        .as_array()
-        .expect("rows")
-        .iter()
-        .enumerate()
-    {
-        for (c, v) in numbers(row).iter().enumerate() {
+    for (r, row) in matrix(&tool0["rotation"]).iter().enumerate() {
+        for (c, v) in row.iter().enumerate() {
             assert!((v - if r == c { 1.0 } else { 0.0 }).abs() < 1e-12);
         }
     }
@@ -72,12 +92,7 @@ fn fk_rotation_is_row_major_link_to_base() {
     let report = json(&["fk", URDF, "--joints-deg", "90,0,0,0,0,0", "--json"]);
     let link_1 = &report["links"][1];
     assert_eq!(link_1["name"], "link_1");
-    let rows: Vec<Vec<f64>> = link_1["rotation"]
-        .as_array()
-        .expect("rows")
-        .iter()
-        .map(numbers)
-        .collect();
+    let rows = matrix(&link_1["rotation"]);
     assert!(
         (rows[1][0] - 1.0).abs() < 1e-12 && (rows[0][1] + 1.0).abs() < 1e-12,
         "{rows:?}"
@@ -107,26 +122,12 @@ fn robot_info_lists_the_actuated_joints() {
 fn segment_json_runs_from_guide_to_guide_in_pitch_steps() {
     let start = [0.0, 0.0, 0.0];
     let end = [250.0, 100.0, 50.0];
-    let report = json(&[
-        "segment",
-        "--cable",
-        CABLE,
-        "--length-mm",
-        "400",
-        "--start",
-        "0,0,0,0,90,0",
-        "--end",
-        "250,100,50,0,90,0",
-        "--json",
-    ]);
+    let mut args = segment(CABLE, "400", "0,0,0,0,90,0", "250,100,50,0,90,0");
+    args.push("--json");
+    let report = json(&args);
     assert_eq!(report["stage"], "connected");
     assert_eq!(report["length_mm"], 400.0);
-    let nodes: Vec<Vec<f64>> = report["nodes_mm"]
-        .as_array()
-        .expect("nodes")
-        .iter()
-        .map(numbers)
-        .collect();
+    let nodes = matrix(&report["nodes_mm"]);
     assert_eq!(nodes.len(), 41);
     let distance = |a: &[f64], b: &[f64]| {
         a.iter()
@@ -146,12 +147,7 @@ fn segment_json_runs_from_guide_to_guide_in_pitch_steps() {
     let frames = report["frames"].as_array().expect("frames");
     assert_eq!(frames.len(), 41);
     for frame in [&frames[0], &frames[40]] {
-        let rows: Vec<Vec<f64>> = frame
-            .as_array()
-            .expect("rows")
-            .iter()
-            .map(numbers)
-            .collect();
+        let rows = matrix(frame);
         assert!(
             (rows[0][2] - 1.0).abs() < 1e-9 && rows[1][2].abs() < 1e-9 && rows[2][2].abs() < 1e-9
         );
@@ -168,17 +164,7 @@ fn segment_json_runs_from_guide_to_guide_in_pitch_steps() {
 
 #[test]
 fn exit_codes_separate_no_answer_from_bad_input() {
-    let too_short = failure(&[
-        "segment",
-        "--cable",
-        CABLE,
-        "--length-mm",
-        "200",
-        "--start",
-        "0,0,0,0,0,0",
-        "--end",
-        "0,0,300,0,0,0",
-    ]);
+    let too_short = failure(&segment(CABLE, "200", "0,0,0,0,0,0", "0,0,300,0,0,0"));
     assert_eq!(too_short.0, 1, "{}", too_short.1);
     assert!(
         too_short.1.contains("too short") && too_short.1.contains("1.500"),
@@ -188,45 +174,15 @@ fn exit_codes_separate_no_answer_from_bad_input() {
 
     let cases: [(&[&str], &str); 5] = [
         (
-            &[
-                "segment",
-                "--cable",
-                CABLE,
-                "--length-mm",
-                "405",
-                "--start",
-                "0,0,0,0,0,0",
-                "--end",
-                "0,0,300,0,0,0",
-            ],
+            &segment(CABLE, "405", "0,0,0,0,0,0", "0,0,300,0,0,0"),
             "whole number of 10 mm",
         ),
         (
-            &[
-                "segment",
-                "--cable",
-                "missing.toml",
-                "--length-mm",
-                "400",
-                "--start",
-                "0,0,0,0,0,0",
-                "--end",
-                "0,0,300,0,0,0",
-            ],
+            &segment("missing.toml", "400", "0,0,0,0,0,0", "0,0,300,0,0,0"),
             "missing.toml",
         ),
         (
-            &[
-                "segment",
-                "--cable",
-                CABLE,
-                "--length-mm",
-                "400",
-                "--start",
-                "0,0,0,0,0",
-                "--end",
-                "0,0,300,0,0,0",
-            ],
+            &segment(CABLE, "400", "0,0,0,0,0", "0,0,300,0,0,0"),
             "expected 6 comma-separated numbers",
         ),
         (

@@ -128,7 +128,16 @@ fn a_cycle_and_a_second_parent_are_refused() {
 
 #[test]
 fn malformed_xml_and_xacro_are_refused_with_the_file_name() {
-    assert!(refusal("<robot name='r'><link name='a'>").starts_with("test.urdf: not a valid URDF"));
+    let unclosed = refusal("<robot name='r'>\n<link name='a'>");
+    assert!(
+        unclosed.starts_with("test.urdf:2: the document ends"),
+        "{unclosed}"
+    );
+    let bad_number = refusal(&MIXED.replace(r#"<origin xyz="1 0 0"/>"#, r#"<origin xyz="1 0"/>"#));
+    assert!(
+        bad_number.starts_with("test.urdf:6: <origin xyz=\"1 0\">: expected 3 numbers"),
+        "{bad_number}"
+    );
     let xacro =
         r#"<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"/></robot>"#;
     assert!(refusal(xacro).contains("xacro"));

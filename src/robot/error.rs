@@ -45,6 +45,22 @@ impl RobotError {
         }
     }
 
+    /// A problem at a known line.
+    pub(crate) fn at_line(
+        file: impl Into<PathBuf>,
+        line: usize,
+        problem: impl Into<String>,
+    ) -> Self {
+        RobotError {
+            location: Location {
+                file: file.into(),
+                line: Some(line),
+                element: None,
+            },
+            problem: problem.into(),
+        }
+    }
+
     /// A problem with one named element, located at `line` when it could be found.
     pub(crate) fn element(
         file: impl Into<PathBuf>,

@@ -1,6 +1,7 @@
 //! Turning a URDF document into a validated [`Robot`].
 
 use super::collision::colliders_of_link;
+use super::locate::first_problem;
 use super::{Joint, JointDrive, JointKind, JointLimits, Link, Robot, RobotError};
 use crate::pose::pose_from_xyz_rpy;
 use nalgebra::{Unit, Vector3};
@@ -20,8 +21,10 @@ pub(super) fn from_str(text: &str, source: &Path) -> Result<Robot, RobotError> {
     if text.contains("xmlns:xacro") || text.contains("<xacro:") {
         return Err(xacro_refusal(source));
     }
-    let urdf = urdf_rs::read_from_string(text)
-        .map_err(|e| RobotError::file(source, format!("not a valid URDF document: {e}")))?;
+    let urdf = urdf_rs::read_from_string(text).map_err(|e| match first_problem(text) {
+        Some((line, problem)) => RobotError::at_line(source, line, problem),
+        None => RobotError::file(source, format!("not a valid URDF document: {e}")),
+    })?;
     Builder { text, source }.build(&urdf)
 }
 

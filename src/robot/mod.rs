@@ -13,6 +13,7 @@ mod collision;
 mod error;
 mod kinematics;
 mod load;
+mod locate;
 mod mesh;
 
 pub use collision::{Collider, Shape, TriMesh};

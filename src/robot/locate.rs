@@ -1,0 +1,132 @@
+//! Finding *where* a URDF document is malformed.
+//!
+//! urdf-rs re-serialises a document before deserialising it, so its error messages carry no
+//! position in the user's file. When it refuses a document, this module reads the original text
+//! once more and points at the first XML syntax error or malformed number.
+
+use quick_xml::Reader;
+use quick_xml::events::{BytesStart, Event};
+
+/// URDF attributes that hold numbers, with how many each must hold.
+const NUMERIC_ATTRIBUTES: [(&str, usize); 16] = [
+    ("xyz", 3),
+    ("rpy", 3),
+    ("size", 3),
+    ("scale", 3),
+    ("quat_xyzw", 4),
+    ("rgba", 4),
+    ("radius", 1),
+    ("length", 1),
+    ("lower", 1),
+    ("upper", 1),
+    ("velocity", 1),
+    ("effort", 1),
+    ("multiplier", 1),
+    ("offset", 1),
+    ("damping", 1),
+    ("friction", 1),
+];
+
+/// The 1-based line and description of the first syntax error or malformed number in `text`,
+/// or `None` when the text looks well-formed (the problem is then structural).
+pub(super) fn first_problem(text: &str) -> Option<(usize, String)> {
+    let mut reader = Reader::from_str(text);
+    let mut open_elements = 0usize;
+    loop {
+        let element_start = reader.buffer_position() as usize;
+        let event = match reader.read_event() {
+            Ok(event) => event,
+            Err(e) => {
+                let line = line_of(text, reader.error_position() as usize);
+                return Some((line, format!("XML syntax error: {e}")));
+            }
+        };
+        let element = match event {
+            Event::Start(element) => {
+                open_elements += 1;
+                element
+            }
+            Event::Empty(element) => element,
+            Event::End(_) => {
+                open_elements = open_elements.saturating_sub(1);
+                continue;
+            }
+            Event::Eof if open_elements > 0 => {
+                let problem = "the document ends before all its elements are closed";
+                return Some((line_of(text, text.len()), problem.into()));
+            }
+            Event::Eof => return None,
+            _ => continue,
+        };
+        if let Some(problem) = malformed_number(&element) {
+            return Some((line_of(text, element_start), problem));
+        }
+    }
+}
+
+/// Describes the first numeric attribute of `element` that does not hold its count of numbers.
+fn malformed_number(element: &BytesStart<'_>) -> Option<String> {
+    let tag = String::from_utf8_lossy(element.name().as_ref()).into_owned();
+    for attribute in element.attributes() {
+        let Ok(attribute) = attribute else {
+            return Some(format!("<{tag}>: malformed attribute"));
+        };
+        let key = String::from_utf8_lossy(attribute.key.as_ref()).into_owned();
+        let Some(&(_, count)) = NUMERIC_ATTRIBUTES.iter().find(|(name, _)| *name == key) else {
+            continue;
+        };
+        let value = String::from_utf8_lossy(&attribute.value).into_owned();
+        let numbers: Vec<Result<f64, _>> =
+            value.split_whitespace().map(str::parse::<f64>).collect();
+        if numbers.len() != count || numbers.iter().any(Result::is_err) {
+            let expected = if count == 1 {
+                "a number".to_string()
+            } else {
+                format!("{count} numbers")
+            };
+            return Some(format!("<{tag} {key}=\"{value}\">: expected {expected}"));
+        }
+    }
+    None
+}
+
+/// 1-based line number of a byte offset.
+fn line_of(text: &str, offset: usize) -> usize {
+    text.as_bytes()[..offset.min(text.len())]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::first_problem;
+
+    #[test]
+    fn points_at_the_line_of_the_problem() {
+        let bad_number =
+            "<robot>\n<link name=\"a\">\n<collision><geometry>\n<box size=\"0.1 0.1\"/>";
+        let (line, problem) = first_problem(bad_number).expect("found");
+        assert_eq!(line, 4);
+        assert!(
+            problem.contains("<box size=\"0.1 0.1\">: expected 3 numbers"),
+            "{problem}"
+        );
+
+        let not_a_number = "<robot>\n<joint>\n<limit lower=\"0\" upper=\"x\"/></joint></robot>";
+        let (line, problem) = first_problem(not_a_number).expect("found");
+        assert_eq!(line, 3);
+        assert!(problem.contains("upper=\"x\"") && problem.contains("expected a number"));
+
+        let (line, problem) = first_problem("<robot>\n<link name=\"a\">\n").expect("found");
+        assert_eq!(line, 3);
+        assert!(problem.contains("ends before"), "{problem}");
+
+        let (line, problem) = first_problem("<robot>\n<link name=\"a\"></joint>").expect("found");
+        assert_eq!(line, 2);
+        assert!(problem.contains("XML syntax error"), "{problem}");
+
+        assert_eq!(first_problem("<robot><link name=\"a\"/></robot>"), None);
+    }
+}
