@@ -1,5 +1,11 @@
-//! Benchmark of `connect` on an S-bend between two typical guide frames: start along +x, end
-//! tilted 30° up and rolled 45° about its axis, at (0.6, 0.2, 0.1)·cable length.
+//! Benchmark of `connect` between two typical guide frames, 10 mm pitch, sagging towards −z:
+//!
+//! - S-bend: start along +x, end at (0.6, 0.2, 0.1)·cable length, tilted 30° up and rolled
+//!   45° about its axis (25 and 50 sub-segments; both candidates are built, the bowed one is
+//!   kept);
+//! - coaxial slack: both guides along +x, 400 mm apart, 500 mm of cable (50 sub-segments; the
+//!   Hermite curve folds, the bowed one is kept).
+//!
 //! Target: < 20 µs for 50 sub-segments.
 
 use std::hint::black_box;
@@ -11,22 +17,38 @@ use nalgebra::{Isometry3, Rotation3, Translation3, UnitQuaternion, Vector3};
 
 const PITCH_M: f64 = 0.010;
 
+/// Guide frame whose +z axis is world +x (pitch +90°), at `x_m` on the x axis.
+fn along_x(x_m: f64) -> Pose {
+    pose_from_xyz_rpy([x_m, 0.0, 0.0], [0.0, std::f64::consts::FRAC_PI_2, 0.0])
+}
+
 fn s_bend(length_m: f64) -> (Pose, Pose) {
-    // pitch +90° turns the guide's +z onto the world +x axis.
-    let start = pose_from_xyz_rpy([0.0, 0.0, 0.0], [0.0, std::f64::consts::FRAC_PI_2, 0.0]);
     let tilt = Rotation3::from_axis_angle(&Vector3::y_axis(), 60f64.to_radians());
     let roll = Rotation3::from_axis_angle(&Vector3::z_axis(), 45f64.to_radians());
     let end = Isometry3::from_parts(
         Translation3::new(0.6 * length_m, 0.2 * length_m, 0.1 * length_m),
         UnitQuaternion::from_rotation_matrix(&(tilt * roll)),
     );
-    (start, end)
+    (along_x(0.0), end)
 }
 
 fn bench_connect(c: &mut Criterion) {
-    for sub_segments in [25, 50] {
-        let (start, end) = s_bend(sub_segments as f64 * PITCH_M);
-        let name = format!("connect S-bend {sub_segments} sub-segments");
+    let down = -Vector3::z_axis();
+    let mut cases: Vec<(String, Pose, Pose, usize)> = [25, 50]
+        .into_iter()
+        .map(|sub_segments| {
+            let (start, end) = s_bend(sub_segments as f64 * PITCH_M);
+            let name = format!("connect S-bend {sub_segments} sub-segments");
+            (name, start, end, sub_segments)
+        })
+        .collect();
+    cases.push((
+        "connect coaxial slack (bowed) 50 sub-segments".into(),
+        along_x(0.0),
+        along_x(0.4),
+        50,
+    ));
+    for (name, start, end, sub_segments) in cases {
         c.bench_function(&name, |b| {
             b.iter(|| {
                 connect(
@@ -34,6 +56,7 @@ fn bench_connect(c: &mut Criterion) {
                     black_box(&end),
                     black_box(sub_segments),
                     PITCH_M,
+                    &down,
                 )
             })
         });

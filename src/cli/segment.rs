@@ -73,6 +73,7 @@ pub fn run(args: Args) -> Result<(), Failure> {
         &args.end,
         sub_segments,
         cable.sub_segment_pitch_m,
+        &-nalgebra::Vector3::z_axis(),
     )
     .map_err(|e| match e {
         ConnectError::InvalidInput { .. } => Failure::input(e),

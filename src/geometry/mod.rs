@@ -1,16 +1,24 @@
-//! Connected geometry of a cable segment: the cubic Hermite curve between two guide frames,
-//! its rotation-minimizing frames, and the discrete rigid-link cable placed on it.
+//! Connected geometry of a cable segment: the cubic Hermite curve between two guide frames
+//! (optionally bowed towards the sag direction), its rotation-minimizing frames, and the
+//! discrete rigid-link cable placed on it.
 //!
-//! - [`hermite`]: the curve, its arc length and the tangent scale α for a given length.
+//! - [`hermite`]: the curve, its arc length, the shape parameter (tangent scale α or bow
+//!   height β) for a given length, and nodes at equal arc length.
+//! - `chain`: projection of nodes onto the rigid-chain constraints, bending energy.
 //! - [`rmf`]: rotation-minimizing frames by double reflection.
+//! - `frames`: node frames from guide to guide (RMF plus a linear twist).
+//! - `guides`: validation of the input of [`connect`].
 //! - [`connected`]: [`connect`], which puts `S` sub-segments of pitch `l` between two guides.
 //!
 //! See `docs/connected-geometry.md` for the algorithm, conventions and measured accuracy.
 
+mod chain;
 pub mod connected;
+mod frames;
+mod guides;
 pub mod hermite;
 pub mod rmf;
 
-pub use connected::{ConnectError, ConnectedGeometry, connect};
-pub use hermite::HermiteCurve;
+pub use connected::{ConnectError, ConnectedGeometry, CurveFamily, connect};
+pub use hermite::{CurveParameter, HermiteCurve};
 pub use rmf::double_reflection;
