@@ -13,6 +13,25 @@
 //!   discrete cable, with rotation-minimizing frames.
 //! - [`stress`]: the stress metrics evaluated on a cable shape (stretch, bend radius).
 //!
+//! ```
+//! use cable_dict::{cable::CableSpec, geometry::connect, pose::pose_from_mm_deg, robot::Robot};
+//! use nalgebra::Vector3;
+//!
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let robot = Robot::from_urdf_file("robots/viper_s850/viper_s850.urdf")?;
+//! let poses = robot.link_poses(&[0.0; 6])?;
+//! let flange = poses[robot.link_index("tool0").ok_or("no tool0")?];
+//! assert!((flange.translation.vector - Vector3::new(0.35, 0.0, 0.82)).norm() < 1e-12);
+//!
+//! let cable = CableSpec::from_file("cables/smc_le_cp_3.toml")?;
+//! let start = pose_from_mm_deg([0.0, 0.0, 0.0], [0.0, 90.0, 0.0]);
+//! let end = pose_from_mm_deg([250.0, 0.0, -150.0], [0.0, 150.0, 0.0]);
+//! let segment = connect(&start, &end, 40, cable.sub_segment_pitch_m, &-Vector3::z_axis())?;
+//! assert_eq!(segment.nodes.len(), 41);
+//! # Ok(())
+//! # }
+//! ```
+//!
 //! All quantities are SI (metres, radians, kilograms, seconds) unless a name carries its unit
 //! (`length_mm`, `angle_deg`); conversion happens only at file and command-line boundaries.
 

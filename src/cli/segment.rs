@@ -2,7 +2,7 @@
 
 use super::{Failure, args, emit, print_json};
 use cable_dict::cable::CableSpec;
-use cable_dict::geometry::{ConnectError, ConnectedGeometry, connect};
+use cable_dict::geometry::{ConnectError, ConnectedGeometry, CurveFamily, connect};
 use cable_dict::pose::{Pose, matrix_rows};
 use cable_dict::stress::{BendRadius, min_bend_radius, stretch};
 use serde::Serialize;
@@ -43,7 +43,11 @@ enum Stage {
 struct SegmentReport {
     stage: Stage,
     cable: String,
+    /// `hermite` (the paper's curve) or `bowed` (slack taken by a bow towards -z).
+    curve: &'static str,
     alpha_m: f64,
+    /// Bow height of the `bowed` curve (m); 0 for `hermite`.
+    bow_m: f64,
     length_mm: f64,
     sub_segments: usize,
     pitch_mm: f64,
@@ -111,7 +115,12 @@ impl SegmentReport {
         SegmentReport {
             stage,
             cable: cable.name.clone(),
+            curve: match geometry.curve {
+                CurveFamily::Hermite => "hermite",
+                CurveFamily::Bowed => "bowed",
+            },
             alpha_m: geometry.alpha_m,
+            bow_m: geometry.bow_m,
             length_mm: geometry.natural_length_m() * 1e3,
             sub_segments: geometry.sub_segment_count(),
             pitch_mm: geometry.pitch_m * 1e3,
@@ -140,7 +149,11 @@ impl fmt::Display for SegmentReport {
             "{:?} geometry of {}: {} mm = {} sub-segments of {} mm",
             self.stage, self.cable, self.length_mm, self.sub_segments, self.pitch_mm
         )?;
+        writeln!(f, "  curve             {}", self.curve)?;
         writeln!(f, "  alpha             {:.6} m", self.alpha_m)?;
+        if self.bow_m != 0.0 {
+            writeln!(f, "  bow               {:.6} m", self.bow_m)?;
+        }
         writeln!(f, "  twist correction  {:.3}°", self.twist_correction_deg)?;
         match m.min_bend_radius_mm {
             Some(r) => {
