@@ -109,7 +109,9 @@ pub(crate) fn max_chord_error(nodes: &[Point3<f64>], pitch: f64) -> f64 {
 /// Discrete bending energy `Σ θ_j²` (rad²) of a chain between two guides: `θ_j` are the
 /// angles between adjacent directions of `[v0, e_0, …, e_{S−1}, v1]`, the same joints as
 /// [`crate::stress::min_bend_radius`] uses. The equilibrium minimizes bending energy, so the
-/// less bent of two starting shapes is the better start.
+/// less bent of two starting shapes is the better start. `connect` compares the continuous
+/// energy of the curves instead (`∫ κ² ds`, which `Σ θ²/l` converges to); this stays as a check.
+#[cfg(test)]
 pub(crate) fn bending_energy(
     nodes: &[Point3<f64>],
     start_tangent: &Vector3<f64>,

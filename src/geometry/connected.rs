@@ -2,8 +2,8 @@
 //! with exactly the cable's natural length, the start of the static equilibrium solve.
 //!
 //! The cable is `S` rigid sub-segments of pitch `l`: `S + 1` nodes, node 0 and node `S` at the
-//! guide origins, every adjacent pair exactly `l` apart. Two candidate shapes are built, and
-//! the less bent one is kept:
+//! guide origins, every adjacent pair exactly `l` apart. Two candidate curves are built, and
+//! the less bent one is used:
 //!
 //! - **Hermite** (the paper's curve): tangents `α v0`, `α v1` with `α` such that the arc length
 //!   is `S·l`.
@@ -13,11 +13,13 @@
 //!   curve can only lengthen by folding back along the axis (cusps, 180° kinks); the bow gives
 //!   the single smooth arch a hanging cable takes.
 //!
-//! Each candidate's nodes are placed at equal arc length on its curve and then moved by the
-//! minimum-norm Gauss–Newton projection onto the rigid-chain constraints (module `chain`):
-//! arc-length nodes have chords short by `≈ l³κ²/24`, and the projection lengthens them by
-//! moving the nodes slightly off the curve. The candidate with the smaller discrete bending
-//! energy `Σ θ²` wins (ties: Hermite).
+//! The candidate curve with the smaller continuous bending energy `∫ κ² ds` is chosen before
+//! any node is placed (ties, also two infinite energies of cusped curves: Hermite); the
+//! discrete `Σ θ²/l` of a placed chain converges to it. Its nodes are placed at equal arc
+//! length and then moved by the minimum-norm Gauss–Newton projection onto the rigid-chain
+//! constraints (module `chain`): arc-length nodes have chords short by `≈ l³κ²/24`, and the
+//! projection lengthens them by moving the nodes slightly off the curve. If that projection
+//! fails, the other candidate is placed instead.
 //!
 //! Frames are rotation-minimizing frames along the nodes, fed with the exact curve tangents at
 //! the nodes' parameters, from the start guide's x axis; the twist left at the end guide is
@@ -25,7 +27,7 @@
 
 use nalgebra::{Point3, Rotation3, Unit, Vector3};
 
-use super::chain::{bending_energy, project_onto_rigid_chain};
+use super::chain::project_onto_rigid_chain;
 use super::frames::guided_frames;
 use super::guides::{GuidePair, check_cable, check_sag};
 use super::hermite::{ArcLengthError, HermiteCurve, arc_length_tolerance};
@@ -204,15 +206,6 @@ impl Candidate {
         })
     }
 
-    /// Discrete bending energy `Σ θ²` (rad²) of the chain between the guide tangents.
-    fn energy(&self) -> f64 {
-        bending_energy(
-            &self.nodes,
-            &self.curve.start_tangent().into_inner(),
-            &self.curve.end_tangent().into_inner(),
-        )
-    }
-
     /// Frames along the nodes, packed with the shape data.
     fn into_geometry(self, guides: &GuidePair, pitch_m: f64) -> ConnectedGeometry {
         let (frames, twist) = guided_frames(
@@ -252,8 +245,9 @@ fn straight_chain(curve: HermiteCurve, sub_segments: usize) -> Candidate {
     }
 }
 
-/// Builds the Hermite candidate and, with slack, the bowed one, and keeps the one with the
-/// smaller bending energy (ties and failed bows: Hermite).
+/// Builds the Hermite curve and, with slack, the bowed one, and places nodes on the one with
+/// the smaller continuous bending energy `∫ κ² ds` (ties and failed bows: Hermite). If the
+/// winner's projection fails, the other curve is placed instead.
 fn least_bent_candidate(
     guides: &GuidePair,
     base: &HermiteCurve,
@@ -267,33 +261,43 @@ fn least_bent_candidate(
     let alpha = base
         .alpha_for_arc_length(natural)
         .map_err(arc_length_failure)?;
-    let hermite = Candidate::place(
-        CurveFamily::Hermite,
-        base.with_alpha(alpha),
-        sub_segments,
-        pitch,
-    );
+    let hermite = base.with_alpha(alpha);
     // Without slack beyond α = d the Hermite curve needs no fold, and L(α = d) ≥ S·l leaves
-    // no room for a bow.
-    let bowed = (alpha > distance).then(|| {
-        let direction = bow_direction(&chord, sag, guides);
-        let unbowed = base.with_alpha(distance).with_bow(direction, 0.0);
-        let bow = unbowed
-            .bow_for_arc_length(natural)
-            .map_err(|e| format!("Bowed candidate: {e}"))?;
-        let mut curve = unbowed;
-        curve.set_bow(bow);
-        Candidate::place(CurveFamily::Bowed, curve, sub_segments, pitch)
-    });
-    match (hermite, bowed) {
-        (Ok(hermite), Some(Ok(bowed))) if bowed.energy() < hermite.energy() => Ok(bowed),
-        (Ok(hermite), _) => Ok(hermite),
-        (Err(_), Some(Ok(bowed))) => Ok(bowed),
-        (Err(hermite), Some(Err(bowed))) => Err(ConnectError::NoSolution {
-            reason: format!("{hermite}; {bowed}"),
-        }),
-        (Err(hermite), None) => Err(ConnectError::NoSolution { reason: hermite }),
+    // no room for a bow. A failed bow root leaves the Hermite curve alone.
+    let bowed = (alpha > distance)
+        .then(|| bowed_curve(base, &chord, sag, guides, natural))
+        .and_then(Result::ok);
+    let mut order = vec![(CurveFamily::Hermite, hermite)];
+    if let Some(bowed) = bowed {
+        let bowed_wins = bowed.bending_energy_integral() < order[0].1.bending_energy_integral();
+        order.insert(usize::from(!bowed_wins), (CurveFamily::Bowed, bowed));
     }
+    let mut failures = Vec::new();
+    for (family, curve) in order {
+        match Candidate::place(family, curve, sub_segments, pitch) {
+            Ok(candidate) => return Ok(candidate),
+            Err(reason) => failures.push(reason),
+        }
+    }
+    Err(ConnectError::NoSolution {
+        reason: failures.join("; "),
+    })
+}
+
+/// The Hermite curve at α = guide distance, bowed towards the sag direction to arc length
+/// `natural`.
+fn bowed_curve(
+    base: &HermiteCurve,
+    chord: &Vector3<f64>,
+    sag: &Unit<Vector3<f64>>,
+    guides: &GuidePair,
+    natural: f64,
+) -> Result<HermiteCurve, ArcLengthError> {
+    let direction = bow_direction(chord, sag, guides);
+    let mut curve = base.with_alpha(chord.norm()).with_bow(direction, 0.0);
+    let bow = curve.bow_for_arc_length(natural)?;
+    curve.set_bow(bow);
+    Ok(curve)
 }
 
 /// The unit bow direction `n`: the part of `sag` perpendicular to the chord. If `sag` is
