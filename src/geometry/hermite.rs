@@ -241,15 +241,19 @@ impl HermiteCurve {
     }
 }
 
+/// Fixtures shared by the unit tests of the curve and of its submodules.
 #[cfg(test)]
-mod tests {
-    use super::*;
+pub(crate) mod test_support {
+    use super::HermiteCurve;
+    use nalgebra::{Point3, Unit, Vector3};
 
-    fn unit(x: f64, y: f64, z: f64) -> Unit<Vector3<f64>> {
+    /// A unit vector from components.
+    pub fn unit(x: f64, y: f64, z: f64) -> Unit<Vector3<f64>> {
         Unit::new_normalize(Vector3::new(x, y, z))
     }
 
-    fn sample_curve() -> HermiteCurve {
+    /// A generic skew curve: no symmetry that could hide a sign or index error.
+    pub fn sample_curve() -> HermiteCurve {
         HermiteCurve::new(
             Point3::new(0.1, -0.2, 0.3),
             unit(1.0, 0.5, -0.2),
@@ -258,6 +262,27 @@ mod tests {
             0.37,
         )
     }
+
+    /// `|Σ w_i x_i^d − ∫_{−1}^{1} x^d dx|` of a quadrature rule on [−1, 1].
+    pub fn rule_error(nodes: &[f64], weights: &[f64], degree: i32) -> f64 {
+        let exact = if degree % 2 == 0 {
+            2.0 / (degree as f64 + 1.0)
+        } else {
+            0.0
+        };
+        let sum: f64 = nodes
+            .iter()
+            .zip(weights)
+            .map(|(x, w)| w * x.powi(degree))
+            .sum();
+        (sum - exact).abs()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::test_support::{sample_curve, unit};
+    use super::*;
 
     /// The Hermite basis and bow profile written out, independent of the stored monomial
     /// coefficients.

@@ -810,37 +810,9 @@ impl NewtonBracket {
 
 #[cfg(test)]
 mod tests {
+    use super::super::test_support::{rule_error, sample_curve, unit};
     use super::*;
-    use nalgebra::{Point3, Unit};
-
-    fn unit(x: f64, y: f64, z: f64) -> Unit<Vector3<f64>> {
-        Unit::new_normalize(Vector3::new(x, y, z))
-    }
-
-    fn sample_curve() -> HermiteCurve {
-        HermiteCurve::new(
-            Point3::new(0.1, -0.2, 0.3),
-            unit(1.0, 0.5, -0.2),
-            Point3::new(0.4, 0.1, 0.0),
-            unit(-0.3, 1.0, 0.4),
-            0.37,
-        )
-    }
-
-    /// `Σ w_i x_i^d` of a rule against `∫_{−1}^{1} x^d dx`.
-    fn rule_error(nodes: &[f64], weights: &[f64], degree: i32) -> f64 {
-        let exact = if degree % 2 == 0 {
-            2.0 / (degree as f64 + 1.0)
-        } else {
-            0.0
-        };
-        let sum: f64 = nodes
-            .iter()
-            .zip(weights)
-            .map(|(x, w)| w * x.powi(degree))
-            .sum();
-        (sum - exact).abs()
-    }
+    use nalgebra::Point3;
 
     #[test]
     fn quadrature_rules_integrate_polynomials_exactly() {

@@ -176,41 +176,10 @@ fn quintic_inverse(start: &TableEntry, end: &TableEntry, target: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
+    use super::super::test_support::{rule_error, sample_curve, unit};
     use super::*;
-    use nalgebra::{Point3, Unit, Vector3};
+    use nalgebra::Point3;
 
-    fn unit(x: f64, y: f64, z: f64) -> Unit<Vector3<f64>> {
-        Unit::new_normalize(Vector3::new(x, y, z))
-    }
-
-    fn sample_curve() -> HermiteCurve {
-        HermiteCurve::new(
-            Point3::new(0.1, -0.2, 0.3),
-            unit(1.0, 0.5, -0.2),
-            Point3::new(0.4, 0.1, 0.0),
-            unit(-0.3, 1.0, 0.4),
-            0.37,
-        )
-    }
-
-    /// `Σ w_i x_i^d` of a rule against `∫_{−1}^{1} x^d dx`.
-    fn rule_error(nodes: &[f64], weights: &[f64], degree: i32) -> f64 {
-        let exact = if degree % 2 == 0 {
-            2.0 / (degree as f64 + 1.0)
-        } else {
-            0.0
-        };
-        let sum: f64 = nodes
-            .iter()
-            .zip(weights)
-            .map(|(x, w)| w * x.powi(degree))
-            .sum();
-        (sum - exact).abs()
-    }
-
-    /// Equal arc-length parameters: every piece has length `L/S` by the adaptive quadrature of
-    /// the sub-curve (re-parametrized onto `[t_k, t_{k+1}]`), also across the cusps of a
-    /// folded curve.
     #[test]
     fn the_five_point_rule_integrates_polynomials_exactly() {
         for degree in 0..=9 {
@@ -219,6 +188,9 @@ mod tests {
         }
     }
 
+    /// Equal arc-length parameters: every piece has length `L/S` by the adaptive quadrature of
+    /// the sub-curve (re-parametrized onto `[t_k, t_{k+1}]`), also across the cusps of a
+    /// folded curve.
     #[test]
     fn resampled_parameters_split_the_arc_length_evenly() {
         let bend = sample_curve().with_alpha(0.5);
