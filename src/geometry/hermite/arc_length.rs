@@ -309,52 +309,22 @@ impl HermiteCurve {
         g
     }
 
-    /// Gauss–Legendre (10-point) sums of `|p'|` and `p'·∂p'/∂q / |p'|` over a panel: the cheap
-    /// rule of the first phase of the root find.
+    /// `|p'|` and `p'·∂p'/∂q / |p'|` at the points `mid + half·x` of a panel. Written over
+    /// fixed arrays of scalars so that the compiler vectorizes the square roots and divisions.
     #[inline]
-    fn gauss_panel(&self, a: f64, b: f64, sensitivity: &[Vector3<f64>; 4]) -> (f64, f64) {
-        let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+    fn speed_samples<const N: usize>(
+        &self,
+        mid: f64,
+        half: f64,
+        abscissae: &[f64; N],
+        sensitivity: &[Vector3<f64>; 4],
+    ) -> ([f64; N], [f64; N]) {
         let [d0, d1, d2, d3] = &self.velocity;
         let [e0, e1, e2, e3] = sensitivity;
-        let mut speed = [0.0; 10];
-        let mut speed_slope = [0.0; 10];
-        for i in 0..10 {
-            let t = mid + half * KRONROD_NODES[2 * i + 1];
-            let vx = d0.x + t * (d1.x + t * (d2.x + t * d3.x));
-            let vy = d0.y + t * (d1.y + t * (d2.y + t * d3.y));
-            let vz = d0.z + t * (d1.z + t * (d2.z + t * d3.z));
-            let wx = e0.x + t * (e1.x + t * (e2.x + t * e3.x));
-            let wy = e0.y + t * (e1.y + t * (e2.y + t * e3.y));
-            let wz = e0.z + t * (e1.z + t * (e2.z + t * e3.z));
-            let norm = (vx * vx + vy * vy + vz * vz).sqrt();
-            speed[i] = norm;
-            speed_slope[i] = if norm > 0.0 {
-                (vx * wx + vy * wy + vz * wz) / norm
-            } else {
-                0.0
-            };
-        }
-        let (mut length, mut slope) = (0.0, 0.0);
-        for i in 0..10 {
-            length += GAUSS_WEIGHTS[2 * i + 1] * speed[i];
-            slope += GAUSS_WEIGHTS[2 * i + 1] * speed_slope[i];
-        }
-        (length * half, slope * half)
-    }
-
-    /// Kronrod sums of `|p'|` and `p'·∂p'/∂q / |p'|` over a panel, and the gap between the
-    /// Kronrod and Gauss values of the former. Written over fixed arrays of scalars so that
-    /// the compiler vectorizes the square roots and divisions.
-    #[inline]
-    fn kronrod_panel(&self, panel: &Panel, sensitivity: &[Vector3<f64>; 4]) -> PanelSums {
-        let mid = 0.5 * (panel.a + panel.b);
-        let half = 0.5 * (panel.b - panel.a);
-        let [d0, d1, d2, d3] = &self.velocity;
-        let [e0, e1, e2, e3] = sensitivity;
-        let mut speed = [0.0; 21];
-        let mut speed_slope = [0.0; 21];
-        for i in 0..21 {
-            let t = mid + half * KRONROD_NODES[i];
+        let mut speed = [0.0; N];
+        let mut speed_slope = [0.0; N];
+        for i in 0..N {
+            let t = mid + half * abscissae[i];
             let vx = d0.x + t * (d1.x + t * (d2.x + t * d3.x));
             let vy = d0.y + t * (d1.y + t * (d2.y + t * d3.y));
             let vz = d0.z + t * (d1.z + t * (d2.z + t * d3.z));
@@ -370,6 +340,32 @@ impl HermiteCurve {
                 0.0
             };
         }
+        (speed, speed_slope)
+    }
+
+    /// Gauss–Legendre (10-point) sums of `|p'|` and `p'·∂p'/∂q / |p'|` over a panel: the cheap
+    /// rule of the first phase of the root find.
+    #[inline]
+    fn gauss_panel(&self, a: f64, b: f64, sensitivity: &[Vector3<f64>; 4]) -> (f64, f64) {
+        let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+        // The 10 Gauss points are the odd-indexed Kronrod points.
+        let abscissae: [f64; 10] = std::array::from_fn(|i| KRONROD_NODES[2 * i + 1]);
+        let (speed, speed_slope) = self.speed_samples(mid, half, &abscissae, sensitivity);
+        let (mut length, mut slope) = (0.0, 0.0);
+        for i in 0..10 {
+            length += GAUSS_WEIGHTS[2 * i + 1] * speed[i];
+            slope += GAUSS_WEIGHTS[2 * i + 1] * speed_slope[i];
+        }
+        (length * half, slope * half)
+    }
+
+    /// Kronrod sums of `|p'|` and `p'·∂p'/∂q / |p'|` over a panel, and the gap between the
+    /// Kronrod and Gauss values of the former.
+    #[inline]
+    fn kronrod_panel(&self, panel: &Panel, sensitivity: &[Vector3<f64>; 4]) -> PanelSums {
+        let mid = 0.5 * (panel.a + panel.b);
+        let half = 0.5 * (panel.b - panel.a);
+        let (speed, speed_slope) = self.speed_samples(mid, half, &KRONROD_NODES, sensitivity);
         let (mut kronrod, mut gauss, mut kronrod_slope) = (0.0, 0.0, 0.0);
         for i in 0..21 {
             kronrod += KRONROD_WEIGHTS[i] * speed[i];
