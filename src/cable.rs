@@ -26,6 +26,9 @@ pub struct CableSpec {
     pub min_bend_radius_m: f64,
     /// Length of one rigid sub-segment, `l_ss` (m).
     pub sub_segment_pitch_m: f64,
+    /// Axial stiffness `EA` (N): the force that would double a sub-segment's length. The
+    /// model's sub-segments are nearly rigid; this finite value makes stretch measurable.
+    pub axial_stiffness_n: f64,
 }
 
 impl CableSpec {
@@ -87,6 +90,7 @@ impl CableSpec {
             min_bend_radius_m: positive("min_bend_radius_mm", &raw.min_bend_radius_mm)? * 1e-3,
             sub_segment_pitch_m: positive("sub_segment_pitch_mm", &raw.sub_segment_pitch_mm)?
                 * 1e-3,
+            axial_stiffness_n: positive("axial_stiffness_n", &raw.axial_stiffness_n)?,
         })
     }
 }
@@ -102,6 +106,7 @@ struct RawCable {
     torsion_stiffness_nm_per_rad: Spanned<f64>,
     min_bend_radius_mm: Spanned<f64>,
     sub_segment_pitch_mm: Spanned<f64>,
+    axial_stiffness_n: Spanned<f64>,
 }
 
 /// 1-based line number of a byte offset.

@@ -36,7 +36,9 @@
 //! (`length_mm`, `angle_deg`); conversion happens only at file and command-line boundaries.
 
 pub mod cable;
+pub mod dynamics;
 pub mod geometry;
 pub mod pose;
 pub mod robot;
+pub mod statics;
 pub mod stress;

@@ -40,6 +40,7 @@ bending_stiffness_nm_per_rad = 0.051
 torsion_stiffness_nm_per_rad = 1.5
 min_bend_radius_mm = 48.0
 sub_segment_pitch_mm = 10.0
+axial_stiffness_n = 1.0e4
 "#;
 
 fn refusal(text: &str) -> String {
@@ -81,6 +82,12 @@ fn non_positive_and_non_finite_values_are_refused_with_field_and_line() {
             "sub_segment_pitch_mm = 0",
             7,
             "sub_segment_pitch_mm",
+        ),
+        (
+            "axial_stiffness_n = 1.0e4",
+            "axial_stiffness_n = -1",
+            8,
+            "axial_stiffness_n",
         ),
     ];
     for (good, bad, line, field) in cases {

@@ -1,8 +1,7 @@
-//! Stress metrics of a cable shape: how far it is stretched and how tightly it bends.
+//! How tightly a cable shape bends: the bend radius at every joint of the discrete cable.
 //!
-//! A shape is the polyline of the discrete cable's nodes from one guide to the next. The guide
-//! axes act as clamped sub-segments before the first and after the last node, so the joints
-//! at the guides count like every other joint.
+//! The guide axes act as clamped sub-segments before the first and after the last node, so
+//! the joints at the guides count like every other joint.
 
 use nalgebra::{Point3, Vector3};
 
@@ -49,12 +48,6 @@ pub fn min_bend_radius(
     }
 }
 
-/// Centerline length of the shape divided by the cable's natural length (1 = unstretched).
-pub fn stretch(nodes: &[Point3<f64>], natural_length_m: f64) -> f64 {
-    let length: f64 = nodes.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
-    length / natural_length_m
-}
-
 /// Angle between two vectors in [0, π], accurate for small and near-π angles.
 fn angle_between(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
     a.cross(b).norm().atan2(a.dot(b))
@@ -97,7 +90,7 @@ mod tests {
     }
 
     #[test]
-    fn a_straight_cable_has_infinite_radius_and_unit_stretch() {
+    fn a_straight_cable_has_infinite_radius() {
         let nodes: Vec<_> = (0..=5)
             .map(|k| Point3::new(0.0, 0.0, 0.01 * k as f64))
             .collect();
@@ -106,8 +99,6 @@ mod tests {
             min_bend_radius(&nodes, &z, &z, 0.01).radius_m,
             f64::INFINITY
         );
-        assert!((stretch(&nodes, 0.05) - 1.0).abs() < 1e-12);
-        assert!((stretch(&nodes, 0.04) - 1.25).abs() < 1e-12);
     }
 
     #[test]

@@ -1,0 +1,1 @@
+//! Dynamics of the discrete cable in rapier3d (work in progress).

@@ -1,0 +1,1 @@
+//! Static equilibrium of the discrete cable (work in progress).

@@ -1,0 +1,1 @@
+//! Clearance between the cable and the robot's links (work in progress).

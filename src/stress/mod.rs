@@ -1,0 +1,11 @@
+//! Stress metrics of a cable shape at one robot pose: how tightly it bends, how far it is
+//! stretched, and how close it comes to the robot.
+//!
+//! A shape is the polyline of the discrete cable's nodes from one guide to the next.
+
+mod bend;
+pub mod contact;
+mod stretch;
+
+pub use bend::{BendRadius, min_bend_radius};
+pub use stretch::stretch;
