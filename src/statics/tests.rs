@@ -1,0 +1,120 @@
+//! Checks of the energy's derivatives against finite differences of the energy itself.
+
+use super::banded::SymmetricBand;
+use super::rod::Rod;
+use super::*;
+use crate::pose::pose_from_xyz_rpy;
+
+fn params() -> RodParameters {
+    RodParameters {
+        pitch_m: 0.01,
+        bending_stiffness_nm_per_rad: 0.051,
+        torsion_stiffness_nm_per_rad: 1.5,
+        axial_stiffness_n: 1e3,
+        mass_per_length_kg_m: 0.26,
+        gravity_m_s2: Vector3::new(0.0, 0.0, -9.81),
+    }
+}
+
+/// A bent, twisted, slightly stretched 3D configuration of 8 sub-segments.
+fn twisted_rod(end_free: bool) -> (Rod, Vec<f64>) {
+    let start = pose_from_xyz_rpy([0.0; 3], [0.0, 1.2, 0.3]);
+    let end = pose_from_xyz_rpy([0.05, 0.03, -0.02], [0.9, 2.0, -0.4]);
+    let nodes: Vec<Point3<f64>> = (0..=8)
+        .map(|k| {
+            let t = k as f64 / 8.0;
+            Point3::new(
+                0.05 * t + 0.01 * (3.0 * t).sin(),
+                0.03 * t * t + 0.004 * (5.0 * t).cos() - 0.004 * (1.0 - t),
+                -0.02 * t + 0.015 * (std::f64::consts::PI * t).sin(),
+            )
+        })
+        .collect();
+    let rod = Rod::new(params(), start, (!end_free).then_some(end), 8);
+    let x = rod.free_coordinates(&nodes);
+    (rod, x)
+}
+
+fn energy(rod: &Rod, x: &[f64], reference: f64) -> f64 {
+    rod.evaluate(x, reference, None).energy
+}
+
+#[test]
+fn gradient_matches_finite_differences_of_the_energy() {
+    for free in [false, true] {
+        let (rod, x) = twisted_rod(free);
+        let at = rod.evaluate(&x, 0.0, None);
+        let h = 1e-7;
+        for i in 0..x.len() {
+            let (mut plus, mut minus) = (x.clone(), x.clone());
+            plus[i] += h;
+            minus[i] -= h;
+            let numeric =
+                (energy(&rod, &plus, at.twist) - energy(&rod, &minus, at.twist)) / (2.0 * h);
+            let scale = super::newton::max_abs(&at.gradient);
+            assert!(
+                (at.gradient[i] - numeric).abs() < 1e-6 * scale,
+                "free end {free}, coordinate {i}: {} vs {numeric}",
+                at.gradient[i]
+            );
+        }
+    }
+}
+
+#[test]
+fn twist_gradient_matches_finite_differences_of_the_transported_twist() {
+    let (rod, x) = twisted_rod(false);
+    let at = rod.evaluate(&x, 0.0, None);
+    let h = 1e-7;
+    for i in 0..x.len() {
+        let (mut plus, mut minus) = (x.clone(), x.clone());
+        plus[i] += h;
+        minus[i] -= h;
+        let numeric = (rod.evaluate(&plus, at.twist, None).twist
+            - rod.evaluate(&minus, at.twist, None).twist)
+            / (2.0 * h);
+        assert!(
+            (at.twist_gradient[i] - numeric).abs() < 1e-6,
+            "coordinate {i}: {} vs {numeric}",
+            at.twist_gradient[i]
+        );
+    }
+}
+
+#[test]
+fn hessian_matches_finite_differences_of_the_gradient() {
+    for free in [false, true] {
+        let (rod, x) = twisted_rod(free);
+        let n = x.len();
+        let mut band = SymmetricBand::zeros(n);
+        let at = rod.evaluate(&x, 0.0, Some(&mut band));
+        let k = rod.twist_stiffness();
+        let h = 1e-7;
+        let mut worst: f64 = 0.0;
+        let mut scale: f64 = 0.0;
+        for j in 0..n {
+            let (mut plus, mut minus) = (x.clone(), x.clone());
+            plus[j] += h;
+            minus[j] -= h;
+            let gp = rod.evaluate(&plus, at.twist, None).gradient;
+            let gm = rod.evaluate(&minus, at.twist, None).gradient;
+            let mut unit = vec![0.0; n];
+            unit[j] = 1.0;
+            let column = band.multiply(&unit);
+            for i in 0..n {
+                let rank_one = if free {
+                    0.0
+                } else {
+                    k * at.twist_gradient[i] * at.twist_gradient[j]
+                };
+                let numeric = (gp[i] - gm[i]) / (2.0 * h);
+                worst = worst.max((column[i] + rank_one - numeric).abs());
+                scale = scale.max(numeric.abs());
+            }
+        }
+        assert!(
+            worst < 1e-5 * scale,
+            "free end {free}: {worst:e} of {scale:e}"
+        );
+    }
+}

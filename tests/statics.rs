@@ -1,0 +1,427 @@
+//! Validation of the quasi-static solver against closed forms, a second model (the catenary),
+//! and the equilibrium conditions of the whole cable.
+//!
+//! Unless a test says otherwise the cable is the SMC LE-CP of the paper (kb 0.051 N·m/rad,
+//! kt 1.5 N·m/rad, 0.26 kg/m, EA 1e4 N) at a 10 mm pitch, so `EI = 5.1e-4 N·m²`.
+
+use cable_dict::geometry::connect;
+use cable_dict::pose::{Pose, pose_from_xyz_rpy};
+use cable_dict::statics::{
+    Equilibrium, FarEnd, RodParameters, SolverOptions, StaticsError, potential_energy,
+    solve_segment,
+};
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use std::f64::consts::{FRAC_PI_2, PI};
+
+const PITCH: f64 = 0.01;
+const EI: f64 = 0.051 * PITCH;
+const RHO: f64 = 0.26;
+
+fn cable(gravity_m_s2: f64) -> RodParameters {
+    RodParameters {
+        pitch_m: PITCH,
+        bending_stiffness_nm_per_rad: 0.051,
+        torsion_stiffness_nm_per_rad: 1.5,
+        axial_stiffness_n: 1e4,
+        mass_per_length_kg_m: RHO,
+        gravity_m_s2: Vector3::new(0.0, 0.0, -gravity_m_s2),
+    }
+}
+
+/// Guide at `(x, 0, z)` whose +z axis points along `angle` in the x–z plane (0 = +x,
+/// positive towards +z), rolled by `roll` about that axis.
+fn planar_guide(x: f64, z: f64, angle: f64, roll: f64) -> Pose {
+    let mut pose = pose_from_xyz_rpy([x, 0.0, z], [0.0, FRAC_PI_2 - angle, 0.0]);
+    pose.rotation *= UnitQuaternion::from_axis_angle(&Vector3::z_axis(), roll);
+    pose
+}
+
+fn straight_nodes(from: Point3<f64>, to: Point3<f64>, sub_segments: usize) -> Vec<Point3<f64>> {
+    (0..=sub_segments)
+        .map(|k| from + (to - from) * (k as f64 / sub_segments as f64))
+        .collect()
+}
+
+fn solve(
+    params: &RodParameters,
+    start: &Pose,
+    end: &FarEnd,
+    nodes: &[Point3<f64>],
+    tolerance: f64,
+) -> Equilibrium {
+    let options = SolverOptions {
+        force_tolerance_n: tolerance,
+        max_iterations: 200,
+    };
+    match solve_segment(params, start, end, nodes, None, &options) {
+        Ok(equilibrium) => equilibrium,
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// Clamped at the origin along +x, free end, 50 sub-segments (L = 0.5 m), gravity scaled
+/// down until the tip deflects by 1e-3 L: linear beam theory holds to ~1e-6 there, so any
+/// difference is the discretisation's.
+#[test]
+fn cantilever_matches_linear_beam_theory_in_the_small_deflection_limit() {
+    let length: f64 = 0.5;
+    let closed_form_tip = 1e-3 * length;
+    let w = closed_form_tip * 8.0 * EI / length.powi(4);
+    let params = cable(w / RHO);
+    let start = planar_guide(0.0, 0.0, 0.0, 0.0);
+    let nodes = straight_nodes(Point3::origin(), Point3::new(length, 0.0, 0.0), 50);
+    let solution = solve(&params, &start, &FarEnd::Free, &nodes, 1e-10);
+    let tip = -solution.nodes[50].z;
+    let error = (tip - closed_form_tip).abs() / closed_form_tip;
+    println!("cantilever tip {tip:.6e} m vs wL⁴/8EI {closed_form_tip:.6e} m: {error:.2e}");
+    assert!(error < 0.01, "relative tip error {error}");
+    for (k, node) in solution.nodes.iter().enumerate() {
+        let x = k as f64 * PITCH;
+        let curve = w * x * x * (6.0 * length * length - 4.0 * length * x + x * x) / (24.0 * EI);
+        assert!((-node.z - curve).abs() < 0.01 * closed_form_tip, "node {k}");
+    }
+}
+
+/// Clamped horizontally at both ends exactly one cable length apart, tiny load: midspan
+/// deflection `wL⁴/384EI` = 1e-5 m. At that deflection the membrane tension the axial
+/// stiffness adds stiffens the beam by ~EA δ²/(25 EI) ≈ 1e-4, far below the 1 % tolerance.
+#[test]
+fn clamped_clamped_beam_matches_linear_theory_in_the_small_deflection_limit() {
+    let length: f64 = 0.5;
+    let closed_form_mid = 1e-5;
+    let w = closed_form_mid * 384.0 * EI / length.powi(4);
+    let params = cable(w / RHO);
+    let start = planar_guide(0.0, 0.0, 0.0, 0.0);
+    let end = planar_guide(length, 0.0, 0.0, 0.0);
+    let nodes = straight_nodes(Point3::origin(), Point3::new(length, 0.0, 0.0), 50);
+    let solution = solve(&params, &start, &FarEnd::Clamped(end), &nodes, 1e-10);
+    let mid = -solution.nodes[25].z;
+    let error = (mid - closed_form_mid).abs() / closed_form_mid;
+    println!(
+        "clamped-clamped midspan {mid:.6e} m vs wL⁴/384EI {closed_form_mid:.6e} m: {error:.2e}"
+    );
+    assert!(error < 0.01, "relative midspan error {error}");
+    for (k, node) in solution.nodes.iter().enumerate() {
+        let x = k as f64 * PITCH;
+        let curve = w * x * x * (length - x).powi(2) / (24.0 * EI);
+        assert!((-node.z - curve).abs() < 0.01 * closed_form_mid, "node {k}");
+    }
+}
+
+/// A very stiff cable (kb × 1e4) spanning its own length under full gravity stays straight:
+/// its sag is the linear-theory `wL⁴/384EI` ≈ 0.08 mm (within the 1 % of the small-deflection
+/// test; the membrane effect is ~1e-9 at this sag).
+#[test]
+fn a_very_stiff_taut_cable_is_a_straight_line() {
+    let mut params = cable(9.81);
+    params.bending_stiffness_nm_per_rad *= 1e4;
+    let start = planar_guide(0.0, 0.0, 0.0, 0.0);
+    let end = planar_guide(0.5, 0.0, 0.0, 0.0);
+    let nodes = straight_nodes(Point3::origin(), Point3::new(0.5, 0.0, 0.0), 50);
+    let solution = solve(&params, &start, &FarEnd::Clamped(end), &nodes, 1e-8);
+    let linear = RHO * 9.81 * 0.5f64.powi(4) / (384.0 * EI * 1e4);
+    let sag = solution.nodes.iter().map(|p| -p.z).fold(0.0, f64::max);
+    let off_plane = solution.nodes.iter().map(|p| p.y.abs()).fold(0.0, f64::max);
+    println!("stiff taut cable: sag {sag:.3e} m, linear theory {linear:.3e} m");
+    assert!(
+        (sag - linear).abs() < 0.01 * linear,
+        "sag {sag}, linear theory {linear}"
+    );
+    assert!(off_plane < 1e-12);
+}
+
+/// Catenary through (±D/2, 0) with length L: `z = a (cosh(x/a) − cosh(D/2a))`, `a` from
+/// `L = 2a sinh(D/2a)` (bisection: the right side decreases in `a`).
+fn catenary(span: f64, length: f64) -> impl Fn(f64) -> f64 {
+    let (mut lo, mut hi) = (1e-4, 1e3);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if 2.0 * mid * (span / (2.0 * mid)).sinh() > length {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let a = 0.5 * (lo + hi);
+    move |x| a * ((x / a).cosh() - (span / (2.0 * a)).cosh())
+}
+
+/// With the bending and torsion springs 1e4 times weaker the cable hangs as a catenary. The
+/// clamps force horizontal ends, which bends the cable within a boundary layer of length
+/// `√(EI/T)` ≈ 0.5 mm at the clamps; the lumped masses make the chain a funicular polygon,
+/// off the continuous curve by `O(l²/a)` ≈ 0.1 mm. Hence 1 mm.
+#[test]
+fn a_limp_cable_hangs_as_a_catenary() {
+    let mut params = cable(9.81);
+    params.bending_stiffness_nm_per_rad *= 1e-4;
+    params.torsion_stiffness_nm_per_rad *= 1e-4;
+    let (span, length) = (0.4, 0.5);
+    let start = planar_guide(-span / 2.0, 0.0, 0.0, 0.0);
+    let end = planar_guide(span / 2.0, 0.0, 0.0, 0.0);
+    let initial = connect(&start, &end, 50, PITCH, &-Vector3::z_axis()).unwrap();
+    let solution = solve(&params, &start, &FarEnd::Clamped(end), &initial.nodes, 1e-9);
+    let curve = catenary(span, length);
+    let worst = solution
+        .nodes
+        .iter()
+        .map(|p| (p.z - curve(p.x)).abs())
+        .fold(0.0, f64::max);
+    println!(
+        "limp cable vs catenary: worst {worst:.3e} m, sag {:.4} m",
+        -curve(0.0)
+    );
+    assert!(worst < 1e-3, "worst deviation {worst}");
+}
+
+/// A taut straight cable whose end guide is rolled 90° about the cable axis: no writhe, so
+/// the total twist is the imposed quarter turn and the torsion moment is `GJ (π/2) / L`.
+/// The moment is measured as the derivative of the equilibrium energy with respect to a
+/// further roll of the end guide.
+#[test]
+fn a_taut_twisted_cable_carries_the_closed_form_torsion_moment() {
+    let params = cable(0.0);
+    let sub_segments = 30;
+    let length = sub_segments as f64 * PITCH;
+    let start = planar_guide(0.0, 0.0, 0.0, 0.0);
+    let end = planar_guide(length, 0.0, 0.0, FRAC_PI_2);
+    let nodes = straight_nodes(
+        Point3::origin(),
+        Point3::new(length, 0.0, 0.0),
+        sub_segments,
+    );
+    let solution = solve(&params, &start, &FarEnd::Clamped(end), &nodes, 1e-10);
+    assert!((solution.twist_rad - FRAC_PI_2).abs() < 1e-9);
+    let h = 1e-6;
+    let energy_with_roll = |roll: f64| {
+        let rolled = planar_guide(length, 0.0, 0.0, FRAC_PI_2 + roll);
+        potential_energy(
+            &params,
+            &start,
+            &FarEnd::Clamped(rolled),
+            &solution.nodes,
+            FRAC_PI_2,
+        )
+        .unwrap()
+        .0
+        .total_j()
+    };
+    let moment = (energy_with_roll(h) - energy_with_roll(-h)) / (2.0 * h);
+    let gj = 1.5 * PITCH;
+    let closed_form = gj * FRAC_PI_2 / length;
+    assert!(
+        (moment - closed_form).abs() < 1e-6 * closed_form,
+        "{moment} vs {closed_form}"
+    );
+}
+
+/// The reaction a clamp exerts on the cable: force `∂E/∂p` and moment `∂E/∂θ` (the energy
+/// with the cable's nodes held, the guide translated by `p` or turned by the world rotation
+/// vector `θ` about its origin), by central differences.
+fn clamp_reaction(
+    energy: impl Fn(&Isometry3<f64>) -> f64,
+    guide: &Pose,
+) -> (Vector3<f64>, Vector3<f64>) {
+    // Central differences err by h²·E'''/6, with E''' up to EA/l² = 1e8 N/m²: h = 3e-8.
+    let h = 3e-8;
+    let mut force = Vector3::zeros();
+    let mut moment = Vector3::zeros();
+    for axis in 0..3 {
+        let e = Vector3::ith(axis, h);
+        let shifted = |sign: f64| {
+            let mut pose = *guide;
+            pose.translation = Translation3::from(pose.translation.vector + sign * e);
+            pose
+        };
+        force[axis] = (energy(&shifted(1.0)) - energy(&shifted(-1.0))) / (2.0 * h);
+        let turned = |sign: f64| {
+            let mut pose = *guide;
+            pose.rotation = UnitQuaternion::from_scaled_axis(sign * e) * pose.rotation;
+            pose
+        };
+        moment[axis] = (energy(&turned(1.0)) - energy(&turned(-1.0))) / (2.0 * h);
+    }
+    (force, moment)
+}
+
+/// A U-loop with both guides pointing down and the end guide rolled 90° — a 3D shape in
+/// which part of the twist turns into writhe. At equilibrium the clamp reactions, measured
+/// from the energy independently of the solver's forces, balance the cable's weight in force
+/// and in moment, and the torsion moment about each guide axis is the same, `(kt/S) Ψ`.
+#[test]
+fn a_twisted_u_loop_is_in_force_and_moment_equilibrium() {
+    let params = cable(9.81);
+    let sub_segments = 50;
+    let start = planar_guide(0.0, 0.0, -FRAC_PI_2, 0.0);
+    let end = planar_guide(0.15, 0.0, FRAC_PI_2, FRAC_PI_2);
+    let initial = connect(&start, &end, sub_segments, PITCH, &-Vector3::z_axis()).unwrap();
+    let solution = solve(
+        &params,
+        &start,
+        &FarEnd::Clamped(end),
+        &initial.nodes,
+        1e-10,
+    );
+    let out_of_plane = solution.nodes.iter().map(|p| p.y.abs()).fold(0.0, f64::max);
+    println!(
+        "twisted U-loop: {} iterations, twist {:.4} rad, out of plane {:.4} m",
+        solution.iterations, solution.twist_rad, out_of_plane
+    );
+    assert!(
+        out_of_plane > 1e-3,
+        "the twist should bend the loop out of its plane"
+    );
+    let energy_at = |s: &Pose, e: &Pose| {
+        potential_energy(
+            &params,
+            s,
+            &FarEnd::Clamped(*e),
+            &solution.nodes,
+            solution.twist_rad,
+        )
+        .unwrap()
+        .0
+        .total_j()
+    };
+    let (start_force, start_moment) = clamp_reaction(|s| energy_at(s, &end), &start);
+    let (end_force, end_moment) = clamp_reaction(|e| energy_at(&start, e), &end);
+    let node_weight = params.gravity_m_s2 * RHO * PITCH;
+    let interior = &solution.nodes[1..sub_segments];
+    let weight: Vector3<f64> = interior.iter().map(|_| node_weight).sum();
+    let weight_moment: Vector3<f64> = interior.iter().map(|p| p.coords.cross(&node_weight)).sum();
+    let force_balance = start_force + end_force + weight;
+    let moment_balance = start_moment
+        + end_moment
+        + start.translation.vector.cross(&start_force)
+        + end.translation.vector.cross(&end_force)
+        + weight_moment;
+    let scale = weight.norm();
+    println!(
+        "force imbalance {:.2e} N, moment imbalance {:.2e} N·m",
+        force_balance.norm(),
+        moment_balance.norm()
+    );
+    assert!(force_balance.norm() < 1e-6 * scale);
+    assert!(moment_balance.norm() < 1e-6 * scale * 0.1);
+    let torsion = 1.5 / sub_segments as f64 * solution.twist_rad;
+    let start_axis = start.rotation * Vector3::z();
+    let end_axis = end.rotation * Vector3::z();
+    // The cable twists the start guide one way and the end guide the other.
+    assert!((start_moment.dot(&start_axis) + torsion).abs() < 1e-6 * torsion.abs());
+    assert!((end_moment.dot(&end_axis) - torsion).abs() < 1e-6 * torsion.abs());
+}
+
+/// The shapes the attachment test meets converge from the connected geometry: a sagging
+/// span, a U-loop with both ends pointing down, a 3D S-bend, and a 90° torsion mismatch.
+#[test]
+fn typical_segments_converge_from_the_connected_geometry() {
+    let params = cable(9.81);
+    let s_bend_end = Isometry3::from_parts(
+        Translation3::new(0.3, 0.1, -0.1),
+        UnitQuaternion::from_euler_angles(0.3, 1.2, 0.5),
+    );
+    let cases = [
+        (
+            "sagging span",
+            planar_guide(0.0, 0.0, 0.0, 0.0),
+            planar_guide(0.4, 0.0, 0.0, 0.0),
+        ),
+        (
+            "U-loop",
+            planar_guide(0.0, 0.0, -FRAC_PI_2, 0.0),
+            planar_guide(0.15, 0.0, FRAC_PI_2, 0.0),
+        ),
+        ("3D S-bend", planar_guide(0.0, 0.0, 0.0, 0.0), s_bend_end),
+        (
+            "90° twist",
+            planar_guide(0.0, 0.0, 0.0, 0.0),
+            planar_guide(0.4, 0.0, 0.0, FRAC_PI_2),
+        ),
+        (
+            "half-turn twist",
+            planar_guide(0.0, 0.0, 0.0, 0.0),
+            planar_guide(0.3, 0.1, 0.0, PI),
+        ),
+    ];
+    for (name, start, end) in cases {
+        let initial = connect(&start, &end, 50, PITCH, &-Vector3::z_axis()).unwrap();
+        let solution = solve(&params, &start, &FarEnd::Clamped(end), &initial.nodes, 1e-8);
+        let stretch = cable_dict::stress::stretch(&solution.nodes, 0.5);
+        println!(
+            "{name}: {} iterations, residual {:.1e} N, twist {:.3} rad, stretch {stretch:.6}",
+            solution.iterations, solution.residual_n, solution.twist_rad
+        );
+        // A half-turn mismatch unwinds into writhe over many damped steps.
+        assert!(solution.iterations <= 60, "{name}");
+        assert!(solution.residual_n <= 1e-8, "{name}");
+        assert!((stretch - 1.0).abs() < 1e-3, "{name}: stretch {stretch}");
+        assert_eq!(solution.frames.len(), 51);
+        assert!(
+            (solution.frames[50].matrix() - end.rotation.to_rotation_matrix().matrix()).norm()
+                < 1e-12
+        );
+    }
+}
+
+#[test]
+fn failures_are_reported_never_nan_or_panic() {
+    let params = cable(9.81);
+    let start = planar_guide(0.0, 0.0, 0.0, 0.0);
+    let end = planar_guide(0.2, 0.0, 0.0, 0.0);
+    let nodes = connect(&start, &end, 40, PITCH, &-Vector3::z_axis())
+        .unwrap()
+        .nodes;
+    let one_step = SolverOptions {
+        force_tolerance_n: 1e-12,
+        max_iterations: 1,
+    };
+    match solve_segment(
+        &params,
+        &start,
+        &FarEnd::Clamped(end),
+        &nodes,
+        None,
+        &one_step,
+    ) {
+        Err(StaticsError::NotConverged {
+            iterations,
+            residual_n,
+            ..
+        }) => {
+            assert_eq!(iterations, 1);
+            assert!(residual_n.is_finite() && residual_n > 1e-12);
+        }
+        other => panic!("expected non-convergence, got {other:?}"),
+    }
+    let mut bad = nodes.clone();
+    bad[7].y = f64::NAN;
+    assert!(matches!(
+        solve_segment(
+            &params,
+            &start,
+            &FarEnd::Clamped(end),
+            &bad,
+            None,
+            &SolverOptions::default()
+        ),
+        Err(StaticsError::InvalidInput { .. })
+    ));
+    // A cable folded back on itself at a guide: a pathological start; any outcome but a
+    // panic or a NaN answer is acceptable.
+    let mut folded = nodes.clone();
+    folded[1] = Point3::new(-PITCH, 0.0, 0.0);
+    if let Ok(solution) = solve_segment(
+        &params,
+        &start,
+        &FarEnd::Clamped(end),
+        &folded,
+        None,
+        &SolverOptions::default(),
+    ) {
+        assert!(
+            solution
+                .nodes
+                .iter()
+                .all(|p| p.coords.iter().all(|c| c.is_finite()))
+        );
+    }
+}
