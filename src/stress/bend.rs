@@ -1,21 +1,27 @@
 //! How tightly a cable shape bends: the bend radius at every joint of the discrete cable.
 //!
-//! The guide axes act as clamped sub-segments before the first and after the last node, so
-//! the joints at the guides count like every other joint.
+//! A joint's bend radius is the cable length it stands for divided by its turning angle:
+//! `l_ss / θ` between two sub-segments. The guide axes count as clamped sub-segments before
+//! the first and after the last node, but a guide joint stands for half a sub-segment: a
+//! cable leaving a clamp tangentially along a circle of radius `R` meets its first chord at
+//! half the chord angle, `l_ss / 2R`. So a guide joint's radius is `(l_ss / 2) / θ`, and a
+//! polygon inscribed in a circle gets the circle's radius at every joint, guides included.
 
 use nalgebra::{Point3, Vector3};
 
 /// The tightest bend of a shape and where it is.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BendRadius {
-    /// `l_ss / angle` at the sharpest joint (m); `f64::INFINITY` for a straight cable.
+    /// Radius at the sharpest joint (m): `l_ss / angle`, `(l_ss / 2) / angle` at a guide;
+    /// `f64::INFINITY` for a straight cable.
     pub radius_m: f64,
     /// Node index of that joint: 0 at the start guide, `S` at the end guide.
     pub node: usize,
 }
 
-/// Smallest bend radius `l_ss / θ` over all joints, θ the angle between adjacent
-/// sub-segments, including the joints between the guide axes and the first/last sub-segment.
+/// Smallest bend radius over all joints (see the module documentation), θ the angle between
+/// adjacent sub-segments, including the joints between the guide axes and the first/last
+/// sub-segment.
 ///
 /// `nodes` runs from the start guide origin to the end guide origin; the tangents are the
 /// guides' +z axes. Fewer than two nodes is a cable without joints: radius infinite.
@@ -30,22 +36,27 @@ pub fn min_bend_radius(
         .chain(chords)
         .chain(std::iter::once(*end_tangent))
         .collect();
+    let last_joint = directions.len().saturating_sub(2);
     let sharpest = directions
         .windows(2)
-        .map(|d| angle_between(&d[0], &d[1]))
         .enumerate()
-        .fold((0, 0.0_f64), |best, (node, angle)| {
-            if angle > best.1 { (node, angle) } else { best }
+        .map(|(node, d)| {
+            let arc = if node == 0 || node == last_joint {
+                0.5 * pitch_m
+            } else {
+                pitch_m
+            };
+            (node, arc / angle_between(&d[0], &d[1]))
+        })
+        .fold((0, f64::INFINITY), |best, (node, radius)| {
+            if radius < best.1 { (node, radius) } else { best }
         });
-    let (node, angle) = if nodes.len() < 2 { (0, 0.0) } else { sharpest };
-    BendRadius {
-        radius_m: if angle > 0.0 {
-            pitch_m / angle
-        } else {
-            f64::INFINITY
-        },
-        node,
-    }
+    let (node, radius_m) = if nodes.len() < 2 {
+        (0, f64::INFINITY)
+    } else {
+        sharpest
+    };
+    BendRadius { radius_m, node }
 }
 
 /// Angle between two vectors in [0, π], accurate for small and near-π angles.
@@ -72,13 +83,11 @@ mod tests {
     fn bend_radius_of_a_polygon_on_a_circle_is_chord_over_turning_angle() {
         let (r, l) = (0.06, 0.01);
         let nodes = circle_polyline(r, l, 12);
-        // Guide tangents along the chords of the neighbouring (virtual) sub-segments, so the
-        // guide joints turn like the interior ones.
+        // Guide tangents along the circle's tangents: a guide joint turns through half the
+        // chord angle and stands for half a sub-segment, so it has the same radius.
         let turn = 2.0 * (l / (2.0 * r)).asin();
-        let first = (nodes[1] - nodes[0]).normalize();
-        let start = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), -turn) * first;
-        let last = (nodes[12] - nodes[11]).normalize();
-        let end = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), turn) * last;
+        let start = Vector3::x();
+        let end = Vector3::new((12.0 * turn).cos(), (12.0 * turn).sin(), 0.0);
         let bend = min_bend_radius(&nodes, &start, &end, l);
         assert!(
             (bend.radius_m - l / turn).abs() < 1e-12,
@@ -106,9 +115,15 @@ mod tests {
         let nodes: Vec<_> = (0..=3)
             .map(|k| Point3::new(0.01 * k as f64, 0.0, 0.0))
             .collect();
-        // The end guide points 90° away from the cable: the kink is at the last node.
+        // The end guide points 90° away from the cable: the kink is at the last node, a guide
+        // joint standing for half a sub-segment.
         let bend = min_bend_radius(&nodes, &Vector3::x(), &Vector3::y(), 0.01);
         assert_eq!(bend.node, 3);
+        assert!((bend.radius_m - 0.005 / std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+        // The same angle at an interior joint is a radius twice as large.
+        let kinked = [nodes[0], nodes[1], Point3::new(0.01, 0.01, 0.0)];
+        let bend = min_bend_radius(&kinked, &Vector3::x(), &Vector3::y(), 0.01);
+        assert_eq!(bend.node, 1);
         assert!((bend.radius_m - 0.01 / std::f64::consts::FRAC_PI_2).abs() < 1e-15);
     }
 }
