@@ -123,9 +123,10 @@ fn segment_json_runs_from_guide_to_guide_in_pitch_steps() {
     let start = [0.0, 0.0, 0.0];
     let end = [250.0, 100.0, 50.0];
     let mut args = segment(CABLE, "400", "0,0,0,0,90,0", "250,100,50,0,90,0");
-    args.push("--json");
+    args.extend(["--stage", "connected", "--json"]);
     let report = json(&args);
     assert_eq!(report["stage"], "connected");
+    assert!(report.get("converged").is_none());
     assert_eq!(report["length_mm"], 400.0);
     let nodes = matrix(&report["nodes_mm"]);
     assert_eq!(nodes.len(), 41);
@@ -160,6 +161,63 @@ fn segment_json_runs_from_guide_to_guide_in_pitch_steps() {
             .expect("bent")
             > 0.0
     );
+}
+
+/// The default stage solves the equilibrium: it keeps its length, reports how the solve went,
+/// and hangs lower than the same cable without gravity (which buckles into the elastica
+/// between the coaxial guides).
+#[test]
+fn segment_converged_stage_hangs_under_gravity() {
+    let mut args = segment(CABLE, "400", "0,0,0,0,90,0", "300,0,0,0,90,0");
+    args.push("--json");
+    let report = json(&args);
+    assert_eq!(report["stage"], "converged");
+    let converged = &report["converged"];
+    assert_eq!(converged["solver"], "quasi-static");
+    let nodes = matrix(&converged["nodes_mm"]);
+    assert_eq!(nodes.len(), 41);
+    assert!(nodes[0].iter().all(|c| c.abs() < 1e-9));
+    assert!((nodes[40][0] - 300.0).abs() < 1e-9);
+    let lowest = |nodes: &[Vec<f64>]| nodes.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
+    let stretch = converged["metrics"]["stretch"].as_f64().expect("stretch");
+    assert!(stretch > 1.0 && stretch < 1.001, "{stretch}");
+    assert!(converged["residual"].as_f64().expect("residual") <= 1e-8);
+    assert!(converged["iterations"].as_u64().expect("iterations") >= 1);
+    assert!(converged["solve_time_us"].as_f64().expect("time") > 0.0);
+    // Without gravity the cable rises (by ~2 mm: over 400 mm its weight bends it little).
+    args.extend(["--gravity", "0,0,0"]);
+    let weightless = json(&args);
+    let nodes = matrix(&weightless["converged"]["nodes_mm"]);
+    assert!(lowest(&nodes) > lowest(&matrix(&converged["nodes_mm"])) + 1.0);
+}
+
+/// With `--robot` the links are obstacles: a cable straight through the Viper's upper arm at
+/// q = 0 (the box spans z 0.335 ± 0.075 m around the arm's axis) is in contact with
+/// `link_2`; the same cable 265 mm higher is clear of it.
+#[test]
+fn segment_with_a_robot_reports_contact() {
+    let through = |z: &str| {
+        let start = format!("250,-150,{z},-90,0,0");
+        let end = format!("250,150,{z},-90,0,0");
+        let mut args: Vec<String> = segment(CABLE, "300", &start, &end)
+            .into_iter()
+            .map(String::from)
+            .collect();
+        args.extend(["--robot", URDF, "--joints-deg", "0,0,0,0,0,0", "--json"].map(String::from));
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        json(&args)
+    };
+    let inside = through("335");
+    for stage in [&inside["metrics"], &inside["converged"]["metrics"]] {
+        let contact = &stage["contact"];
+        assert_eq!(contact["link"], "link_2");
+        assert_eq!(contact["violation"], true);
+        assert!(contact["min_clearance_mm"].as_f64().expect("clearance") < -50.0);
+    }
+    let above = through("600");
+    let contact = &above["converged"]["metrics"]["contact"];
+    assert_eq!(contact["violation"], false);
+    assert!(contact["min_clearance_mm"].as_f64().expect("clearance") > 0.0);
 }
 
 #[test]

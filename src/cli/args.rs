@@ -29,6 +29,18 @@ pub fn number_list(text: &str) -> Result<Vec<f64>, String> {
         .collect()
 }
 
+/// Parses a vector `x,y,z`.
+pub fn vector3(text: &str) -> Result<nalgebra::Vector3<f64>, String> {
+    let values = number_list(text)?;
+    let [x, y, z] = values[..] else {
+        return Err(format!(
+            "expected 3 comma-separated numbers x,y,z, got {}",
+            values.len()
+        ));
+    };
+    Ok(nalgebra::Vector3::new(x, y, z))
+}
+
 /// Parses a guide frame `x,y,z,roll,pitch,yaw` (mm, deg; URDF roll–pitch–yaw).
 pub fn guide_frame(text: &str) -> Result<Pose, String> {
     let values = number_list(text)?;

@@ -72,7 +72,7 @@ pub fn run(args: Args) -> Result<(), Failure> {
 }
 
 /// Converts command-line units (deg, mm) to SI (rad, m) joint by joint.
-fn joint_vector_si(robot: &Robot, values: &[f64]) -> Vec<f64> {
+pub(super) fn joint_vector_si(robot: &Robot, values: &[f64]) -> Vec<f64> {
     values
         .iter()
         .enumerate()

@@ -9,6 +9,9 @@
 
 use nalgebra::{Point3, Vector3};
 
+/// Joint angles below this (rad) are rounding noise on a straight cable.
+const STRAIGHT_RAD: f64 = 1e-9;
+
 /// The tightest bend of a shape and where it is.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BendRadius {
@@ -46,10 +49,21 @@ pub fn min_bend_radius(
             } else {
                 pitch_m
             };
-            (node, arc / angle_between(&d[0], &d[1]))
+            let angle = angle_between(&d[0], &d[1]);
+            // Below this a joint is straight to rounding (a radius beyond 10⁷ pitches).
+            let radius = if angle > STRAIGHT_RAD {
+                arc / angle
+            } else {
+                f64::INFINITY
+            };
+            (node, radius)
         })
         .fold((0, f64::INFINITY), |best, (node, radius)| {
-            if radius < best.1 { (node, radius) } else { best }
+            if radius < best.1 {
+                (node, radius)
+            } else {
+                best
+            }
         });
     let (node, radius_m) = if nodes.len() < 2 {
         (0, f64::INFINITY)

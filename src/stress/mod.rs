@@ -8,4 +8,7 @@ pub mod contact;
 mod stretch;
 
 pub use bend::{BendRadius, min_bend_radius};
+pub use contact::{
+    ClampZone, Clearance, ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
+};
 pub use stretch::stretch;

@@ -1,0 +1,131 @@
+//! `cable-dict segment`: one cable segment between two guide frames in free space.
+
+mod obstacles;
+mod report;
+mod shape;
+
+use super::{Failure, args, emit, print_json};
+use cable_dict::cable::CableSpec;
+use cable_dict::pose::Pose;
+use nalgebra::Vector3;
+use report::SegmentReport;
+use serde::Serialize;
+use std::path::PathBuf;
+
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Cable specification file (e.g. cables/smc_le_cp_3.toml).
+    #[arg(long, value_name = "CABLE.toml")]
+    cable: PathBuf,
+    /// Natural cable length between the two guides (mm); a whole number of sub-segments.
+    #[arg(long, value_name = "L")]
+    length_mm: f64,
+    /// Start guide frame in the world frame: x,y,z (mm), roll,pitch,yaw (deg, URDF convention
+    /// R = Rz(yaw)·Ry(pitch)·Rx(roll)); its +z axis is the cable direction leaving the guide.
+    #[arg(long, value_name = "X,Y,Z,R,P,Y", allow_hyphen_values = true, value_parser = args::guide_frame)]
+    start: Pose,
+    /// End guide frame, as --start; its +z axis is the cable direction arriving at the guide.
+    #[arg(long, value_name = "X,Y,Z,R,P,Y", allow_hyphen_values = true, value_parser = args::guide_frame)]
+    end: Pose,
+    /// Which shape to compute: `connected` (the start shape, no physics) or `converged` (the
+    /// static equilibrium under gravity, started from the connected shape).
+    #[arg(long, value_enum, default_value_t = Stage::Converged)]
+    stage: Stage,
+    /// Static solver of the converged stage.
+    #[arg(long, value_enum, default_value_t = Solver::QuasiStatic)]
+    solver: Solver,
+    /// How the connected geometry is obtained: `hermite` (Hermite curve + rotation-minimizing
+    /// frames) or `linear` (the paper's previous method: a straight cable dragged into the end
+    /// guide by the physics engine; slow, for comparison).
+    #[arg(long, value_enum, default_value_t = Connect::Hermite)]
+    connect: Connect,
+    /// A robot whose links are obstacles for the contact metric; the guide frames are then in
+    /// its base frame. Needs --joints-deg.
+    #[arg(long, value_name = "URDF", requires = "joints_deg")]
+    robot: Option<PathBuf>,
+    /// The robot's joint values for --robot, in `robot-info` order (deg; mm for prismatic).
+    #[arg(long, value_name = "A,B,C,…", requires = "robot", allow_hyphen_values = true, value_parser = args::number_list_arg)]
+    joints_deg: Option<args::NumberList>,
+    /// Link the start guide is screwed to: the cable next to it (--clamp-zone-mm) is not
+    /// checked against that link.
+    #[arg(long, value_name = "LINK", requires = "robot")]
+    start_link: Option<String>,
+    /// Link the end guide is screwed to, as --start-link.
+    #[arg(long, value_name = "LINK", requires = "robot")]
+    end_link: Option<String>,
+    /// Cable length next to a guide that is not checked against the guide's own link (mm).
+    #[arg(long, value_name = "MM", default_value_t = 20.0)]
+    clamp_zone_mm: f64,
+    /// Contact threshold: a clearance below this is a violation (mm; 0 = no contact).
+    #[arg(
+        long,
+        value_name = "MM",
+        default_value_t = 0.0,
+        allow_hyphen_values = true
+    )]
+    contact_threshold_mm: f64,
+    /// Gravity in the world frame, gx,gy,gz (m/s²).
+    #[arg(long, value_name = "GX,GY,GZ", default_value = "0,0,-9.81", allow_hyphen_values = true, value_parser = args::vector3)]
+    gravity: Vector3<f64>,
+    /// Print JSON: the connected stage (curve, alpha_m, nodes_mm, frames, metrics) and, for
+    /// the converged stage, a `converged` object with its nodes, frames, metrics, iterations,
+    /// residual and solve time.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, clap::ValueEnum, Serialize)]
+#[serde(rename_all = "snake_case")]
+enum Stage {
+    /// Hermite curve + rotation-minimizing frames (no physics).
+    Connected,
+    /// Static equilibrium under gravity, clamped at both guides.
+    Converged,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, clap::ValueEnum, Serialize)]
+#[serde(rename_all = "kebab-case")]
+enum Solver {
+    /// Newton's method on the cable's potential energy (about a millisecond).
+    QuasiStatic,
+    /// Damped rigid-body relaxation in rapier3d (the paper's baseline; ~100 ms).
+    Rapier,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, clap::ValueEnum)]
+enum Connect {
+    /// Hermite curve + rotation-minimizing frames.
+    Hermite,
+    /// A straight cable dragged into the end guide by the physics engine.
+    Linear,
+}
+
+pub fn run(args: Args) -> Result<(), Failure> {
+    let cable = CableSpec::from_file(&args.cable).map_err(Failure::input)?;
+    let sub_segments =
+        sub_segment_count(args.length_mm, cable.sub_segment_pitch_m).map_err(Failure::input)?;
+    let scene = obstacles::Scene::from_args(&args, &cable)?;
+    let connected = shape::connected(&cable, &args, sub_segments)?;
+    let mut report = SegmentReport::new(&cable, &args, sub_segments, &connected, scene.as_ref())?;
+    if args.stage == Stage::Converged {
+        let converged = shape::converged(&cable, &args, &connected)?;
+        report.add_converged(&cable, &args, &converged, scene.as_ref())?;
+    }
+    if args.json {
+        print_json(&report)
+    } else {
+        emit(&report.to_string())
+    }
+}
+
+/// The number of sub-segments in `length_mm`, refusing lengths that are not a whole number.
+fn sub_segment_count(length_mm: f64, pitch_m: f64) -> anyhow::Result<usize> {
+    let pitch_mm = pitch_m * 1e3;
+    let count = (length_mm / pitch_mm).round();
+    if !(length_mm.is_finite() && count >= 1.0 && (count * pitch_mm - length_mm).abs() < 1e-6) {
+        anyhow::bail!(
+            "--length-mm {length_mm}: must be a positive whole number of {pitch_mm} mm sub-segments (the cable's sub_segment_pitch_mm)"
+        );
+    }
+    Ok(count as usize)
+}

@@ -1,1 +1,0 @@
-//! Clearance between the cable and the robot's links (work in progress).

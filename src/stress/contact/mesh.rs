@@ -1,0 +1,646 @@
+//! Triangle meshes as obstacles: exact (f64) distances, with parry's BVH for culling.
+//!
+//! A mesh that is *closed* (every edge shared by exactly two triangles, traversed in opposite
+//! directions) is a solid: points inside have a negative signed distance, decided with
+//! angle-weighted pseudo-normals at the nearest feature (Bærentzen & Aanæs 2005), and its
+//! depth is the distance to the surface. Inward-facing closed meshes are turned outward (by
+//! the sign of their volume). Any other mesh is a surface without inside: its signed distance
+//! is the unsigned distance, never negative.
+
+use super::primitives::{SegmentMin, closest_segment_segment};
+use nalgebra::{Point3, Vector3};
+use rapier3d::parry::bounding_volume::Aabb;
+use rapier3d::parry::math::Vector as GlamVector;
+use rapier3d::parry::partitioning::{Bvh, BvhBuildStrategy, BvhNode, TraversalAction};
+use std::collections::HashMap;
+
+/// A triangle mesh prepared for distance queries in its own frame (metres).
+#[derive(Clone)]
+pub(super) struct SolidMesh {
+    vertices: Vec<Point3<f64>>,
+    /// Non-degenerate triangles only.
+    triangles: Vec<[u32; 3]>,
+    /// Unit normals, outward for closed meshes.
+    face_normals: Vec<Vector3<f64>>,
+    /// Closed meshes: pseudo-normal of edge k = (v_k, v_k+1) of each triangle.
+    edge_normals: Vec<[Vector3<f64>; 3]>,
+    /// Closed meshes: angle-weighted pseudo-normal of each vertex.
+    vertex_normals: Vec<Vector3<f64>>,
+    closed: bool,
+    /// Bounding box of the vertices.
+    lo: Vector3<f64>,
+    hi: Vector3<f64>,
+    bvh: Bvh,
+}
+
+impl std::fmt::Debug for SolidMesh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SolidMesh")
+            .field("vertices", &self.vertices.len())
+            .field("triangles", &self.triangles.len())
+            .field("closed", &self.closed)
+            .finish()
+    }
+}
+
+/// One triangle's use of an undirected edge: (triangle, edge slot, traversed low → high).
+type EdgeUse = (usize, usize, bool);
+
+/// The part of a triangle a nearest point lies on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Feature {
+    /// Vertex k.
+    Vertex(usize),
+    /// Edge k, from vertex k to vertex (k + 1) mod 3.
+    Edge(usize),
+    Face,
+}
+
+/// The nearest surface point to a query point.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Nearest {
+    pub distance: f64,
+    pub q: Point3<f64>,
+    triangle: usize,
+    feature: Feature,
+}
+
+impl SolidMesh {
+    /// Prepares a mesh; the error text says what is wrong with it.
+    pub fn new(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> Result<SolidMesh, String> {
+        if let Some(i) = vertices
+            .iter()
+            .position(|p| !p.iter().all(|c| c.is_finite()))
+        {
+            return Err(format!("vertex {i} is not finite"));
+        }
+        if let Some((i, t)) = triangles
+            .iter()
+            .enumerate()
+            .find(|(_, t)| t.iter().any(|&v| v as usize >= vertices.len()))
+        {
+            return Err(format!(
+                "triangle {i} uses vertex {t:?} but the mesh has {} vertices",
+                vertices.len()
+            ));
+        }
+        let mut kept = Vec::with_capacity(triangles.len());
+        let mut face_normals = Vec::with_capacity(triangles.len());
+        for t in triangles {
+            let [a, b, c] = t.map(|v| vertices[v as usize]);
+            let cross = (b - a).cross(&(c - a));
+            let longest = (b - a)
+                .norm_squared()
+                .max((c - b).norm_squared())
+                .max((a - c).norm_squared());
+            // Zero-area (or needle) triangles add nothing a neighbour does not cover.
+            if cross.norm() > 1e-12 * longest {
+                kept.push(*t);
+                face_normals.push(cross.normalize());
+            }
+        }
+        if kept.is_empty() {
+            return Err(format!("all {} triangles have zero area", triangles.len()));
+        }
+        let (lo, hi) = vertices.iter().fold(
+            (
+                Vector3::repeat(f64::INFINITY),
+                Vector3::repeat(f64::NEG_INFINITY),
+            ),
+            |(lo, hi), p| (lo.inf(&p.coords), hi.sup(&p.coords)),
+        );
+        let mut mesh = SolidMesh {
+            lo,
+            hi,
+            vertices: vertices.to_vec(),
+            bvh: build_bvh(vertices, &kept),
+            triangles: kept,
+            face_normals,
+            edge_normals: Vec::new(),
+            vertex_normals: Vec::new(),
+            closed: false,
+        };
+        mesh.find_solid();
+        Ok(mesh)
+    }
+
+    /// Whether the mesh encloses a volume (signed distances can be negative).
+    pub fn is_closed(&self) -> bool {
+        self.closed
+    }
+
+    /// The mesh vertices (m, mesh frame).
+    pub fn vertices(&self) -> &[Point3<f64>] {
+        &self.vertices
+    }
+
+    /// Checks closedness, orients outward and computes the pseudo-normals of a closed mesh.
+    fn find_solid(&mut self) {
+        let mut edges: HashMap<(u32, u32), Vec<EdgeUse>> = HashMap::new();
+        for (ti, t) in self.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (u, v) = (t[k], t[(k + 1) % 3]);
+                edges
+                    .entry((u.min(v), u.max(v)))
+                    .or_default()
+                    .push((ti, k, u < v));
+            }
+        }
+        let manifold = edges
+            .values()
+            .all(|uses| uses.len() == 2 && uses[0].2 != uses[1].2);
+        if !manifold {
+            return;
+        }
+        let volume6: f64 = self
+            .triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| self.vertices[v as usize].coords);
+                a.dot(&b.cross(&c))
+            })
+            .sum();
+        if volume6 == 0.0 {
+            return;
+        }
+        if volume6 < 0.0 {
+            self.face_normals.iter_mut().for_each(|n| *n = -*n);
+        }
+        let mut edge_normals = vec![[Vector3::zeros(); 3]; self.triangles.len()];
+        for uses in edges.values() {
+            let sum = self.face_normals[uses[0].0] + self.face_normals[uses[1].0];
+            for &(ti, k, _) in uses {
+                edge_normals[ti][k] = sum;
+            }
+        }
+        let mut vertex_normals = vec![Vector3::zeros(); self.vertices.len()];
+        for (t, n) in self.triangles.iter().zip(&self.face_normals) {
+            for k in 0..3 {
+                let p = self.vertices[t[k] as usize];
+                let u = self.vertices[t[(k + 1) % 3] as usize] - p;
+                let w = self.vertices[t[(k + 2) % 3] as usize] - p;
+                vertex_normals[t[k] as usize] += n * u.angle(&w);
+            }
+        }
+        self.edge_normals = edge_normals;
+        self.vertex_normals = vertex_normals;
+        self.closed = true;
+    }
+
+    fn corners(&self, triangle: usize) -> [Point3<f64>; 3] {
+        self.triangles[triangle].map(|v| self.vertices[v as usize])
+    }
+
+    /// Squared distance from `p` to the plane of a triangle: a lower bound for the triangle.
+    fn plane_distance2(&self, triangle: usize, p: &Point3<f64>) -> f64 {
+        let a = self.vertices[self.triangles[triangle][0] as usize];
+        self.face_normals[triangle].dot(&(p - a)).powi(2)
+    }
+
+    /// The nearest surface point to `p`.
+    pub fn nearest(&self, p: &Point3<f64>) -> Nearest {
+        let to_triangle = |ti: usize| {
+            let [a, b, c] = self.corners(ti);
+            closest_point_triangle(p, &a, &b, &c)
+        };
+        // A best-first descent (parry, f32 costs) finds a near triangle quickly; its exact
+        // distance then prunes the exact depth-first pass.
+        let seed = self.bvh.find_best(
+            f32::MAX,
+            |node: &BvhNode, _| aabb_point_distance2(node, p) as f32,
+            |leaf, best| {
+                let ti = leaf as usize;
+                if self.plane_distance2(ti, p) as f32 >= best {
+                    return None;
+                }
+                Some((p - to_triangle(ti).0).norm_squared() as f32)
+            },
+        );
+        let mut best = Nearest {
+            distance: f64::INFINITY,
+            q: *p,
+            triangle: 0,
+            feature: Feature::Face,
+        };
+        let mut best_d2 = f64::INFINITY;
+        if let Some((leaf, _)) = seed {
+            let ti = leaf as usize;
+            let (q, feature) = to_triangle(ti);
+            best_d2 = (p - q).norm_squared();
+            best = Nearest {
+                distance: 0.0,
+                q,
+                triangle: ti,
+                feature,
+            };
+        }
+        // Ties are pruned too (`>=`): any nearest point serves, and flat regions (a fan of cap
+        // triangles) would otherwise all be visited.
+        self.bvh.traverse(|node: &BvhNode| {
+            if aabb_point_distance2(node, p) >= best_d2 {
+                return TraversalAction::Prune;
+            }
+            if let Some(leaf) = node.leaf_data() {
+                let ti = leaf as usize;
+                // The triangle's plane is no farther than the triangle.
+                if self.plane_distance2(ti, p) >= best_d2 {
+                    return TraversalAction::Prune;
+                }
+                let (q, feature) = to_triangle(ti);
+                let d2 = (p - q).norm_squared();
+                if d2 < best_d2 {
+                    best_d2 = d2;
+                    best = Nearest {
+                        distance: 0.0,
+                        q,
+                        triangle: ti,
+                        feature,
+                    };
+                }
+            }
+            TraversalAction::Continue
+        });
+        best.distance = best_d2.sqrt();
+        best
+    }
+
+    /// Whether `p`, whose nearest surface point is `nearest`, lies inside a closed mesh.
+    pub fn is_inside(&self, p: &Point3<f64>, nearest: &Nearest) -> bool {
+        if !self.closed || nearest.distance == 0.0 {
+            return false;
+        }
+        let t = nearest.triangle;
+        let normal = match nearest.feature {
+            Feature::Face => self.face_normals[t],
+            Feature::Edge(k) => self.edge_normals[t][k],
+            Feature::Vertex(k) => self.vertex_normals[self.triangles[t][k] as usize],
+        };
+        (p - nearest.q).dot(&normal) < 0.0
+    }
+
+    /// Unit outward normal of the triangle `nearest` lies on.
+    pub fn face_normal(&self, nearest: &Nearest) -> Vector3<f64> {
+        self.face_normals[nearest.triangle]
+    }
+
+    /// Minimum signed distance along the segment `a → b` — exact when it is at most `cutoff`
+    /// (m); otherwise possibly just some value above `cutoff` (the search inside a solid, the
+    /// costly part, stops once it cannot get below it).
+    pub fn segment_min(&self, a: &Point3<f64>, b: &Point3<f64>, cutoff: f64) -> SegmentMin {
+        let e = b - a;
+        let length = e.norm();
+        let closed = self.closed;
+        if cutoff.is_finite() {
+            // The signed distance is 1-Lipschitz: within half the length of the midpoint's.
+            let mid = a + e * 0.5;
+            let nearest = self.nearest(&mid);
+            let sd = if self.is_inside(&mid, &nearest) {
+                -nearest.distance
+            } else {
+                nearest.distance
+            };
+            if sd - 0.5 * length > cutoff {
+                return SegmentMin { t: 0.5, sd };
+            }
+        }
+        let seg_min = a.coords.inf(&b.coords);
+        let seg_max = a.coords.sup(&b.coords);
+        let mut best = SegmentMin {
+            t: 0.0,
+            sd: f64::INFINITY,
+        };
+        let mut best_d2 = f64::INFINITY;
+        let seed = self.bvh.find_best(
+            f32::MAX,
+            |node: &BvhNode, _| aabb_aabb_distance2(node, &seg_min, &seg_max) as f32,
+            |leaf, _| Some(segment_triangle(a, &e, &self.corners(leaf as usize)).d2 as f32),
+        );
+        if let Some((leaf, _)) = seed {
+            let hit = segment_triangle(a, &e, &self.corners(leaf as usize));
+            best_d2 = hit.d2;
+            best.t = hit.t;
+        }
+        // Parameters where the segment passes through the plane of a triangle at (or within
+        // rounding of) the triangle: the only places it can go from outside to inside.
+        let mut cuts: Vec<f64> = Vec::new();
+        self.bvh.traverse(|node: &BvhNode| {
+            if aabb_aabb_distance2(node, &seg_min, &seg_max) > best_d2 {
+                return TraversalAction::Prune;
+            }
+            if let Some(leaf) = node.leaf_data() {
+                let tri = self.corners(leaf as usize);
+                let hit = segment_triangle(a, &e, &tri);
+                if let (true, Some(t)) = (closed, hit.cut) {
+                    cuts.push(t);
+                }
+                if hit.d2 < best_d2 || (hit.d2 == best_d2 && hit.t < best.t) {
+                    best_d2 = hit.d2;
+                    best.t = hit.t;
+                }
+            }
+            TraversalAction::Continue
+        });
+        best.sd = best_d2.sqrt();
+        if !closed {
+            return best;
+        }
+        let outside_box = |p: &Point3<f64>| (0..3).any(|i| p[i] < self.lo[i] || p[i] > self.hi[i]);
+        if cuts.is_empty() && (outside_box(a) || outside_box(b)) {
+            // One side only, and an end is outside the bounding box: all outside.
+            return best;
+        }
+        // Split at the cuts; every piece lies on one side, told by its midpoint.
+        let pieces: &[f64] = if cuts.is_empty() {
+            &[0.0, 1.0]
+        } else {
+            cuts.push(0.0);
+            cuts.push(1.0);
+            cuts.sort_unstable_by(f64::total_cmp);
+            cuts.dedup();
+            &cuts
+        };
+        let mut deepest: Option<SegmentMin> = None;
+        for w in pieces.windows(2) {
+            let (t0, t1) = (w[0], w[1]);
+            let mid = a + e * (0.5 * (t0 + t1));
+            let nearest = self.nearest(&mid);
+            if !self.is_inside(&mid, &nearest) {
+                continue;
+            }
+            // Depth is 1-Lipschitz along the segment: bounded by the midpoint's plus half the
+            // piece's length.
+            if -(nearest.distance + 0.5 * (t1 - t0) * length) > cutoff {
+                let piece = SegmentMin {
+                    t: 0.5 * (t0 + t1),
+                    sd: -nearest.distance,
+                };
+                deepest = Some(deepest.map_or(piece, |d| d.min(piece)));
+                continue;
+            }
+            let piece = self.deepest_in(a, &e, t0, t1, cutoff);
+            deepest = Some(deepest.map_or(piece, |d| d.min(piece)));
+        }
+        deepest.unwrap_or(best)
+    }
+
+    /// The point of `a + t·e`, t ∈ [t0, t1] (all inside), farthest from the surface.
+    ///
+    /// Nine samples, then around the best one: cutting lines while the nearest features are
+    /// faces (the depth is then locally linear, and for a concave depth — inside a convex
+    /// mesh — two tangent lines bound the maximum, so reaching their intersection proves it),
+    /// else a golden-section search down to 1e-13 m along the segment. Exact for convex
+    /// meshes; a local maximum for others. Stops after the samples when even the best bound
+    /// cannot reach below `cutoff`.
+    fn deepest_in(
+        &self,
+        a: &Point3<f64>,
+        e: &Vector3<f64>,
+        t0: f64,
+        t1: f64,
+        cutoff: f64,
+    ) -> SegmentMin {
+        // Depth and, on a face, its slope d(depth)/dt.
+        let probe = |t: f64| {
+            let nearest = self.nearest(&(a + e * t));
+            let slope = (nearest.feature == Feature::Face)
+                .then(|| -self.face_normals[nearest.triangle].dot(e));
+            (nearest.distance, slope)
+        };
+        const SAMPLES: usize = 8;
+        let at = |i: usize| t0 + (t1 - t0) * i as f64 / SAMPLES as f64;
+        let mut samples = [(0.0, None); SAMPLES + 1];
+        for (i, sample) in samples.iter_mut().enumerate() {
+            *sample = probe(at(i));
+        }
+        let mut best_i = 0;
+        for i in 1..=SAMPLES {
+            if samples[i].0 > samples[best_i].0 {
+                best_i = i;
+            }
+        }
+        let (best_u, best_slope) = samples[best_i];
+        let mut best = SegmentMin {
+            t: at(best_i),
+            sd: -best_u,
+        };
+        // Between two samples the depth is at most the meeting point of their Lipschitz cones.
+        let length = e.norm();
+        let step = (t1 - t0) / SAMPLES as f64 * length;
+        let bound = samples
+            .windows(2)
+            .map(|w| 0.5 * (w[0].0 + w[1].0 + step))
+            .fold(best_u, f64::max);
+        if -bound > cutoff {
+            return best;
+        }
+        // Deepest at an end of the piece, still descending there.
+        match (best_i, best_slope) {
+            (0, Some(s)) if s <= 0.0 => return best,
+            (SAMPLES, Some(s)) if s >= 0.0 => return best,
+            _ => {}
+        }
+        let (i_lo, i_hi) = (best_i.saturating_sub(1), (best_i + 1).min(SAMPLES));
+        let (mut lo, mut hi) = (at(i_lo), at(i_hi));
+        let ((mut u_lo, mut s_lo), (mut u_hi, mut s_hi)) = (samples[i_lo], samples[i_hi]);
+        for _ in 0..64 {
+            let (Some(sl), Some(sh)) = (s_lo, s_hi) else {
+                break;
+            };
+            if sl <= sh {
+                break;
+            }
+            let tc = ((u_hi - u_lo) + sl * lo - sh * hi) / (sl - sh);
+            if !(lo..=hi).contains(&tc) {
+                break;
+            }
+            let line = u_lo + sl * (tc - lo);
+            let (uc, sc) = probe(tc);
+            best = best.min(SegmentMin { t: tc, sd: -uc });
+            if line - uc <= 1e-13 {
+                return best;
+            }
+            match sc {
+                Some(s) if s > 0.0 => (lo, u_lo, s_lo) = (tc, uc, sc),
+                Some(s) if s < 0.0 => (hi, u_hi, s_hi) = (tc, uc, sc),
+                _ => break,
+            }
+        }
+        let depth = |t: f64| probe(t).0;
+        let tolerance = if length > 0.0 { 1e-13 / length } else { 1.0 };
+        let ratio = 0.5 * (5f64.sqrt() - 1.0);
+        let mut x1 = hi - ratio * (hi - lo);
+        let mut x2 = lo + ratio * (hi - lo);
+        let (mut f1, mut f2) = (depth(x1), depth(x2));
+        while hi - lo > tolerance {
+            if f1 >= f2 {
+                hi = x2;
+                (x2, f2) = (x1, f1);
+                x1 = hi - ratio * (hi - lo);
+                f1 = depth(x1);
+            } else {
+                lo = x1;
+                (x1, f1) = (x2, f2);
+                x2 = lo + ratio * (hi - lo);
+                f2 = depth(x2);
+            }
+        }
+        for (t, u) in [(x1, f1), (x2, f2)] {
+            best = best.min(SegmentMin { t, sd: -u });
+        }
+        best
+    }
+}
+
+/// BVH over the triangles' bounding boxes, rounded outward to f32 so they contain the f64
+/// triangles.
+fn build_bvh(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> Bvh {
+    let down = |v: f64| {
+        let f = v as f32;
+        if f64::from(f) > v { f.next_down() } else { f }
+    };
+    let up = |v: f64| {
+        let f = v as f32;
+        if f64::from(f) < v { f.next_up() } else { f }
+    };
+    let aabbs: Vec<Aabb> = triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| vertices[v as usize].coords);
+            let lo = a.inf(&b).inf(&c);
+            let hi = a.sup(&b).sup(&c);
+            Aabb::new(
+                GlamVector::new(down(lo.x), down(lo.y), down(lo.z)),
+                GlamVector::new(up(hi.x), up(hi.y), up(hi.z)),
+            )
+        })
+        .collect();
+    Bvh::from_leaves(BvhBuildStrategy::Binned, &aabbs)
+}
+
+fn node_bounds(node: &BvhNode) -> (Vector3<f64>, Vector3<f64>) {
+    let (lo, hi) = (node.mins(), node.maxs());
+    (
+        Vector3::new(lo.x.into(), lo.y.into(), lo.z.into()),
+        Vector3::new(hi.x.into(), hi.y.into(), hi.z.into()),
+    )
+}
+
+fn aabb_point_distance2(node: &BvhNode, p: &Point3<f64>) -> f64 {
+    let (lo, hi) = node_bounds(node);
+    (0..3)
+        .map(|i| (lo[i] - p[i]).max(p[i] - hi[i]).max(0.0).powi(2))
+        .sum()
+}
+
+fn aabb_aabb_distance2(node: &BvhNode, lo2: &Vector3<f64>, hi2: &Vector3<f64>) -> f64 {
+    let (lo, hi) = node_bounds(node);
+    (0..3)
+        .map(|i| (lo[i] - hi2[i]).max(lo2[i] - hi[i]).max(0.0).powi(2))
+        .sum()
+}
+
+/// Nearest point of triangle abc to `p` and the feature it lies on (Ericson, *Real-Time
+/// Collision Detection*, §5.1.5).
+fn closest_point_triangle(
+    p: &Point3<f64>,
+    a: &Point3<f64>,
+    b: &Point3<f64>,
+    c: &Point3<f64>,
+) -> (Point3<f64>, Feature) {
+    let ab = b - a;
+    let ac = c - a;
+    let ap = p - a;
+    let d1 = ab.dot(&ap);
+    let d2 = ac.dot(&ap);
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return (*a, Feature::Vertex(0));
+    }
+    let bp = p - b;
+    let d3 = ab.dot(&bp);
+    let d4 = ac.dot(&bp);
+    if d3 >= 0.0 && d4 <= d3 {
+        return (*b, Feature::Vertex(1));
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let v = d1 / (d1 - d3);
+        return (a + ab * v, Feature::Edge(0));
+    }
+    let cp = p - c;
+    let d5 = ab.dot(&cp);
+    let d6 = ac.dot(&cp);
+    if d6 >= 0.0 && d5 <= d6 {
+        return (*c, Feature::Vertex(2));
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let w = d2 / (d2 - d6);
+        return (a + ac * w, Feature::Edge(2));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return (b + (c - b) * w, Feature::Edge(1));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    (a + ab * (vb * denom) + ac * (vc * denom), Feature::Face)
+}
+
+/// Closest approach of segment `a + t·e` to a triangle.
+struct SegmentTriangle {
+    /// Squared distance.
+    d2: f64,
+    /// Segment parameter of a closest point.
+    t: f64,
+    /// Where the segment crosses the triangle's plane, if that is on (or within rounding of)
+    /// the triangle.
+    cut: Option<f64>,
+}
+
+fn segment_triangle(a: &Point3<f64>, e: &Vector3<f64>, tri: &[Point3<f64>; 3]) -> SegmentTriangle {
+    let [p0, p1, p2] = tri;
+    let n = (p1 - p0).cross(&(p2 - p0));
+    let d0 = n.dot(&(a - p0));
+    let d1 = d0 + n.dot(e);
+    let mut cut = None;
+    if (d0 > 0.0 && d1 < 0.0) || (d0 < 0.0 && d1 > 0.0) {
+        let t = d0 / (d0 - d1);
+        let x = a + e * t;
+        // Edge functions, scaled by |n|²; a relative slack lets a crossing through a shared
+        // edge or vertex register on both sides instead of on neither.
+        let slack = -1e-9 * n.norm_squared();
+        let edge = |u: &Point3<f64>, v: &Point3<f64>| n.dot(&(v - u).cross(&(x - u)));
+        let (w0, w1, w2) = (edge(p0, p1), edge(p1, p2), edge(p2, p0));
+        if w0 >= slack && w1 >= slack && w2 >= slack {
+            cut = Some(t);
+            if w0 >= 0.0 && w1 >= 0.0 && w2 >= 0.0 {
+                return SegmentTriangle { d2: 0.0, t, cut };
+            }
+        }
+    }
+    // No crossing: a closest pair has an endpoint of the segment or a point on an edge.
+    let mut best = SegmentTriangle {
+        d2: f64::INFINITY,
+        t: 0.0,
+        cut,
+    };
+    let b = a + e;
+    for (t, p) in [(0.0, a), (1.0, &b)] {
+        let (q, _) = closest_point_triangle(p, p0, p1, p2);
+        let d2 = (p - q).norm_squared();
+        if d2 < best.d2 {
+            best.d2 = d2;
+            best.t = t;
+        }
+    }
+    for k in 0..3 {
+        let (u, v) = (tri[k], tri[(k + 1) % 3]);
+        let (s, w) = closest_segment_segment(a, e, &u, &(v - u));
+        let d2 = ((a + e * s) - (u + (v - u) * w)).norm_squared();
+        if d2 < best.d2 || (d2 == best.d2 && s < best.t) {
+            best.d2 = d2;
+            best.t = s;
+        }
+    }
+    best
+}
