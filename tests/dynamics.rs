@@ -223,10 +223,7 @@ fn a_relaxed_span_is_the_exact_discrete_equilibrium() {
         "clamp joint angle {clamp_angle:.5} rad, exact {:.5} rad",
         angles[0]
     );
-    assert!(
-        (clamp_angle - angles[0]).abs() < 0.01,
-        "{clamp_angle} rad"
-    );
+    assert!((clamp_angle - angles[0]).abs() < 0.01, "{clamp_angle} rad");
     // Node frames: the guides' orientations at the ends, tangents along the cable inside.
     assert!(relaxation.frames[0].angle_to(&start.rotation.to_rotation_matrix()) < 1e-6);
     assert!(relaxation.frames[s].angle_to(&end.rotation.to_rotation_matrix()) < 1e-6);
