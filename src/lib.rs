@@ -38,7 +38,9 @@
 pub mod cable;
 pub mod dynamics;
 pub mod geometry;
+pub mod motion;
 pub mod pose;
 pub mod robot;
+pub mod setup;
 pub mod statics;
 pub mod stress;

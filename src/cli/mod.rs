@@ -2,6 +2,7 @@
 
 mod args;
 mod fk;
+mod motion;
 mod robot_info;
 mod segment;
 
@@ -25,7 +26,9 @@ enum Command {
     /// Forward kinematics: the pose of every link for given joint angles.
     Fk(fk::Args),
     /// Shape and stress of one cable segment between two guide frames.
-    Segment(segment::Args),
+    Segment(Box<segment::Args>),
+    /// Generate a sampled motion CSV from a waypoint file (trapezoidal or quintic moves).
+    Motion(motion::Args),
 }
 
 /// Why a command failed, and the exit code that says so.
@@ -59,7 +62,8 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
         Command::RobotInfo(args) => robot_info::run(args),
         Command::Fk(args) => fk::run(args),
-        Command::Segment(args) => segment::run(args),
+        Command::Segment(args) => segment::run(*args),
+        Command::Motion(args) => motion::run(args),
     }
 }
 

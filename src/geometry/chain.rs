@@ -13,10 +13,11 @@
 //!
 //! The step is a descent direction of `Σ c_k²` (its slope is `−2 Σ c_k²`), and because the
 //! constraints are quadratic that sum is an exact quartic along it. On ordinary bends the full
-//! step lowers it and the residual falls quadratically (2–3 steps from arc-length nodes). For
-//! chains that are almost straight or folded, `J Jᵀ` is nearly singular (a straight chain
-//! cannot lengthen its chords to first order) and the full step overshoots by orders of
-//! magnitude; then the quartic's minimizer is taken, found without trial evaluations. Where
+//! step lowers it and the residual falls quadratically (2–3 steps from arc-length nodes); the
+//! evaluation of the moved nodes that shows it also assembles the next `J Jᵀ`. For chains
+//! that are almost straight or folded, `J Jᵀ` is nearly singular (a straight chain cannot
+//! lengthen its chords to first order) and the full step overshoots by orders of magnitude;
+//! then the quartic's minimizer is taken, found without trial evaluations. Where
 //! `J Jᵀ` is singular to working precision, its diagonal is damped (Levenberg–Marquardt),
 //! which keeps a descent direction.
 
@@ -171,26 +172,27 @@ fn solve_twisted(rows: &mut [ChordState]) -> bool {
     let n = rows.len();
     let middle = n / 2;
     let mut positive = true;
-    let (mut u, mut y, mut w, mut z) = (0.0, 0.0, 0.0, 0.0);
+    // Each sweep's chain is pivot → b²/pivot → next pivot; 1/pivot and the rest hang off it.
+    let (mut pivot_up, mut y, mut pivot_down, mut z) = (1.0, 0.0, 1.0, 0.0);
     for i in 0..middle.max(n - 1 - middle) {
         if i < middle {
             let b = if i > 0 { rows[i - 1].off } else { 0.0 };
-            let pivot = rows[i].diagonal - b * u;
+            let pivot = rows[i].diagonal - b * b / pivot_up;
             positive &= pivot > 0.0 && pivot.is_finite();
             let inverse = 1.0 / pivot;
             y = (rows[i].residual - b * y) * inverse;
-            u = rows[i].off * inverse;
-            (rows[i].upper, rows[i].solution) = (u, y);
+            (rows[i].upper, rows[i].solution) = (rows[i].off * inverse, y);
+            pivot_up = pivot;
         }
         let k = n - 1 - i;
         if k > middle {
             let b = rows[k].off;
-            let pivot = rows[k].diagonal - b * w;
+            let pivot = rows[k].diagonal - b * b / pivot_down;
             positive &= pivot > 0.0 && pivot.is_finite();
             let inverse = 1.0 / pivot;
             z = (rows[k].residual - b * z) * inverse;
-            w = rows[k - 1].off * inverse;
-            (rows[k].upper, rows[k].solution) = (w, z);
+            (rows[k].upper, rows[k].solution) = (rows[k - 1].off * inverse, z);
+            pivot_down = pivot;
         }
     }
     let before = middle.checked_sub(1).map_or((0.0, 0.0, 0.0), |k| {
@@ -222,6 +224,8 @@ struct Workspace {
     chords: Vec<ChordState>,
     /// The Gauss–Newton step of the nodes (first and last stay zero).
     step: Vec<Vector3<f64>>,
+    /// Largest `|Δx_j|²` of the step.
+    largest_move_squared: f64,
 }
 
 impl Workspace {
@@ -229,21 +233,38 @@ impl Workspace {
         Self {
             chords: vec![ChordState::default(); chords],
             step: vec![Vector3::zeros(); chords + 1],
+            largest_move_squared: 0.0,
         }
     }
 
-    /// Stores the chords and constraint values of `nodes`; returns `Σ c_k²` and `max |c_k|`
-    /// (NaN if any is NaN).
+    /// Stores the chords and constraint values of `nodes` and the undamped `J Jᵀ`; returns
+    /// `Σ c_k²` and `max |c_k|` (NaN if any is NaN).
     fn evaluate(&mut self, nodes: &[Point3<f64>], pitch: f64) -> Residuals {
         let pitch_squared = pitch * pitch;
         let (mut merit, mut max_residual) = (0.0, 0.0_f64);
+        // Symmetric tridiagonal J Jᵀ: a_k = 4|e_k|²·(free ends), b_k = −4 e_k·e_{k+1}.
         for (state, pair) in self.chords.iter_mut().zip(nodes.windows(2)) {
             let chord = pair[1] - pair[0];
-            let residual = chord.norm_squared() - pitch_squared;
+            let length_squared = chord.norm_squared();
+            let residual = length_squared - pitch_squared;
             state.chord = chord;
             state.residual = residual;
+            state.diagonal = 8.0 * length_squared;
             merit += residual * residual;
             max_residual = max_residual.max(residual.abs());
+        }
+        let count = self.chords.len();
+        for k in 1..count {
+            let product = self.chords[k - 1].chord.dot(&self.chords[k].chord);
+            self.chords[k - 1].off = -4.0 * product;
+        }
+        if let Some(last) = self.chords.last_mut() {
+            // The end chords have one free end (exact: powers of two).
+            last.off = 0.0;
+            last.diagonal *= 0.5;
+        }
+        if count > 1 {
+            self.chords[0].diagonal *= 0.5;
         }
         Residuals {
             merit,
@@ -265,45 +286,82 @@ impl Workspace {
             // One chord between two fixed nodes: nothing can move.
             return false;
         }
-        // Symmetric tridiagonal J Jᵀ: a_k = 4|e_k|²·(free ends), b_k = −4 e_k·e_{k+1}.
-        let chords = &mut self.chords;
-        for k in 0..count {
-            let free_ends = if k == 0 || k == count - 1 { 1.0 } else { 2.0 };
-            let chord = chords[k].chord;
-            chords[k].diagonal = 4.0 * free_ends * chord.norm_squared() * (1.0 + damping);
-            chords[k].off = match chords.get(k + 1) {
-                Some(next) => -4.0 * chord.dot(&next.chord),
-                None => 0.0,
-            };
+        if damping != 0.0 {
+            for (k, state) in self.chords.iter_mut().enumerate() {
+                let free_ends = if k == 0 || k == count - 1 { 1.0 } else { 2.0 };
+                state.diagonal = 4.0 * free_ends * state.chord.norm_squared() * (1.0 + damping);
+            }
         }
-        if !solve_twisted(chords) {
+        if !solve_twisted(&mut self.chords) {
             return false;
         }
         // Node j ends chord j−1 and starts chord j: ∂c_{j−1}/∂x_j = 2e_{j−1}, ∂c_j/∂x_j = −2e_j.
-        let mut finite = true;
+        let (mut largest, mut finite) = (0.0_f64, true);
         for (step, pair) in self.step[1..count].iter_mut().zip(self.chords.windows(2)) {
             *step = 2.0 * (pair[1].chord * pair[1].solution - pair[0].chord * pair[0].solution);
             finite &= step.iter().all(|v| v.is_finite());
+            largest = largest.max(step.norm_squared());
         }
+        self.largest_move_squared = largest;
         finite
     }
 
-    /// Applies the step `s Δx` that minimizes `Σ c_k²` along `Δx`; returns the new residuals,
-    /// or `None` (nodes unchanged) if it does not lower `merit`.
+    /// Moves the nodes by `scale Δx` and evaluates them there.
+    fn apply(&mut self, nodes: &mut [Point3<f64>], scale: f64, pitch: f64) -> Residuals {
+        for (node, step) in nodes.iter_mut().zip(&self.step) {
+            *node += scale * step;
+        }
+        self.evaluate(nodes, pitch)
+    }
+
+    /// Applies the step `s Δx` that lowers `Σ c_k²` along `Δx` — the full step if it does, else
+    /// the quartic's minimizer; returns the new residuals, or `None` (nodes unchanged) if
+    /// neither lowers `merit`.
     ///
     /// The constraints are quadratic, so along the step they are exactly
     /// `c_k(s) = c_k + s B_k + s² C_k` with `B_k = 2 e_k·Δe_k`, `C_k = |Δe_k|²` (for the
-    /// undamped step `B_k = −c_k`), and the merit is a quartic in `s`. The full step is taken
-    /// if that quartic says it lowers the merit (always on ordinary bends); otherwise — nearly
-    /// singular `J Jᵀ`, a nearly straight or folded chain, where the full step overshoots by
-    /// orders of magnitude — the quartic's minimizer, found without trial evaluations.
+    /// undamped step `B_k = −c_k`), and the merit is a quartic in `s`. On ordinary bends the
+    /// full (minimum-norm) step lowers it, which for a step shorter than a tenth of the pitch
+    /// one evaluation of the moved nodes shows; a longer step is taken if the quartic says it
+    /// lowers the merit. Otherwise — nearly singular `J Jᵀ`, a nearly straight or folded
+    /// chain, where the full step overshoots by orders of magnitude — the quartic's minimizer,
+    /// found without trial evaluations.
     fn line_search(
         &mut self,
         nodes: &mut [Point3<f64>],
         pitch: f64,
         merit: f64,
     ) -> Option<Residuals> {
-        // Half the derivative of the merit: Σ cB + s Σ(B² + 2cC) + 3s² Σ BC + 2s³ Σ C².
+        // A short step is simply tried; a long one could only be undone with round-off.
+        let short = self.largest_move_squared <= 0.01 * pitch * pitch;
+        if short {
+            let full = self.apply(nodes, 1.0, pitch);
+            if full.merit < merit {
+                return Some(full);
+            }
+            self.apply(nodes, -1.0, pitch);
+        }
+        let slope = self.merit_slope();
+        // f(1) = f(0) + 2 ∫₀¹ g: the full step whenever it helps, so that ordinary
+        // projections are plain Gauss–Newton.
+        let full_step_merit =
+            merit + 2.0 * slope[0] + slope[1] + 2.0 * slope[2] / 3.0 + 0.5 * slope[3];
+        let scale = if !short && full_step_merit < merit {
+            1.0
+        } else {
+            quartic_minimizer(&slope)
+        };
+        let residuals = self.apply(nodes, scale, pitch);
+        if residuals.merit < merit {
+            return Some(residuals);
+        }
+        self.apply(nodes, -scale, pitch);
+        None
+    }
+
+    /// Half the derivative of the merit along the step at the stored chords, as cubic
+    /// coefficients: `Σ cB + s Σ(B² + 2cC) + 3s² Σ BC + 2s³ Σ C²`.
+    fn merit_slope(&self) -> [f64; 4] {
         let mut slope = [0.0; 4];
         for (state, steps) in self.chords.iter().zip(self.step.windows(2)) {
             let change = steps[1] - steps[0];
@@ -317,27 +375,7 @@ impl Workspace {
             slope[2] += 3.0 * b * cc;
             slope[3] += 2.0 * cc * cc;
         }
-        // f(1) = f(0) + 2 ∫₀¹ g: the full (minimum-norm) step whenever it helps, so that
-        // ordinary projections are plain Gauss–Newton.
-        let full_step_merit =
-            merit + 2.0 * slope[0] + slope[1] + 2.0 * slope[2] / 3.0 + 0.5 * slope[3];
-        let scale = if full_step_merit < merit {
-            1.0
-        } else {
-            quartic_minimizer(&slope)
-        };
-        for (node, step) in nodes.iter_mut().zip(&self.step) {
-            *node += scale * step;
-        }
-        let residuals = self.evaluate(nodes, pitch);
-        if residuals.merit < merit {
-            return Some(residuals);
-        }
-        for (node, step) in nodes.iter_mut().zip(&self.step) {
-            *node -= scale * step;
-        }
-        self.evaluate(nodes, pitch);
-        None
+        slope
     }
 }
 

@@ -30,7 +30,9 @@ use nalgebra::{Point3, Rotation3, Unit, Vector3};
 use super::chain::project_onto_rigid_chain;
 use super::frames::guided_frames;
 use super::guides::{GuidePair, check_cable, check_sag};
-use super::hermite::{ArcLengthError, HermiteCurve, arc_length_tolerance};
+use super::hermite::{
+    ArcLengthError, CurveParameter, HermiteCurve, ParameterSearch, arc_length_tolerance,
+};
 use crate::pose::Pose;
 
 /// Largest accepted sub-segment count; bounds the memory of one connected geometry.
@@ -38,6 +40,15 @@ pub const MAX_SUB_SEGMENTS: usize = 1_000_000;
 /// A perpendicular component shorter than this (of a unit vector) does not define a bow
 /// direction: the vector is (nearly) along the chord.
 const MIN_BOW_COMPONENT: f64 = 1e-6;
+/// Largest sine of the angle between a guide tangent and the chord for coaxial guides.
+const COAXIAL_TOLERANCE: f64 = 1e-12;
+/// An estimated α within this fraction of the guide distance is refined before deciding
+/// whether there is slack for a bow (`α > d`); the estimate is good to ~1e-6 relative.
+const DECISION_REL_MARGIN: f64 = 1e-3;
+/// Bending energies at estimated shape parameters decide only when one exceeds the other by
+/// this factor: a ~1e-6 relative change of a parameter cannot move a smooth curve's energy by
+/// 10 %. Closer energies are recomputed at the refined roots.
+const CLEAR_ENERGY_RATIO: f64 = 1.1;
 
 /// Nodes and frames of a cable segment between two guides (SI units).
 #[derive(Debug, Clone, PartialEq)]
@@ -247,7 +258,12 @@ fn straight_chain(curve: HermiteCurve, sub_segments: usize) -> Candidate {
 
 /// Builds the Hermite curve and, with slack, the bowed one, and places nodes on the one with
 /// the smaller continuous bending energy `∫ κ² ds` (ties and failed bows: Hermite). If the
-/// winner's projection fails, the other curve is placed instead.
+/// winner cannot be placed (its root find or its projection fails), the other curve is placed
+/// instead.
+///
+/// Coaxial guides (both tangents along the chord): with slack the Hermite curve can only fold
+/// back along the axis, two cusps where `∫ κ² ds` is infinite, so the bow wins without a
+/// search for α; the Hermite curve is built only if the bow cannot be placed.
 fn least_bent_candidate(
     guides: &GuidePair,
     base: &HermiteCurve,
@@ -257,24 +273,57 @@ fn least_bent_candidate(
 ) -> Result<Candidate, ConnectError> {
     let natural = sub_segments as f64 * pitch;
     let chord = guides.end_point - guides.start_point;
-    let distance = chord.norm();
-    let alpha = base
-        .alpha_for_arc_length(natural)
-        .map_err(arc_length_failure)?;
-    let hermite = base.with_alpha(alpha);
-    // Without slack beyond α = d the Hermite curve needs no fold, and L(α = d) ≥ S·l leaves
-    // no room for a bow. A failed bow root leaves the Hermite curve alone.
-    let bowed = (alpha > distance)
-        .then(|| bowed_curve(base, &chord, sag, guides, natural))
-        .and_then(Result::ok);
-    let mut order = vec![(CurveFamily::Hermite, hermite)];
-    if let Some(bowed) = bowed {
-        let bowed_wins = bowed.bending_energy_integral() < order[0].1.bending_energy_integral();
-        order.insert(usize::from(!bowed_wins), (CurveFamily::Bowed, bowed));
+    let hermite_later = || {
+        Contender::new(
+            CurveFamily::Hermite,
+            base.clone(),
+            CurveParameter::Alpha,
+            natural,
+        )
+        .map_err(|error| error.to_string())
+    };
+    if is_coaxial(guides, &chord) {
+        let bowed = bowed_contender(base, &chord, sag, guides, natural)
+            .map_err(|error| format!("Bowed candidate: {error}"));
+        let order = std::iter::once(bowed).chain(std::iter::once_with(hermite_later));
+        return place_first(order, sub_segments, pitch);
     }
+    let mut hermite = hermite_later().map_err(|reason| ConnectError::NoSolution { reason })?;
+    // Without slack beyond α = d the Hermite curve needs no fold, and L(α = d) ≥ S·l leaves
+    // no room for a bow. An estimate too close to d to tell is refined first.
+    let distance = chord.norm();
+    let alpha = hermite.value();
+    let undecided = alpha.is_nan() || (alpha - distance).abs() <= DECISION_REL_MARGIN * distance;
+    if undecided {
+        hermite.refine().map_err(arc_length_failure)?;
+    }
+    // A failed bow root leaves the Hermite curve alone.
+    let bowed = (hermite.value() > distance)
+        .then(|| bowed_contender(base, &chord, sag, guides, natural))
+        .and_then(Result::ok);
+    let order = match bowed {
+        Some(bowed) => by_bending_energy(hermite, bowed),
+        None => [Some(hermite), None],
+    };
+    place_first(order.into_iter().flatten().map(Ok), sub_segments, pitch)
+}
+
+/// Places the first contender whose root find and projection succeed; `NoSolution` naming
+/// every failure otherwise.
+fn place_first(
+    order: impl Iterator<Item = Result<Contender, String>>,
+    sub_segments: usize,
+    pitch: f64,
+) -> Result<Candidate, ConnectError> {
     let mut failures = Vec::new();
-    for (family, curve) in order {
-        match Candidate::place(family, curve, sub_segments, pitch) {
+    for contender in order {
+        let placed = contender.and_then(|mut contender| {
+            contender
+                .refine()
+                .map_err(|error| format!("{:?} candidate: {error}", contender.family))?;
+            Candidate::place(contender.family, contender.curve, sub_segments, pitch)
+        });
+        match placed {
             Ok(candidate) => return Ok(candidate),
             Err(reason) => failures.push(reason),
         }
@@ -284,20 +333,113 @@ fn least_bent_candidate(
     })
 }
 
-/// The Hermite curve at α = guide distance, bowed towards the sag direction to arc length
-/// `natural`.
-fn bowed_curve(
+/// Both guide tangents point along the chord, to [`COAXIAL_TOLERANCE`]. The Hermite curve
+/// is then `p' = f(t) × axis` with a scalar quadratic `f`; it is no longer than the chord
+/// until `f` changes sign (α > 3d), so with slack it folds, `p' = 0` at two cusps. A tilt
+/// within the tolerance leaves dips narrower than the 1e-9 of a cusp.
+fn is_coaxial(guides: &GuidePair, chord: &Vector3<f64>) -> bool {
+    let Some(axis) = Unit::try_new(*chord, 0.0) else {
+        return false;
+    };
+    [guides.start_tangent, guides.end_tangent]
+        .iter()
+        .all(|v| v.dot(&axis) > 0.0 && v.cross(&axis).norm() <= COAXIAL_TOLERANCE)
+}
+
+/// A candidate curve whose shape parameter may still be the estimate of the root find's cheap
+/// phase (see [`HermiteCurve::parameter_search`]).
+struct Contender {
+    family: CurveFamily,
+    parameter: CurveParameter,
+    search: ParameterSearch,
+    /// The curve at [`Self::value`].
+    curve: HermiteCurve,
+}
+
+impl Contender {
+    /// Starts the search for the parameter that gives `curve` the arc length `natural`; a
+    /// search whose cheap phase found no estimate is completed right away.
+    fn new(
+        family: CurveFamily,
+        mut curve: HermiteCurve,
+        parameter: CurveParameter,
+        natural: f64,
+    ) -> Result<Self, ArcLengthError> {
+        let mut search = curve.parameter_search(parameter, natural)?;
+        let value = match search.estimate() {
+            Some(estimate) => estimate,
+            None => search.finish()?,
+        };
+        curve.set_parameter(parameter, value);
+        Ok(Self {
+            family,
+            parameter,
+            search,
+            curve,
+        })
+    }
+
+    /// The current value of the shape parameter (m): the estimate or the root.
+    fn value(&self) -> f64 {
+        match self.parameter {
+            CurveParameter::Alpha => self.curve.alpha_m(),
+            CurveParameter::Bow => self.curve.bow_m(),
+        }
+    }
+
+    /// Completes the root find and moves the curve to the root (no-op once converged).
+    fn refine(&mut self) -> Result<(), ArcLengthError> {
+        if !self.search.is_converged() {
+            let root = self.search.finish()?;
+            self.curve.set_parameter(self.parameter, root);
+        }
+        Ok(())
+    }
+}
+
+/// The two contenders, the one with the smaller `∫ κ² ds` first (ties: Hermite).
+///
+/// The energies are first compared at the estimates of the shape parameters (the cheap phase
+/// of the root finds, ~1e-6 relative). Only when neither exceeds the other by the factor
+/// [`CLEAR_ENERGY_RATIO`] (or both are infinite) are both roots refined and the energies
+/// recomputed. Otherwise the loser's root is never refined: its curve is not placed unless the
+/// winner fails.
+fn by_bending_energy(mut hermite: Contender, mut bowed: Contender) -> [Option<Contender>; 2] {
+    let (mut e_hermite, mut e_bowed) = (
+        hermite.curve.bending_energy_integral(),
+        bowed.curve.bending_energy_integral(),
+    );
+    let clear =
+        e_hermite > CLEAR_ENERGY_RATIO * e_bowed || e_bowed > CLEAR_ENERGY_RATIO * e_hermite;
+    let estimated = !(hermite.search.is_converged() && bowed.search.is_converged());
+    if !clear && estimated {
+        // A failed refinement is reported when the contender is placed.
+        if hermite.refine().is_ok() {
+            e_hermite = hermite.curve.bending_energy_integral();
+        }
+        if bowed.refine().is_ok() {
+            e_bowed = bowed.curve.bending_energy_integral();
+        }
+    }
+    if e_bowed < e_hermite {
+        [Some(bowed), Some(hermite)]
+    } else {
+        [Some(hermite), Some(bowed)]
+    }
+}
+
+/// The bowed contender: the Hermite curve at α = guide distance, bowed towards the sag
+/// direction, its bow height searched for arc length `natural`.
+fn bowed_contender(
     base: &HermiteCurve,
     chord: &Vector3<f64>,
     sag: &Unit<Vector3<f64>>,
     guides: &GuidePair,
     natural: f64,
-) -> Result<HermiteCurve, ArcLengthError> {
+) -> Result<Contender, ArcLengthError> {
     let direction = bow_direction(chord, sag, guides);
-    let mut curve = base.with_alpha(chord.norm()).with_bow(direction, 0.0);
-    let bow = curve.bow_for_arc_length(natural)?;
-    curve.set_bow(bow);
-    Ok(curve)
+    let curve = base.with_alpha(chord.norm()).with_bow(direction, 0.0);
+    Contender::new(CurveFamily::Bowed, curve, CurveParameter::Bow, natural)
 }
 
 /// The unit bow direction `n`: the part of `sag` perpendicular to the chord. If `sag` is
@@ -359,6 +501,30 @@ mod tests {
         .unwrap();
         for pair in two.nodes.windows(2) {
             assert!(((pair[1] - pair[0]).norm() - 0.01).abs() < 1e-13);
+        }
+    }
+
+    /// The premise of the coaxial shortcut: for guides coaxial to within the tolerance, the
+    /// Hermite curve of any slack cable folds (infinite `∫ κ² ds`), so the bow wins, as the
+    /// full comparison (for a larger tilt) also finds.
+    #[test]
+    fn coaxial_hermite_curves_with_slack_fold() {
+        let start = pose_from_xyz_rpy([0.0; 3], [0.0, FRAC_PI_2, 0.0]);
+        for tilt in [0.0, 1e-13, 0.9 * COAXIAL_TOLERANCE, 1e-6] {
+            let end = pose_from_xyz_rpy([0.4, 0.0, 0.0], [0.0, FRAC_PI_2 + tilt, 0.0]);
+            let guides = GuidePair::from_poses(&start, &end).unwrap();
+            let chord = guides.end_point - guides.start_point;
+            assert_eq!(is_coaxial(&guides, &chord), tilt < COAXIAL_TOLERANCE);
+            for natural in [0.41, 0.5, 1.0] {
+                let curve = HermiteCurve::between_guides(&start, &end, 0.0);
+                let alpha = curve.alpha_for_arc_length(natural).unwrap();
+                let energy = curve.with_alpha(alpha).bending_energy_integral();
+                if tilt < COAXIAL_TOLERANCE {
+                    assert_eq!(energy, f64::INFINITY, "tilt {tilt}, length {natural}");
+                }
+                let geometry = connect(&start, &end, 50, natural / 50.0, &down()).unwrap();
+                assert_eq!(geometry.curve, CurveFamily::Bowed, "tilt {tilt}");
+            }
         }
     }
 

@@ -5,7 +5,7 @@
 use nalgebra::{Matrix3, Point3, Rotation3, Unit, Vector3};
 
 use super::hermite::HermiteCurve;
-use super::rmf::double_reflection;
+use super::rmf::{frame, rotation_minimizing_normals};
 
 /// Frames (columns: normal, binormal, tangent) at the `nodes`, which sit at the curve
 /// parameters `params`, and the twist `Δψ` (rad) spread over them.
@@ -22,12 +22,14 @@ pub(crate) fn guided_frames(
     end_normal: &Unit<Vector3<f64>>,
 ) -> (Vec<Rotation3<f64>>, f64) {
     let tangents = node_tangents(curve, params, nodes);
-    let mut frames = double_reflection(nodes, &tangents, start_normal);
-    let twist = frames
+    let normals = rotation_minimizing_normals(nodes, &tangents, start_normal);
+    let twist = normals
         .last()
-        .map_or(0.0, |last| twist_mismatch(last, end_normal));
-    distribute_twist(&mut frames, twist);
-    (frames, twist)
+        .zip(tangents.last())
+        .map_or(0.0, |(normal, tangent)| {
+            twist_mismatch(&frame(normal, tangent), end_normal)
+        });
+    (twisted_frames(&normals, &tangents, twist), twist)
 }
 
 /// Unit tangents at the nodes: the guide axes at both ends, `p'/|p'|` inside; at a cusp
@@ -71,17 +73,27 @@ fn principal_angle(y: f64, x: f64) -> f64 {
     }
 }
 
-/// Rotates frame `k` about its own tangent by `twist · k / S`, so the first frame is kept and
-/// the last turns by the whole `twist`. The angles advance by a fixed step, so their sines
-/// and cosines follow by rotation recurrence, re-seeded exactly every few frames to bound
-/// round-off; the last frame is always seeded exactly.
-fn distribute_twist(frames: &mut [Rotation3<f64>], twist: f64) {
+/// Frames from the normals and tangents, frame `k` turned about its own tangent by
+/// `twist · k / S`, so the first frame is kept and the last turns by the whole `twist`. The
+/// angles advance by a fixed step, so their sines and cosines follow by rotation recurrence,
+/// re-seeded exactly every few frames to bound round-off; the last frame is always seeded
+/// exactly.
+fn twisted_frames(
+    normals: &[Vector3<f64>],
+    tangents: &[Unit<Vector3<f64>>],
+    twist: f64,
+) -> Vec<Rotation3<f64>> {
     const RESEED_INTERVAL: usize = 16;
-    let last = frames.len().saturating_sub(1);
+    let last = normals.len().saturating_sub(1);
     let step = twist / last.max(1) as f64;
     let (step_sin, step_cos) = step.sin_cos();
     let (mut sin, mut cos) = (0.0, 1.0);
-    for (k, frame) in frames.iter_mut().enumerate().skip(1) {
+    let mut frames = Vec::with_capacity(normals.len());
+    for (k, (normal, tangent)) in normals.iter().zip(tangents).enumerate() {
+        if k == 0 {
+            frames.push(frame(normal, tangent));
+            continue;
+        }
         (sin, cos) = if k % RESEED_INTERVAL == 0 || k == last {
             (step * k as f64).sin_cos()
         } else {
@@ -90,16 +102,16 @@ fn distribute_twist(frames: &mut [Rotation3<f64>], twist: f64) {
                 cos * step_cos - sin * step_sin,
             )
         };
-        let m = frame.matrix();
-        let (normal, binormal, tangent) = (m.column(0), m.column(1), m.column(2));
+        let binormal = tangent.cross(normal);
         let twisted_normal = normal * cos + binormal * sin;
         let twisted_binormal = binormal * cos - normal * sin;
-        *frame = Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[
+        frames.push(Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[
             twisted_normal,
             twisted_binormal,
-            tangent.into_owned(),
-        ]));
+            tangent.into_inner(),
+        ])));
     }
+    frames
 }
 
 #[cfg(test)]

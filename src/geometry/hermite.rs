@@ -11,8 +11,9 @@
 //! `∂p'/∂α`, `∂p'/∂β` cost a few multiply–adds each (Horner); the root finds evaluate them
 //! thousands of times.
 //!
-//! - `arc_length`: the arc length (adaptive Gauss–Kronrod quadrature) and the root find for
-//!   the shape parameter that gives a prescribed arc length.
+//! - `arc_length`: the arc length (adaptive Gauss–Kronrod quadrature), its derivatives with
+//!   respect to a shape parameter, and the continuous bending energy.
+//! - `root_find`: the shape parameter that gives a prescribed arc length.
 //! - `resample`: parameters of points at equal arc length.
 
 use nalgebra::{Point3, Unit, Vector3};
@@ -21,9 +22,11 @@ use crate::pose::Pose;
 
 mod arc_length;
 mod resample;
+mod root_find;
 
 pub use arc_length::ArcLengthError;
 pub(crate) use arc_length::arc_length_tolerance;
+pub(crate) use root_find::ParameterSearch;
 
 /// A shape parameter of [`HermiteCurve`] that the arc-length root find can adjust. The curve
 /// is affine in both, so its arc length is convex in each (the integrand is the norm of an

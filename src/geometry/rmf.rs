@@ -29,63 +29,97 @@ pub fn double_reflection(
     tangents: &[Unit<Vector3<f64>>],
     first_normal: Unit<Vector3<f64>>,
 ) -> Vec<Rotation3<f64>> {
+    rotation_minimizing_normals(points, tangents, first_normal)
+        .iter()
+        .zip(tangents)
+        .map(|(normal, tangent)| frame(normal, tangent))
+        .collect()
+}
+
+/// The normals of [`double_reflection`]'s frames, one per point.
+///
+/// Each step's two mirrors depend only on the points and tangents, so they are prepared
+/// first (see [`ReflectionPair`]); the normal then passes through both reflections with two
+/// independent dot products, a chain of dependent operations half as long as reflecting
+/// twice in turn.
+pub(crate) fn rotation_minimizing_normals(
+    points: &[Point3<f64>],
+    tangents: &[Unit<Vector3<f64>>],
+    first_normal: Unit<Vector3<f64>>,
+) -> Vec<Vector3<f64>> {
     let count = points.len().min(tangents.len());
-    let mut frames = Vec::with_capacity(count);
+    let mut normals = Vec::with_capacity(count);
     if count == 0 {
-        return frames;
+        return normals;
     }
     let mut normal = orthogonal_normal(&first_normal, &tangents[0]);
-    frames.push(frame(&normal, &tangents[0]));
+    normals.push(normal);
     for i in 0..count - 1 {
-        let (tangent, next_tangent) = (tangents[i].into_inner(), tangents[i + 1].into_inner());
-        normal = reflect_step(points[i + 1] - points[i], tangent, next_tangent, normal);
+        let next_tangent = tangents[i + 1];
+        let pair = ReflectionPair::new(points[i + 1] - points[i], &tangents[i], &next_tangent);
+        normal = pair.apply(&normal);
         // Reflections preserve lengths and angles; only round-off drift needs removing. The
         // check is off the critical path (the branch is predicted), and the projection and
         // square root are paid only when the drift shows (or the input is degenerate).
         let drift = next_tangent.dot(&normal).abs() + (normal.norm_squared() - 1.0).abs();
         if drift.is_nan() || drift > NORM_DRIFT_LIMIT {
-            normal = orthogonal_normal(&Unit::new_unchecked(normal), &tangents[i + 1]);
+            normal = orthogonal_normal(&Unit::new_unchecked(normal), &next_tangent);
         }
-        frames.push(frame(&normal, &tangents[i + 1]));
+        normals.push(normal);
     }
-    frames
+    normals
 }
 
-/// One double-reflection step: the normal at the next point.
-#[inline]
-fn reflect_step(
-    chord: Vector3<f64>,
-    tangent: Vector3<f64>,
-    next_tangent: Vector3<f64>,
-    normal: Vector3<f64>,
-) -> Vector3<f64> {
-    let (reflected_normal, reflected_tangent) = match reflect_pair(&chord, &normal, &tangent) {
-        Some(pair) => pair,
-        None => (normal, tangent),
-    };
-    let tangent_gap = next_tangent - reflected_tangent;
-    match reflect_pair(&tangent_gap, &reflected_normal, &reflected_tangent) {
-        Some((normal, _)) => normal,
-        None => reflected_normal,
+/// One double-reflection step: `x ↦ R₂ R₁ x` with `Rᵢ x = x − (uᵢ·x) vᵢ`, `uᵢ = (2/|vᵢ|²) vᵢ`;
+/// `v₁` is the chord, `v₂` the gap between the next tangent and the reflected tangent. A
+/// mirror that is ~zero is skipped (`uᵢ = 0`).
+struct ReflectionPair {
+    first: Vector3<f64>,
+    first_scaled: Vector3<f64>,
+    second: Vector3<f64>,
+    second_scaled: Vector3<f64>,
+    /// `u₂·v₁`.
+    coupling: f64,
+}
+
+impl ReflectionPair {
+    #[inline]
+    fn new(
+        chord: Vector3<f64>,
+        tangent: &Unit<Vector3<f64>>,
+        next_tangent: &Unit<Vector3<f64>>,
+    ) -> Self {
+        let (first, first_scaled) = mirror(chord);
+        let reflected_tangent = tangent.into_inner() - first_scaled.dot(tangent) * first;
+        let (second, second_scaled) = mirror(next_tangent.into_inner() - reflected_tangent);
+        Self {
+            first,
+            first_scaled,
+            coupling: second_scaled.dot(&first),
+            second,
+            second_scaled,
+        }
+    }
+
+    /// `R₂ R₁ x`, with `u₂·(R₁ x) = u₂·x − (u₁·x)(u₂·v₁)` so that both dot products with `x`
+    /// are independent.
+    #[inline]
+    fn apply(&self, x: &Vector3<f64>) -> Vector3<f64> {
+        let along_first = self.first_scaled.dot(x);
+        let along_second = self.second_scaled.dot(x) - along_first * self.coupling;
+        x - along_first * self.first - along_second * self.second
     }
 }
 
-/// Reflects `a` and `b` in the plane normal to `mirror`; `None` if `mirror` is ~zero.
+/// `v` and `(2/|v|²) v` of a mirror, both zero if `v` is ~zero or not finite (no reflection).
 #[inline]
-fn reflect_pair(
-    mirror: &Vector3<f64>,
-    a: &Vector3<f64>,
-    b: &Vector3<f64>,
-) -> Option<(Vector3<f64>, Vector3<f64>)> {
-    let c = mirror.norm_squared();
-    if c.is_nan() || c <= DEGENERATE_SQUARED_NORM {
-        return None;
+fn mirror(v: Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    let c = v.norm_squared();
+    if c.is_nan() || c <= DEGENERATE_SQUARED_NORM || c.is_infinite() {
+        (Vector3::zeros(), Vector3::zeros())
+    } else {
+        (v, (2.0 / c) * v)
     }
-    let scale = 2.0 / c;
-    Some((
-        a - (scale * mirror.dot(a)) * mirror,
-        b - (scale * mirror.dot(b)) * mirror,
-    ))
 }
 
 /// Unit vector orthogonal to `tangent`, as close as possible to `normal`; removes the
@@ -115,7 +149,7 @@ fn any_orthogonal(v: &Unit<Vector3<f64>>) -> Vector3<f64> {
 
 /// Rotation with columns `(normal, tangent × normal, tangent)`.
 #[inline]
-fn frame(normal: &Vector3<f64>, tangent: &Unit<Vector3<f64>>) -> Rotation3<f64> {
+pub(crate) fn frame(normal: &Vector3<f64>, tangent: &Unit<Vector3<f64>>) -> Rotation3<f64> {
     let binormal = tangent.cross(normal);
     Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[
         *normal,

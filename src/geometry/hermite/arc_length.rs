@@ -1,11 +1,10 @@
-//! Arc length of a [`HermiteCurve`] and the root find for the shape parameter (tangent scale
-//! α or bow height β) that gives it a prescribed arc length.
+//! Arc length of a [`HermiteCurve`], its derivatives with respect to a shape parameter, and
+//! the continuous bending energy.
 //!
 //! The quadrature is adaptive Gauss–Kronrod (G10/K21). Its initial panels end at 0, ½, 1 and
 //! at the sharp interior minima of the speed `|p'|`, where a cusp puts a kink into the
-//! integrand. The root find is a bracketed Newton iteration on the convex `L(q)`, first on a
-//! cheap fixed-panel 10-point Gauss rule, then on the adaptive rule, whose later evaluations
-//! start from the panels the previous one accepted.
+//! integrand. Besides `L` it integrates `dL/dq` for a shape parameter `q` (α or β) from the
+//! same nodes (and `d²L/dq²` in the cheap rule), for the root find in `root_find`.
 
 use nalgebra::Vector3;
 
@@ -85,6 +84,19 @@ const GAUSS_WEIGHTS: [f64; 21] = [
     0.0,
 ];
 
+/// Nodes of the 10-point Gauss–Legendre rule: the odd-indexed Kronrod nodes.
+const GAUSS_NODES: [f64; 10] = [
+    KRONROD_NODES[1],
+    KRONROD_NODES[3],
+    KRONROD_NODES[5],
+    KRONROD_NODES[7],
+    KRONROD_NODES[9],
+    KRONROD_NODES[11],
+    KRONROD_NODES[13],
+    KRONROD_NODES[15],
+    KRONROD_NODES[17],
+    KRONROD_NODES[19],
+];
 /// Most edges of the initial quadrature panels: 0, ½, 1 and up to five interior speed minima
 /// (`|p'|²` is a polynomial of degree ≤ 6, its derivative has at most five roots).
 const MAX_EDGES: usize = 8;
@@ -106,14 +118,6 @@ const MAX_PANEL_DEPTH: u32 = 50;
 /// alike and the panel is bisected down to this tolerance. Measured: ≤ 1e-14 relative error
 /// on bends, loops, hairpins and α up to 10× the chord (see the tests).
 const PANEL_REL_TOL: f64 = 1e-10;
-/// The cheap phase stops at this relative residual (the 10-point rule on the initial panels
-/// is good to ~1e-6 on ordinary bends); the adaptive phase takes it from there.
-const COARSE_REL_TOL: f64 = 1e-6;
-/// Iteration limit of the parameter root find (Newton, doubling and bisection steps together).
-const MAX_ROOT_ITERATIONS: usize = 200;
-/// The root find gives up beyond this multiple of (target + chord): no finite-length cable
-/// needs a larger tangent scale or bow.
-const PARAMETER_LIMIT_FACTOR: f64 = 1e6;
 
 /// Why no value of a shape parameter gives the requested arc length.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
@@ -175,56 +179,63 @@ impl HermiteCurve {
     /// the sharp interior minima of the speed `|p'|`; panels whose two rules disagree are
     /// bisected. About 1e-14 relative accuracy or better, also across cusps (see the tests).
     pub fn arc_length_and_slope(&self, parameter: CurveParameter) -> (f64, f64) {
-        let (edges, count) = self.initial_edges();
-        self.adaptive_length_and_slope(parameter, &edges[..count], &mut Vec::new())
+        let edges = self.initial_edges();
+        let mut scratch = QuadratureScratch::default();
+        let sums = self.adaptive_sums(parameter, edges.edges(), &mut scratch);
+        (sums.length, sums.slope)
     }
 
-    /// Length and slope by the 10-point Gauss rule on the initial panels (see
-    /// [`Self::initial_edges`]), without error control: the cheap first phase of the root find
-    /// (~1e-6 relative on ordinary bends).
-    fn coarse_length_and_slope(&self, parameter: CurveParameter) -> (f64, f64) {
+    /// `L`, `dL/dq` and `d²L/dq²` by the 10-point Gauss rule on the panels between `edges`,
+    /// without error control: the cheap first phase of the root find (~1e-6 relative on
+    /// ordinary bends).
+    pub(super) fn coarse_sums(&self, parameter: CurveParameter, edges: &[f64]) -> LengthSums {
         let sensitivity = self.sensitivity(parameter);
-        let (edges, count) = self.initial_edges();
-        edges[..count].windows(2).fold((0.0, 0.0), |sum, pair| {
-            let (length, slope) = self.gauss_panel(pair[0], pair[1], sensitivity);
-            (sum.0 + length, sum.1 + slope)
+        let zero = LengthSums {
+            slope_rate: Some(0.0),
+            ..LengthSums::default()
+        };
+        edges.windows(2).fold(zero, |sum, pair| {
+            sum + self.gauss_panel(pair[0], pair[1], sensitivity)
         })
     }
 
-    /// Length and slope by adaptive Gauss–Kronrod quadrature from the panels between the
-    /// ascending `edges` (from 0 to 1): a panel is accepted when its 10- and 21-point values
-    /// agree to [`PANEL_REL_TOL`] of the length per unit parameter, else bisected. The edges of
-    /// the accepted panels are written to `accepted` (ascending, 0 to 1), so that a later call
-    /// at a nearby parameter value can start from them and usually just confirm them.
-    fn adaptive_length_and_slope(
+    /// `L` and `dL/dq` by adaptive Gauss–Kronrod quadrature from the panels between the
+    /// ascending `edges` (from 0 to 1): a panel is accepted when its 10- and 21-point
+    /// values of the length agree to [`PANEL_REL_TOL`] of the length per unit parameter, else
+    /// bisected. The edges of the accepted panels are left in `scratch.accepted` (ascending, 0
+    /// to 1), so that a later call at a nearby parameter value can start from them and usually
+    /// just confirm them.
+    pub(super) fn adaptive_sums(
         &self,
         parameter: CurveParameter,
         edges: &[f64],
-        accepted: &mut Vec<f64>,
-    ) -> (f64, f64) {
+        scratch: &mut QuadratureScratch,
+    ) -> LengthSums {
         let sensitivity = self.sensitivity(parameter);
+        let QuadratureScratch { accepted, stack } = scratch;
         accepted.clear();
         accepted.push(0.0);
-        let mut stack = Vec::with_capacity(edges.len() + MAX_PANEL_DEPTH as usize + 2);
-        let mut coarse = (0.0, 0.0);
+        stack.clear();
+        stack.reserve(edges.len() + MAX_PANEL_DEPTH as usize + 2);
+        let mut coarse = LengthSums::default();
         // Pushed from t = 1 down, so that they are popped (and summed) from t = 0 upwards.
         for pair in edges.windows(2).rev() {
             let panel = Panel::new(pair[0], pair[1], 0);
             let sums = self.kronrod_panel(&panel, sensitivity);
-            coarse = (coarse.0 + sums.length, coarse.1 + sums.slope);
+            coarse = coarse + sums.sums();
             stack.push((panel, sums));
         }
-        if !(coarse.0 > 0.0 && coarse.0.is_finite()) {
+        if !(coarse.length > 0.0 && coarse.length.is_finite()) {
             // Degenerate (a single point) or non-finite data: nothing to refine.
             accepted.push(1.0);
             return coarse;
         }
-        let tolerance_per_parameter = PANEL_REL_TOL * coarse.0;
-        let mut total = (0.0, 0.0);
+        let tolerance_per_parameter = PANEL_REL_TOL * coarse.length;
+        let mut total = LengthSums::default();
         while let Some((panel, sums)) = stack.pop() {
             let converged = sums.gauss_gap <= tolerance_per_parameter * (panel.b - panel.a);
             if converged || panel.depth >= MAX_PANEL_DEPTH {
-                total = (total.0 + sums.length, total.1 + sums.slope);
+                total = total + sums.sums();
                 accepted.push(panel.b);
             } else {
                 let mid = 0.5 * (panel.a + panel.b);
@@ -237,11 +248,11 @@ impl HermiteCurve {
         total
     }
 
-    /// Edges of the initial quadrature panels, ascending: 0, ½, 1 and the interior speed
-    /// minima. A cusp (`p' = 0`) puts a kink into `|p'|`; inside a panel it would take dozens
-    /// of bisections to integrate, on a panel edge it costs nothing. Near-cusps (tight turns)
-    /// gain in the same way.
-    fn initial_edges(&self) -> ([f64; MAX_EDGES], usize) {
+    /// Edges of the initial quadrature panels, ascending: 0, ½, 1 and the sharp interior
+    /// speed minima. A cusp (`p' = 0`) puts a kink into `|p'|`; inside a panel it would take
+    /// dozens of bisections to integrate, on a panel edge it costs nothing. Near-cusps (tight
+    /// turns) gain in the same way.
+    pub(super) fn initial_edges(&self) -> InitialEdges {
         let (minima, found) = self.sharp_speed_minima();
         let mut edges = [0.0; MAX_EDGES];
         let mut count = 1;
@@ -257,7 +268,12 @@ impl HermiteCurve {
         push(0.5);
         minima[split..found].iter().for_each(|&t| push(t));
         push(1.0);
-        (edges, count)
+        InitialEdges {
+            edges,
+            count,
+            minima,
+            found,
+        }
     }
 
     /// Interior parameters where the speed `|p'|` has a sharp local minimum, ascending, and
@@ -309,20 +325,23 @@ impl HermiteCurve {
         g
     }
 
-    /// `|p'|` and `p'·∂p'/∂q / |p'|` at the points `mid + half·x` of a panel. Written over
-    /// fixed arrays of scalars so that the compiler vectorizes the square roots and divisions.
+    /// `|p'|`, `∂|p'|/∂q = p'·w / |p'|` and, if `RATE`, `∂²|p'|/∂q² = (|w|² − (p'·w)²/|p'|²) / |p'|`
+    /// (else zeros) at the points `mid + half·x` of a panel, `w = ∂p'/∂q` (independent of
+    /// `q`, the curve being affine in it). Written over fixed arrays of scalars so that the
+    /// compiler vectorizes the square roots and divisions.
     #[inline]
-    fn speed_samples<const N: usize>(
+    fn speed_samples<const N: usize, const RATE: bool>(
         &self,
         mid: f64,
         half: f64,
         abscissae: &[f64; N],
         sensitivity: &[Vector3<f64>; 4],
-    ) -> ([f64; N], [f64; N]) {
+    ) -> [[f64; N]; 3] {
         let [d0, d1, d2, d3] = &self.velocity;
         let [e0, e1, e2, e3] = sensitivity;
         let mut speed = [0.0; N];
         let mut speed_slope = [0.0; N];
+        let mut speed_rate = [0.0; N];
         for i in 0..N {
             let t = mid + half * abscissae[i];
             let vx = d0.x + t * (d1.x + t * (d2.x + t * d3.x));
@@ -332,31 +351,34 @@ impl HermiteCurve {
             let wy = e0.y + t * (e1.y + t * (e2.y + t * e3.y));
             let wz = e0.z + t * (e1.z + t * (e2.z + t * e3.z));
             let norm = (vx * vx + vy * vy + vz * vz).sqrt();
+            let along = vx * wx + vy * wy + vz * wz;
             speed[i] = norm;
-            // ∂|p'|/∂q is undefined at a cusp (p' = 0), a set of measure zero: take 0.
-            speed_slope[i] = if norm > 0.0 {
-                (vx * wx + vy * wy + vz * wz) / norm
+            // The derivatives are undefined at a cusp (p' = 0), a set of measure zero: take 0.
+            if RATE {
+                // One division and one select per point keep the loop vectorized.
+                let inverse = if norm > 0.0 { 1.0 / norm } else { 0.0 };
+                let slope = along * inverse;
+                speed_slope[i] = slope;
+                speed_rate[i] = (wx * wx + wy * wy + wz * wz - slope * slope) * inverse;
             } else {
-                0.0
-            };
+                speed_slope[i] = if norm > 0.0 { along / norm } else { 0.0 };
+            }
         }
-        (speed, speed_slope)
+        [speed, speed_slope, speed_rate]
     }
 
-    /// Gauss–Legendre (10-point) sums of `|p'|` and `p'·∂p'/∂q / |p'|` over a panel: the cheap
-    /// rule of the first phase of the root find.
+    /// Gauss–Legendre (10-point) sums of `|p'|` and its first two `q`-derivatives over a
+    /// panel: the cheap rule of the first phase of the root find.
     #[inline]
-    fn gauss_panel(&self, a: f64, b: f64, sensitivity: &[Vector3<f64>; 4]) -> (f64, f64) {
+    fn gauss_panel(&self, a: f64, b: f64, sensitivity: &[Vector3<f64>; 4]) -> LengthSums {
         let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
-        // The 10 Gauss points are the odd-indexed Kronrod points.
-        let abscissae: [f64; 10] = std::array::from_fn(|i| KRONROD_NODES[2 * i + 1]);
-        let (speed, speed_slope) = self.speed_samples(mid, half, &abscissae, sensitivity);
-        let (mut length, mut slope) = (0.0, 0.0);
-        for i in 0..10 {
-            length += GAUSS_WEIGHTS[2 * i + 1] * speed[i];
-            slope += GAUSS_WEIGHTS[2 * i + 1] * speed_slope[i];
+        let [speed, slope, rate] =
+            self.speed_samples::<10, true>(mid, half, &GAUSS_NODES, sensitivity);
+        LengthSums {
+            length: gauss10_sum(&speed) * half,
+            slope: gauss10_sum(&slope) * half,
+            slope_rate: Some(gauss10_sum(&rate) * half),
         }
-        (length * half, slope * half)
     }
 
     /// Kronrod sums of `|p'|` and `p'·∂p'/∂q / |p'|` over a panel, and the gap between the
@@ -365,7 +387,8 @@ impl HermiteCurve {
     fn kronrod_panel(&self, panel: &Panel, sensitivity: &[Vector3<f64>; 4]) -> PanelSums {
         let mid = 0.5 * (panel.a + panel.b);
         let half = 0.5 * (panel.b - panel.a);
-        let (speed, speed_slope) = self.speed_samples(mid, half, &KRONROD_NODES, sensitivity);
+        let [speed, speed_slope, _] =
+            self.speed_samples::<21, false>(mid, half, &KRONROD_NODES, sensitivity);
         let (mut kronrod, mut gauss, mut kronrod_slope) = (0.0, 0.0, 0.0);
         for i in 0..21 {
             kronrod += KRONROD_WEIGHTS[i] * speed[i];
@@ -379,101 +402,51 @@ impl HermiteCurve {
         }
     }
 
-    /// The tangent scale α ≥ 0 (m) for which the arc length equals `target_m`, to
-    /// `|L(α) − target| < 1e-12 m` (or 64 ulp of the target for cables longer than ~70 m).
-    ///
-    /// See [`Self::parameter_for_arc_length`]. Errors: [`ArcLengthError::BelowChord`] for a
-    /// target below `|P1 − P0|`, [`ArcLengthError::InvalidInput`] for non-finite data or a
-    /// negative target.
-    pub fn alpha_for_arc_length(&self, target_m: f64) -> Result<f64, ArcLengthError> {
-        self.parameter_for_arc_length(CurveParameter::Alpha, target_m)
+    /// `K = ∫ |∂p'/∂q| dt` (dimensionless) by the 10-point Gauss rule on `[0, ½]` and `[½, 1]`:
+    /// the asymptotic slope of `L(q)`, `|L(q) − q K| ≤ L(0)` (triangle inequality).
+    pub(super) fn sensitivity_length(&self, parameter: CurveParameter) -> f64 {
+        let [e0, e1, e2, e3] = self.sensitivity(parameter);
+        let mut length = 0.0;
+        for mid in [0.25, 0.75] {
+            let mut samples = [0.0; 10];
+            for (sample, x) in samples.iter_mut().zip(GAUSS_NODES) {
+                let t = mid + 0.25 * x;
+                *sample = (e0 + t * (e1 + t * (e2 + t * e3))).norm();
+            }
+            length += gauss10_sum(&samples) * 0.25;
+        }
+        length
     }
 
-    /// The bow height β ≥ 0 (m), at this curve's α and bow direction, for which the arc length
-    /// equals `target_m`, to `|L(β) − target| < 1e-12 m`. Needs the unbowed curve to be
-    /// shorter than the target; see [`Self::parameter_for_arc_length`].
-    pub fn bow_for_arc_length(&self, target_m: f64) -> Result<f64, ArcLengthError> {
-        self.parameter_for_arc_length(CurveParameter::Bow, target_m)
-    }
-
-    /// The value `q ≥ 0` (m) of one shape parameter, all else fixed, for which the arc length
-    /// equals `target_m` (to 1e-12 m, or 64 ulp of the target beyond ~70 m).
-    ///
-    /// `L(q)` is convex. With `L(0) < target` the root in `q > 0` is unique and lies on the
-    /// increasing branch (`L` may first dip if the curve already bulges the other way), so
-    /// Newton–Raphson started right of the root decreases monotonically onto it and a step
-    /// from the left overshoots to the right at most once. The iteration keeps a bracket
-    /// `[lo, hi]` (`lo` starts at 0, `hi` is found by doubling or by a Newton step when that
-    /// is smaller) and bisects when a Newton step leaves the bracket or fails to halve the
-    /// residual — e.g. on the flat stretch of `L(α)` near 0 when both tangents point along the
-    /// chord, near cusps, or where `L(β)` still decreases. Newton first runs on a cheap
-    /// fixed-panel quadrature (also convex) to 1e-9 relative, then on the adaptive one, usually
-    /// one step and one confirming evaluation.
-    ///
-    /// Errors: [`ArcLengthError::BelowChord`] for a target below `|P1 − P0|`,
-    /// [`ArcLengthError::BelowZeroParameter`] if `L(0)` already exceeds it,
-    /// [`ArcLengthError::InvalidInput`] for non-finite data or a negative target,
-    /// [`ArcLengthError::NotConverged`] if the root find fails.
-    pub fn parameter_for_arc_length(
+    /// `|p' × p''|² / |p'|⁵` at the points `mid + half·x` (0 where `p' = 0`). Scalar arrays, so
+    /// that the square roots and divisions vectorize.
+    #[inline]
+    fn energy_samples<const N: usize>(
         &self,
-        parameter: CurveParameter,
-        target_m: f64,
-    ) -> Result<f64, ArcLengthError> {
-        let chord = self.chord_length();
-        self.check_arc_length_problem(target_m, chord)?;
-        let tolerance = arc_length_tolerance(target_m);
-        if target_m < chord - tolerance {
-            return Err(ArcLengthError::BelowChord {
-                chord_m: chord,
-                target_m,
-            });
+        mid: f64,
+        half: f64,
+        abscissae: &[f64; N],
+    ) -> [f64; N] {
+        let [d0, d1, d2, d3] = &self.velocity;
+        let mut samples = [0.0; N];
+        for (sample, x) in samples.iter_mut().zip(abscissae) {
+            let t = mid + half * x;
+            let vx = d0.x + t * (d1.x + t * (d2.x + t * d3.x));
+            let vy = d0.y + t * (d1.y + t * (d2.y + t * d3.y));
+            let vz = d0.z + t * (d1.z + t * (d2.z + t * d3.z));
+            let ax = d1.x + t * (2.0 * d2.x + t * (3.0 * d3.x));
+            let ay = d1.y + t * (2.0 * d2.y + t * (3.0 * d3.y));
+            let az = d1.z + t * (2.0 * d2.z + t * (3.0 * d3.z));
+            let (cx, cy, cz) = (vy * az - vz * ay, vz * ax - vx * az, vx * ay - vy * ax);
+            let bend = cx * cx + cy * cy + cz * cz;
+            let speed_squared = vx * vx + vy * vy + vz * vz;
+            *sample = if speed_squared > 0.0 {
+                bend / (speed_squared * speed_squared * speed_squared.sqrt())
+            } else {
+                0.0
+            };
         }
-        let mut curve = self.clone();
-        curve.set_parameter(parameter, 0.0);
-        let at_zero = match parameter {
-            // The unbowed curve at α = 0 is the straight chord, whatever the tangents.
-            CurveParameter::Alpha if self.bow_m == 0.0 => chord,
-            _ => curve.arc_length(),
-        };
-        if (at_zero - target_m).abs() <= tolerance {
-            return Ok(0.0);
-        }
-        if at_zero > target_m {
-            return Err(ArcLengthError::BelowZeroParameter {
-                parameter,
-                at_zero_m: at_zero,
-                target_m,
-            });
-        }
-        let start = match parameter {
-            // The cable length itself is a typical tangent scale for a natural-looking curve.
-            CurveParameter::Alpha => target_m,
-            // Height of the triangle of side length target/2 over a base of L(0): the highest
-            // any curve of that length reaches, so Newton starts right of the root.
-            CurveParameter::Bow => 0.5 * (target_m * target_m - at_zero * at_zero).sqrt(),
-        };
-        NewtonBracket::solve(target_m, chord, tolerance, curve, parameter, start)
-    }
-
-    fn check_arc_length_problem(&self, target_m: f64, chord: f64) -> Result<(), ArcLengthError> {
-        let data_finite = self
-            .start_tangent
-            .iter()
-            .chain(self.end_tangent.iter())
-            .chain(self.bow_direction.iter())
-            .chain([self.alpha_m, self.bow_m].iter())
-            .all(|v| v.is_finite());
-        if !chord.is_finite() || !data_finite {
-            return Err(ArcLengthError::InvalidInput {
-                what: "curve end points, tangents or shape parameters are not finite".into(),
-            });
-        }
-        if !target_m.is_finite() || target_m < 0.0 {
-            return Err(ArcLengthError::InvalidInput {
-                what: format!("target arc length {target_m} m must be finite and ≥ 0"),
-            });
-        }
-        Ok(())
+        samples
     }
 }
 
@@ -494,22 +467,18 @@ impl HermiteCurve {
     /// towards an edge at a sharp minimum until the pieces are narrower than the dip there,
     /// else split into [`SMOOTH_ENERGY_PIECES`] equal pieces.
     pub(crate) fn bending_energy_integral(&self) -> f64 {
-        let (minima, found) = self.sharp_speed_minima();
+        let initial = self.initial_edges();
+        let minima = initial.minima();
         let mut widths = [0.0; MAX_EDGES - 3];
-        for (width, &t) in widths.iter_mut().zip(&minima[..found]) {
+        for (width, &t) in widths.iter_mut().zip(minima) {
             *width = self.derivative(t).norm() / self.second_derivative(t).norm();
             if width.is_nan() || *width < CUSP_DIP_WIDTH {
                 return f64::INFINITY;
             }
         }
-        let dip_at = |t: f64| {
-            minima[..found]
-                .iter()
-                .position(|&m| m == t)
-                .map(|i| widths[i])
-        };
-        let (edges, count) = self.initial_edges();
-        edges[..count]
+        let dip_at = |t: f64| minima.iter().position(|&m| m == t).map(|i| widths[i]);
+        initial
+            .edges()
             .windows(2)
             .map(|pair| {
                 let mid = 0.5 * (pair[0] + pair[1]);
@@ -547,19 +516,18 @@ impl HermiteCurve {
     /// that `a > b` is fine); 0 where the speed vanishes at a node.
     fn energy_panel(&self, a: f64, b: f64) -> f64 {
         let (mid, half) = (0.5 * (a + b), 0.5 * (b - a).abs());
-        let mut sum = 0.0;
-        for i in 0..10 {
-            let t = mid + half * KRONROD_NODES[2 * i + 1];
-            let velocity = self.derivative(t);
-            let speed_squared = velocity.norm_squared();
-            let bend = velocity.cross(&self.second_derivative(t)).norm_squared();
-            if speed_squared > 0.0 {
-                let speed = speed_squared.sqrt();
-                sum += GAUSS_WEIGHTS[2 * i + 1] * bend / (speed_squared * speed_squared * speed);
-            }
-        }
-        sum * half
+        gauss10_sum(&self.energy_samples(mid, half, &GAUSS_NODES)) * half
     }
+}
+
+/// `Σ w_i f_i` of the 10-point Gauss–Legendre rule on `[−1, 1]`.
+#[inline]
+fn gauss10_sum(values: &[f64; 10]) -> f64 {
+    let mut sum = 0.0;
+    for (i, value) in values.iter().enumerate() {
+        sum += GAUSS_WEIGHTS[2 * i + 1] * value;
+    }
+    sum
 }
 
 /// `Σ c_k t^k` by Horner's rule.
@@ -627,181 +595,75 @@ struct PanelSums {
     gauss_gap: f64,
 }
 
-/// Arc-length quadrature used by a Newton phase.
-#[derive(Debug, Clone)]
-enum Quadrature {
-    /// 10-point Gauss on the initial panels: cheap, ~1e-6 relative on ordinary bends.
-    Coarse,
-    /// Adaptive Gauss–Kronrod, ~1e-15 relative. Each evaluation starts from the panels the
-    /// previous one accepted (near the root they usually pass as they are) plus the initial
-    /// edges at the current parameter value.
-    Adaptive {
-        /// Accepted panel edges of the previous evaluation (empty before the first).
-        partition: Vec<f64>,
-        /// Buffer for the edges accepted by the current evaluation.
-        accepted: Vec<f64>,
-    },
-}
-
-impl Quadrature {
-    fn adaptive() -> Self {
-        Self::Adaptive {
-            partition: Vec::new(),
-            accepted: Vec::new(),
-        }
-    }
-
-    fn length_and_slope(&mut self, curve: &HermiteCurve, parameter: CurveParameter) -> (f64, f64) {
-        match self {
-            Self::Coarse => curve.coarse_length_and_slope(parameter),
-            Self::Adaptive {
-                partition,
-                accepted,
-            } => {
-                // The cusps move with the parameter: their new places join the old edges.
-                let (edges, count) = curve.initial_edges();
-                for &edge in &edges[..count] {
-                    let at = partition.partition_point(|&t| t < edge);
-                    if partition.get(at) != Some(&edge) {
-                        partition.insert(at, edge);
-                    }
-                }
-                let result = curve.adaptive_length_and_slope(parameter, partition, accepted);
-                std::mem::swap(partition, accepted);
-                result
-            }
+impl PanelSums {
+    fn sums(&self) -> LengthSums {
+        LengthSums {
+            length: self.length,
+            slope: self.slope,
+            slope_rate: None,
         }
     }
 }
 
-/// State of the bracketed Newton iteration on `L(q) − target`, `q ≥ 0`, `L(0) < target`.
-struct NewtonBracket {
-    parameter: CurveParameter,
-    target: f64,
-    tolerance: f64,
-    limit: f64,
-    /// Largest q known with `L < target`.
-    lo: f64,
-    /// Smallest q known with `L ≥ target`, once found.
-    hi: Option<f64>,
-    best: (f64, f64),
+/// Edges of the initial quadrature panels of a curve (see [`HermiteCurve::initial_edges`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct InitialEdges {
+    edges: [f64; MAX_EDGES],
+    count: usize,
+    minima: [f64; MAX_EDGES - 3],
+    found: usize,
 }
 
-impl NewtonBracket {
-    fn new(parameter: CurveParameter, target: f64, chord: f64, tolerance: f64) -> Self {
+impl InitialEdges {
+    /// The edges, ascending from 0 to 1.
+    pub(super) fn edges(&self) -> &[f64] {
+        &self.edges[..self.count]
+    }
+
+    /// The sharp speed minima among the edges, ascending.
+    fn minima(&self) -> &[f64] {
+        &self.minima[..self.found]
+    }
+
+    /// No sharp speed minimum: `|p'|` and its `q`-derivatives are smooth, so `d²L/dq²` from
+    /// the quadrature is reliable.
+    pub(super) fn is_smooth(&self) -> bool {
+        self.found == 0
+    }
+}
+
+/// Quadrature values of the arc length and its derivatives with respect to one shape
+/// parameter `q`.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct LengthSums {
+    /// `L = ∫ |p'| dt` (m).
+    pub(super) length: f64,
+    /// `dL/dq` (dimensionless).
+    pub(super) slope: f64,
+    /// `d²L/dq² = ∫ (|w|² − (p'·w)²/|p'|²) / |p'| dt` (1/m), `w = ∂p'/∂q`: by the cheap rule
+    /// only (the adaptive one leaves it out), as a scale for the Taylor term of a Newton step.
+    pub(super) slope_rate: Option<f64>,
+}
+
+impl std::ops::Add for LengthSums {
+    type Output = Self;
+
+    fn add(self, other: Self) -> Self {
         Self {
-            parameter,
-            target,
-            tolerance,
-            limit: PARAMETER_LIMIT_FACTOR * (target + chord),
-            lo: 0.0,
-            hi: None,
-            best: (0.0, f64::INFINITY),
+            length: self.length + other.length,
+            slope: self.slope + other.slope,
+            slope_rate: self.slope_rate.zip(other.slope_rate).map(|(a, b)| a + b),
         }
     }
+}
 
-    /// Two phases: Newton on the cheap fixed-panel arc length (also convex) to a loose
-    /// tolerance, then Newton on the adaptive arc length from there, usually one step and one
-    /// confirming evaluation. The bracket restarts between phases because the two quadratures
-    /// differ slightly. A failed coarse phase just leaves the precise one its default start.
-    fn solve(
-        target: f64,
-        chord: f64,
-        tolerance: f64,
-        mut curve: HermiteCurve,
-        parameter: CurveParameter,
-        start: f64,
-    ) -> Result<f64, ArcLengthError> {
-        let coarse_tolerance = tolerance.max(COARSE_REL_TOL * target);
-        let start = if start.is_finite() && start > 0.0 {
-            start
-        } else {
-            target
-        };
-        let coarse = Self::new(parameter, target, chord, coarse_tolerance).run(
-            &mut curve,
-            start,
-            Quadrature::Coarse,
-        );
-        let start = coarse.unwrap_or(start);
-        Self::new(parameter, target, chord, tolerance).run(
-            &mut curve,
-            start,
-            Quadrature::adaptive(),
-        )
-    }
-
-    fn run(
-        mut self,
-        curve: &mut HermiteCurve,
-        start: f64,
-        mut quadrature: Quadrature,
-    ) -> Result<f64, ArcLengthError> {
-        let mut value = start;
-        let mut previous_residual = f64::INFINITY;
-        for _ in 0..MAX_ROOT_ITERATIONS {
-            curve.set_parameter(self.parameter, value);
-            let (length, slope) = quadrature.length_and_slope(curve, self.parameter);
-            let residual = length - self.target;
-            if residual.abs() < self.tolerance {
-                return Ok(value);
-            }
-            if residual.abs() < self.best.1 {
-                self.best = (value, residual.abs());
-            }
-            if residual < 0.0 {
-                self.lo = value;
-            } else {
-                self.hi = Some(value);
-            }
-            let progressed = residual.abs() <= 0.5 * previous_residual;
-            previous_residual = residual.abs();
-            value = match self.next_value(value, residual, slope, progressed) {
-                Some(next) => next,
-                None => break,
-            };
-        }
-        Err(ArcLengthError::NotConverged {
-            parameter: self.parameter,
-            target_m: self.target,
-            residual_m: self.best.1,
-        })
-    }
-
-    /// Next iterate: Newton if it stays inside the bracket, doubling while no upper bracket
-    /// is known, bisection otherwise; `None` once the bracket cannot shrink any further or the
-    /// parameter exceeds its limit.
-    fn next_value(&self, value: f64, residual: f64, slope: f64, progressed: bool) -> Option<f64> {
-        let newton = value - residual / slope;
-        let newton_ok = slope > 0.0 && newton.is_finite();
-        match self.hi {
-            None => {
-                // Doubling from 0 would stall: restart from the target length.
-                let doubled = if value > 0.0 {
-                    2.0 * value
-                } else {
-                    self.target
-                };
-                let next = if newton_ok && newton > value {
-                    newton.min(doubled)
-                } else {
-                    doubled
-                };
-                (next <= self.limit).then_some(next)
-            }
-            Some(hi) => {
-                if hi - self.lo <= 4.0 * f64::EPSILON * hi {
-                    return None;
-                }
-                let inside = newton_ok && newton > self.lo && newton < hi;
-                Some(if inside && progressed {
-                    newton
-                } else {
-                    0.5 * (self.lo + hi)
-                })
-            }
-        }
-    }
+/// Buffers of the adaptive quadrature, reusable across evaluations.
+#[derive(Debug, Clone, Default)]
+pub(super) struct QuadratureScratch {
+    /// Edges of the panels the last evaluation accepted.
+    pub(super) accepted: Vec<f64>,
+    /// Panels awaiting acceptance or bisection.
+    stack: Vec<(Panel, PanelSums)>,
 }
 
 #[cfg(test)]

@@ -1,0 +1,247 @@
+//! Critical poses of an inter-link segment (DESIGN §3.1; algorithm in the [module](super)
+//! docs).
+
+use super::{Motion, MotionError};
+use crate::robot::{JointDrive, Robot};
+
+/// Default tolerance (rad or m) within which consecutive samples count as dwelling at a
+/// joint's extreme.
+pub const DWELL_TOLERANCE: f64 = 1e-6;
+
+/// One critical pose: a sample of the motion and why it was chosen.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CriticalPose {
+    /// Index of the sample in the motion.
+    pub sample: usize,
+    /// Time of the sample (s).
+    pub time_s: f64,
+    /// The joint vector at that sample (rad / m, joint-vector order).
+    pub joints: Vec<f64>,
+    /// Why, e.g. `joint_4 max`, or `joint_5 max (dwell 1.2–1.7 s), joint_6 min`; several
+    /// reasons for one sample are joined by `; `.
+    pub reason: String,
+}
+
+/// The joint-vector indices (ascending) of the joints on the kinematic path between links
+/// `link_a` and `link_b` (URDF names): the joints whose motion changes the pose of one link
+/// relative to the other. A mimic joint on the path counts as the joint it follows; fixed
+/// joints do not count. Empty for the same link (or links joined only by fixed joints).
+pub fn traversed_joints(
+    robot: &Robot,
+    link_a: &str,
+    link_b: &str,
+) -> Result<Vec<usize>, MotionError> {
+    let a = link(robot, link_a)?;
+    let b = link(robot, link_b)?;
+    let up_a = ancestors(robot, a);
+    let up_b = ancestors(robot, b);
+    let common = up_a
+        .iter()
+        .position(|l| up_b.contains(l))
+        .map_or(0, |i| up_a[i]);
+    let mut joints: Vec<usize> = path_joints(robot, a, common)
+        .chain(path_joints(robot, b, common))
+        .filter_map(|j| match robot.joints[j].drive {
+            JointDrive::None => None,
+            JointDrive::Actuated { index } | JointDrive::Mimic { index, .. } => Some(index),
+        })
+        .collect();
+    joints.sort_unstable();
+    joints.dedup();
+    Ok(joints)
+}
+
+/// [`critical_poses_with_tolerance`] with [`DWELL_TOLERANCE`].
+pub fn critical_poses(
+    motion: &Motion,
+    traversed: &[usize],
+) -> Result<Vec<CriticalPose>, MotionError> {
+    critical_poses_with_tolerance(motion, traversed, DWELL_TOLERANCE)
+}
+
+/// The critical poses of a segment whose traversed joints (joint-vector indices) are
+/// `traversed`, sorted by time, one per sample. Samples within `tolerance` (rad or m) of a
+/// joint's extreme, consecutive with the extreme's first instant, form its dwell.
+pub fn critical_poses_with_tolerance(
+    motion: &Motion,
+    traversed: &[usize],
+    tolerance: f64,
+) -> Result<Vec<CriticalPose>, MotionError> {
+    let mut joints = traversed.to_vec();
+    joints.sort_unstable();
+    joints.dedup();
+    if let Some(&bad) = joints.iter().find(|&&j| j >= motion.dof()) {
+        return Err(MotionError::data(format!(
+            "traversed joint index {bad} is beyond the motion's {} joints",
+            motion.dof()
+        )));
+    }
+    let mut picks: Vec<(usize, String)> = Vec::new();
+    for &j in &joints {
+        for kind in [Extreme::Max, Extreme::Min] {
+            picks.extend(extreme_picks(motion, &joints, j, kind, tolerance));
+        }
+    }
+    Ok(merge(motion, picks))
+}
+
+/// The critical samples for one extreme of joint `j` (see the module docs).
+fn extreme_picks(
+    motion: &Motion,
+    joints: &[usize],
+    j: usize,
+    kind: Extreme,
+    tolerance: f64,
+) -> Vec<(usize, String)> {
+    let samples = motion.samples();
+    let value = |sample: usize, joint: usize| samples[sample][joint];
+    let names = motion.joint_names();
+    let first = kind.first_index(0..motion.len(), |i| value(i, j));
+    let run = dwell(motion.len(), first, tolerance, |i| value(i, j));
+    let spread = |k: usize| {
+        let (lo, hi) = run
+            .clone()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), i| {
+                (lo.min(value(i, k)), hi.max(value(i, k)))
+            });
+        hi - lo
+    };
+    let moving: Vec<usize> = joints
+        .iter()
+        .copied()
+        .filter(|&k| k != j && spread(k) > tolerance)
+        .collect();
+    if moving.is_empty() {
+        return vec![(first, format!("{} {}", names[j], kind.name()))];
+    }
+    let times = motion.times_s();
+    let during = format!(
+        "{} {} (dwell {}–{} s)",
+        names[j],
+        kind.name(),
+        times[*run.start()],
+        times[*run.end()]
+    );
+    let mut picks = Vec::new();
+    for k in moving {
+        for other in [Extreme::Max, Extreme::Min] {
+            let at = other.first_index(run.clone(), |i| value(i, k));
+            picks.push((at, format!("{during}, {} {}", names[k], other.name())));
+        }
+    }
+    picks
+}
+
+/// Maximum or minimum.
+#[derive(Clone, Copy)]
+enum Extreme {
+    Max,
+    Min,
+}
+
+impl Extreme {
+    fn name(self) -> &'static str {
+        match self {
+            Extreme::Max => "max",
+            Extreme::Min => "min",
+        }
+    }
+
+    /// The first index in `range` where `value` is extreme (exact comparison).
+    fn first_index(
+        self,
+        range: impl Iterator<Item = usize>,
+        value: impl Fn(usize) -> f64,
+    ) -> usize {
+        let mut best: Option<(usize, f64)> = None;
+        for i in range {
+            let v = value(i);
+            let better = match (self, best) {
+                (_, None) => true,
+                (Extreme::Max, Some((_, b))) => v > b,
+                (Extreme::Min, Some((_, b))) => v < b,
+            };
+            if better {
+                best = Some((i, v));
+            }
+        }
+        best.map_or(0, |(i, _)| i)
+    }
+}
+
+/// The consecutive samples around `at` within `tolerance` of the value at `at`.
+fn dwell(
+    len: usize,
+    at: usize,
+    tolerance: f64,
+    value: impl Fn(usize) -> f64,
+) -> std::ops::RangeInclusive<usize> {
+    let extreme = value(at);
+    let near = |i: usize| (value(i) - extreme).abs() <= tolerance;
+    let mut start = at;
+    while start > 0 && near(start - 1) {
+        start -= 1;
+    }
+    let mut end = at;
+    while end + 1 < len && near(end + 1) {
+        end += 1;
+    }
+    start..=end
+}
+
+/// One pose per sample, by time, reasons in the order they were found.
+fn merge(motion: &Motion, mut picks: Vec<(usize, String)>) -> Vec<CriticalPose> {
+    picks.sort_by_key(|(sample, _)| *sample);
+    let mut poses: Vec<CriticalPose> = Vec::new();
+    for (sample, reason) in picks {
+        match poses.last_mut() {
+            Some(last) if last.sample == sample => {
+                last.reason.push_str("; ");
+                last.reason.push_str(&reason);
+            }
+            _ => poses.push(CriticalPose {
+                sample,
+                time_s: motion.times_s()[sample],
+                joints: motion.samples()[sample].clone(),
+                reason,
+            }),
+        }
+    }
+    poses
+}
+
+/// Index of the link called `name`, or an error listing the links.
+fn link(robot: &Robot, name: &str) -> Result<usize, MotionError> {
+    robot.link_index(name).ok_or_else(|| {
+        let names: Vec<&str> = robot.links.iter().map(|l| l.name.as_str()).collect();
+        MotionError::data(format!(
+            "robot `{}` has no link `{name}` (its links: {})",
+            robot.name,
+            names.join(", ")
+        ))
+    })
+}
+
+/// `link` and its ancestors up to the root, nearest first.
+fn ancestors(robot: &Robot, link: usize) -> Vec<usize> {
+    let mut chain = vec![link];
+    let mut current = link;
+    while let Some(joint) = robot.links[current].parent_joint {
+        current = robot.joints[joint].parent_link;
+        chain.push(current);
+    }
+    chain
+}
+
+/// The joints (indices into `robot.joints`) from `link` up to its ancestor `top`.
+fn path_joints(robot: &Robot, link: usize, top: usize) -> impl Iterator<Item = usize> + '_ {
+    let mut current = link;
+    std::iter::from_fn(move || {
+        if current == top {
+            return None;
+        }
+        let joint = robot.links[current].parent_joint?;
+        current = robot.joints[joint].parent_link;
+        Some(joint)
+    })
+}

@@ -1,0 +1,281 @@
+//! Guides: their links, their declared configurations, their order and count per link.
+
+use super::error::Source;
+use super::load::finite3;
+use super::raw::{RawConfiguration, RawGuide};
+use super::{ConfigurationOrigin, Guide, GuideConfiguration, SetupError};
+use crate::pose::{Pose, pose_from_mm_deg};
+use crate::robot::{JointKind, Robot};
+use toml::Spanned;
+
+type RawGuides = Spanned<Vec<Spanned<RawGuide>>>;
+
+/// Validates the `[[guides]]` list: names, links, configurations, base→tool order and the
+/// number of guides per link.
+pub(super) fn build(
+    src: Source,
+    robot: &Robot,
+    raw: &RawGuides,
+    max_per_link: usize,
+) -> Result<Vec<Guide>, SetupError> {
+    if raw.get_ref().len() < 2 {
+        return Err(src.error(
+            raw.span(),
+            "guides",
+            "at least two guides are needed (a cable path has at least one segment)",
+        ));
+    }
+    let mut guides: Vec<Guide> = Vec::new();
+    for (g, entry) in raw.get_ref().iter().enumerate() {
+        let guide = guide(src, robot, g, entry.get_ref())?;
+        if let Some(same) = guides.iter().find(|other| other.name == guide.name) {
+            let name = &entry.get_ref().name;
+            return Err(src.error(
+                name.span(),
+                format!("guides[{g}].name"),
+                format!("guide name \"{}\" is used twice", same.name),
+            ));
+        }
+        guides.push(guide);
+    }
+    check_order(src, robot, raw, &guides)?;
+    check_per_link(src, robot, raw, &guides, max_per_link)?;
+    Ok(guides)
+}
+
+fn guide(src: Source, robot: &Robot, g: usize, raw: &RawGuide) -> Result<Guide, SetupError> {
+    let name = checked_name(src, &raw.name, &format!("guides[{g}].name"))?;
+    let link = robot.link_index(raw.link.get_ref()).ok_or_else(|| {
+        let known: Vec<&str> = robot.links.iter().map(|l| l.name.as_str()).collect();
+        src.error(
+            raw.link.span(),
+            format!("guides[{g}].link"),
+            format!(
+                "link \"{}\" is not in the robot {} (links: {})",
+                raw.link.get_ref(),
+                robot.source.display(),
+                known.join(", ")
+            ),
+        )
+    })?;
+    let (body, link_in_body) = body_of(robot, link);
+    let entries = configuration_entries(src, g, raw)?;
+    let fixed = raw.fixed.is_some();
+    let configurations = configurations(src, &entries)?;
+    Ok(Guide {
+        name,
+        link,
+        body,
+        link_in_body,
+        fixed,
+        configurations,
+    })
+}
+
+/// The configuration entries with their keys (`guides[g].configurations[c]` or
+/// `guides[g].fixed`); exactly one of the two keys must be given.
+fn configuration_entries<'r>(
+    src: Source,
+    g: usize,
+    raw: &'r RawGuide,
+) -> Result<Vec<(String, &'r Spanned<RawConfiguration>)>, SetupError> {
+    match (&raw.configurations, &raw.fixed) {
+        (Some(list), None) if list.get_ref().is_empty() => Err(src.error(
+            list.span(),
+            format!("guides[{g}].configurations"),
+            "the candidate list is empty: give at least one configuration",
+        )),
+        (Some(list), None) => Ok(list
+            .get_ref()
+            .iter()
+            .enumerate()
+            .map(|(c, entry)| (format!("guides[{g}].configurations[{c}]"), entry))
+            .collect()),
+        (None, Some(single)) => Ok(vec![(format!("guides[{g}].fixed"), single)]),
+        (Some(list), Some(_)) => Err(src.error(
+            list.span(),
+            format!("guides[{g}]"),
+            "give either `configurations = [...]` (candidates) or `fixed = {...}`, not both",
+        )),
+        (None, None) => Err(src.error(
+            raw.name.span(),
+            format!("guides[{g}]"),
+            "missing `configurations = [...]` (candidates) or `fixed = {...}` (one given pose)",
+        )),
+    }
+}
+
+fn configurations(
+    src: Source,
+    entries: &[(String, &Spanned<RawConfiguration>)],
+) -> Result<Vec<GuideConfiguration>, SetupError> {
+    let mut list: Vec<GuideConfiguration> = Vec::new();
+    for (key, entry) in entries {
+        let configuration = configuration(src, key, entry)?;
+        check_distinct(src, key, entry, &configuration, &list)?;
+        list.push(configuration);
+    }
+    Ok(list)
+}
+
+fn configuration(
+    src: Source,
+    key: &str,
+    entry: &Spanned<RawConfiguration>,
+) -> Result<GuideConfiguration, SetupError> {
+    let raw = entry.get_ref();
+    let name = checked_name(src, &raw.name, &format!("{key}.name"))?;
+    let position_mm = finite3(src, &raw.position_mm, format!("{key}.position_mm"))?;
+    let rpy_deg = finite3(src, &raw.rpy_deg, format!("{key}.rpy_deg"))?;
+    Ok(GuideConfiguration {
+        name,
+        pose: pose_from_mm_deg(position_mm, rpy_deg),
+        position_mm,
+        rpy_deg,
+        origin: ConfigurationOrigin::Declared {
+            line: src.line_of(entry.span().start),
+        },
+    })
+}
+
+/// Refuses a configuration whose name or pose an earlier one of the same guide already has.
+fn check_distinct(
+    src: Source,
+    key: &str,
+    entry: &Spanned<RawConfiguration>,
+    new: &GuideConfiguration,
+    earlier: &[GuideConfiguration],
+) -> Result<(), SetupError> {
+    if earlier.iter().any(|c| c.name == new.name) {
+        return Err(src.error(
+            entry.get_ref().name.span(),
+            format!("{key}.name"),
+            format!(
+                "configuration name \"{}\" is used twice in this guide",
+                new.name
+            ),
+        ));
+    }
+    if let Some(twin) = earlier.iter().find(|c| same_pose(&c.pose, &new.pose)) {
+        return Err(src.error(
+            entry.span(),
+            key,
+            format!(
+                "configuration \"{}\" has the same pose as \"{}\"",
+                new.name, twin.name
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Poses equal within the coincidence tolerances.
+pub(super) fn same_pose(a: &Pose, b: &Pose) -> bool {
+    (a.translation.vector - b.translation.vector).norm() < super::COINCIDENCE_TOLERANCE_M
+        && a.rotation.angle_to(&b.rotation) < super::COINCIDENCE_TOLERANCE_RAD
+}
+
+/// A non-empty name without `/` (reserved for coincident copies such as `G2/back`).
+fn checked_name(src: Source, name: &Spanned<String>, key: &str) -> Result<String, SetupError> {
+    let text = name.get_ref().trim();
+    if text.is_empty() || text.contains('/') {
+        return Err(src.error(
+            name.span(),
+            key,
+            format!(
+                "\"{}\": a name must be non-empty and must not contain `/`",
+                name.get_ref()
+            ),
+        ));
+    }
+    Ok(text.to_string())
+}
+
+/// The link `link` moves with (its nearest ancestor through fixed joints only) and the pose of
+/// `link`'s frame in that link's frame.
+fn body_of(robot: &Robot, mut link: usize) -> (usize, Pose) {
+    let mut link_in_body = Pose::identity();
+    while let Some(j) = robot.links[link].parent_joint {
+        let joint = &robot.joints[j];
+        if joint.kind != JointKind::Fixed {
+            break;
+        }
+        link_in_body = joint.origin * link_in_body;
+        link = joint.parent_link;
+    }
+    (link, link_in_body)
+}
+
+/// True when `ancestor` is `link` or on the path from `link` to the root.
+fn is_same_or_ancestor(robot: &Robot, ancestor: usize, mut link: usize) -> bool {
+    loop {
+        if link == ancestor {
+            return true;
+        }
+        match robot.links[link].parent_joint {
+            Some(j) => link = robot.joints[j].parent_link,
+            None => return false,
+        }
+    }
+}
+
+/// Each guide must sit on the previous guide's link or a link further towards the tool.
+fn check_order(
+    src: Source,
+    robot: &Robot,
+    raw: &RawGuides,
+    guides: &[Guide],
+) -> Result<(), SetupError> {
+    for (g, pair) in guides.windows(2).enumerate() {
+        let (before, after) = (&pair[0], &pair[1]);
+        if !is_same_or_ancestor(robot, before.body, after.body) {
+            let link = &raw.get_ref()[g + 1].get_ref().link;
+            return Err(src.error(
+                link.span(),
+                format!("guides[{}].link", g + 1),
+                format!(
+                    "guide {} on {} comes after {} on {}, but {} is not {} or a link after it \
+                     towards the tool; list guides from the base end of the cable to the tool end",
+                    after.name,
+                    robot.links[after.link].name,
+                    before.name,
+                    robot.links[before.link].name,
+                    robot.links[after.body].name,
+                    robot.links[before.body].name,
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// At most `max` guides on one link (links joined by fixed joints count as one).
+fn check_per_link(
+    src: Source,
+    robot: &Robot,
+    raw: &RawGuides,
+    guides: &[Guide],
+    max: usize,
+) -> Result<(), SetupError> {
+    for (g, guide) in guides.iter().enumerate() {
+        let sharing: Vec<&str> = guides[..=g]
+            .iter()
+            .filter(|other| other.body == guide.body)
+            .map(|other| other.name.as_str())
+            .collect();
+        if sharing.len() > max {
+            let link = &raw.get_ref()[g].get_ref().link;
+            return Err(src.error(
+                link.span(),
+                format!("guides[{g}].link"),
+                format!(
+                    "{} guides ({}) on {}, but max_guides_per_link = {max}",
+                    sharing.len(),
+                    sharing.join(", "),
+                    robot.links[guide.body].name
+                ),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,220 @@
+//! Reading a setup file: parse, load the robot and the cable, validate, assemble.
+
+use super::error::Source;
+use super::raw::{BendRadiusSetting, RawRobustness, RawSetup, RawThresholds};
+use super::{
+    BendRadiusSource, Robustness, Setup, SetupError, Thresholds, coincide, guides, hash, segments,
+};
+use crate::cable::CableSpec;
+use crate::robot::Robot;
+use nalgebra::Vector3;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+pub(super) fn from_file(path: &Path) -> Result<Setup, SetupError> {
+    let text = std::fs::read_to_string(path).map_err(|e| SetupError {
+        file: path.to_path_buf(),
+        line: None,
+        key: None,
+        problem: format!("cannot read the setup file: {e}"),
+    })?;
+    from_str(&text, path, None)
+}
+
+/// Loads a setup from its text; `given` holds the URDF and cable texts when they are not to
+/// be read from the files the setup names.
+pub(super) fn from_str(
+    text: &str,
+    path: &Path,
+    given: Option<(&str, &str)>,
+) -> Result<Setup, SetupError> {
+    let src = Source { file: path, text };
+    let raw: RawSetup = toml::from_str(text).map_err(|e| src.toml_error(&e))?;
+    let folder = path.parent().unwrap_or(Path::new(""));
+    let (robot_path, robot_text, robot) = load_robot(src, folder, &raw.robot, given.map(|g| g.0))?;
+    let (cable_path, cable_text, cable) = load_cable(src, folder, &raw.cable, given.map(|g| g.1))?;
+    let gravity_m_s2 = gravity(src, &raw.gravity_m_s2)?;
+    let max_guides_per_link = at_least_one(src, &raw.max_guides_per_link, "max_guides_per_link")?;
+    let thresholds = thresholds(src, &raw.thresholds, &cable)?;
+    let robustness = robustness(src, &raw.robustness)?;
+    let mut guides = guides::build(src, &robot, &raw.guides, max_guides_per_link)?;
+    let segments = segments::build(src, &guides, &raw.segments, robustness.delta_s)?;
+    coincide::add_copies(&mut guides, &segments);
+    let mut setup = Setup {
+        source: path.to_path_buf(),
+        text: text.to_string(),
+        robot,
+        robot_path,
+        robot_text,
+        cable,
+        cable_path,
+        cable_text,
+        gravity_m_s2,
+        max_guides_per_link,
+        guides,
+        segments,
+        thresholds,
+        robustness,
+        content_hash: 0,
+    };
+    setup.content_hash = hash::fnv1a64(&hash::canonical_bytes(&setup));
+    Ok(setup)
+}
+
+/// Reads (unless `given`) the URDF named by `robot`, relative to the setup file's folder.
+fn load_robot(
+    src: Source,
+    folder: &Path,
+    robot: &Spanned<String>,
+    given: Option<&str>,
+) -> Result<(PathBuf, String, Robot), SetupError> {
+    let path = folder.join(robot.get_ref());
+    let fail = |problem: String| src.error(robot.span(), "robot", problem);
+    let text = read_or_given(&path, given)
+        .map_err(|e| fail(format!("cannot read the URDF {}: {e}", path.display())))?;
+    let model = Robot::from_urdf_str(&text, &path)
+        .map_err(|e| fail(format!("cannot load the robot: {e}")))?;
+    Ok((path, text, model))
+}
+
+/// Reads (unless `given`) the cable file named by `cable`, relative to the setup file's
+/// folder.
+fn load_cable(
+    src: Source,
+    folder: &Path,
+    cable: &Spanned<String>,
+    given: Option<&str>,
+) -> Result<(PathBuf, String, CableSpec), SetupError> {
+    let path = folder.join(cable.get_ref());
+    let fail = |problem: String| src.error(cable.span(), "cable", problem);
+    let text = read_or_given(&path, given).map_err(|e| {
+        fail(format!(
+            "cannot read the cable file {}: {e}",
+            path.display()
+        ))
+    })?;
+    let spec = CableSpec::from_toml_str(&text, &path)
+        .map_err(|e| fail(format!("cannot load the cable: {e}")))?;
+    Ok((path, text, spec))
+}
+
+fn read_or_given(path: &Path, given: Option<&str>) -> std::io::Result<String> {
+    match given {
+        Some(text) => Ok(text.to_string()),
+        None => std::fs::read_to_string(path),
+    }
+}
+
+/// Three finite numbers, or an error naming `key`.
+pub(super) fn finite3(
+    src: Source,
+    value: &Spanned<[f64; 3]>,
+    key: impl Into<String>,
+) -> Result<[f64; 3], SetupError> {
+    let v = *value.get_ref();
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(v)
+    } else {
+        Err(src.error(
+            value.span(),
+            key,
+            format!("{v:?} must be three finite numbers"),
+        ))
+    }
+}
+
+fn gravity(src: Source, value: &Spanned<[f64; 3]>) -> Result<Vector3<f64>, SetupError> {
+    let g = Vector3::from(finite3(src, value, "gravity_m_s2")?);
+    if g.norm() > 0.0 {
+        Ok(g)
+    } else {
+        Err(src.error(
+            value.span(),
+            "gravity_m_s2",
+            "gravity must not be zero: the cable's sag and the dictionary's directions need it",
+        ))
+    }
+}
+
+fn at_least_one(src: Source, value: &Spanned<usize>, key: &str) -> Result<usize, SetupError> {
+    match *value.get_ref() {
+        0 => Err(src.error(value.span(), key, "must be at least 1")),
+        v => Ok(v),
+    }
+}
+
+/// A finite number ≥ `lowest`, or an error naming `key`.
+fn finite_at_least(
+    src: Source,
+    value: &Spanned<f64>,
+    key: &str,
+    lowest: f64,
+) -> Result<f64, SetupError> {
+    let v = *value.get_ref();
+    if v.is_finite() && v >= lowest {
+        Ok(v)
+    } else {
+        Err(src.error(
+            value.span(),
+            key,
+            format!("{v} must be a finite number ≥ {lowest}"),
+        ))
+    }
+}
+
+fn thresholds(
+    src: Source,
+    raw: &RawThresholds,
+    cable: &CableSpec,
+) -> Result<Thresholds, SetupError> {
+    let clearance = finite_at_least(
+        src,
+        &raw.contact_clearance_mm,
+        "thresholds.contact_clearance_mm",
+        0.0,
+    )?;
+    let stretch = finite_at_least(src, &raw.stretch, "thresholds.stretch", 1.0)?;
+    let clamp_zone = finite_at_least(src, &raw.clamp_zone_mm, "thresholds.clamp_zone_mm", 0.0)?;
+    let (min_bend_radius_m, min_bend_radius_source) =
+        bend_radius(src, &raw.min_bend_radius_mm, cable)?;
+    Ok(Thresholds {
+        contact_clearance_m: clearance * 1e-3,
+        stretch,
+        min_bend_radius_m,
+        min_bend_radius_source,
+        clamp_zone_m: clamp_zone * 1e-3,
+    })
+}
+
+fn bend_radius(
+    src: Source,
+    value: &Spanned<BendRadiusSetting>,
+    cable: &CableSpec,
+) -> Result<(f64, BendRadiusSource), SetupError> {
+    let key = "thresholds.min_bend_radius_mm";
+    match value.get_ref() {
+        BendRadiusSetting::Millimetres(mm) if mm.is_finite() && *mm > 0.0 => {
+            Ok((mm * 1e-3, BendRadiusSource::Setup))
+        }
+        BendRadiusSetting::Millimetres(mm) => Err(src.error(
+            value.span(),
+            key,
+            format!("{mm} must be a finite number > 0 (or \"cable\")"),
+        )),
+        BendRadiusSetting::Word(word) if word == "cable" => {
+            Ok((cable.min_bend_radius_m, BendRadiusSource::Cable))
+        }
+        BendRadiusSetting::Word(word) => Err(src.error(
+            value.span(),
+            key,
+            format!("\"{word}\": expected a radius in mm or \"cable\" (the cable file's value)"),
+        )),
+    }
+}
+
+fn robustness(src: Source, raw: &RawRobustness) -> Result<Robustness, SetupError> {
+    Ok(Robustness {
+        delta_s: at_least_one(src, &raw.delta_s, "robustness.delta_s")?,
+        range: *raw.range.get_ref(),
+    })
+}

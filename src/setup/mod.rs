@@ -1,0 +1,368 @@
+//! The setup file: which robot, which cable, where guides may go, which segment lengths to
+//! try, and the stress limits — everything `solve` and `build` need besides the motion.
+//!
+//! A setup is a TOML file (full reference: `docs/setup-format.md`). Paths are relative to the
+//! setup file; numbers carry their unit in the key name; every key is required and unknown
+//! keys are refused, so a typo never falls back to a default:
+//!
+//! ```toml
+//! robot = "viper_s850.urdf"                # URDF, relative to this file
+//! cable = "../../cables/smc_le_cp_3.toml"  # cable spec, relative to this file
+//! gravity_m_s2 = [0.0, 0.0, -9.81]         # in the robot's base frame
+//! max_guides_per_link = 2                  # most guides declared on one link
+//!
+//! [thresholds]
+//! contact_clearance_mm = 0.0   # contact when the cable comes closer to the robot than this
+//! stretch = 1.02               # centreline length / natural length
+//! min_bend_radius_mm = "cable" # the cable file's value, or a number of mm
+//! clamp_zone_mm = 20.0         # cable next to a guide not checked against the guide's link
+//!
+//! [robustness]
+//! delta_s = 1                  # ΔS, sub-segments
+//! range = 2                    # R: S ± k·ΔS, k = 1…R must pass too
+//!
+//! [[guides]]                   # from the base end of the cable to the tool end
+//! name = "G1"
+//! link = "link_3"
+//! configurations = [           # candidate poses in the link frame; +z = towards the tool
+//!   { name = "back", position_mm = [-172.0, 0.0, 100.0], rpy_deg = [0.0, 0.0, 180.0] },
+//! ]
+//!
+//! [[guides]]
+//! name = "G2"
+//! link = "link_6"
+//! fixed = { name = "connector", position_mm = [60.0, 0.0, 85.0], rpy_deg = [0.0, 0.0, 0.0] }
+//!
+//! [[segments]]                 # one per pair of consecutive guides
+//! from = "G1"
+//! to = "G2"
+//! lengths = { min = 20, max = 60, step = 1, allow_zero = false }  # sub-segments
+//! ```
+//!
+//! **S = 0.** A segment whose two guides sit on one link (an *intra-link* segment, links joined
+//! by fixed joints counting as one) may list `allow_zero = true`: S = 0 means only one clamp is
+//! mounted there, i.e. the two guides coincide. It is represented by pose equality: the S = 0
+//! PVs that make sense are exactly the pairs of configurations with the same pose
+//! ([`Setup::is_admissible`]). So that such pairs exist, the loader adds *coincident copies*
+//! ([`ConfigurationOrigin::Coincident`], named `G2/back`): for every such segment Cm, from the
+//! base end to the tool end, every configuration of Gm is copied into G(m+1) unless G(m+1) is
+//! fixed; then, from the tool end back, the configurations that come from a fixed guide are
+//! copied from G(m+1) into Gm unless Gm is fixed. A copy whose pose the target already has is
+//! not added. A segment with S > 0 between two coincident configurations is not admissible
+//! either (a loop leaving and re-entering one clamp).
+//!
+//! [`Setup::content_hash`] identifies a setup by content: FNV-1a (64 bit) over a canonical
+//! byte serialization of the loaded values (robot model, cable, guides, segments, thresholds),
+//! so comments, whitespace, key order and file locations do not change it; see
+//! [`Setup::canonical_bytes`].
+
+mod coincide;
+mod error;
+mod guides;
+mod hash;
+mod load;
+mod raw;
+mod segments;
+
+pub use error::SetupError;
+pub use hash::fnv1a64;
+
+use crate::cable::CableSpec;
+use crate::pose::Pose;
+use crate::robot::Robot;
+use nalgebra::Vector3;
+use std::path::{Path, PathBuf};
+
+/// Two configurations coincide when their origins are closer than this (m)…
+pub const COINCIDENCE_TOLERANCE_M: f64 = 1e-9;
+/// …and their orientations differ by less than this angle (rad).
+pub const COINCIDENCE_TOLERANCE_RAD: f64 = 1e-9;
+
+/// A validated setup, SI inside.
+#[derive(Debug, Clone)]
+pub struct Setup {
+    /// The setup file.
+    pub source: PathBuf,
+    /// The setup file's text, verbatim.
+    pub text: String,
+    /// The robot.
+    pub robot: Robot,
+    /// The URDF file, resolved against the setup file's folder.
+    pub robot_path: PathBuf,
+    /// The URDF file's text, verbatim (meshes it references are not included).
+    pub robot_text: String,
+    /// The cable.
+    pub cable: CableSpec,
+    /// The cable file, resolved against the setup file's folder.
+    pub cable_path: PathBuf,
+    /// The cable file's text, verbatim.
+    pub cable_text: String,
+    /// Gravitational acceleration in the robot's base frame (m/s²).
+    pub gravity_m_s2: Vector3<f64>,
+    /// Most guides allowed on one link (links joined by fixed joints count as one).
+    pub max_guides_per_link: usize,
+    /// Guides G1 … G(M+1), from the base end of the cable to the tool end.
+    pub guides: Vec<Guide>,
+    /// Segments C1 … CM; segment `m` runs from `guides[m]` to `guides[m + 1]`.
+    pub segments: Vec<SegmentSpec>,
+    /// Stress limits.
+    pub thresholds: Thresholds,
+    /// Robustness test parameters.
+    pub robustness: Robustness,
+    /// FNV-1a 64 of [`Setup::canonical_bytes`].
+    pub content_hash: u64,
+}
+
+/// A guide (clamp) and the configurations it may take.
+#[derive(Debug, Clone)]
+pub struct Guide {
+    /// Name as written, e.g. `G1`.
+    pub name: String,
+    /// Index into `Robot::links` of the link named in the file.
+    pub link: usize,
+    /// Index of the link the guide moves with: `link`, or its nearest ancestor reached
+    /// through fixed joints only. Two guides with the same `body` are on one link.
+    pub body: usize,
+    /// Pose of `link`'s frame in `body`'s frame (identity when they are the same link).
+    pub link_in_body: Pose,
+    /// True for a guide with a single, given configuration (`fixed = {…}`), e.g. a connector.
+    pub fixed: bool,
+    /// Candidate configurations: the declared ones first, then coincident copies.
+    pub configurations: Vec<GuideConfiguration>,
+}
+
+/// One candidate pose of a guide.
+#[derive(Debug, Clone)]
+pub struct GuideConfiguration {
+    /// Name as written (`back`), or `G2/back` for a coincident copy of G2's `back`.
+    pub name: String,
+    /// Pose of the guide frame in its link's frame (m); +z is the cable direction towards the
+    /// tool end, +x the reference for the cable's twist.
+    pub pose: Pose,
+    /// Position as written, in the frame of the link that declared it (mm).
+    pub position_mm: [f64; 3],
+    /// URDF roll, pitch, yaw as written (deg).
+    pub rpy_deg: [f64; 3],
+    /// Where the configuration comes from.
+    pub origin: ConfigurationOrigin,
+}
+
+/// Where a guide configuration comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ConfigurationOrigin {
+    /// Written in the setup file, at this 1-based line.
+    Declared {
+        /// 1-based line of the configuration in the setup file.
+        line: usize,
+    },
+    /// Added so that the guide can coincide with another one (S = 0): a copy of
+    /// `guides[guide].configurations[configuration]`, which is a declared configuration.
+    Coincident {
+        /// Index of the guide that declared it.
+        guide: usize,
+        /// Index of the configuration in that guide's list.
+        configuration: usize,
+    },
+}
+
+/// Candidate lengths of one segment.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SegmentSpec {
+    /// Candidate sub-segment counts S, ascending: `0` first when allowed, then
+    /// `min, min + step, …, max`. Natural length = S · `sub_segment_pitch_m`.
+    pub lengths: Vec<usize>,
+    /// True when both guides are on one link (same [`Guide::body`]).
+    pub intra_link: bool,
+    /// The range as written.
+    pub range: LengthRange,
+}
+
+/// `lengths = { min, max, step, allow_zero }` as written (sub-segments).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LengthRange {
+    /// Smallest non-zero S.
+    pub min: usize,
+    /// Largest S.
+    pub max: usize,
+    /// Spacing of the series.
+    pub step: usize,
+    /// Whether S = 0 is a candidate (intra-link segments only).
+    pub allow_zero: bool,
+}
+
+/// Stress limits, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Thresholds {
+    /// A cable closer to the robot than this is in contact (m); 0 = touching is contact.
+    pub contact_clearance_m: f64,
+    /// Largest allowed centreline length / natural length (dimensionless, ≥ 1).
+    pub stretch: f64,
+    /// Smallest allowed bend radius (m).
+    pub min_bend_radius_m: f64,
+    /// Whether `min_bend_radius_m` was taken from the cable file (`"cable"`) or written.
+    pub min_bend_radius_source: BendRadiusSource,
+    /// Cable length next to a guide not checked for contact with the guide's own link (m).
+    pub clamp_zone_m: f64,
+}
+
+/// Where the minimum bend radius comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BendRadiusSource {
+    /// `min_bend_radius_mm = "cable"`: the cable file's `min_bend_radius_mm`.
+    Cable,
+    /// A number written in the setup file.
+    Setup,
+}
+
+/// Robustness test parameters (DESIGN §2, D2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Robustness {
+    /// ΔS (sub-segments, ≥ 1).
+    pub delta_s: usize,
+    /// R: lengths S ± k·ΔS for k = 1…R must pass too (0 disables the test).
+    pub range: usize,
+}
+
+impl Setup {
+    /// Reads and validates a setup file; the robot and cable files it names are loaded too.
+    pub fn from_file(path: impl AsRef<Path>) -> Result<Setup, SetupError> {
+        load::from_file(path.as_ref())
+    }
+
+    /// Validates a setup file's text; `source` names it in messages and anchors the relative
+    /// robot and cable paths.
+    pub fn from_toml_str(text: &str, source: &Path) -> Result<Setup, SetupError> {
+        load::from_str(text, source, None)
+    }
+
+    /// Rebuilds a setup from the three texts a [`Setup`] keeps (`text`, `robot_text`,
+    /// `cable_text`), e.g. as embedded in a dictionary: the robot and cable files are not read
+    /// (mesh files a URDF references still are, relative to the resolved robot path). The
+    /// result has the same content hash as the setup the texts came from.
+    pub fn from_texts(
+        text: &str,
+        source: &Path,
+        robot_text: &str,
+        cable_text: &str,
+    ) -> Result<Setup, SetupError> {
+        load::from_str(text, source, Some((robot_text, cable_text)))
+    }
+
+    /// Number of segments M.
+    pub fn segment_count(&self) -> usize {
+        self.segments.len()
+    }
+
+    /// Indices into [`Setup::guides`] of segment `m`'s start and end guides: `(m, m + 1)`.
+    pub fn segment_guides(&self, m: usize) -> (usize, usize) {
+        (m, m + 1)
+    }
+
+    /// True when segment `m`'s guides are on one link.
+    pub fn is_intra_link(&self, m: usize) -> bool {
+        self.segments[m].intra_link
+    }
+
+    /// |D0,m|: the number of parameter vectors (S, P_m, P_(m+1)) of segment `m`, i.e.
+    /// |lengths| × |configurations of G_m| × |configurations of G_(m+1)|, coincident copies
+    /// included. Some of them are not admissible ([`Setup::is_admissible`]).
+    pub fn pv_count(&self, m: usize) -> usize {
+        let (a, b) = self.segment_guides(m);
+        self.segments[m].lengths.len()
+            * self.guides[a].configurations.len()
+            * self.guides[b].configurations.len()
+    }
+
+    /// True when configuration `ca` of guide `ga` and `cb` of guide `gb` are the same place:
+    /// one body, and poses equal within the coincidence tolerances.
+    pub fn coincident(&self, ga: usize, ca: usize, gb: usize, cb: usize) -> bool {
+        let (a, b) = (&self.guides[ga], &self.guides[gb]);
+        if a.body != b.body {
+            return false;
+        }
+        guides::same_pose(&a.pose_in_body(ca), &b.pose_in_body(cb))
+    }
+
+    /// Whether the PV (S = `s`, configuration `i` of G_m, `j` of G_(m+1)) of segment `m`
+    /// describes a real cable: S = 0 exactly when the two configurations coincide.
+    pub fn is_admissible(&self, m: usize, s: usize, i: usize, j: usize) -> bool {
+        let (a, b) = self.segment_guides(m);
+        (s == 0) == self.coincident(a, i, b, j)
+    }
+
+    /// Number of admissible PVs of segment `m` (at most [`Setup::pv_count`]).
+    pub fn admissible_pv_count(&self, m: usize) -> usize {
+        let (a, b) = self.segment_guides(m);
+        let (na, nb) = (
+            self.guides[a].configurations.len(),
+            self.guides[b].configurations.len(),
+        );
+        let pairs = (0..na).flat_map(|i| (0..nb).map(move |j| (i, j)));
+        let coincident = pairs.filter(|&(i, j)| self.coincident(a, i, b, j)).count();
+        self.segments[m]
+            .lengths
+            .iter()
+            .map(|&s| {
+                if s == 0 {
+                    coincident
+                } else {
+                    na * nb - coincident
+                }
+            })
+            .sum()
+    }
+
+    /// World pose of configuration `c` of guide `g`, given the link poses of
+    /// `Robot::link_poses`.
+    pub fn guide_world_pose(&self, link_poses: &[Pose], g: usize, c: usize) -> Pose {
+        let guide = &self.guides[g];
+        link_poses[guide.link] * guide.configurations[c].pose
+    }
+
+    /// The content hash as 16 lowercase hexadecimal digits.
+    pub fn content_hash_hex(&self) -> String {
+        format!("{:016x}", self.content_hash)
+    }
+
+    /// The canonical serialization that [`Setup::content_hash`] hashes (see `hash.rs`):
+    /// a version tag, then every loaded value in a fixed order — numbers as little-endian
+    /// bit patterns (−0.0 written as +0.0), strings and lists length-prefixed.
+    pub fn canonical_bytes(&self) -> Vec<u8> {
+        hash::canonical_bytes(self)
+    }
+
+    /// The setup restricted to inter-link segments (the paper's method 1: one mounted guide
+    /// per link): every intra-link segment keeps only S = 0, the guides and
+    /// `max_guides_per_link` stay as declared, and the content hash is recomputed. Fails
+    /// naming the segment when an intra-link segment does not allow S = 0.
+    pub fn inter_link_only(&self) -> Result<Setup, SetupError> {
+        let mut setup = self.clone();
+        for (m, segment) in setup.segments.iter_mut().enumerate() {
+            if !segment.intra_link {
+                continue;
+            }
+            if !segment.range.allow_zero {
+                return Err(SetupError {
+                    file: self.source.clone(),
+                    line: None,
+                    key: Some(format!("segments[{m}].lengths.allow_zero")),
+                    problem: format!(
+                        "segment C{} is intra-link but does not allow S = 0, so it cannot be \
+                         left out for one guide per link",
+                        m + 1
+                    ),
+                });
+            }
+            segment.lengths = vec![0];
+        }
+        setup.content_hash = fnv1a64(&setup.canonical_bytes());
+        Ok(setup)
+    }
+}
+
+impl Guide {
+    /// Pose of configuration `c` in the frame of [`Guide::body`].
+    pub fn pose_in_body(&self, c: usize) -> Pose {
+        self.link_in_body * self.configurations[c].pose
+    }
+}

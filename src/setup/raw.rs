@@ -1,0 +1,116 @@
+//! The setup file's keys as written (units in the names), before validation.
+
+use serde::Deserialize;
+use serde::de::{self, Deserializer, Visitor};
+use std::fmt;
+use toml::Spanned;
+
+/// The whole file.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawSetup {
+    pub robot: Spanned<String>,
+    pub cable: Spanned<String>,
+    pub gravity_m_s2: Spanned<[f64; 3]>,
+    pub max_guides_per_link: Spanned<usize>,
+    pub thresholds: RawThresholds,
+    pub robustness: RawRobustness,
+    pub guides: Spanned<Vec<Spanned<RawGuide>>>,
+    pub segments: Spanned<Vec<Spanned<RawSegment>>>,
+}
+
+/// `[thresholds]`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawThresholds {
+    pub contact_clearance_mm: Spanned<f64>,
+    pub stretch: Spanned<f64>,
+    pub min_bend_radius_mm: Spanned<BendRadiusSetting>,
+    pub clamp_zone_mm: Spanned<f64>,
+}
+
+/// `[robustness]`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawRobustness {
+    pub delta_s: Spanned<usize>,
+    pub range: Spanned<usize>,
+}
+
+/// One `[[guides]]` entry: exactly one of `configurations` and `fixed`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawGuide {
+    pub name: Spanned<String>,
+    pub link: Spanned<String>,
+    pub configurations: Option<Spanned<Vec<Spanned<RawConfiguration>>>>,
+    pub fixed: Option<Spanned<RawConfiguration>>,
+}
+
+/// One guide configuration: a pose in the guide's link frame.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawConfiguration {
+    pub name: Spanned<String>,
+    pub position_mm: Spanned<[f64; 3]>,
+    pub rpy_deg: Spanned<[f64; 3]>,
+}
+
+/// One `[[segments]]` entry.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawSegment {
+    pub from: Spanned<String>,
+    pub to: Spanned<String>,
+    pub lengths: RawLengths,
+}
+
+/// `lengths = { min, max, step, allow_zero }`, in sub-segments.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawLengths {
+    pub min: Spanned<usize>,
+    pub max: Spanned<usize>,
+    pub step: Spanned<usize>,
+    pub allow_zero: Spanned<bool>,
+}
+
+/// `min_bend_radius_mm`: a number of millimetres, or the word `"cable"`.
+pub(super) enum BendRadiusSetting {
+    /// An explicit radius (mm), not yet checked.
+    Millimetres(f64),
+    /// Any string; only `"cable"` is accepted later, with a located message.
+    Word(String),
+}
+
+impl<'de> Deserialize<'de> for BendRadiusSetting {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_any(BendRadiusVisitor)
+    }
+}
+
+struct BendRadiusVisitor;
+
+impl Visitor<'_> for BendRadiusVisitor {
+    type Value = BendRadiusSetting;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a radius in millimetres or the string \"cable\"")
+    }
+
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Self::Value, E> {
+        Ok(BendRadiusSetting::Millimetres(v))
+    }
+
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Self::Value, E> {
+        Ok(BendRadiusSetting::Millimetres(v as f64))
+    }
+
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Self::Value, E> {
+        Ok(BendRadiusSetting::Millimetres(v as f64))
+    }
+
+    fn visit_str<E: de::Error>(self, v: &str) -> Result<Self::Value, E> {
+        Ok(BendRadiusSetting::Word(v.to_string()))
+    }
+}

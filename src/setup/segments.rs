@@ -1,0 +1,172 @@
+//! Segments: one per pair of consecutive guides, with their candidate lengths.
+
+use super::error::Source;
+use super::guides::same_pose;
+use super::raw::{RawLengths, RawSegment};
+use super::{Guide, LengthRange, SegmentSpec, SetupError};
+use toml::Spanned;
+
+/// Validates the `[[segments]]` list against the guides and ΔS.
+pub(super) fn build(
+    src: Source,
+    guides: &[Guide],
+    raw: &Spanned<Vec<Spanned<RawSegment>>>,
+    delta_s: usize,
+) -> Result<Vec<SegmentSpec>, SetupError> {
+    let expected = guides.len() - 1;
+    if raw.get_ref().len() != expected {
+        return Err(src.error(
+            raw.span(),
+            "segments",
+            format!(
+                "{} segments given, but {} guides need exactly {expected} \
+                 (one per pair of consecutive guides)",
+                raw.get_ref().len(),
+                guides.len()
+            ),
+        ));
+    }
+    raw.get_ref()
+        .iter()
+        .enumerate()
+        .map(|(m, entry)| segment(src, guides, m, entry.get_ref(), delta_s))
+        .collect()
+}
+
+fn segment(
+    src: Source,
+    guides: &[Guide],
+    m: usize,
+    raw: &RawSegment,
+    delta_s: usize,
+) -> Result<SegmentSpec, SetupError> {
+    let (a, b) = (&guides[m], &guides[m + 1]);
+    check_end(src, &raw.from, &format!("segments[{m}].from"), &a.name)?;
+    check_end(src, &raw.to, &format!("segments[{m}].to"), &b.name)?;
+    let intra_link = a.body == b.body;
+    let key = format!("segments[{m}].lengths");
+    let range = length_range(src, &key, &raw.lengths, delta_s)?;
+    if range.allow_zero {
+        check_zero(src, &key, &raw.lengths, a, b, intra_link)?;
+    }
+    let zero = range.allow_zero.then_some(0);
+    let series = (range.min..=range.max).step_by(range.step);
+    Ok(SegmentSpec {
+        lengths: zero.into_iter().chain(series).collect(),
+        intra_link,
+        range,
+    })
+}
+
+/// `from` / `to` must name the guides the segment's position implies.
+fn check_end(
+    src: Source,
+    value: &Spanned<String>,
+    key: &str,
+    expected: &str,
+) -> Result<(), SetupError> {
+    if value.get_ref() == expected {
+        return Ok(());
+    }
+    Err(src.error(
+        value.span(),
+        key,
+        format!(
+            "\"{}\" but this segment joins guide {expected}: segment m runs from the m-th to \
+             the (m+1)-th guide, in the order of [[guides]]",
+            value.get_ref()
+        ),
+    ))
+}
+
+/// `min ≥ 1`, `min ≤ max`, `step ≥ 1`, `(max − min) % step = 0` and `delta_s % step = 0`
+/// (so that the robustness neighbours S ± k·ΔS lie on the series).
+fn length_range(
+    src: Source,
+    key: &str,
+    raw: &RawLengths,
+    delta_s: usize,
+) -> Result<LengthRange, SetupError> {
+    let (min, max, step) = (*raw.min.get_ref(), *raw.max.get_ref(), *raw.step.get_ref());
+    let fail =
+        |span, field: &str, problem: String| src.error(span, format!("{key}.{field}"), problem);
+    if min == 0 {
+        return Err(fail(
+            raw.min.span(),
+            "min",
+            "min must be ≥ 1; S = 0 is asked for with `allow_zero = true`".into(),
+        ));
+    }
+    if max < min {
+        return Err(fail(
+            raw.max.span(),
+            "max",
+            format!("max = {max} is below min = {min}"),
+        ));
+    }
+    if step == 0 {
+        return Err(fail(raw.step.span(), "step", "step must be ≥ 1".into()));
+    }
+    if !(max - min).is_multiple_of(step) {
+        return Err(fail(
+            raw.max.span(),
+            "max",
+            format!(
+                "max − min = {} is not a multiple of step = {step}",
+                max - min
+            ),
+        ));
+    }
+    if !delta_s.is_multiple_of(step) {
+        return Err(fail(
+            raw.step.span(),
+            "step",
+            format!(
+                "step = {step} does not divide robustness.delta_s = {delta_s}: the robustness \
+                 test needs the lengths S ± k·ΔS among the candidates"
+            ),
+        ));
+    }
+    Ok(LengthRange {
+        min,
+        max,
+        step,
+        allow_zero: *raw.allow_zero.get_ref(),
+    })
+}
+
+/// S = 0 (the two guides coincide) needs both guides on one link, and two fixed guides only
+/// coincide if they are at the same pose.
+fn check_zero(
+    src: Source,
+    key: &str,
+    raw: &RawLengths,
+    a: &Guide,
+    b: &Guide,
+    intra_link: bool,
+) -> Result<(), SetupError> {
+    let span = raw.allow_zero.span();
+    if !intra_link {
+        return Err(src.error(
+            span,
+            format!("{key}.allow_zero"),
+            format!(
+                "S = 0 is only allowed for intra-link segments, but {} and {} are on \
+                 different links",
+                a.name, b.name
+            ),
+        ));
+    }
+    let pose_a = a.pose_in_body(0);
+    if a.fixed && b.fixed && !same_pose(&pose_a, &b.pose_in_body(0)) {
+        return Err(src.error(
+            span,
+            format!("{key}.allow_zero"),
+            format!(
+                "{} and {} are both fixed at different poses, so they can never coincide (S = 0)",
+                a.name, b.name
+            ),
+        ));
+    }
+    Ok(())
+}
