@@ -11,7 +11,16 @@
 //! - [`cable`]: the physical specification of a cable (stiffness, mass, bend radius).
 //! - [`geometry`]: the *connected geometry* of a segment — a cubic Hermite curve carrying the
 //!   discrete cable, with rotation-minimizing frames.
-//! - [`stress`]: the stress metrics evaluated on a cable shape (stretch, bend radius).
+//! - [`statics`]: the quasi-static equilibrium of a cable clamped at its guides.
+//! - [`dynamics`]: the cable in rapier3d, for the motion test and the paper's baseline.
+//! - [`stress`]: the stress metrics evaluated on a cable shape (contact, stretch, bend radius).
+//! - [`setup`]: the setup file — robot, cable, guide catalogue, length candidates, limits.
+//! - [`motion`]: sampled robot motions, their generation from waypoints, critical poses.
+//! - [`path`]: parameter vectors (PVs) and whole cable paths (ECPVs).
+//! - [`chain`]: the shortest chain of robust PVs through the guides' configurations, and the
+//!   next-shortest ones.
+//! - [`attachment`]: the attachment test — which PVs hold the stress limits at the critical
+//!   poses (D1) and are robust to a length error (D2).
 //!
 //! ```
 //! use cable_dict::{cable::CableSpec, geometry::connect, pose::pose_from_mm_deg, robot::Robot};
@@ -35,10 +44,13 @@
 //! All quantities are SI (metres, radians, kilograms, seconds) unless a name carries its unit
 //! (`length_mm`, `angle_deg`); conversion happens only at file and command-line boundaries.
 
+pub mod attachment;
 pub mod cable;
+pub mod chain;
 pub mod dynamics;
 pub mod geometry;
 pub mod motion;
+pub mod path;
 pub mod pose;
 pub mod robot;
 pub mod setup;

@@ -80,7 +80,6 @@ impl SymmetricBand {
     }
 
     /// `y = A x`.
-    #[cfg(test)]
     pub(crate) fn multiply(&self, x: &[f64]) -> Vec<f64> {
         let n = self.order();
         let mut y = vec![0.0; n];

@@ -78,13 +78,29 @@ pub(crate) fn minimize(
 
 /// The Newton direction, with the smallest diagonal shift that makes the banded part
 /// positive definite; steepest descent if no shift does.
+///
+/// The banded part alone can be indefinite where the whole Hessian is not: its twist term
+/// `kΨ∇²Ψ` may bend a soft mode (a hanging loop swinging about its chord) negative that the
+/// rank-one `k∇Ψ∇Ψᵀ` makes positive again. Shifting then would turn every step into a damped
+/// one and Newton would crawl, so the unshifted system is first solved by conjugate gradients
+/// preconditioned with the shifted factorization; only when that finds negative curvature is
+/// the shifted step taken.
 fn descent_direction(hessian: &SymmetricBand, evaluation: &Evaluation, twist: f64) -> Vec<f64> {
     let mut shift = 0.0;
     for _ in 0..MAX_SHIFTS {
         let mut shifted = hessian.clone();
         shifted.add_to_diagonal(shift);
         if let Ok(factor) = shifted.cholesky() {
-            let direction = rank_one_solve(&factor, evaluation, twist);
+            let preconditioner = RankOneUpdated {
+                factor: &factor,
+                update: &evaluation.twist_gradient,
+                stiffness: twist,
+            };
+            let exact = (shift > 0.0)
+                .then(|| conjugate_gradients(hessian, &preconditioner, evaluation))
+                .flatten();
+            let direction =
+                exact.unwrap_or_else(|| preconditioner.solve(negated(&evaluation.gradient)));
             if dot(&direction, &evaluation.gradient) < 0.0 {
                 return direction;
             }
@@ -95,24 +111,93 @@ fn descent_direction(hessian: &SymmetricBand, evaluation: &Evaluation, twist: f6
             10.0 * shift
         };
     }
-    evaluation.gradient.iter().map(|g| -g).collect()
+    negated(&evaluation.gradient)
 }
 
-/// Solves `(B + k g gᵀ) d = −∇E` by Sherman–Morrison, `B` factored, `g = ∇Ψ`.
-fn rank_one_solve(factor: &BandCholesky, evaluation: &Evaluation, k: f64) -> Vec<f64> {
-    let mut direction: Vec<f64> = evaluation.gradient.iter().map(|g| -g).collect();
-    factor.solve_in_place(&mut direction);
-    if k == 0.0 || evaluation.twist_gradient.is_empty() {
-        return direction;
+/// `B + k g gᵀ` with `B` factored: solves by Sherman–Morrison, multiplies directly.
+struct RankOneUpdated<'a> {
+    factor: &'a BandCholesky,
+    /// `g = ∇Ψ`; empty without a twist term.
+    update: &'a [f64],
+    /// `k`.
+    stiffness: f64,
+}
+
+impl RankOneUpdated<'_> {
+    /// `(B + k g gᵀ)⁻¹ rhs`.
+    fn solve(&self, mut rhs: Vec<f64>) -> Vec<f64> {
+        self.factor.solve_in_place(&mut rhs);
+        if self.stiffness == 0.0 || self.update.is_empty() {
+            return rhs;
+        }
+        let g = self.update;
+        let mut z = g.to_vec();
+        self.factor.solve_in_place(&mut z);
+        let coefficient = self.stiffness * dot(g, &rhs) / (1.0 + self.stiffness * dot(g, &z));
+        for (d, z) in rhs.iter_mut().zip(&z) {
+            *d -= coefficient * z;
+        }
+        rhs
     }
-    let g = &evaluation.twist_gradient;
-    let mut z = g.clone();
-    factor.solve_in_place(&mut z);
-    let coefficient = k * dot(g, &direction) / (1.0 + k * dot(g, &z));
-    for (d, z) in direction.iter_mut().zip(&z) {
-        *d -= coefficient * z;
+}
+
+/// Conjugate-gradient iterations of the unshifted Newton system, at most.
+const CG_ITERATIONS: usize = 40;
+/// Relative residual at which the conjugate gradients stop.
+const CG_TOLERANCE: f64 = 1e-10;
+
+/// Solves `(H + k g gᵀ) d = −∇E` (`H` the unshifted banded Hessian) by conjugate gradients
+/// preconditioned with the shifted system; `None` on negative curvature or no convergence.
+fn conjugate_gradients(
+    hessian: &SymmetricBand,
+    preconditioner: &RankOneUpdated<'_>,
+    evaluation: &Evaluation,
+) -> Option<Vec<f64>> {
+    let multiply = |x: &[f64]| {
+        let mut product = hessian.multiply(x);
+        let g = preconditioner.update;
+        if !g.is_empty() {
+            let scale = preconditioner.stiffness * dot(g, x);
+            product.iter_mut().zip(g).for_each(|(p, g)| *p += scale * g);
+        }
+        product
+    };
+    let mut residual = negated(&evaluation.gradient);
+    let target = CG_TOLERANCE * dot(&residual, &residual).sqrt();
+    let mut solution = vec![0.0; residual.len()];
+    let mut preconditioned = preconditioner.solve(residual.clone());
+    let mut direction = preconditioned.clone();
+    let mut rho = dot(&residual, &preconditioned);
+    for _ in 0..CG_ITERATIONS {
+        let product = multiply(&direction);
+        let curvature = dot(&direction, &product);
+        if curvature.is_nan() || curvature <= 0.0 {
+            return None;
+        }
+        let step = rho / curvature;
+        axpy(&mut solution, step, &direction);
+        axpy(&mut residual, -step, &product);
+        if dot(&residual, &residual).sqrt() <= target {
+            return Some(solution);
+        }
+        preconditioned = preconditioner.solve(residual.clone());
+        let next_rho = dot(&residual, &preconditioned);
+        let beta = next_rho / rho;
+        rho = next_rho;
+        for (d, z) in direction.iter_mut().zip(&preconditioned) {
+            *d = z + beta * *d;
+        }
     }
-    direction
+    None
+}
+
+/// `y += a x`.
+fn axpy(y: &mut [f64], a: f64, x: &[f64]) {
+    y.iter_mut().zip(x).for_each(|(y, x)| *y += a * x);
+}
+
+fn negated(values: &[f64]) -> Vec<f64> {
+    values.iter().map(|v| -v).collect()
 }
 
 /// Backtracking from the longest step that moves no node by more than one pitch.

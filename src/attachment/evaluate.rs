@@ -1,0 +1,343 @@
+//! One PV at one robot pose: the guides' world poses, the connected geometry, the static
+//! equilibrium and the three stress metrics against the setup's limits.
+
+use super::TestPose;
+use crate::dynamics::{
+    ConvergenceWindow, DynamicsSettings, LinearConnect, SegmentShape, connect_linear, relax,
+};
+use crate::geometry::{ConnectError, connect};
+use crate::path::Pv;
+use crate::pose::Pose;
+use crate::setup::Setup;
+use crate::statics::{FarEnd, RodParameters, SolverOptions, solve_segment};
+use crate::stress::contact::{ClampZone, ContactError, GuideEnd, Obstacles, min_clearance};
+use crate::stress::{BendRadius, min_bend_radius, stretch};
+use nalgebra::{Point3, Unit, Vector3};
+use serde::Serialize;
+
+/// Newton's stopping rule for the attachment test: 1e-6 N is 4e-5 of the weight of one
+/// sub-segment of the bundled cables; on the softest mode of a sagging span (a few N/m) it
+/// leaves the nodes within a micrometre, far below the millimetres the limits are judged
+/// on, while the solver's default 1e-8 N sits at the rounding floor of long spans.
+const ATTACHMENT_SOLVER: SolverOptions = SolverOptions {
+    force_tolerance_n: 1e-6,
+    max_iterations: 200,
+};
+
+/// How the start shape of a segment is obtained, and which solver finds its equilibrium.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ConnectMethod {
+    /// Hermite curve + rotation-minimizing frames, then the quasi-static Newton solver.
+    Hermite,
+    /// The paper's previous method: a straight cable dragged into the end guide and relaxed
+    /// in rapier3d (two orders of magnitude slower; for comparison).
+    Linear,
+}
+
+/// The stress limit a PV violates first (in the order contact, stretch, bend), or why it
+/// could not be evaluated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Rejection {
+    /// The cable is shorter than the distance between its guides.
+    TooShort,
+    /// The connected geometry or the static solver failed (reported, not fatal).
+    Diverged,
+    /// Clearance to the robot below the contact threshold.
+    Contact,
+    /// Centreline length / natural length above the stretch threshold.
+    Stretch,
+    /// Bend radius below the minimum.
+    Bend,
+}
+
+impl Rejection {
+    /// Every kind, in report order.
+    pub const ALL: [Rejection; 5] = [
+        Rejection::TooShort,
+        Rejection::Diverged,
+        Rejection::Contact,
+        Rejection::Stretch,
+        Rejection::Bend,
+    ];
+
+    /// Short name for people.
+    pub fn name(self) -> &'static str {
+        match self {
+            Rejection::TooShort => "too short",
+            Rejection::Diverged => "solver failed",
+            Rejection::Contact => "contact",
+            Rejection::Stretch => "stretch",
+            Rejection::Bend => "bend radius",
+        }
+    }
+}
+
+/// The stress metrics of one equilibrium shape.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Metrics {
+    /// Lowest signed clearance to the robot (m), clamp zones excluded; `None` when nothing
+    /// was checked.
+    pub clearance_m: Option<f64>,
+    /// Link of the lowest clearance (index into `robot.links`).
+    pub clearance_link: Option<usize>,
+    /// Sub-segment of the lowest clearance.
+    pub clearance_sub_segment: Option<usize>,
+    /// Centreline length / natural length.
+    pub stretch: f64,
+    /// Smallest bend radius (m); infinite for a straight cable.
+    pub min_bend_radius_m: f64,
+    /// Node of the smallest bend radius (0 = start guide).
+    pub min_bend_node: usize,
+}
+
+/// The outcome of one PV at one pose.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Check {
+    /// The metrics, when an equilibrium was found (and the segment has a cable).
+    pub metrics: Option<Metrics>,
+    /// The first violated limit, `None` when all three hold.
+    pub rejection: Option<Rejection>,
+    /// Why, for people (only for a rejection).
+    pub detail: Option<String>,
+}
+
+impl Check {
+    fn pass(metrics: Option<Metrics>) -> Check {
+        Check {
+            metrics,
+            rejection: None,
+            detail: None,
+        }
+    }
+
+    fn fail(rejection: Rejection, detail: String, metrics: Option<Metrics>) -> Check {
+        Check {
+            metrics,
+            rejection: Some(rejection),
+            detail: Some(detail),
+        }
+    }
+
+    /// True when all three limits hold.
+    pub fn passed(&self) -> bool {
+        self.rejection.is_none()
+    }
+}
+
+/// Everything a PV evaluation needs besides the PV and the pose, prepared once per run.
+#[derive(Debug, Clone)]
+pub struct Evaluator<'a> {
+    setup: &'a Setup,
+    obstacles: Obstacles,
+    rod: RodParameters,
+    solver: SolverOptions,
+    method: ConnectMethod,
+}
+
+impl<'a> Evaluator<'a> {
+    /// Prepares the robot's obstacles and the cable model of `setup`.
+    pub fn new(setup: &'a Setup, method: ConnectMethod) -> Result<Evaluator<'a>, ContactError> {
+        Ok(Evaluator {
+            setup,
+            obstacles: Obstacles::from_robot(&setup.robot)?,
+            rod: RodParameters::new(&setup.cable, setup.gravity_m_s2),
+            solver: ATTACHMENT_SOLVER,
+            method,
+        })
+    }
+
+    /// The setup this evaluator checks against.
+    pub fn setup(&self) -> &'a Setup {
+        self.setup
+    }
+
+    /// Checks PV `pv` of segment `m` at `pose`. A zero-length PV (coincident guides) has no
+    /// cable and passes.
+    pub fn check(&self, m: usize, pv: &Pv, pose: &TestPose) -> Check {
+        if pv.sub_segments == 0 {
+            return Check::pass(None);
+        }
+        let (a, b) = self.setup.segment_guides(m);
+        let start = self.setup.guide_world_pose(&pose.link_poses, a, pv.start);
+        let end = self.setup.guide_world_pose(&pose.link_poses, b, pv.end);
+        let nodes = match self.equilibrium(&start, &end, pv.sub_segments) {
+            Ok(nodes) => nodes,
+            Err(check) => return check,
+        };
+        self.judge(m, &start, &end, &nodes, pv.sub_segments, pose)
+    }
+
+    /// Equilibrium nodes between two guide poses, or the failed check.
+    fn equilibrium(
+        &self,
+        start: &Pose,
+        end: &Pose,
+        sub_segments: usize,
+    ) -> Result<Vec<Point3<f64>>, Check> {
+        match self.method {
+            ConnectMethod::Hermite => self.quasi_static(start, end, sub_segments),
+            ConnectMethod::Linear => self.relaxed(start, end, sub_segments),
+        }
+    }
+
+    fn quasi_static(
+        &self,
+        start: &Pose,
+        end: &Pose,
+        sub_segments: usize,
+    ) -> Result<Vec<Point3<f64>>, Check> {
+        let pitch = self.setup.cable.sub_segment_pitch_m;
+        let sag = sag_direction(&self.setup.gravity_m_s2);
+        let connected = connect(start, end, sub_segments, pitch, &sag).map_err(connect_failure)?;
+        let solved = solve_segment(
+            &self.rod,
+            start,
+            &FarEnd::Clamped(*end),
+            &connected.nodes,
+            Some(connected.twist_correction_rad),
+            &self.solver,
+        )
+        .map_err(|e| Check::fail(Rejection::Diverged, e.to_string(), None))?;
+        Ok(solved.nodes)
+    }
+
+    fn relaxed(
+        &self,
+        start: &Pose,
+        end: &Pose,
+        sub_segments: usize,
+    ) -> Result<Vec<Point3<f64>>, Check> {
+        let cable = &self.setup.cable;
+        let settings = DynamicsSettings::relaxation(self.setup.gravity_m_s2);
+        if let Some(check) = too_short(start, end, sub_segments, cable.sub_segment_pitch_m) {
+            return Err(check);
+        }
+        let diverged = |e: crate::dynamics::DynamicsError| {
+            Check::fail(Rejection::Diverged, e.to_string(), None)
+        };
+        let linear = connect_linear(
+            cable,
+            start,
+            end,
+            sub_segments,
+            &settings,
+            &LinearConnect::default(),
+        )
+        .map_err(diverged)?;
+        let shape = SegmentShape {
+            start_guide: *start,
+            end_guide: *end,
+            nodes: &linear.nodes,
+            frames: &linear.frames,
+        };
+        let relaxed =
+            relax(cable, &shape, &settings, &ConvergenceWindow::default()).map_err(diverged)?;
+        Ok(relaxed.nodes)
+    }
+
+    /// The three metrics of an equilibrium shape against the thresholds.
+    fn judge(
+        &self,
+        m: usize,
+        start: &Pose,
+        end: &Pose,
+        nodes: &[Point3<f64>],
+        sub_segments: usize,
+        pose: &TestPose,
+    ) -> Check {
+        let setup = self.setup;
+        let pitch = setup.cable.sub_segment_pitch_m;
+        let (a, b) = setup.segment_guides(m);
+        let zones = [
+            clamp_zone(GuideEnd::Start, setup.guides[a].link, setup),
+            clamp_zone(GuideEnd::End, setup.guides[b].link, setup),
+        ];
+        let radius = 0.5 * setup.cable.diameter_m;
+        let clearance =
+            match min_clearance(&self.obstacles, &pose.link_poses, nodes, radius, &zones) {
+                Ok(clearance) => clearance,
+                Err(e) => return Check::fail(Rejection::Diverged, e.to_string(), None),
+            };
+        let bend: BendRadius = min_bend_radius(
+            nodes,
+            &start.rotation.transform_vector(&Vector3::z()),
+            &end.rotation.transform_vector(&Vector3::z()),
+            pitch,
+        );
+        let metrics = Metrics {
+            clearance_m: clearance.map(|c| c.clearance_m),
+            clearance_link: clearance.map(|c| c.link),
+            clearance_sub_segment: clearance.map(|c| c.sub_segment),
+            stretch: stretch(nodes, sub_segments as f64 * pitch),
+            min_bend_radius_m: bend.radius_m,
+            min_bend_node: bend.node,
+        };
+        verdict(setup, metrics)
+    }
+}
+
+/// The first limit `metrics` violates, in the order contact, stretch, bend.
+fn verdict(setup: &Setup, metrics: Metrics) -> Check {
+    let limits = &setup.thresholds;
+    if let (Some(clearance), Some(link)) = (metrics.clearance_m, metrics.clearance_link)
+        && clearance < limits.contact_clearance_m
+    {
+        let detail = format!(
+            "clearance {:.1} mm to {} (limit {:.1} mm)",
+            clearance * 1e3,
+            setup.robot.links[link].name,
+            limits.contact_clearance_m * 1e3
+        );
+        return Check::fail(Rejection::Contact, detail, Some(metrics));
+    }
+    if metrics.stretch > limits.stretch {
+        let detail = format!("stretch {:.4} (limit {})", metrics.stretch, limits.stretch);
+        return Check::fail(Rejection::Stretch, detail, Some(metrics));
+    }
+    if metrics.min_bend_radius_m < limits.min_bend_radius_m {
+        let detail = format!(
+            "bend radius {:.1} mm at node {} (limit {:.1} mm)",
+            metrics.min_bend_radius_m * 1e3,
+            metrics.min_bend_node,
+            limits.min_bend_radius_m * 1e3
+        );
+        return Check::fail(Rejection::Bend, detail, Some(metrics));
+    }
+    Check::pass(Some(metrics))
+}
+
+fn clamp_zone(end: GuideEnd, link: usize, setup: &Setup) -> ClampZone {
+    ClampZone {
+        end,
+        link,
+        length_m: setup.thresholds.clamp_zone_m,
+    }
+}
+
+/// Gravity's direction, or straight down for zero gravity (the sag only picks which way a
+/// slack cable bows in the start shape).
+fn sag_direction(gravity: &Vector3<f64>) -> Unit<Vector3<f64>> {
+    Unit::try_new(*gravity, 0.0).unwrap_or(-Vector3::z_axis())
+}
+
+fn connect_failure(error: ConnectError) -> Check {
+    match error {
+        ConnectError::TooShort { .. } => Check::fail(Rejection::TooShort, error.to_string(), None),
+        _ => Check::fail(Rejection::Diverged, error.to_string(), None),
+    }
+}
+
+/// The too-short check of [`connect`] for the linear method, which has no such test.
+fn too_short(start: &Pose, end: &Pose, sub_segments: usize, pitch: f64) -> Option<Check> {
+    let distance = (end.translation.vector - start.translation.vector).norm();
+    let natural = sub_segments as f64 * pitch;
+    (distance >= natural).then(|| {
+        connect_failure(ConnectError::TooShort {
+            distance_m: distance,
+            natural_length_m: natural,
+            required_stretch: distance / natural,
+        })
+    })
+}

@@ -1,0 +1,202 @@
+//! The attachment test (DESIGN §3.5): which PVs of each segment hold all three stress limits
+//! at every pose that matters, and which of those are robust to a length error.
+//!
+//! Per segment `C_m`, in the paper's notation:
+//!
+//! - **D0**: the admissible PVs (S, P_m, P_(m+1)) of the setup ([`Setup::is_admissible`]).
+//! - **D'0** (adjacency): for an inter-link segment, the PVs of D0 whose guide shared with an
+//!   intra-link neighbour is used by some PV in that neighbour's D2. Intra-link segments are
+//!   tested first, so their D'0 is their D0.
+//! - **D1**: the PVs of D'0 whose static equilibrium keeps the clearance, stretch and bend
+//!   radius limits at every test pose ([`SegmentPoses`]). A zero-length PV (one clamp) has no
+//!   cable and passes.
+//! - **D2** (robustness): the PVs of D1 whose guides, with every length `S ± k·ΔS`,
+//!   `k = 1…R`, pass the same test. Lengths beyond the candidate range are evaluated for this
+//!   purpose (they are not candidates themselves), so a PV at the end of its range is judged
+//!   by physics, not by the range. A length below one sub-segment cannot be built: a PV that
+//!   would need one is not robust. Zero-length PVs are robust (there is no cable to cut
+//!   wrong).
+//!
+//! Every (guides, length) pair is evaluated once, in parallel with rayon; results are
+//! collected in a fixed order, so the sets do not depend on the thread count. A failed
+//! solve rejects that PV (counted as "solver failed") and the run goes on.
+
+mod evaluate;
+mod poses;
+
+pub use evaluate::{Check, ConnectMethod, Evaluator, Metrics, Rejection};
+pub use poses::{SegmentPoses, TestPose};
+
+use crate::path::Pv;
+use crate::setup::Setup;
+use rayon::prelude::*;
+use serde::Serialize;
+use std::collections::{BTreeMap, BTreeSet};
+use std::time::Instant;
+
+/// The sets of one segment after the attachment test.
+#[derive(Debug, Clone, Serialize)]
+pub struct SegmentSets {
+    /// |D0|: admissible PVs.
+    pub d0: usize,
+    /// |D'0|: PVs left after adjacency pruning.
+    pub d0_pruned: usize,
+    /// |D1|: PVs that pass at every test pose.
+    pub d1: usize,
+    /// D2: robust PVs, sorted.
+    pub d2: Vec<Pv>,
+    /// PVs of D'0 rejected, by the first limit they violated (at the first pose that failed).
+    pub rejections: BTreeMap<Rejection, usize>,
+    /// (guides, length) combinations evaluated, robustness lengths included.
+    pub evaluations: usize,
+    /// Wall time of this segment's test (s).
+    pub time_s: f64,
+}
+
+/// Runs the attachment test on every segment: intra-link segments first, then the inter-link
+/// ones pruned by their intra-link neighbours' D2.
+pub fn attachment_test(evaluator: &Evaluator<'_>, poses: &SegmentPoses) -> Vec<SegmentSets> {
+    let setup = evaluator.setup();
+    let count = setup.segment_count();
+    let mut sets: Vec<Option<SegmentSets>> = vec![None; count];
+    for m in (0..count).filter(|&m| setup.is_intra_link(m)) {
+        let candidates = admissible_pvs(setup, m);
+        sets[m] = Some(test_segment(evaluator, m, &poses.poses[m], candidates));
+    }
+    for m in (0..count).filter(|&m| !setup.is_intra_link(m)) {
+        let allowed_start = neighbour_configurations(&sets, m.checked_sub(1), |pv| pv.end);
+        let allowed_end = neighbour_configurations(&sets, Some(m + 1), |pv| pv.start);
+        let candidates: Vec<Pv> = admissible_pvs(setup, m)
+            .into_iter()
+            .filter(|pv| allowed_start.as_ref().is_none_or(|a| a.contains(&pv.start)))
+            .filter(|pv| allowed_end.as_ref().is_none_or(|a| a.contains(&pv.end)))
+            .collect();
+        let mut tested = test_segment(evaluator, m, &poses.poses[m], candidates);
+        tested.d0 = setup.admissible_pv_count(m);
+        sets[m] = Some(tested);
+    }
+    sets.into_iter().flatten().collect()
+}
+
+/// The configurations of the shared guide used by the D2 of neighbour `n`, when `n` is an
+/// intra-link segment already tested; `None` (no pruning) otherwise.
+fn neighbour_configurations(
+    sets: &[Option<SegmentSets>],
+    n: Option<usize>,
+    shared: impl Fn(&Pv) -> usize,
+) -> Option<BTreeSet<usize>> {
+    let tested = sets.get(n?)?.as_ref()?;
+    Some(tested.d2.iter().map(shared).collect())
+}
+
+/// D0 of segment `m`: every admissible PV, sorted.
+pub fn admissible_pvs(setup: &Setup, m: usize) -> Vec<Pv> {
+    let (a, b) = setup.segment_guides(m);
+    let (na, nb) = (
+        setup.guides[a].configurations.len(),
+        setup.guides[b].configurations.len(),
+    );
+    let mut pvs = Vec::new();
+    for &s in &setup.segments[m].lengths {
+        for i in 0..na {
+            for j in 0..nb {
+                if setup.is_admissible(m, s, i, j) {
+                    pvs.push(Pv {
+                        sub_segments: s,
+                        start: i,
+                        end: j,
+                    });
+                }
+            }
+        }
+    }
+    pvs
+}
+
+/// D1 and D2 of segment `m` from its candidates (D'0).
+fn test_segment(
+    evaluator: &Evaluator<'_>,
+    m: usize,
+    poses: &[TestPose],
+    candidates: Vec<Pv>,
+) -> SegmentSets {
+    let timer = Instant::now();
+    let robustness = &evaluator.setup().robustness;
+    let needed = needed_pvs(&candidates, robustness.delta_s, robustness.range);
+    let results: Vec<Option<Rejection>> = needed
+        .par_iter()
+        .map(|pv| first_rejection(evaluator, m, pv, poses))
+        .collect();
+    let verdicts: BTreeMap<Pv, Option<Rejection>> = needed.into_iter().zip(results).collect();
+    let passes = |pv: &Pv| matches!(verdicts.get(pv), Some(None));
+    let mut rejections = BTreeMap::new();
+    for pv in &candidates {
+        if let Some(Some(rejection)) = verdicts.get(pv) {
+            *rejections.entry(*rejection).or_insert(0) += 1;
+        }
+    }
+    let d1: Vec<&Pv> = candidates.iter().filter(|pv| passes(pv)).collect();
+    let mut d2: Vec<Pv> = d1
+        .iter()
+        .filter(|pv| {
+            robust_neighbours(pv, robustness.delta_s, robustness.range)
+                .is_some_and(|neighbours| neighbours.iter().all(&passes))
+        })
+        .map(|pv| **pv)
+        .collect();
+    d2.sort();
+    SegmentSets {
+        d0: candidates.len(),
+        d0_pruned: candidates.len(),
+        d1: d1.len(),
+        d2,
+        rejections,
+        evaluations: verdicts.len(),
+        time_s: timer.elapsed().as_secs_f64(),
+    }
+}
+
+/// The first limit `pv` violates over `poses` (stopping there), `None` if it passes them all.
+fn first_rejection(
+    evaluator: &Evaluator<'_>,
+    m: usize,
+    pv: &Pv,
+    poses: &[TestPose],
+) -> Option<Rejection> {
+    poses
+        .iter()
+        .find_map(|pose| evaluator.check(m, pv, pose).rejection)
+}
+
+/// The PVs `S ± k·ΔS`, `k = 1…R`, with the same guides; `None` when one of them would be
+/// shorter than one sub-segment. Empty for a zero-length PV.
+pub fn robust_neighbours(pv: &Pv, delta_s: usize, range: usize) -> Option<Vec<Pv>> {
+    if pv.sub_segments == 0 {
+        return Some(Vec::new());
+    }
+    let mut neighbours = Vec::with_capacity(2 * range);
+    for k in 1..=range {
+        let step = k * delta_s;
+        if pv.sub_segments <= step {
+            return None;
+        }
+        for s in [pv.sub_segments - step, pv.sub_segments + step] {
+            neighbours.push(Pv {
+                sub_segments: s,
+                ..*pv
+            });
+        }
+    }
+    Some(neighbours)
+}
+
+/// Every PV to evaluate: the candidates and their robustness neighbours, each once, sorted.
+fn needed_pvs(candidates: &[Pv], delta_s: usize, range: usize) -> Vec<Pv> {
+    let mut needed: BTreeSet<Pv> = candidates.iter().copied().collect();
+    for pv in candidates {
+        if let Some(neighbours) = robust_neighbours(pv, delta_s, range) {
+            needed.extend(neighbours);
+        }
+    }
+    needed.into_iter().collect()
+}
