@@ -6,6 +6,7 @@
 //!
 //! The modules follow the pipeline of the design brief:
 //!
+//! - [`atomic_file`]: replacing a file so that readers never see a torn one.
 //! - [`pose`]: rigid poses and the URDF roll–pitch–yaw convention shared by every module.
 //! - [`robot`]: URDF loading, forward kinematics and collision geometry of the arm.
 //! - [`cable`]: the physical specification of a cable (stiffness, mass, bend radius).
@@ -16,9 +17,11 @@
 //! - [`stress`]: the stress metrics evaluated on a cable shape (contact, stretch, bend radius).
 //! - [`setup`]: the setup file — robot, cable, guide catalogue, length candidates, limits.
 //! - [`motion`]: sampled robot motions, their generation from waypoints, critical poses.
+//! - [`motion_test`]: the whole cable simulated along the motion; worst contact, stretch and bend radius.
 //! - [`path`]: parameter vectors (PVs) and whole cable paths (ECPVs).
 //! - [`chain`]: the shortest chain of robust PVs through the guides' configurations, and the
 //!   next-shortest ones.
+//! - [`solve`]: the whole pipeline from a setup and a motion to the optimal cable path d*.
 //! - [`attachment`]: the attachment test — which PVs hold the stress limits at the critical
 //!   poses (D1) and are robust to a length error (D2).
 //!
@@ -44,15 +47,18 @@
 //! All quantities are SI (metres, radians, kilograms, seconds) unless a name carries its unit
 //! (`length_mm`, `angle_deg`); conversion happens only at file and command-line boundaries.
 
+pub mod atomic_file;
 pub mod attachment;
 pub mod cable;
 pub mod chain;
 pub mod dynamics;
 pub mod geometry;
 pub mod motion;
+pub mod motion_test;
 pub mod path;
 pub mod pose;
 pub mod robot;
 pub mod setup;
+pub mod solve;
 pub mod statics;
 pub mod stress;

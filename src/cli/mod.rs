@@ -5,6 +5,7 @@ mod fk;
 mod motion;
 mod robot_info;
 mod segment;
+mod solve;
 
 use clap::{Parser, Subcommand};
 
@@ -29,6 +30,10 @@ enum Command {
     Segment(Box<segment::Args>),
     /// Generate a sampled motion CSV from a waypoint file (trapezoidal or quintic moves).
     Motion(motion::Args),
+    /// The poses of a motion at which each segment of a setup is tested.
+    CriticalPoses(solve::CriticalArgs),
+    /// The optimal cable path for a setup and a motion.
+    Solve(Box<solve::Args>),
 }
 
 /// Why a command failed, and the exit code that says so.
@@ -64,6 +69,8 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Fk(args) => fk::run(args),
         Command::Segment(args) => segment::run(*args),
         Command::Motion(args) => motion::run(args),
+        Command::CriticalPoses(args) => solve::run_critical(args),
+        Command::Solve(args) => solve::run(*args),
     }
 }
 

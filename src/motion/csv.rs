@@ -1,8 +1,8 @@
 //! Motion CSV: reading with located errors, and writing (degrees / millimetres, atomically).
 
-use super::atomic::write_atomically;
 use super::units::ColumnUnit;
 use super::{Motion, MotionError};
+use crate::atomic_file::write_atomically;
 use crate::robot::Robot;
 use std::fmt::Write as _;
 use std::path::Path;

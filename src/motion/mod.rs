@@ -78,7 +78,6 @@
 //! interpolated (the generator samples every waypoint exactly, where point-to-point moves
 //! have their extremes).
 
-mod atomic;
 mod critical;
 mod csv;
 mod error;

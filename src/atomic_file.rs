@@ -11,7 +11,7 @@ static COUNTER: AtomicUsize = AtomicUsize::new(0);
 /// Writes `bytes` to `path` through a temporary file in the same folder, flushed to disk
 /// (`fsync`) and then renamed over `path`. On failure the temporary file is removed and
 /// `path` is left as it was.
-pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> io::Result<()> {
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> io::Result<()> {
     let name = path
         .file_name()
         .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "not a file path"))?;

@@ -1,0 +1,167 @@
+//! `cable-dict solve` and `cable-dict critical-poses`: a setup and a motion → the optimal
+//! cable path, or the poses each segment is tested at.
+
+use super::{Failure, emit, print_json};
+use cable_dict::atomic_file::write_atomically;
+use cable_dict::attachment::{ConnectMethod, SegmentPoses};
+use cable_dict::motion::Motion;
+use cable_dict::setup::Setup;
+use cable_dict::solve::{SolveError, SolveOptions, Status, solve};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The setup file (robot, cable, guide candidates, segment lengths, limits; see
+    /// docs/setup-format.md).
+    #[arg(long, value_name = "SETUP.toml")]
+    setup: PathBuf,
+    /// The motion CSV (see motions/README.md).
+    motion: PathBuf,
+    /// Print the result as JSON instead of the summary.
+    #[arg(long)]
+    json: bool,
+    /// Also write the result JSON to this file (replaced atomically).
+    #[arg(short, long, value_name = "RESULT.json")]
+    output: Option<PathBuf>,
+    /// 1: one guide per link (the paper's method 1: intra-link segments only at S = 0);
+    /// 2: as many as the setup declares (method 2).
+    #[arg(long, value_name = "1|2", value_parser = clap::value_parser!(u8).range(1..=2))]
+    max_guides_per_link: Option<u8>,
+    /// How the attachment test shapes a segment: `hermite` (Hermite curve + quasi-static
+    /// solver) or `linear` (the paper's previous method: a straight cable dragged into place
+    /// and relaxed in rapier3d; very slow).
+    #[arg(long, value_enum, default_value_t = Connect::Hermite)]
+    connect: Connect,
+    /// Chains tried in the motion test, shortest first, before giving up.
+    #[arg(long, value_name = "N", default_value_t = 10)]
+    k_best: usize,
+    /// Skip the motion test: report the shortest chain of robust PVs (d̂).
+    #[arg(long)]
+    no_motion_test: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, clap::ValueEnum)]
+enum Connect {
+    /// Hermite curve + rotation-minimizing frames, then the quasi-static solver.
+    Hermite,
+    /// A straight cable dragged into the end guide and relaxed by the physics engine.
+    Linear,
+}
+
+pub fn run(args: Args) -> Result<(), Failure> {
+    let (setup, motion) = load(&args.setup, &args.motion)?;
+    let options = SolveOptions {
+        method: match args.connect {
+            Connect::Hermite => ConnectMethod::Hermite,
+            Connect::Linear => ConnectMethod::Linear,
+        },
+        max_guides_per_link: args.max_guides_per_link.map(usize::from),
+        k_best: args.k_best,
+        motion_test: !args.no_motion_test,
+    };
+    let mut report = solve(&setup, &motion, &options).map_err(|e| match e {
+        SolveError::Options(_) | SolveError::Setup(_) | SolveError::Motion(_) => Failure::input(e),
+        _ => Failure::unsolved(e),
+    })?;
+    report.inputs.motion_file = Some(args.motion.display().to_string());
+    if let Some(path) = &args.output {
+        let text = serde_json::to_string_pretty(&report)
+            .map_err(|e| Failure::unsolved(anyhow::anyhow!("cannot encode the result: {e}")))?;
+        write_atomically(path, (text + "\n").as_bytes())
+            .map_err(|e| Failure::input(anyhow::anyhow!("cannot write {}: {e}", path.display())))?;
+    }
+    if args.json {
+        print_json(&report)?;
+    } else {
+        emit(&report.to_string())?;
+    }
+    match report.status {
+        Status::Solved | Status::Untested => Ok(()),
+        _ => Err(Failure::unsolved(anyhow::anyhow!(
+            "no cable path: {}",
+            report.explanation
+        ))),
+    }
+}
+
+/// Reads the setup and the motion for its robot.
+fn load(setup: &Path, motion: &Path) -> Result<(Setup, Motion), Failure> {
+    let setup = Setup::from_file(setup).map_err(Failure::input)?;
+    let motion = Motion::from_csv_file(&setup.robot, motion).map_err(Failure::input)?;
+    Ok((setup, motion))
+}
+
+#[derive(Debug, clap::Args)]
+pub struct CriticalArgs {
+    /// The setup file.
+    setup: PathBuf,
+    /// The motion CSV.
+    motion: PathBuf,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(serde::Serialize)]
+struct SegmentPosesJson {
+    segment: String,
+    guides: [String; 2],
+    links: [String; 2],
+    intra_link: bool,
+    traversed_joints: Vec<String>,
+    poses: Vec<cable_dict::solve::PoseSummary>,
+}
+
+pub fn run_critical(args: CriticalArgs) -> Result<(), Failure> {
+    let (setup, motion) = load(&args.setup, &args.motion)?;
+    let poses = SegmentPoses::new(&setup, &motion).map_err(Failure::input)?;
+    let segments: Vec<SegmentPosesJson> = (0..setup.segment_count())
+        .map(|m| {
+            let (a, b) = setup.segment_guides(m);
+            let link = |g: usize| setup.robot.links[setup.guides[g].link].name.clone();
+            SegmentPosesJson {
+                segment: format!("C{}", m + 1),
+                guides: [setup.guides[a].name.clone(), setup.guides[b].name.clone()],
+                links: [link(a), link(b)],
+                intra_link: setup.is_intra_link(m),
+                traversed_joints: poses.traversed[m]
+                    .iter()
+                    .map(|&j| motion.joint_names()[j].clone())
+                    .collect(),
+                poses: poses.poses[m]
+                    .iter()
+                    .map(|p| cable_dict::solve::pose_summary(p, &motion))
+                    .collect(),
+            }
+        })
+        .collect();
+    if args.json {
+        return print_json(&segments);
+    }
+    let mut text = String::new();
+    for s in &segments {
+        let kind = if s.intra_link {
+            "intra-link: tested at the first pose and its neighbours' critical poses".to_string()
+        } else {
+            format!("traverses {}", s.traversed_joints.join(", "))
+        };
+        let _ = writeln!(
+            text,
+            "{} {}→{} ({}→{}), {kind}",
+            s.segment, s.guides[0], s.guides[1], s.links[0], s.links[1]
+        );
+        for p in &s.poses {
+            let joints: Vec<String> = p.joints.iter().map(|v| format!("{v:.1}")).collect();
+            let _ = writeln!(
+                text,
+                "  t = {:>7.3} s  sample {:>5}  [{}]  {}",
+                p.time_s,
+                p.sample,
+                joints.join(", "),
+                p.reason
+            );
+        }
+    }
+    emit(&text)
+}

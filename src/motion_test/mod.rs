@@ -1,0 +1,119 @@
+//! The *motion test* (DESIGN §3.6): the whole cable of a candidate path — every segment,
+//! clamped at every guide — simulated dynamically in rapier3d while the guides and the
+//! robot's links follow the motion at its real timing; the worst contact, stretch and bend
+//! radius over time decide whether the candidate passes.
+//!
+//! What [`run`] does:
+//!
+//! 1. **Cable.** Segments with S = 0 are dropped: their two guides coincide (one clamp), so
+//!    the segments before and after share it. Every other segment is simulated with its
+//!    own sub-segments; results always name the setup's segment index (C1 = 0).
+//! 2. **Initial shape** at the motion's first sample: the guides' world poses, per segment
+//!    the connected geometry (bowing towards gravity) and then the quasi-static equilibrium
+//!    ([`solve_cable`](crate::statics::solve_cable)), so the cable starts at rest. Guides
+//!    farther apart than a segment's length, no connected geometry or no equilibrium make a
+//!    *failed candidate* (a report with the reason), not an error.
+//! 3. **Stepping** with [`MotionTestOptions::settings`] (default
+//!    [`DynamicsSettings::motion`](crate::dynamics::DynamicsSettings::motion): steps of
+//!    1/240 s with 16 substeps). Step `k` ends at `t0 + k·dt` on the motion's time axis; the
+//!    guides' and links' kinematic targets for it are the poses at that instant, joints
+//!    interpolated linearly between samples ([`Motion::joints_at`]). The motion part takes
+//!    `⌈duration / dt⌉` steps; then [`MotionTestOptions::settle_tail_s`] (default
+//!    [`DEFAULT_SETTLE_TAIL_S`] = 0.5 s) holds the last pose so that the cable's overshoot
+//!    after the final stop is seen.
+//! 4. **Metrics**, for the initial equilibrium and after every step, per segment:
+//!    - *contact*: the exact signed clearance to every link collider
+//!      ([`min_clearance`](crate::stress::min_clearance), f64, capsules of the cable radius),
+//!      excluding `thresholds.clamp_zone_m` of cable at each guide against the guide's own
+//!      link (and the link that one is fixed to); violated when below
+//!      `thresholds.contact_clearance_m`;
+//!    - *contact force*: rapier's contact force on each sub-segment outside the clamp zones
+//!      (the largest per step is reported); by default
+//!      ([`MotionTestOptions::contact_force_is_violation`]) any such force is a contact
+//!      violation too, since rapier holds a pressed cable at about zero clearance;
+//!    - *stretch*: centreline length / natural length; violated above `thresholds.stretch`;
+//!    - *bend radius*: the smallest over the joints, guide axes included; violated below
+//!      `thresholds.min_bend_radius_m`.
+//! 5. **Report** ([`MotionTestReport`]): pass/fail, the worst value of each metric with its
+//!    time, segment and place, the first violation, optionally the series, the final shape,
+//!    and the cost. A simulation that leaves its sanity bounds
+//!    ([`DynamicsError::BlowUp`](crate::dynamics::DynamicsError::BlowUp)) is a failed
+//!    candidate "simulation diverged at t = … (…)". Only input that does not fit the setup
+//!    is an [`Err`]: see [`MotionTestError`].
+//!
+//! The run is deterministic: single-threaded rapier, a fixed order of every operation, so
+//! the same inputs give the same report bits (except `wall_time_s`).
+//!
+//! With [`MotionTestOptions::stop_at_first_violation`] the run ends at the first step with a
+//! violation — enough to reject a candidate while trying the next-shortest ones; the winner
+//! is worth a full run for its report.
+
+mod clearance;
+mod error;
+mod initial;
+mod options;
+mod plan;
+mod report;
+mod simulate;
+mod tracker;
+
+pub use error::MotionTestError;
+pub use options::{DEFAULT_SETTLE_TAIL_S, MotionTestOptions};
+pub use report::{
+    Constraint, Failure, FailureCause, MotionTestReport, Place, SegmentNodes, SeriesPoint,
+    Violation, Worst,
+};
+
+use crate::motion::Motion;
+use crate::path::CablePath;
+use crate::setup::Setup;
+use crate::stress::Obstacles;
+use clearance::ClearanceQuery;
+use plan::Plan;
+use simulate::Context;
+use std::time::Instant;
+use tracker::{RunFacts, Tracker};
+
+/// Runs the motion test of `path` (lengths and guide configurations of `setup`) along
+/// `motion` (see the module documentation).
+///
+/// `Ok` with `passed == false` for a candidate that fails (a limit violated, a segment too
+/// short at the first pose, no initial shape, a diverging simulation). `Err` for input that
+/// does not fit: path vectors of the wrong length, a configuration index out of range, S = 0
+/// between guides that do not coincide (or S > 0 between guides that do), no segment with
+/// S > 0, a motion for other joints, invalid options, or robot geometry the simulation or the
+/// clearance query cannot use.
+pub fn run(
+    setup: &Setup,
+    path: &CablePath,
+    motion: &Motion,
+    options: &MotionTestOptions,
+) -> Result<MotionTestReport, MotionTestError> {
+    let clock = Instant::now();
+    options.validate(setup)?;
+    plan::check_motion(setup, motion)?;
+    let plan = Plan::new(setup, path)?;
+    let obstacles = Obstacles::from_robot(&setup.robot).map_err(MotionTestError::Obstacles)?;
+    let zones = plan.clamp_zones(setup, setup.thresholds.clamp_zone_m);
+    let context = Context {
+        setup,
+        plan,
+        motion,
+        options,
+        clearance: ClearanceQuery::new(obstacles, 0.5 * setup.cable.diameter_m, zones),
+    };
+    let mut tracker = Tracker::new(
+        setup,
+        options.record_series,
+        options.contact_force_is_violation,
+    );
+    let ended = context.simulate(&mut tracker)?;
+    let dt = options.settings.time_step_s;
+    let facts = RunFacts {
+        motion_duration_s: motion.duration_s(),
+        steps: ended.steps,
+        simulated_s: ended.steps as f64 * dt,
+        wall_time_s: clock.elapsed().as_secs_f64(),
+    };
+    Ok(tracker.into_report(ended.failure, facts))
+}

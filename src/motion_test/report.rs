@@ -1,0 +1,279 @@
+//! The result of a motion test: pass/fail, the worst value of every metric with when and
+//! where it happened, the first violation, and optionally the time series.
+//!
+//! Every type serializes with serde (SI units; a name without a unit is dimensionless or
+//! carries its unit in a `unit` field). Non-finite values (the infinite bend radius of a
+//! straight cable) serialize as JSON `null`.
+
+use serde::Serialize;
+use std::fmt;
+
+/// The outcome of [`run`](super::run).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MotionTestReport {
+    /// True when the cable was simulated through the whole motion and the settle tail
+    /// without violating any limit.
+    pub passed: bool,
+    /// Why the candidate failed; `None` exactly when `passed`.
+    pub failure: Option<Failure>,
+    /// The first limit violation (earliest time; within one step, lowest segment, then
+    /// contact, contact force, stretch, bend radius).
+    pub first_violation: Option<Violation>,
+    /// Lowest signed clearance to the robot (m; < 0 is a penetration depth), clamp zones
+    /// excluded; `None` when nothing was checked.
+    pub worst_clearance: Option<Worst>,
+    /// Highest stretch (centreline length / natural length).
+    pub worst_stretch: Option<Worst>,
+    /// Smallest bend radius (m).
+    pub worst_bend: Option<Worst>,
+    /// Largest contact force on one sub-segment outside the clamp zones in the simulation
+    /// (N); `None` when the cable never touched the robot there.
+    pub worst_contact_force: Option<Worst>,
+    /// Largest gap between the anchors of two joined bodies over the run (m): the solver's
+    /// constraint error, ≈ 0.1 mm at the default settings.
+    pub max_joint_gap_m: f64,
+    /// One point per measured instant (the initial shape, then every step) when
+    /// `record_series` is set; empty otherwise.
+    pub series: Vec<SeriesPoint>,
+    /// The simulated shape at the last step taken, per simulated segment (empty when the
+    /// candidate failed before the simulation started).
+    pub final_shape: Vec<SegmentNodes>,
+    /// Duration of the motion (s).
+    pub motion_duration_s: f64,
+    /// Simulation steps taken.
+    pub steps: usize,
+    /// Simulated time: steps × time step (s).
+    pub simulated_s: f64,
+    /// Wall-clock time of the whole test, setup of the simulation included (s).
+    pub wall_time_s: f64,
+}
+
+/// Why a candidate failed the motion test.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Failure {
+    /// The kind of failure.
+    pub cause: FailureCause,
+    /// For people: what, when, where.
+    pub reason: String,
+}
+
+/// The kinds of failure of a candidate (not errors of the run: the caller goes on with the
+/// next candidate).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FailureCause {
+    /// A limit was violated (see `first_violation`).
+    Violation,
+    /// At the motion's first pose a segment's guides are farther apart than its length.
+    TooShort,
+    /// No initial shape: no connected geometry, no static equilibrium, or a shape the
+    /// simulation refused.
+    NoInitialShape,
+    /// The simulation left its sanity bounds (whether or not a limit was violated before).
+    Diverged,
+}
+
+/// The three stress limits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Constraint {
+    /// Clearance to the robot below `contact_clearance_m`.
+    Contact,
+    /// A contact force in the simulation outside the clamp zones (with
+    /// `contact_force_is_violation`; threshold 0 N).
+    ContactForce,
+    /// Stretch above the `stretch` limit.
+    Stretch,
+    /// Bend radius below `min_bend_radius_m`.
+    BendRadius,
+}
+
+/// The worst value of one metric over the run, and when and where it happened.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Worst {
+    /// The value, in `unit`.
+    pub value: f64,
+    /// `"m"`, `"N"` or `"1"` (dimensionless).
+    pub unit: &'static str,
+    /// Time on the motion's time axis (s).
+    pub time_s: f64,
+    /// Index into the setup's segments (C1 = 0).
+    pub segment: usize,
+    /// Where on the segment.
+    pub place: Place,
+}
+
+/// Where on a segment a value was found; fields that do not apply are `None`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Place {
+    /// Sub-segment `k` (node `k` → node `k + 1`, 0 at the start guide).
+    pub sub_segment: Option<usize>,
+    /// Node (joint) index, 0 at the start guide, `S` at the end guide.
+    pub node: Option<usize>,
+    /// The robot link involved (for a contact force, known only when it is the segment's
+    /// most loaded sub-segment overall).
+    pub link: Option<String>,
+    /// The point in the world frame (m): on the cable surface for a clearance, the node for
+    /// a bend, the sub-segment's midpoint for a contact force.
+    pub position_m: Option<[f64; 3]>,
+}
+
+/// A limit violated at one instant.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Violation {
+    /// Which limit.
+    pub constraint: Constraint,
+    /// The value found, in `unit`.
+    pub value: f64,
+    /// The limit, in `unit`.
+    pub threshold: f64,
+    /// `"m"`, `"N"` or `"1"` (dimensionless).
+    pub unit: &'static str,
+    /// Time on the motion's time axis (s).
+    pub time_s: f64,
+    /// Index into the setup's segments (C1 = 0).
+    pub segment: usize,
+    /// Where on the segment.
+    pub place: Place,
+}
+
+/// The metrics of the whole cable at one instant.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SeriesPoint {
+    /// Time on the motion's time axis (s).
+    pub time_s: f64,
+    /// Lowest clearance over all segments (m); `None` when nothing was checked.
+    pub min_clearance_m: Option<f64>,
+    /// Highest stretch over all segments.
+    pub max_stretch: f64,
+    /// Smallest bend radius over all segments (m).
+    pub min_bend_radius_m: f64,
+    /// Largest contact force on one sub-segment outside the clamp zones during the step (N);
+    /// 0 for the initial shape.
+    pub max_contact_force_n: f64,
+}
+
+/// The nodes of one simulated segment.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SegmentNodes {
+    /// Index into the setup's segments.
+    pub segment: usize,
+    /// `S + 1` nodes from the start guide to the end guide, world frame (m).
+    pub nodes_m: Vec<[f64; 3]>,
+}
+
+impl fmt::Display for Constraint {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Constraint::Contact => "contact",
+            Constraint::ContactForce => "contact force",
+            Constraint::Stretch => "stretch",
+            Constraint::BendRadius => "bend radius",
+        })
+    }
+}
+
+impl fmt::Display for Place {
+    /// E.g. `sub-segment 12, link_5` (empty when nothing is known).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut parts = Vec::new();
+        if let Some(k) = self.sub_segment {
+            parts.push(format!("sub-segment {k}"));
+        }
+        if let Some(n) = self.node {
+            parts.push(format!("node {n}"));
+        }
+        if let Some(link) = &self.link {
+            parts.push(link.clone());
+        }
+        f.write_str(&parts.join(", "))
+    }
+}
+
+impl fmt::Display for Violation {
+    /// E.g. `contact: clearance -3.20 mm < 0.00 mm at t = 1.2375 s, segment C3 (sub-segment
+    /// 12, link_5)`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (what, value, op, limit) = match self.constraint {
+            Constraint::Contact => (
+                "clearance",
+                format!("{:.2} mm", self.value * 1e3),
+                "<",
+                format!("{:.2} mm", self.threshold * 1e3),
+            ),
+            Constraint::ContactForce => (
+                "force",
+                format!("{:.3} N", self.value),
+                ">",
+                format!("{:.3} N", self.threshold),
+            ),
+            Constraint::Stretch => (
+                "stretch",
+                format!("{:.4}", self.value),
+                ">",
+                format!("{:.4}", self.threshold),
+            ),
+            Constraint::BendRadius => (
+                "bend radius",
+                format!("{:.1} mm", self.value * 1e3),
+                "<",
+                format!("{:.1} mm", self.threshold * 1e3),
+            ),
+        };
+        write!(
+            f,
+            "{}: {what} {value} {op} {limit} at t = {:.4} s, segment C{}",
+            self.constraint,
+            self.time_s,
+            self.segment + 1
+        )?;
+        let place = self.place.to_string();
+        if !place.is_empty() {
+            write!(f, " ({place})")?;
+        }
+        Ok(())
+    }
+}
+
+impl MotionTestReport {
+    /// A few lines for people: verdict, worst values, cost.
+    pub fn summary(&self) -> String {
+        let verdict = match &self.failure {
+            None => "passed".to_string(),
+            Some(failure) => format!("failed: {}", failure.reason),
+        };
+        let worst = |label: &str, w: &Option<Worst>, scale: f64, unit: &str| match w {
+            Some(w) => format!(
+                "{label} {:.4} {unit} at t = {:.4} s, C{} ({})",
+                w.value * scale,
+                w.time_s,
+                w.segment + 1,
+                w.place
+            ),
+            None => format!("{label} -"),
+        };
+        [
+            verdict,
+            worst("min clearance", &self.worst_clearance, 1e3, "mm"),
+            worst("max stretch", &self.worst_stretch, 1.0, ""),
+            worst("min bend radius", &self.worst_bend, 1e3, "mm"),
+            worst("max contact force", &self.worst_contact_force, 1.0, "N"),
+            format!(
+                "{} steps, {:.3} s simulated in {:.3} s wall{}, max joint gap {:.3} mm",
+                self.steps,
+                self.simulated_s,
+                self.wall_time_s,
+                if self.simulated_s > 0.0 {
+                    format!(
+                        " ({:.3} s per simulated s)",
+                        self.wall_time_s / self.simulated_s
+                    )
+                } else {
+                    String::new()
+                },
+                self.max_joint_gap_m * 1e3
+            ),
+        ]
+        .join("\n")
+    }
+}

@@ -1,0 +1,290 @@
+//! Worst values, first violation and series, updated one measured instant at a time.
+
+use super::report::{
+    Constraint, Failure, FailureCause, MotionTestReport, Place, SegmentNodes, SeriesPoint,
+    Violation, Worst,
+};
+use crate::setup::{Setup, Thresholds};
+use crate::stress::{BendRadius, Clearance};
+use nalgebra::Point3;
+
+/// The metrics of one segment at one instant.
+pub(super) struct SegmentMeasure {
+    /// Index into the setup's segments.
+    pub segment: usize,
+    /// The segment's nodes (m, world frame).
+    pub nodes: Vec<Point3<f64>>,
+    /// Lowest clearance to the robot, clamp zones excluded.
+    pub clearance: Option<Clearance>,
+    /// Centreline length / natural length.
+    pub stretch: f64,
+    /// Tightest joint.
+    pub bend: BendRadius,
+    /// Most loaded sub-segment outside the clamp zones in the simulation, if any touched.
+    pub contact: Option<ForceAt>,
+    /// Largest joint gap (m); 0 for a shape that was not simulated.
+    pub max_joint_gap_m: f64,
+}
+
+/// The contact force on one sub-segment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct ForceAt {
+    /// Sub-segment index.
+    pub sub_segment: usize,
+    /// Force summed over the robot's colliders (N).
+    pub force_n: f64,
+    /// Index into `robot.links` of the link pushing hardest, when known.
+    pub link: Option<usize>,
+}
+
+/// Everything the report keeps, accumulated over the run.
+pub(super) struct Tracker<'a> {
+    setup: &'a Setup,
+    record_series: bool,
+    force_is_violation: bool,
+    worst_clearance: Option<Worst>,
+    worst_stretch: Option<Worst>,
+    worst_bend: Option<Worst>,
+    worst_contact_force: Option<Worst>,
+    first_violation: Option<Violation>,
+    max_joint_gap_m: f64,
+    series: Vec<SeriesPoint>,
+    final_shape: Vec<SegmentNodes>,
+}
+
+impl<'a> Tracker<'a> {
+    /// An empty record; `force_is_violation`: a contact force is a contact violation.
+    pub fn new(setup: &'a Setup, record_series: bool, force_is_violation: bool) -> Self {
+        Self {
+            setup,
+            record_series,
+            force_is_violation,
+            worst_clearance: None,
+            worst_stretch: None,
+            worst_bend: None,
+            worst_contact_force: None,
+            first_violation: None,
+            max_joint_gap_m: 0.0,
+            series: Vec::new(),
+            final_shape: Vec::new(),
+        }
+    }
+
+    /// Whether a limit has been violated so far.
+    pub fn violated(&self) -> bool {
+        self.first_violation.is_some()
+    }
+
+    /// Takes in the metrics of every segment at `time_s`.
+    pub fn record(&mut self, time_s: f64, measures: &[SegmentMeasure]) {
+        for measure in measures {
+            self.record_segment(time_s, measure);
+        }
+        if self.record_series {
+            self.series.push(series_point(time_s, measures));
+        }
+        self.final_shape = measures
+            .iter()
+            .map(|m| SegmentNodes {
+                segment: m.segment,
+                nodes_m: m.nodes.iter().map(|p| [p.x, p.y, p.z]).collect(),
+            })
+            .collect();
+    }
+
+    /// A segment too short at the first pose: `required` is the stretch it would need.
+    pub fn record_too_short(&mut self, time_s: f64, segment: usize, required: f64) {
+        let thresholds = self.setup.thresholds;
+        self.keep_stretch(time_s, segment, required, thresholds);
+    }
+
+    /// The report, with `failure` if the run itself failed (else a violation's, if any).
+    pub fn into_report(self, failure: Option<Failure>, run: RunFacts) -> MotionTestReport {
+        let failure = failure.or_else(|| {
+            self.first_violation.as_ref().map(|v| Failure {
+                cause: FailureCause::Violation,
+                reason: v.to_string(),
+            })
+        });
+        MotionTestReport {
+            passed: failure.is_none(),
+            failure,
+            first_violation: self.first_violation,
+            worst_clearance: self.worst_clearance,
+            worst_stretch: self.worst_stretch,
+            worst_bend: self.worst_bend,
+            worst_contact_force: self.worst_contact_force,
+            max_joint_gap_m: self.max_joint_gap_m,
+            series: self.series,
+            final_shape: self.final_shape,
+            motion_duration_s: run.motion_duration_s,
+            steps: run.steps,
+            simulated_s: run.simulated_s,
+            wall_time_s: run.wall_time_s,
+        }
+    }
+
+    fn record_segment(&mut self, time_s: f64, measure: &SegmentMeasure) {
+        let thresholds = self.setup.thresholds;
+        let segment = measure.segment;
+        self.max_joint_gap_m = self.max_joint_gap_m.max(measure.max_joint_gap_m);
+        if let Some(clearance) = &measure.clearance {
+            self.keep_clearance(time_s, segment, clearance, thresholds);
+        }
+        if let Some(contact) = &measure.contact {
+            self.keep_contact(time_s, segment, contact, &measure.nodes);
+        }
+        self.keep_stretch(time_s, segment, measure.stretch, thresholds);
+        self.keep_bend(time_s, segment, measure, thresholds);
+    }
+
+    fn keep_clearance(&mut self, time_s: f64, segment: usize, c: &Clearance, t: Thresholds) {
+        let place = Place {
+            sub_segment: Some(c.sub_segment),
+            link: Some(self.link_name(c.link)),
+            position_m: Some(xyz(&c.point_on_cable)),
+            ..Place::default()
+        };
+        let worst = Worst {
+            value: c.clearance_m,
+            unit: "m",
+            time_s,
+            segment,
+            place,
+        };
+        if c.clearance_m < t.contact_clearance_m {
+            self.violate(Constraint::Contact, t.contact_clearance_m, &worst);
+        }
+        keep(&mut self.worst_clearance, worst, |new, old| new < old);
+    }
+
+    fn keep_stretch(&mut self, time_s: f64, segment: usize, stretch: f64, t: Thresholds) {
+        let worst = Worst {
+            value: stretch,
+            unit: "1",
+            time_s,
+            segment,
+            place: Place::default(),
+        };
+        if stretch > t.stretch {
+            self.violate(Constraint::Stretch, t.stretch, &worst);
+        }
+        keep(&mut self.worst_stretch, worst, |new, old| new > old);
+    }
+
+    fn keep_bend(&mut self, time_s: f64, segment: usize, m: &SegmentMeasure, t: Thresholds) {
+        let place = Place {
+            node: Some(m.bend.node),
+            position_m: m.nodes.get(m.bend.node).map(xyz),
+            ..Place::default()
+        };
+        let worst = Worst {
+            value: m.bend.radius_m,
+            unit: "m",
+            time_s,
+            segment,
+            place,
+        };
+        if m.bend.radius_m < t.min_bend_radius_m {
+            self.violate(Constraint::BendRadius, t.min_bend_radius_m, &worst);
+        }
+        keep(&mut self.worst_bend, worst, |new, old| new < old);
+    }
+
+    fn keep_contact(
+        &mut self,
+        time_s: f64,
+        segment: usize,
+        contact: &ForceAt,
+        nodes: &[Point3<f64>],
+    ) {
+        let k = contact.sub_segment;
+        let midpoint = nodes
+            .get(k)
+            .zip(nodes.get(k + 1))
+            .map(|(a, b)| xyz(&nalgebra::center(a, b)));
+        let place = Place {
+            sub_segment: Some(k),
+            link: contact.link.map(|link| self.link_name(link)),
+            position_m: midpoint,
+            ..Place::default()
+        };
+        let worst = Worst {
+            value: contact.force_n,
+            unit: "N",
+            time_s,
+            segment,
+            place,
+        };
+        if self.force_is_violation && contact.force_n > 0.0 {
+            self.violate(Constraint::ContactForce, 0.0, &worst);
+        }
+        keep(&mut self.worst_contact_force, worst, |new, old| new > old);
+    }
+
+    /// Records a violation if it is the first one.
+    fn violate(&mut self, constraint: Constraint, threshold: f64, at: &Worst) {
+        if self.first_violation.is_none() {
+            self.first_violation = Some(Violation {
+                constraint,
+                value: at.value,
+                threshold,
+                unit: at.unit,
+                time_s: at.time_s,
+                segment: at.segment,
+                place: at.place.clone(),
+            });
+        }
+    }
+
+    fn link_name(&self, link: usize) -> String {
+        self.setup
+            .robot
+            .links
+            .get(link)
+            .map_or_else(|| format!("link #{link}"), |l| l.name.clone())
+    }
+}
+
+/// Facts about the run the tracker does not see.
+pub(super) struct RunFacts {
+    pub motion_duration_s: f64,
+    pub steps: usize,
+    pub simulated_s: f64,
+    pub wall_time_s: f64,
+}
+
+/// Replaces `slot` by `candidate` when empty or when `better(new, old)`: strict, so ties keep
+/// the earliest time, then the lowest segment.
+fn keep(slot: &mut Option<Worst>, candidate: Worst, better: fn(f64, f64) -> bool) {
+    if slot
+        .as_ref()
+        .is_none_or(|old| better(candidate.value, old.value))
+    {
+        *slot = Some(candidate);
+    }
+}
+
+/// The whole cable's metrics at one instant.
+fn series_point(time_s: f64, measures: &[SegmentMeasure]) -> SeriesPoint {
+    let clearances = measures
+        .iter()
+        .filter_map(|m| m.clearance.map(|c| c.clearance_m));
+    SeriesPoint {
+        time_s,
+        min_clearance_m: clearances.reduce(f64::min),
+        max_stretch: measures.iter().map(|m| m.stretch).fold(0.0, f64::max),
+        min_bend_radius_m: measures
+            .iter()
+            .map(|m| m.bend.radius_m)
+            .fold(f64::INFINITY, f64::min),
+        max_contact_force_n: measures
+            .iter()
+            .filter_map(|m| m.contact.map(|c| c.force_n))
+            .fold(0.0, f64::max),
+    }
+}
+
+fn xyz(p: &Point3<f64>) -> [f64; 3] {
+    [p.x, p.y, p.z]
+}

@@ -1,0 +1,167 @@
+//! The main job: from a setup and a motion to the optimal cable path d* (DESIGN §3).
+//!
+//! 1. Critical poses of every inter-link segment, test poses of the intra-link ones
+//!    ([`SegmentPoses`]).
+//! 2. The attachment test: D0 → D'0 → D1 → D2 per segment ([`attachment_test`]).
+//! 3. The chain search over D2: |D3| and the shortest chain d̂ ([`ChainSearch`]).
+//! 4. The motion test of the chains in non-decreasing length (k-best): the first that passes
+//!    is d*. When none of the first `k` passes, or there is no chain, the result says so and
+//!    why.
+
+mod report;
+
+pub use report::{
+    CandidateOutcome, Inputs, Margin, PathSegment, PoseSummary, SegmentReport, SolveReport, Status,
+    Timings, path_segments, pose_summary,
+};
+
+use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, SegmentSets, attachment_test};
+use crate::chain::{ChainError, ChainSearch};
+use crate::motion::{Motion, MotionError};
+use crate::motion_test::{self, MotionTestError, MotionTestOptions, MotionTestReport};
+use crate::path::CablePath;
+use crate::setup::{Setup, SetupError};
+use crate::stress::contact::ContactError;
+use std::time::Instant;
+
+/// What `solve` does besides the defaults of the setup.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolveOptions {
+    /// Connected geometry and static solver of the attachment test.
+    pub method: ConnectMethod,
+    /// `Some(1)`: the paper's method 1 (one guide per link: intra-link segments only at
+    /// S = 0); `Some(2)` or `None`: as the setup declares.
+    pub max_guides_per_link: Option<usize>,
+    /// Chains tried in the motion test, at most (≥ 1).
+    pub k_best: usize,
+    /// Run the motion test; without it the shortest chain d̂ is the answer.
+    pub motion_test: bool,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        Self {
+            method: ConnectMethod::Hermite,
+            max_guides_per_link: None,
+            k_best: 10,
+            motion_test: true,
+        }
+    }
+}
+
+/// Why `solve` could not run (not: "no path found", which is a [`Status`]).
+#[derive(Debug, thiserror::Error)]
+pub enum SolveError {
+    /// The options do not fit the setup.
+    #[error("{0}")]
+    Setup(#[from] SetupError),
+    /// The motion does not fit the robot.
+    #[error("{0}")]
+    Motion(#[from] MotionError),
+    /// The robot's collision geometry cannot be used for clearance queries.
+    #[error("{0}")]
+    Obstacles(#[from] ContactError),
+    /// The chain search refused the sets (a bug if it happens: the sets come from the setup).
+    #[error("chain search: {0}")]
+    Chain(#[from] ChainError),
+    /// The motion test refused its input.
+    #[error("motion test: {0}")]
+    MotionTest(#[from] MotionTestError),
+    /// Invalid options.
+    #[error("{0}")]
+    Options(String),
+}
+
+/// Runs the whole pipeline on `setup` and `motion`.
+pub fn solve(
+    setup: &Setup,
+    motion: &Motion,
+    options: &SolveOptions,
+) -> Result<SolveReport, SolveError> {
+    let total = Instant::now();
+    let setup = &method_setup(setup, options)?;
+    let clock = Instant::now();
+    let poses = SegmentPoses::new(setup, motion)?;
+    let critical_poses_s = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    let evaluator = Evaluator::new(setup, options.method)?;
+    let sets = attachment_test(&evaluator, &poses);
+    let attachment_s = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    let search = chain_search(setup, &sets)?;
+    let chain_s = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    let (candidates, winner) = motion_tests(setup, motion, &search, options)?;
+    let motion_test_s = clock.elapsed().as_secs_f64();
+
+    let timings = Timings {
+        critical_poses_s,
+        attachment_s,
+        chain_s,
+        motion_test_s,
+        total_s: total.elapsed().as_secs_f64(),
+    };
+    Ok(SolveReport::new(
+        setup, motion, options, &evaluator, &poses, &sets, &search, candidates, winner, timings,
+    ))
+}
+
+/// The setup restricted to one guide per link for method 1.
+fn method_setup(setup: &Setup, options: &SolveOptions) -> Result<Setup, SolveError> {
+    if options.k_best == 0 {
+        return Err(SolveError::Options("--k-best must be at least 1".into()));
+    }
+    match options.max_guides_per_link {
+        Some(1) => Ok(setup.inter_link_only()?),
+        Some(2) | None => Ok(setup.clone()),
+        Some(n) => Err(SolveError::Options(format!(
+            "max guides per link must be 1 (method 1) or 2 (method 2), got {n}"
+        ))),
+    }
+}
+
+fn chain_search(setup: &Setup, sets: &[SegmentSets]) -> Result<ChainSearch, SolveError> {
+    let counts: Vec<usize> = setup
+        .guides
+        .iter()
+        .map(|g| g.configurations.len())
+        .collect();
+    let d2: Vec<_> = sets.iter().map(|s| s.d2.clone()).collect();
+    Ok(ChainSearch::new(&counts, &d2)?)
+}
+
+/// The motion test of the first `k` chains in length order; the index of the first that
+/// passes. Without the motion test, the shortest chain wins untested.
+#[allow(clippy::type_complexity)]
+fn motion_tests(
+    setup: &Setup,
+    motion: &Motion,
+    search: &ChainSearch,
+    options: &SolveOptions,
+) -> Result<(Vec<(CablePath, Option<MotionTestReport>)>, Option<usize>), SolveError> {
+    if !options.motion_test {
+        let shortest = search.shortest().map(|path| (path, None));
+        let winner = shortest.as_ref().map(|_| 0);
+        return Ok((shortest.into_iter().collect(), winner));
+    }
+    // Stopping at the first violation only shortens failing runs: a passing candidate is
+    // simulated through the whole motion either way, series included.
+    let test_options = MotionTestOptions {
+        stop_at_first_violation: true,
+        ..MotionTestOptions::for_setup(setup)
+    };
+    let mut tried = Vec::new();
+    for path in search.k_best().take(options.k_best) {
+        let report = motion_test::run(setup, &path, motion, &test_options)?;
+        let passed = report.passed;
+        tried.push((path, Some(report)));
+        if passed {
+            let winner = tried.len() - 1;
+            return Ok((tried, Some(winner)));
+        }
+    }
+    Ok((tried, None))
+}

@@ -1,0 +1,589 @@
+//! The result of [`solve`](super::solve): serializable (the result JSON) and printable (the
+//! human summary).
+
+use super::SolveOptions;
+use crate::attachment::{
+    ConnectMethod, Evaluator, Metrics, Rejection, SegmentPoses, SegmentSets, TestPose,
+};
+use crate::chain::ChainSearch;
+use crate::motion::Motion;
+use crate::motion_test::MotionTestReport;
+use crate::path::CablePath;
+use crate::setup::Setup;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::fmt;
+
+/// How the run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    /// d* found: a chain that passed the motion test.
+    Solved,
+    /// Shortest chain found, motion test not run (`--no-motion-test`).
+    Untested,
+    /// No chain: some segment has no robust PV, or no robust PVs agree on shared guides (the
+    /// paper's "unsolved").
+    Unsolved,
+    /// Chains exist, but none of the ones tried passed the motion test (the paper's "none").
+    NonePassedMotionTest,
+}
+
+/// Wall-clock time of each stage (s). The only part of the report that changes from run to
+/// run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Timings {
+    /// Critical and test poses.
+    pub critical_poses_s: f64,
+    /// Attachment test of every segment.
+    pub attachment_s: f64,
+    /// Chain search (dynamic programming and counting).
+    pub chain_s: f64,
+    /// Motion tests of every candidate tried.
+    pub motion_test_s: f64,
+    /// Whole run.
+    pub total_s: f64,
+}
+
+/// One segment of a cable path, for people.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PathSegment {
+    /// `C1`, `C2`, …
+    pub segment: String,
+    /// Start and end guide names.
+    pub guides: [String; 2],
+    /// Links of the start and end guide.
+    pub links: [String; 2],
+    /// Length in sub-segments (0: the two guides are one clamp).
+    pub sub_segments: usize,
+    /// Natural length (mm).
+    pub length_mm: f64,
+    /// Configuration names of the start and end guide.
+    pub configurations: [String; 2],
+}
+
+/// A static stress margin of one segment of d* at its binding test pose (attachment test).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Margin {
+    /// `C1`, `C2`, …
+    pub segment: String,
+    /// `contact`, `stretch` or `bend_radius`.
+    pub constraint: &'static str,
+    /// The value at the binding pose (m for contact and bend radius, 1 for stretch).
+    pub value: f64,
+    /// The limit, same unit.
+    pub threshold: f64,
+    /// Distance to the limit, positive when it holds (same unit).
+    pub margin: f64,
+    /// The binding test pose: sample, time and why it is a test pose.
+    pub sample: usize,
+    /// Time of the pose (s).
+    pub time_s: f64,
+    /// Why the pose was tested.
+    pub reason: String,
+}
+
+/// The attachment-test results of one segment.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SegmentReport {
+    /// `C1`, `C2`, …
+    pub segment: String,
+    /// Start and end guide names.
+    pub guides: [String; 2],
+    /// Links of the start and end guide.
+    pub links: [String; 2],
+    /// Both guides on one link.
+    pub intra_link: bool,
+    /// Joints between the two links (inter-link segments).
+    pub traversed_joints: Vec<String>,
+    /// The test poses (sample, time, reason).
+    pub test_poses: Vec<PoseSummary>,
+    /// |D0|, |D'0|, |D1|, |D2|.
+    pub d0: usize,
+    /// |D'0|.
+    pub d0_pruned: usize,
+    /// |D1|.
+    pub d1: usize,
+    /// |D2|.
+    pub d2: usize,
+    /// Rejected PVs of D'0 by first violated limit.
+    pub rejections: BTreeMap<Rejection, usize>,
+    /// (guides, length) combinations evaluated, robustness lengths included.
+    pub evaluations: usize,
+}
+
+/// A test pose, without its link poses.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PoseSummary {
+    /// Motion sample.
+    pub sample: usize,
+    /// Time (s).
+    pub time_s: f64,
+    /// Joint values (deg for rotary joints, mm for prismatic ones).
+    pub joints: Vec<f64>,
+    /// Why.
+    pub reason: String,
+}
+
+/// One chain tried in the motion test.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CandidateOutcome {
+    /// 1 for the shortest chain.
+    pub rank: usize,
+    /// Total natural length (mm).
+    pub total_length_mm: f64,
+    /// The path.
+    pub path: CablePath,
+    /// Passed the motion test; `None` when not tested.
+    pub passed: Option<bool>,
+    /// Why it failed.
+    pub failure: Option<String>,
+}
+
+/// The inputs, named and hashed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Inputs {
+    /// Setup file.
+    pub setup_file: String,
+    /// Content hash of the setup as used (after method restrictions).
+    pub setup_hash: String,
+    /// Robot URDF.
+    pub robot_file: String,
+    /// Cable file and name.
+    pub cable_file: String,
+    /// Cable name.
+    pub cable: String,
+    /// Motion file, filled in by the caller who read it.
+    pub motion_file: Option<String>,
+    /// Motion duration (s).
+    pub motion_duration_s: f64,
+    /// Motion samples.
+    pub motion_samples: usize,
+    /// `method 1`, `method 2` or `previous method` (linear connect).
+    pub method: String,
+    /// `hermite` or `linear`.
+    pub connect: ConnectMethod,
+}
+
+/// Everything `solve` found.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SolveReport {
+    /// How the run ended.
+    pub status: Status,
+    /// Why, for people.
+    pub explanation: String,
+    /// The inputs.
+    pub inputs: Inputs,
+    /// The optimal path d* (or d̂ when untested), segment by segment.
+    pub optimal: Option<Vec<PathSegment>>,
+    /// Its total length (mm).
+    pub optimal_length_mm: Option<f64>,
+    /// Static margins of every segment of the optimal path at its binding test pose.
+    pub margins: Vec<Margin>,
+    /// Per segment: test poses and set sizes.
+    pub segments: Vec<SegmentReport>,
+    /// |D3|: chains of robust PVs that agree on every shared guide (a decimal string: it can
+    /// exceed 2⁶⁴).
+    pub chains: String,
+    /// The chains tried in the motion test, in length order.
+    pub candidates: Vec<CandidateOutcome>,
+    /// Motion test of the optimal path, or of the last candidate tried when none passed.
+    pub motion_test: Option<MotionTestReport>,
+    /// Stage timings (s).
+    pub timings: Timings,
+}
+
+impl SolveReport {
+    /// Assembles the report from the stages' results.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn new(
+        setup: &Setup,
+        motion: &Motion,
+        options: &SolveOptions,
+        evaluator: &Evaluator<'_>,
+        poses: &SegmentPoses,
+        sets: &[SegmentSets],
+        search: &ChainSearch,
+        tried: Vec<(CablePath, Option<MotionTestReport>)>,
+        winner: Option<usize>,
+        timings: Timings,
+    ) -> SolveReport {
+        let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+        let best = winner.map(|w| tried[w].0.clone());
+        let status = status(options, search, winner);
+        let candidates = candidate_outcomes(&tried, pitch_mm);
+        let motion_test = match winner {
+            Some(w) => tried[w].1.clone(),
+            None => tried.last().and_then(|(_, report)| report.clone()),
+        };
+        SolveReport {
+            status,
+            explanation: explanation(status, sets, &candidates, setup),
+            inputs: inputs(setup, motion, options),
+            optimal: best.as_ref().map(|p| path_segments(setup, p)),
+            optimal_length_mm: best
+                .as_ref()
+                .map(|p| p.total_sub_segments() as f64 * pitch_mm),
+            margins: best
+                .as_ref()
+                .map(|p| margins(evaluator, poses, p))
+                .unwrap_or_default(),
+            segments: segment_reports(setup, poses, sets, motion),
+            chains: search.chain_count().to_string(),
+            candidates,
+            motion_test,
+            timings,
+        }
+    }
+}
+
+fn status(options: &SolveOptions, search: &ChainSearch, winner: Option<usize>) -> Status {
+    match (search.shortest().is_some(), winner, options.motion_test) {
+        (false, _, _) => Status::Unsolved,
+        (true, Some(_), true) => Status::Solved,
+        (true, Some(_), false) => Status::Untested,
+        (true, None, _) => Status::NonePassedMotionTest,
+    }
+}
+
+fn explanation(
+    status: Status,
+    sets: &[SegmentSets],
+    candidates: &[CandidateOutcome],
+    setup: &Setup,
+) -> String {
+    match status {
+        Status::Solved => format!(
+            "the shortest chain that passed the motion test (candidate {} of {} tried)",
+            candidates.len(),
+            candidates.len()
+        ),
+        Status::Untested => "the shortest chain of robust PVs; the motion test was not run".into(),
+        Status::NonePassedMotionTest => {
+            let reasons: Vec<String> = candidates
+                .iter()
+                .map(|c| {
+                    format!(
+                        "#{}: {}",
+                        c.rank,
+                        c.failure.as_deref().unwrap_or("not tested")
+                    )
+                })
+                .collect();
+            format!(
+                "none of the {} shortest chains passed the motion test — {}",
+                candidates.len(),
+                reasons.join("; ")
+            )
+        }
+        Status::Unsolved => unsolved_reason(sets, setup),
+    }
+}
+
+/// Which segment has no robust PV and what rejected its candidates most.
+fn unsolved_reason(sets: &[SegmentSets], setup: &Setup) -> String {
+    let empty: Vec<String> = sets
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.d2.is_empty())
+        .map(|(m, s)| {
+            let worst = s
+                .rejections
+                .iter()
+                .max_by_key(|(_, count)| **count)
+                .map(|(r, count)| format!("most rejected by {} ({count})", r.name()))
+                .unwrap_or_else(|| "no candidate left after adjacency pruning".into());
+            let (a, b) = setup.segment_guides(m);
+            format!(
+                "C{} ({} → {}) has no robust PV: |D1| = {}, {worst}",
+                m + 1,
+                setup.guides[a].name,
+                setup.guides[b].name,
+                s.d1
+            )
+        })
+        .collect();
+    if empty.is_empty() {
+        "every segment has robust PVs, but none agree on their shared guides".into()
+    } else {
+        empty.join("; ")
+    }
+}
+
+fn inputs(setup: &Setup, motion: &Motion, options: &SolveOptions) -> Inputs {
+    let method = match (options.method, options.max_guides_per_link) {
+        (ConnectMethod::Linear, _) => "previous method",
+        (ConnectMethod::Hermite, Some(1)) => "method 1",
+        (ConnectMethod::Hermite, _) => "method 2",
+    };
+    Inputs {
+        setup_file: setup.source.display().to_string(),
+        setup_hash: setup.content_hash_hex(),
+        robot_file: setup.robot_path.display().to_string(),
+        cable_file: setup.cable_path.display().to_string(),
+        cable: setup.cable.name.clone(),
+        motion_file: None,
+        motion_duration_s: motion.duration_s(),
+        motion_samples: motion.len(),
+        method: method.into(),
+        connect: options.method,
+    }
+}
+
+fn candidate_outcomes(
+    tried: &[(CablePath, Option<MotionTestReport>)],
+    pitch_mm: f64,
+) -> Vec<CandidateOutcome> {
+    tried
+        .iter()
+        .enumerate()
+        .map(|(i, (path, report))| CandidateOutcome {
+            rank: i + 1,
+            total_length_mm: path.total_sub_segments() as f64 * pitch_mm,
+            path: path.clone(),
+            passed: report.as_ref().map(|r| r.passed),
+            failure: report
+                .as_ref()
+                .and_then(|r| r.failure.as_ref())
+                .map(|f| f.reason.clone()),
+        })
+        .collect()
+}
+
+fn guide_names(setup: &Setup, m: usize) -> ([String; 2], [String; 2]) {
+    let (a, b) = setup.segment_guides(m);
+    let link = |g: usize| setup.robot.links[setup.guides[g].link].name.clone();
+    (
+        [setup.guides[a].name.clone(), setup.guides[b].name.clone()],
+        [link(a), link(b)],
+    )
+}
+
+/// The path segment by segment, with names.
+pub fn path_segments(setup: &Setup, path: &CablePath) -> Vec<PathSegment> {
+    let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+    (0..path.segment_count())
+        .map(|m| {
+            let pv = path.pv(m);
+            let (guides, links) = guide_names(setup, m);
+            let (a, b) = setup.segment_guides(m);
+            PathSegment {
+                segment: format!("C{}", m + 1),
+                guides,
+                links,
+                sub_segments: pv.sub_segments,
+                length_mm: pv.sub_segments as f64 * pitch_mm,
+                configurations: [
+                    setup.guides[a].configurations[pv.start].name.clone(),
+                    setup.guides[b].configurations[pv.end].name.clone(),
+                ],
+            }
+        })
+        .collect()
+}
+
+fn segment_reports(
+    setup: &Setup,
+    poses: &SegmentPoses,
+    sets: &[SegmentSets],
+    motion: &Motion,
+) -> Vec<SegmentReport> {
+    sets.iter()
+        .enumerate()
+        .map(|(m, s)| {
+            let (guides, links) = guide_names(setup, m);
+            SegmentReport {
+                segment: format!("C{}", m + 1),
+                guides,
+                links,
+                intra_link: setup.is_intra_link(m),
+                traversed_joints: poses.traversed[m]
+                    .iter()
+                    .map(|&j| motion.joint_names()[j].clone())
+                    .collect(),
+                test_poses: poses.poses[m]
+                    .iter()
+                    .map(|p| pose_summary(p, motion))
+                    .collect(),
+                d0: s.d0,
+                d0_pruned: s.d0_pruned,
+                d1: s.d1,
+                d2: s.d2.len(),
+                rejections: s.rejections.clone(),
+                evaluations: s.evaluations,
+            }
+        })
+        .collect()
+}
+
+/// A test pose in the motion's display units (deg / mm).
+pub fn pose_summary(pose: &TestPose, motion: &Motion) -> PoseSummary {
+    let joints = pose
+        .joints
+        .iter()
+        .zip(motion.rotary())
+        .map(|(v, &rotary)| if rotary { v.to_degrees() } else { v * 1e3 })
+        .collect();
+    PoseSummary {
+        sample: pose.sample,
+        time_s: pose.time_s,
+        joints,
+        reason: pose.reason.clone(),
+    }
+}
+
+/// A limit's name, threshold, value in the metrics, and sign (+1: the value must stay above
+/// the threshold, −1: below).
+type LimitOf = (&'static str, f64, fn(&Metrics) -> Option<f64>, f64);
+
+/// The smallest margin of each limit over the test poses, for every segment with a cable.
+fn margins(evaluator: &Evaluator<'_>, poses: &SegmentPoses, path: &CablePath) -> Vec<Margin> {
+    let limits = &evaluator.setup().thresholds;
+    let mut margins = Vec::new();
+    for m in 0..path.segment_count() {
+        let pv = path.pv(m);
+        let checked: Vec<(&TestPose, Metrics)> = poses.poses[m]
+            .iter()
+            .filter_map(|pose| Some((pose, evaluator.check(m, &pv, pose).metrics?)))
+            .collect();
+        let limits_of: [LimitOf; 3] = [
+            (
+                "contact",
+                limits.contact_clearance_m,
+                |x| x.clearance_m,
+                1.0,
+            ),
+            ("stretch", limits.stretch, |x| Some(x.stretch), -1.0),
+            (
+                "bend_radius",
+                limits.min_bend_radius_m,
+                |x| Some(x.min_bend_radius_m).filter(|r| r.is_finite()),
+                1.0,
+            ),
+        ];
+        for (constraint, threshold, value_of, sign) in limits_of {
+            let binding = checked
+                .iter()
+                .filter_map(|(pose, metrics)| {
+                    value_of(metrics).map(|v| (pose, v, sign * (v - threshold)))
+                })
+                .min_by(|a, b| a.2.total_cmp(&b.2));
+            if let Some((pose, value, margin)) = binding {
+                margins.push(Margin {
+                    segment: format!("C{}", m + 1),
+                    constraint,
+                    value,
+                    threshold,
+                    margin,
+                    sample: pose.sample,
+                    time_s: pose.time_s,
+                    reason: pose.reason.clone(),
+                });
+            }
+        }
+    }
+    margins
+}
+
+impl fmt::Display for SolveReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let i = &self.inputs;
+        writeln!(f, "status: {:?} — {}", self.status, self.explanation)?;
+        writeln!(
+            f,
+            "setup {} (hash {}), cable {}, {}, motion {}{:.3} s, {} samples",
+            i.setup_file,
+            i.setup_hash,
+            i.cable,
+            i.method,
+            i.motion_file
+                .as_deref()
+                .map(|m| format!("{m}, "))
+                .unwrap_or_default(),
+            i.motion_duration_s,
+            i.motion_samples
+        )?;
+        if let (Some(path), Some(total)) = (&self.optimal, self.optimal_length_mm) {
+            writeln!(f, "\noptimal cable path — total {total:.0} mm")?;
+            write_path(f, path)?;
+        }
+        write_sets(f, &self.segments, &self.chains)?;
+        write_margins(f, &self.margins)?;
+        if let Some(report) = &self.motion_test {
+            writeln!(f, "\nmotion test: {}", report.summary())?;
+        }
+        let t = &self.timings;
+        writeln!(
+            f,
+            "\ntimings: critical poses {:.3} s, attachment {:.2} s, chain search {:.3} s, motion test {:.2} s, total {:.2} s",
+            t.critical_poses_s, t.attachment_s, t.chain_s, t.motion_test_s, t.total_s
+        )
+    }
+}
+
+fn write_path(f: &mut fmt::Formatter<'_>, path: &[PathSegment]) -> fmt::Result {
+    writeln!(
+        f,
+        "  {:<4} {:<9} {:<15} {:>8}  {:<28} {:<28}",
+        "seg", "guides", "links", "length", "start configuration", "end configuration"
+    )?;
+    for s in path {
+        writeln!(
+            f,
+            "  {:<4} {:<9} {:<15} {:>5} mm  {:<28} {:<28}",
+            s.segment,
+            format!("{}→{}", s.guides[0], s.guides[1]),
+            format!("{}→{}", s.links[0], s.links[1]),
+            s.length_mm,
+            s.configurations[0],
+            s.configurations[1]
+        )?;
+    }
+    Ok(())
+}
+
+fn write_sets(f: &mut fmt::Formatter<'_>, segments: &[SegmentReport], chains: &str) -> fmt::Result {
+    writeln!(
+        f,
+        "\nsets   {:>7} {:>7} {:>7} {:>7}  rejected (first limit violated)",
+        "|D0|", "|D'0|", "|D1|", "|D2|"
+    )?;
+    for s in segments {
+        let rejected: Vec<String> = s
+            .rejections
+            .iter()
+            .map(|(r, n)| format!("{} {n}", r.name()))
+            .collect();
+        writeln!(
+            f,
+            "  {:<4} {:>7} {:>7} {:>7} {:>7}  {}",
+            s.segment,
+            s.d0,
+            s.d0_pruned,
+            s.d1,
+            s.d2,
+            rejected.join(", ")
+        )?;
+    }
+    writeln!(f, "  |D3| = {chains} chains")
+}
+
+fn write_margins(f: &mut fmt::Formatter<'_>, margins: &[Margin]) -> fmt::Result {
+    if margins.is_empty() {
+        return Ok(());
+    }
+    writeln!(f, "\nstatic margins at the binding test pose")?;
+    for m in margins {
+        let (value, threshold, margin, unit) = if m.constraint == "stretch" {
+            (m.value, m.threshold, m.margin, "")
+        } else {
+            (m.value * 1e3, m.threshold * 1e3, m.margin * 1e3, " mm")
+        };
+        writeln!(
+            f,
+            "  {:<4} {:<12} {value:>8.3}{unit} (limit {threshold}{unit}, margin {margin:+.3}{unit}) at t = {:.2} s ({})",
+            m.segment, m.constraint, m.time_s, m.reason
+        )?;
+    }
+    Ok(())
+}
