@@ -5,24 +5,15 @@ use super::TestPose;
 use crate::dynamics::{
     ConvergenceWindow, DynamicsSettings, LinearConnect, SegmentShape, connect_linear, relax,
 };
-use crate::geometry::{ConnectError, connect};
+use crate::geometry::{ConnectError, connect, sag_direction};
 use crate::path::Pv;
 use crate::pose::Pose;
 use crate::setup::Setup;
 use crate::statics::{FarEnd, RodParameters, SolverOptions, solve_segment};
 use crate::stress::contact::{ClampZone, ContactError, GuideEnd, Obstacles, min_clearance};
 use crate::stress::{BendRadius, min_bend_radius, stretch};
-use nalgebra::{Point3, Unit, Vector3};
+use nalgebra::{Point3, Vector3};
 use serde::Serialize;
-
-/// Newton's stopping rule for the attachment test: 1e-6 N is 4e-5 of the weight of one
-/// sub-segment of the bundled cables; on the softest mode of a sagging span (a few N/m) it
-/// leaves the nodes within a micrometre, far below the millimetres the limits are judged
-/// on, while the solver's default 1e-8 N sits at the rounding floor of long spans.
-const ATTACHMENT_SOLVER: SolverOptions = SolverOptions {
-    force_tolerance_n: 1e-6,
-    max_iterations: 200,
-};
 
 /// How the start shape of a segment is obtained, and which solver finds its equilibrium.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -143,7 +134,7 @@ impl<'a> Evaluator<'a> {
             setup,
             obstacles: Obstacles::from_robot(&setup.robot)?,
             rod: RodParameters::new(&setup.cable, setup.gravity_m_s2),
-            solver: ATTACHMENT_SOLVER,
+            solver: SolverOptions::STRESS_CHECK,
             method,
         })
     }
@@ -314,12 +305,6 @@ fn clamp_zone(end: GuideEnd, link: usize, setup: &Setup) -> ClampZone {
         link,
         length_m: setup.thresholds.clamp_zone_m,
     }
-}
-
-/// Gravity's direction, or straight down for zero gravity (the sag only picks which way a
-/// slack cable bows in the start shape).
-fn sag_direction(gravity: &Vector3<f64>) -> Unit<Vector3<f64>> {
-    Unit::try_new(*gravity, 0.0).unwrap_or(-Vector3::z_axis())
 }
 
 fn connect_failure(error: ConnectError) -> Check {

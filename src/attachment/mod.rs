@@ -66,13 +66,15 @@ pub fn attachment_test(evaluator: &Evaluator<'_>, poses: &SegmentPoses) -> Vec<S
     for m in (0..count).filter(|&m| !setup.is_intra_link(m)) {
         let allowed_start = neighbour_configurations(&sets, m.checked_sub(1), |pv| pv.end);
         let allowed_end = neighbour_configurations(&sets, Some(m + 1), |pv| pv.start);
-        let candidates: Vec<Pv> = admissible_pvs(setup, m)
+        let d0 = admissible_pvs(setup, m);
+        let d0_count = d0.len();
+        let candidates: Vec<Pv> = d0
             .into_iter()
             .filter(|pv| allowed_start.as_ref().is_none_or(|a| a.contains(&pv.start)))
             .filter(|pv| allowed_end.as_ref().is_none_or(|a| a.contains(&pv.end)))
             .collect();
         let mut tested = test_segment(evaluator, m, &poses.poses[m], candidates);
-        tested.d0 = setup.admissible_pv_count(m);
+        tested.d0 = d0_count;
         sets[m] = Some(tested);
     }
     sets.into_iter().flatten().collect()

@@ -6,7 +6,7 @@ use cable_dict::atomic_file::write_atomically;
 use cable_dict::attachment::{ConnectMethod, SegmentPoses};
 use cable_dict::motion::Motion;
 use cable_dict::setup::Setup;
-use cable_dict::solve::{SolveError, SolveOptions, Status, solve};
+use cable_dict::solve::{SolveError, SolveOptions, Status, guide_names, solve};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -118,12 +118,11 @@ pub fn run_critical(args: CriticalArgs) -> Result<(), Failure> {
     let poses = SegmentPoses::new(&setup, &motion).map_err(Failure::input)?;
     let segments: Vec<SegmentPosesJson> = (0..setup.segment_count())
         .map(|m| {
-            let (a, b) = setup.segment_guides(m);
-            let link = |g: usize| setup.robot.links[setup.guides[g].link].name.clone();
+            let (guides, links) = guide_names(&setup, m);
             SegmentPosesJson {
                 segment: format!("C{}", m + 1),
-                guides: [setup.guides[a].name.clone(), setup.guides[b].name.clone()],
-                links: [link(a), link(b)],
+                guides,
+                links,
                 intra_link: setup.is_intra_link(m),
                 traversed_joints: poses.traversed[m]
                     .iter()

@@ -346,6 +346,12 @@ fn is_coaxial(guides: &GuidePair, chord: &Vector3<f64>) -> bool {
         .all(|v| v.dot(&axis) > 0.0 && v.cross(&axis).norm() <= COAXIAL_TOLERANCE)
 }
 
+/// The direction a slack cable bows towards in its start shape: gravity's, or straight down
+/// (−z) without gravity.
+pub fn sag_direction(gravity_m_s2: &Vector3<f64>) -> Unit<Vector3<f64>> {
+    Unit::try_new(*gravity_m_s2, 0.0).unwrap_or(-Vector3::z_axis())
+}
+
 /// A candidate curve whose shape parameter may still be the estimate of the root find's cheap
 /// phase (see [`HermiteCurve::parameter_search`]).
 struct Contender {

@@ -19,6 +19,6 @@ mod guides;
 pub mod hermite;
 pub mod rmf;
 
-pub use connected::{ConnectError, ConnectedGeometry, CurveFamily, connect};
+pub use connected::{ConnectError, ConnectedGeometry, CurveFamily, connect, sag_direction};
 pub use hermite::{CurveParameter, HermiteCurve};
 pub use rmf::double_reflection;

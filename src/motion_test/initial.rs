@@ -5,22 +5,11 @@ use super::MotionTestError;
 use super::plan::Plan;
 use super::report::{Failure, FailureCause};
 use super::tracker::Tracker;
-use crate::geometry::{ConnectError, ConnectedGeometry, connect};
+use crate::geometry::{ConnectError, ConnectedGeometry, connect, sag_direction};
 use crate::pose::Pose;
 use crate::setup::Setup;
 use crate::statics::{
     Equilibrium, RodParameters, SegmentStart, SolverOptions, StaticsError, solve_cable,
-};
-use nalgebra::{Unit, Vector3};
-
-/// Newton's stopping rule for the initial shape: 1e-6 N is 4e-5 of the weight of one 10 mm
-/// sub-segment of the bundled cables and leaves the nodes within about a micrometre of rest
-/// — far below what the simulation itself resolves (its joints close to ≈ 0.1 mm) — while
-/// the solver's default 1e-8 N sits at the rounding floor of long spans and is not always
-/// reached. The attachment test uses the same rule.
-const INITIAL_SOLVER: SolverOptions = SolverOptions {
-    force_tolerance_n: 1e-6,
-    max_iterations: 200,
 };
 
 /// The equilibrium of every simulated segment between `guides` (segments + 1 world poses),
@@ -50,7 +39,7 @@ pub(super) fn equilibria(
         .collect();
     let params = RodParameters::new(&setup.cable, setup.gravity_m_s2);
     let mut shapes = Vec::with_capacity(starts.len());
-    for (j, result) in solve_cable(&params, &starts, &INITIAL_SOLVER)
+    for (j, result) in solve_cable(&params, &starts, &SolverOptions::STRESS_CHECK)
         .into_iter()
         .enumerate()
     {
@@ -82,7 +71,7 @@ fn connected(
     time_s: f64,
     tracker: &mut Tracker,
 ) -> Result<Result<Vec<ConnectedGeometry>, Failure>, MotionTestError> {
-    let sag = Unit::try_new(setup.gravity_m_s2, 0.0).unwrap_or(-Vector3::z_axis());
+    let sag = sag_direction(&setup.gravity_m_s2);
     let pitch = setup.cable.sub_segment_pitch_m;
     let mut geometries = Vec::with_capacity(plan.segments.len());
     for (j, planned) in plan.segments.iter().enumerate() {

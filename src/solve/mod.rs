@@ -12,7 +12,7 @@ mod report;
 
 pub use report::{
     CandidateOutcome, Inputs, Margin, PathSegment, PoseSummary, SegmentReport, SolveReport, Status,
-    Timings, path_segments, pose_summary,
+    Timings, guide_names, path_segments, pose_summary,
 };
 
 use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, SegmentSets, attachment_test};

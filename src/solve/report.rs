@@ -350,7 +350,8 @@ fn candidate_outcomes(
         .collect()
 }
 
-fn guide_names(setup: &Setup, m: usize) -> ([String; 2], [String; 2]) {
+/// Names of segment `m`'s two guides and of their links.
+pub fn guide_names(setup: &Setup, m: usize) -> ([String; 2], [String; 2]) {
     let (a, b) = setup.segment_guides(m);
     let link = |g: usize| setup.robot.links[setup.guides[g].link].name.clone();
     (

@@ -7,9 +7,9 @@ use cable_dict::dynamics::{
     ConvergenceWindow, DynamicsError, DynamicsSettings, LinearConnect, SegmentShape,
     connect_linear, relax,
 };
-use cable_dict::geometry::{ConnectError, CurveFamily, connect};
+use cable_dict::geometry::{ConnectError, CurveFamily, connect, sag_direction};
 use cable_dict::statics::{FarEnd, RodParameters, SolverOptions, StaticsError, solve_segment};
-use nalgebra::{Point3, Rotation3, Unit, Vector3};
+use nalgebra::{Point3, Rotation3};
 use std::time::Instant;
 
 /// The connected geometry, by either method.
@@ -51,7 +51,7 @@ pub fn connected(
     let pitch = cable.sub_segment_pitch_m;
     match args.connect {
         Connect::Hermite => {
-            let sag = Unit::try_new(args.gravity, 0.0).unwrap_or(-Vector3::z_axis());
+            let sag = sag_direction(&args.gravity);
             let geometry = connect(&args.start, &args.end, sub_segments, pitch, &sag).map_err(
                 |e| match e {
                     ConnectError::InvalidInput { .. } => Failure::input(e),
