@@ -75,13 +75,16 @@ fn declared_count(guide: &cable_dict::setup::Guide) -> usize {
 
 #[test]
 fn d0_sizes_are_the_products_worked_out_by_hand() {
-    // Lengths per segment (sub-segments): C1 5..=60, C2 {0} ∪ 2..=30, C3 8..=70,
-    // C4 {0} ∪ 5..=35 (pick and place) or {0} ∪ 4..=35 (inspection).
+    // Lengths per segment (sub-segments): pick and place C1 45..=75, C2 {0} ∪ 14..=34,
+    // C3 32..=64, C4 {0} ∪ 12..=32; inspection C1 5..=60, C2 {0} ∪ 2..=30, C3 8..=70,
+    // C4 {0} ∪ 4..=35.
     // Configurations: G1 7, G2 6, G3 6 + 6 copies of G2 (S2 = 0), G4 6 + the connector (S4 = 0),
     // G5 1.
-    let (l1, l2, l3) = (56, 1 + 29, 63);
     let (g1, g2, g3, g4, g5) = (7, 6, 12, 7, 1);
-    for (file, l4) in [("pick_and_place.toml", 1 + 31), ("inspection.toml", 1 + 32)] {
+    for (file, [l1, l2, l3, l4]) in [
+        ("pick_and_place.toml", [31, 1 + 21, 33, 1 + 21]),
+        ("inspection.toml", [56, 1 + 29, 63, 1 + 32]),
+    ] {
         let setup = bundled(file);
         let counts: Vec<usize> = setup
             .guides
@@ -134,7 +137,7 @@ fn s_zero_is_a_configuration_paired_with_its_coincident_copy() {
     // Inter-link segments never list S = 0.
     assert!(setup.segments[0].lengths.iter().all(|&s| s > 0));
     assert!(setup.segments[2].lengths.iter().all(|&s| s > 0));
-    assert_eq!(setup.segments[1].lengths[..3], [0, 2, 3]);
+    assert_eq!(setup.segments[1].lengths[..3], [0, 14, 15]);
 }
 
 #[test]

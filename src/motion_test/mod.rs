@@ -10,7 +10,8 @@
 //!    own sub-segments; results always name the setup's segment index (C1 = 0).
 //! 2. **Initial shape** at the motion's first sample: the guides' world poses, per segment
 //!    the connected geometry (bowing towards gravity) and then the quasi-static equilibrium
-//!    ([`solve_cable`](crate::statics::solve_cable)), so the cable starts at rest. Guides
+//!    ([`solve_cable`](crate::statics::solve_cable), Newton stopped at 1e-6 N like the
+//!    attachment test), so the cable starts at rest. Guides
 //!    farther apart than a segment's length, no connected geometry or no equilibrium make a
 //!    *failed candidate* (a report with the reason), not an error.
 //! 3. **Stepping** with [`MotionTestOptions::settings`] (default
@@ -26,7 +27,9 @@
 //!      ([`min_clearance`](crate::stress::min_clearance), f64, capsules of the cable radius),
 //!      excluding `thresholds.clamp_zone_m` of cable at each guide against the guide's own
 //!      link (and the link that one is fixed to); violated when below
-//!      `thresholds.contact_clearance_m`;
+//!      `thresholds.contact_clearance_m`. Exact and cheap enough for every step: ≈ 25 µs for
+//!      a 145-sub-segment cable against the Viper's 12 colliders, about 1 % of a step (the
+//!      query culls distant colliders itself);
 //!    - *contact force*: rapier's contact force on each sub-segment outside the clamp zones
 //!      (the largest per step is reported); by default
 //!      ([`MotionTestOptions::contact_force_is_violation`]) any such force is a contact
@@ -77,7 +80,8 @@ use tracker::{RunFacts, Tracker};
 /// Runs the motion test of `path` (lengths and guide configurations of `setup`) along
 /// `motion` (see the module documentation).
 ///
-/// `Ok` with `passed == false` for a candidate that fails (a limit violated, a segment too
+/// Lengths need not be among the segment's candidates. `Ok` with `passed == false` for a
+/// candidate that fails (a limit violated, a segment too
 /// short at the first pose, no initial shape, a diverging simulation). `Err` for input that
 /// does not fit: path vectors of the wrong length, a configuration index out of range, S = 0
 /// between guides that do not coincide (or S > 0 between guides that do), no segment with

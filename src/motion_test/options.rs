@@ -34,7 +34,8 @@ pub struct MotionTestOptions {
     /// the paper's impulse criterion). Rapier resolves contacts at about zero clearance —
     /// measured: a cable pressed onto a link with 0.3–1.5 N stayed within −0.25…+0.43 mm of
     /// it — so under a zero clearance threshold the clearance alone sees a contact only
-    /// through the solver's residual penetration.
+    /// through the solver's residual penetration. Off: contact is judged by the clearance
+    /// alone (e.g. under a negative clearance threshold, which tolerates touching).
     pub contact_force_is_violation: bool,
 }
 
