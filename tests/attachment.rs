@@ -164,7 +164,7 @@ fn the_untested_answer_is_the_shortest_chain_of_robust_pvs() {
     assert_eq!(report.chains, chains.len().to_string());
     let best = &chains[0];
     let optimal = report.optimal.unwrap();
-    let lengths: Vec<usize> = optimal.iter().map(|s| s.sub_segments).collect();
+    let lengths: Vec<usize> = optimal.segments.iter().map(|s| s.sub_segments).collect();
     assert_eq!(lengths, best.lengths);
     let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
     assert_eq!(
@@ -187,8 +187,8 @@ fn method_one_leaves_intra_link_segments_at_zero_length() {
     let report = solve(&setup, &motion, &options).unwrap();
     assert_eq!(report.inputs.method, "method 1");
     match report.optimal {
-        Some(path) => assert_eq!(path[1].sub_segments, 0),
-        None => assert_eq!(report.status, Status::Unsolved),
+        Some(path) => assert_eq!(path.segments[1].sub_segments, 0),
+        None => assert_eq!(report.status, Status::NoChain),
     }
     let bad = SolveOptions {
         max_guides_per_link: Some(3),

@@ -269,6 +269,31 @@ fn a_cable_held_still_stays_at_its_static_equilibrium() {
     assert_eq!(report.series[0].time_s, 0.0);
 }
 
+/// (a') A guide whose clamp zone lies inside its own link (tests/data/small_setup.toml: G2
+/// "left z250" sits in the wrist box of link_4): the stress checks leave the zone out, so must
+/// the simulated contacts — the cable held still stays at its equilibrium's clearance (it
+/// used to be pushed 8 mm into the forearm within one step by the box pressing on the zone).
+#[test]
+fn a_clamp_zone_inside_its_guides_link_does_not_push_the_cable() {
+    let setup = Setup::from_file(root().join("tests/data/small_setup.toml")).unwrap();
+    let q0 = pick_and_place(&setup).samples()[0].clone();
+    let path = CablePath {
+        lengths: vec![30],
+        configurations: vec![0, 0],
+    };
+    let (_, clearance, _) = reference(&setup, &q0, 0, 30, (0, 0));
+    assert!(clearance.clearance_m > 3e-3, "{clearance:?}");
+    let options = MotionTestOptions::for_setup(&setup);
+    let report = run(&setup, &path, &hold(&setup, &q0, 0.2), &options).unwrap();
+    assert!(report.passed, "{}", report.summary());
+    assert!(report.worst_contact_force.is_none(), "{}", report.summary());
+    let worst = report.worst_clearance.unwrap().value;
+    assert!(
+        (worst - clearance.clearance_m).abs() < 0.5e-3,
+        "{worst} vs {clearance:?}"
+    );
+}
+
 /// (b) A segment shorter than its guides' distance at the first pose is a failed candidate
 /// (not an error) whose stretch is the distance over the natural length; the merged S = 0
 /// segments do not shift the reported segment index.

@@ -11,8 +11,9 @@ use clap::{Parser, Subcommand};
 
 /// Finds the shortest safe external cable path for an industrial robot arm.
 ///
-/// Units on the command line: millimetres and degrees. Exit codes: 0 success, 1 the input is
-/// valid but has no answer (e.g. a cable too short for its guides), 2 invalid input.
+/// Units on the command line: millimetres and degrees. Exit codes: 0 success (`solve` also
+/// when it finds no cable path: its status says so), 1 the input is valid but the command has
+/// no answer (e.g. `segment` with a cable too short for its guides), 2 invalid input.
 #[derive(Debug, Parser)]
 #[command(name = "cable-dict", version)]
 pub struct Cli {

@@ -6,7 +6,7 @@ use cable_dict::atomic_file::write_atomically;
 use cable_dict::attachment::{ConnectMethod, SegmentPoses};
 use cable_dict::motion::Motion;
 use cable_dict::setup::Setup;
-use cable_dict::solve::{SolveError, SolveOptions, Status, guide_names, solve};
+use cable_dict::solve::{SolveError, SolveOptions, guide_names, solve};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -61,8 +61,11 @@ pub fn run(args: Args) -> Result<(), Failure> {
         motion_test: !args.no_motion_test,
     };
     let mut report = solve(&setup, &motion, &options).map_err(|e| match e {
-        SolveError::Options(_) | SolveError::Setup(_) | SolveError::Motion(_) => Failure::input(e),
-        _ => Failure::unsolved(e),
+        SolveError::Options(_)
+        | SolveError::Setup(_)
+        | SolveError::Motion(_)
+        | SolveError::Obstacles(_) => Failure::input(e),
+        SolveError::Chain(_) | SolveError::MotionTest(_) => Failure::unsolved(e),
     })?;
     report.inputs.motion_file = Some(args.motion.display().to_string());
     if let Some(path) = &args.output {
@@ -76,13 +79,8 @@ pub fn run(args: Args) -> Result<(), Failure> {
     } else {
         emit(&report.to_string())?;
     }
-    match report.status {
-        Status::Solved | Status::Untested => Ok(()),
-        _ => Err(Failure::unsolved(anyhow::anyhow!(
-            "no cable path: {}",
-            report.explanation
-        ))),
-    }
+    // "No cable path" is an answer, not a failure: exit 0 like "solved" (the status says which).
+    Ok(())
 }
 
 /// Reads the setup and the motion for its robot.

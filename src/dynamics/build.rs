@@ -15,10 +15,22 @@ use crate::cable::CableSpec;
 use crate::geometry::ConnectedGeometry;
 use crate::pose::Pose;
 
-/// Collision group of cable colliders; they only interact with [`ROBOT_GROUP`].
+/// Collision group of cable colliders; they only interact with robot links.
 pub(super) const CABLE_GROUP: Group = Group::GROUP_1;
-/// Collision group of robot link colliders; they only interact with [`CABLE_GROUP`].
-pub(super) const ROBOT_GROUP: Group = Group::GROUP_2;
+/// Robot links with colliders that can have a collision group of their own (bits 1 to 31), so
+/// that a cable collider can ignore single links (the clamp zone at a guide).
+pub(super) const MAX_LINK_GROUPS: usize = 31;
+
+/// Collision group of the colliders of robot link `link` (< [`MAX_LINK_GROUPS`]).
+pub(super) fn link_group(link: usize) -> Group {
+    debug_assert!(link < MAX_LINK_GROUPS);
+    Group::from_bits_truncate(1 << (link + 1))
+}
+
+/// Every link's collision group: what a cable collider interacts with by default.
+fn all_link_groups() -> Group {
+    Group::all().difference(CABLE_GROUP)
+}
 /// Tag in the upper 64 bits of a cable collider's `user_data` (segment and sub-segment below).
 pub(super) const CABLE_TAG: u128 = 1 << 64;
 /// Tag in the upper 64 bits of a robot collider's `user_data` (link index below).
@@ -329,7 +341,7 @@ fn insert_sub_segment(
         .friction(settings.contact_friction as f32)
         .collision_groups(InteractionGroups::new(
             CABLE_GROUP,
-            ROBOT_GROUP,
+            all_link_groups(),
             InteractionTestMode::And,
         ))
         .user_data(CABLE_TAG | ((m as u128) << 32) | s as u128);

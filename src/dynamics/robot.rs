@@ -6,7 +6,7 @@ use rapier3d::prelude::{
     RigidBodyHandle,
 };
 
-use super::build::{CABLE_GROUP, ROBOT_GROUP, ROBOT_TAG, checked_pose};
+use super::build::{CABLE_GROUP, MAX_LINK_GROUPS, ROBOT_TAG, checked_pose, link_group};
 use super::convert::{to_rapier_point, to_rapier_pose};
 use super::error::{DynamicsError, invalid};
 use crate::pose::Pose;
@@ -39,6 +39,18 @@ pub(super) fn insert_links(
     friction: f64,
 ) -> Result<Vec<Option<RigidBodyHandle>>, DynamicsError> {
     let poses = checked_link_poses(link_poses, robot.links.len())?;
+    if let Some((i, link)) = robot
+        .links
+        .iter()
+        .enumerate()
+        .find(|(i, link)| *i >= MAX_LINK_GROUPS && !link.colliders.is_empty())
+    {
+        return Err(invalid(format!(
+            "link `{}` (index {i}) has colliders, but only the first {MAX_LINK_GROUPS} links \
+             can be obstacles (one collision group each)",
+            link.name
+        )));
+    }
     let mut handles = Vec::with_capacity(robot.links.len());
     for (i, (link, pose)) in robot.links.iter().zip(&poses).enumerate() {
         if link.colliders.is_empty() {
@@ -99,7 +111,7 @@ fn collider_builder(
         .density(0.0)
         .friction(f(friction))
         .collision_groups(InteractionGroups::new(
-            ROBOT_GROUP,
+            link_group(link),
             CABLE_GROUP,
             InteractionTestMode::And,
         ))

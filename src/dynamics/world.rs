@@ -2,10 +2,11 @@
 
 use nalgebra::{Point3, Rotation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::{PhysicsWorld, RigidBodyHandle};
+use std::ops::Range;
 
 use super::build::{
-    SegmentShape, SubSegmentModel, check_shapes, checked_pose, insert_guides, insert_segment,
-    sub_segment_poses,
+    MAX_LINK_GROUPS, SegmentShape, SubSegmentModel, check_shapes, checked_pose, insert_guides,
+    insert_segment, link_group, sub_segment_poses,
 };
 use super::convert::{from_rapier_pose, to_rapier_pose, to_rapier_vector};
 use super::error::{BlowUpQuantity, DynamicsError, invalid};
@@ -28,7 +29,8 @@ use crate::stress::{min_bend_radius, stretch};
 /// across the cable, torsion `kt` about it) pulling towards the rest state, in which the two
 /// bodies' frames are aligned (a guide's frame plays the neighbouring sub-segment, its +z
 /// along the cable). Guides are kinematic bodies without colliders; cable colliders touch
-/// robot colliders only.
+/// robot colliders only, and each link has a collision group of its own so that
+/// [`CableWorld::ignore_contacts`] can exempt single links (the clamp zone at a guide).
 ///
 /// Use: [`CableWorld::new`], optionally [`CableWorld::add_robot`], then per step set the
 /// kinematic targets ([`CableWorld::move_guides`], [`CableWorld::move_robot`]) and call
@@ -102,6 +104,41 @@ impl CableWorld {
             self.settings.contact_friction,
         )?;
         self.links = Some(links);
+        Ok(())
+    }
+
+    /// Stops contacts between the sub-segments `sub_segments` of segment `segment` and robot
+    /// link `link` (indexed like `robot.links`), before or after [`CableWorld::add_robot`].
+    /// For the clamp zone at a guide: there the cable is held against the guide's own link by
+    /// the clamp, and the stress checks do not count that contact either.
+    pub fn ignore_contacts(
+        &mut self,
+        segment: usize,
+        sub_segments: Range<usize>,
+        link: usize,
+    ) -> Result<(), DynamicsError> {
+        let bodies = self
+            .segments
+            .get(segment)
+            .and_then(|bodies| bodies.get(sub_segments.clone()))
+            .ok_or_else(|| {
+                invalid(format!(
+                    "no sub-segments {sub_segments:?} in segment {segment} of this cable"
+                ))
+            })?;
+        if link >= MAX_LINK_GROUPS {
+            return Err(invalid(format!(
+                "link index {link}: only the first {MAX_LINK_GROUPS} links can be obstacles"
+            )));
+        }
+        for body in bodies {
+            for &collider in self.world.bodies[*body].colliders() {
+                let collider = &mut self.world.colliders[collider];
+                let mut groups = collider.collision_groups();
+                groups.filter = groups.filter.difference(link_group(link));
+                collider.set_collision_groups(groups);
+            }
+        }
         Ok(())
     }
 

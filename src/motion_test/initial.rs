@@ -56,6 +56,7 @@ pub(super) fn equilibria(
                         "segment C{}: no static equilibrium at the first pose (t = {time_s} s): {e}",
                         segment + 1
                     ),
+                    segment: Some(segment),
                 }));
             }
         }
@@ -99,6 +100,7 @@ fn connected(
                         "segment C{} at the first pose (t = {time_s} s): {e}",
                         segment + 1
                     ),
+                    segment: Some(segment),
                 }));
             }
             Err(e @ ConnectError::NoSolution { .. }) => {
@@ -108,6 +110,7 @@ fn connected(
                         "segment C{} at the first pose (t = {time_s} s): {e}",
                         segment + 1
                     ),
+                    segment: Some(segment),
                 }));
             }
         }

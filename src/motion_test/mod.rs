@@ -104,7 +104,8 @@ pub fn run(
         plan,
         motion,
         options,
-        clearance: ClearanceQuery::new(obstacles, 0.5 * setup.cable.diameter_m, zones),
+        clearance: ClearanceQuery::new(obstacles, 0.5 * setup.cable.diameter_m, zones.clone()),
+        clamp_zones: zones,
     };
     let mut tracker = Tracker::new(
         setup,

@@ -55,6 +55,10 @@ pub struct Failure {
     pub cause: FailureCause,
     /// For people: what, when, where.
     pub reason: String,
+    /// The setup's segment (C1 = 0) the failure belongs to, when it belongs to one. Segments
+    /// are independent between clamps (each guide holds the cable's position and direction),
+    /// so every cable path with this segment's length and guide configurations fails too.
+    pub segment: Option<usize>,
 }
 
 /// The kinds of failure of a candidate (not errors of the run: the caller goes on with the
@@ -243,13 +247,20 @@ impl MotionTestReport {
             Some(failure) => format!("failed: {}", failure.reason),
         };
         let worst = |label: &str, w: &Option<Worst>, scale: f64, unit: &str| match w {
-            Some(w) => format!(
-                "{label} {:.4} {unit} at t = {:.4} s, C{} ({})",
-                w.value * scale,
-                w.time_s,
-                w.segment + 1,
-                w.place
-            ),
+            Some(w) => {
+                let place = w.place.to_string();
+                let place = if place.is_empty() {
+                    place
+                } else {
+                    format!(" ({place})")
+                };
+                format!(
+                    "{label} {:.4} {unit} at t = {:.4} s, C{}{place}",
+                    w.value * scale,
+                    w.time_s,
+                    w.segment + 1,
+                )
+            }
             None => format!("{label} -"),
         };
         [

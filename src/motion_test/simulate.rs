@@ -12,7 +12,7 @@ use crate::motion::Motion;
 use crate::pose::Pose;
 use crate::setup::Setup;
 use crate::statics::Equilibrium;
-use crate::stress::{min_bend_radius, stretch};
+use crate::stress::{ClampZone, GuideEnd, min_bend_radius, stretch};
 use nalgebra::{Point3, Vector3};
 
 /// Slack on clamp-zone lengths (m), as in the clearance query: a zone of `n` pitches covers
@@ -30,6 +30,9 @@ pub(super) struct Context<'a> {
     pub motion: &'a Motion,
     pub options: &'a MotionTestOptions,
     pub clearance: ClearanceQuery,
+    /// Per simulated segment, the clamp zones: checked by neither the clearance nor the
+    /// simulation's contacts.
+    pub clamp_zones: Vec<Vec<ClampZone>>,
 }
 
 /// How a simulation ended: a failure of the candidate (not a limit violation, which the
@@ -121,12 +124,29 @@ impl Context<'_> {
                 frames: &eq.frames,
             })
             .collect();
-        CableWorld::new(&self.setup.cable, &segment_shapes, &self.options.settings).map_err(|e| {
-            Failure {
-                cause: FailureCause::NoInitialShape,
-                reason: format!("the simulation refused the initial shape: {e}"),
+        let refused = |e: DynamicsError| Failure {
+            cause: FailureCause::NoInitialShape,
+            reason: format!("the simulation refused the initial shape: {e}"),
+            segment: None,
+        };
+        let mut world = CableWorld::new(&self.setup.cable, &segment_shapes, &self.options.settings)
+            .map_err(refused)?;
+        for (j, (zones, eq)) in self.clamp_zones.iter().zip(shapes).enumerate() {
+            let sub_segments = eq.nodes.len() - 1;
+            for zone in zones {
+                let range = match zone.end {
+                    GuideEnd::Start => 0..zone_count(eq.nodes.iter(), zone.length_m),
+                    GuideEnd::End => {
+                        sub_segments - zone_count(eq.nodes.iter().rev(), zone.length_m)
+                            ..sub_segments
+                    }
+                };
+                world
+                    .ignore_contacts(j, range, zone.link)
+                    .map_err(refused)?;
             }
-        })
+        }
+        Ok(world)
     }
 
     /// The metrics of the equilibria (no contact force: nothing is simulated yet).
@@ -188,7 +208,7 @@ impl Context<'_> {
 
     /// The failure of a blow-up at `time_s`, naming the setup's segment.
     fn diverged(&self, error: &DynamicsError, time_s: f64) -> Failure {
-        let detail = match error {
+        let (detail, segment) = match error {
             DynamicsError::BlowUp {
                 segment,
                 sub_segment,
@@ -203,16 +223,18 @@ impl Context<'_> {
                     .get(*segment)
                     .map_or(*segment, |s| s.setup_index);
                 let place = sub_segment.map_or(String::new(), |s| format!(", sub-segment {s}"));
-                format!(
+                let detail = format!(
                     "segment C{}{place}: {quantity} = {value:.4e} exceeds the sanity bound {bound:.4e}",
                     setup_segment + 1
-                )
+                );
+                (detail, Some(setup_segment))
             }
-            other => other.to_string(),
+            other => (other.to_string(), None),
         };
         Failure {
             cause: FailureCause::Diverged,
             reason: format!("simulation diverged at t = {time_s:.4} s ({detail})"),
+            segment,
         }
     }
 }

@@ -104,6 +104,7 @@ impl<'a> Tracker<'a> {
             self.first_violation.as_ref().map(|v| Failure {
                 cause: FailureCause::Violation,
                 reason: v.to_string(),
+                segment: Some(v.segment),
             })
         });
         MotionTestReport {

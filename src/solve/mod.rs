@@ -4,22 +4,23 @@
 //!    ([`SegmentPoses`]).
 //! 2. The attachment test: D0 → D'0 → D1 → D2 per segment ([`attachment_test`]).
 //! 3. The chain search over D2: |D3| and the shortest chain d̂ ([`ChainSearch`]).
-//! 4. The motion test of the chains in non-decreasing length (k-best): the first that passes
-//!    is d*. When none of the first `k` passes, or there is no chain, the result says so and
-//!    why.
+//! 4. The motion test of the chains in non-decreasing length: the first that passes is d*.
+//!    A failed segment's PV is dropped before the next try (segments are independent between
+//!    clamps). When none passes within `k` tries, or there is no chain, the result says so
+//!    and why.
 
 mod report;
 
 pub use report::{
-    CandidateOutcome, Inputs, Margin, PathSegment, PoseSummary, SegmentReport, SolveReport, Status,
-    Timings, guide_names, path_segments, pose_summary,
+    CandidateOutcome, Ecpv, Inputs, Margin, PathGuide, PathSegment, PoseSummary, SegmentReport,
+    SolveReport, Status, Timings, ecpv, guide_names, pose_summary,
 };
 
 use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, SegmentSets, attachment_test};
 use crate::chain::{ChainError, ChainSearch};
 use crate::motion::{Motion, MotionError};
 use crate::motion_test::{self, MotionTestError, MotionTestOptions, MotionTestReport};
-use crate::path::CablePath;
+use crate::path::{CablePath, Pv};
 use crate::setup::{Setup, SetupError};
 use crate::stress::contact::ContactError;
 use std::time::Instant;
@@ -32,7 +33,7 @@ pub struct SolveOptions {
     /// `Some(1)`: the paper's method 1 (one guide per link: intra-link segments only at
     /// S = 0); `Some(2)` or `None`: as the setup declares.
     pub max_guides_per_link: Option<usize>,
-    /// Chains tried in the motion test, at most (≥ 1).
+    /// Chains tried in the motion test, at most (≥ 1): the budget of motion tests.
     pub k_best: usize,
     /// Run the motion test; without it the shortest chain d̂ is the answer.
     pub motion_test: bool,
@@ -90,11 +91,12 @@ pub fn solve(
     let attachment_s = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
-    let search = chain_search(setup, &sets)?;
+    let d2: Vec<Vec<Pv>> = sets.iter().map(|s| s.d2.clone()).collect();
+    let search = chain_search(setup, &d2)?;
     let chain_s = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
-    let (candidates, winner) = motion_tests(setup, motion, &search, options)?;
+    let (candidates, winner, stop) = motion_tests(setup, motion, &sets, &search, options)?;
     let motion_test_s = clock.elapsed().as_secs_f64();
 
     let timings = Timings {
@@ -105,7 +107,8 @@ pub fn solve(
         total_s: total.elapsed().as_secs_f64(),
     };
     Ok(SolveReport::new(
-        setup, motion, options, &evaluator, &poses, &sets, &search, candidates, winner, timings,
+        setup, motion, options, &evaluator, &poses, &sets, &search, candidates, winner, &stop,
+        timings,
     ))
 }
 
@@ -123,29 +126,36 @@ fn method_setup(setup: &Setup, options: &SolveOptions) -> Result<Setup, SolveErr
     }
 }
 
-fn chain_search(setup: &Setup, sets: &[SegmentSets]) -> Result<ChainSearch, SolveError> {
+/// The chain search over the sets `d2`, one per segment.
+fn chain_search(setup: &Setup, d2: &[Vec<Pv>]) -> Result<ChainSearch, SolveError> {
     let counts: Vec<usize> = setup
         .guides
         .iter()
         .map(|g| g.configurations.len())
         .collect();
-    let d2: Vec<_> = sets.iter().map(|s| s.d2.clone()).collect();
-    Ok(ChainSearch::new(&counts, &d2)?)
+    Ok(ChainSearch::new(&counts, d2)?)
 }
 
-/// The motion test of the first `k` chains in length order; the index of the first that
-/// passes. Without the motion test, the shortest chain wins untested.
-#[allow(clippy::type_complexity)]
+/// One chain put to the motion test (`None`: not tested).
+pub(crate) type Tried = (CablePath, Option<MotionTestReport>);
+
+/// The motion tests of the shortest chains: after each failure that belongs to a segment,
+/// that segment's PV is dropped from its D2 and the shortest chain of what is left is tried
+/// next, at most `k_best` times. Segments are independent between clamps, so every chain
+/// with a failed PV fails too: this tries, in non-decreasing length, exactly the chains of
+/// the k-best enumeration that contain no PV already seen failing. Returns the chains tried,
+/// the index of the one that passed, and why the search stopped without one.
 fn motion_tests(
     setup: &Setup,
     motion: &Motion,
+    sets: &[SegmentSets],
     search: &ChainSearch,
     options: &SolveOptions,
-) -> Result<(Vec<(CablePath, Option<MotionTestReport>)>, Option<usize>), SolveError> {
+) -> Result<(Vec<Tried>, Option<usize>, String), SolveError> {
     if !options.motion_test {
         let shortest = search.shortest().map(|path| (path, None));
         let winner = shortest.as_ref().map(|_| 0);
-        return Ok((shortest.into_iter().collect(), winner));
+        return Ok((shortest.into_iter().collect(), winner, String::new()));
     }
     // Stopping at the first violation only shortens failing runs: a passing candidate is
     // simulated through the whole motion either way, series included.
@@ -153,15 +163,31 @@ fn motion_tests(
         stop_at_first_violation: true,
         ..MotionTestOptions::for_setup(setup)
     };
+    let mut d2: Vec<Vec<Pv>> = sets.iter().map(|s| s.d2.clone()).collect();
     let mut tried = Vec::new();
-    for path in search.k_best().take(options.k_best) {
+    while tried.len() < options.k_best {
+        let Some(path) = chain_search(setup, &d2)?.shortest() else {
+            let stop = "no chain is left of the robust PVs that did not fail it".to_string();
+            return Ok((tried, None, stop));
+        };
         let report = motion_test::run(setup, &path, motion, &test_options)?;
+        let failed_segment = report.failure.as_ref().and_then(|f| f.segment);
         let passed = report.passed;
-        tried.push((path, Some(report)));
+        tried.push((path.clone(), Some(report)));
         if passed {
             let winner = tried.len() - 1;
-            return Ok((tried, Some(winner)));
+            return Ok((tried, Some(winner), String::new()));
         }
+        let Some(m) = failed_segment else {
+            let stop = "the last failure belongs to no single segment".to_string();
+            return Ok((tried, None, stop));
+        };
+        let failed = path.pv(m);
+        d2[m].retain(|pv| *pv != failed);
     }
-    Ok((tried, None))
+    let stop = format!(
+        "the budget of {} motion tests (--k-best) is spent",
+        options.k_best
+    );
+    Ok((tried, None, stop))
 }

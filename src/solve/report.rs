@@ -1,13 +1,13 @@
 //! The result of [`solve`](super::solve): serializable (the result JSON) and printable (the
 //! human summary).
 
-use super::SolveOptions;
+use super::{SolveOptions, Tried};
 use crate::attachment::{
     ConnectMethod, Evaluator, Metrics, Rejection, SegmentPoses, SegmentSets, TestPose,
 };
 use crate::chain::ChainSearch;
 use crate::motion::Motion;
-use crate::motion_test::MotionTestReport;
+use crate::motion_test::{MotionTestReport, Worst};
 use crate::path::CablePath;
 use crate::setup::Setup;
 use serde::Serialize;
@@ -23,43 +23,98 @@ pub enum Status {
     /// Shortest chain found, motion test not run (`--no-motion-test`).
     Untested,
     /// No chain: some segment has no robust PV, or no robust PVs agree on shared guides (the
-    /// paper's "unsolved").
-    Unsolved,
-    /// Chains exist, but none of the ones tried passed the motion test (the paper's "none").
+    /// paper's "None").
+    NoChain,
+    /// Chains exist, but none of the ones tried passed the motion test (the paper's
+    /// "Unsolved").
     NonePassedMotionTest,
 }
 
-/// Wall-clock time of each stage (s). The only part of the report that changes from run to
-/// run.
+impl Status {
+    /// The result JSON's `status`: `solved`, `untested` or `unsolved` (both ways of failing).
+    pub fn word(self) -> &'static str {
+        match self {
+            Status::Solved => "solved",
+            Status::Untested => "untested",
+            Status::NoChain | Status::NonePassedMotionTest => "unsolved",
+        }
+    }
+
+    /// For people.
+    fn describe(self) -> &'static str {
+        match self {
+            Status::Solved => "solved",
+            Status::Untested => "shortest chain found, not motion-tested",
+            Status::NoChain => "unsolved: no chain of robust PVs",
+            Status::NonePassedMotionTest => "unsolved: no chain tried passed the motion test",
+        }
+    }
+}
+
+/// Wall-clock time of each stage (s); the result JSON's `timings_s`. The only part of the
+/// report that changes from run to run.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Timings {
     /// Critical and test poses.
+    #[serde(rename = "critical_poses")]
     pub critical_poses_s: f64,
     /// Attachment test of every segment.
+    #[serde(rename = "attachment")]
     pub attachment_s: f64,
     /// Chain search (dynamic programming and counting).
+    #[serde(rename = "chain_search")]
     pub chain_s: f64,
     /// Motion tests of every candidate tried.
+    #[serde(rename = "motion_test")]
     pub motion_test_s: f64,
     /// Whole run.
+    #[serde(rename = "total")]
     pub total_s: f64,
 }
 
-/// One segment of a cable path, for people.
+/// A cable path as built: the paper's ECPV, with names.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Ecpv {
+    /// Segment by segment, C1 first.
+    pub segments: Vec<PathSegment>,
+    /// Every guide with the configuration the path uses, G1 first.
+    pub guides: Vec<PathGuide>,
+}
+
+/// One segment of a cable path.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PathSegment {
     /// `C1`, `C2`, …
-    pub segment: String,
-    /// Start and end guide names.
-    pub guides: [String; 2],
-    /// Links of the start and end guide.
-    pub links: [String; 2],
+    pub name: String,
+    /// Start guide.
+    pub from_guide: String,
+    /// End guide.
+    pub to_guide: String,
+    /// Link of the start guide.
+    pub from_link: String,
+    /// Link of the end guide.
+    pub to_link: String,
+    /// `inter-link` or `intra-link`.
+    pub kind: &'static str,
     /// Length in sub-segments (0: the two guides are one clamp).
     pub sub_segments: usize,
     /// Natural length (mm).
     pub length_mm: f64,
-    /// Configuration names of the start and end guide.
-    pub configurations: [String; 2],
+}
+
+/// One guide of a cable path: where its clamp goes.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PathGuide {
+    /// `G1`, `G2`, …
+    pub name: String,
+    /// The link it is screwed onto.
+    pub link: String,
+    /// The configuration's name (`G2/…` when the guide coincides with G2: no clamp of its own).
+    pub configuration: String,
+    /// Position in the link frame (mm).
+    pub xyz_mm: [f64; 3],
+    /// URDF roll, pitch, yaw in the link frame (deg).
+    pub rpy_deg: [f64; 3],
 }
 
 /// A static stress margin of one segment of d* at its binding test pose (attachment test).
@@ -88,17 +143,17 @@ pub struct Margin {
 pub struct SegmentReport {
     /// `C1`, `C2`, …
     pub segment: String,
-    /// Start and end guide names.
-    pub guides: [String; 2],
-    /// Links of the start and end guide.
-    pub links: [String; 2],
-    /// Both guides on one link.
-    pub intra_link: bool,
+    /// Start guide.
+    pub from_guide: String,
+    /// End guide.
+    pub to_guide: String,
+    /// `inter-link` or `intra-link`.
+    pub kind: &'static str,
     /// Joints between the two links (inter-link segments).
     pub traversed_joints: Vec<String>,
     /// The test poses (sample, time, reason).
     pub test_poses: Vec<PoseSummary>,
-    /// |D0|, |D'0|, |D1|, |D2|.
+    /// |D0|.
     pub d0: usize,
     /// |D'0|.
     pub d0_pruned: usize,
@@ -165,8 +220,9 @@ pub struct Inputs {
     pub connect: ConnectMethod,
 }
 
-/// Everything `solve` found.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// Everything `solve` found. Serializes as the result JSON (README, "Result JSON"): the names
+/// there are stable, scripts depend on them.
+#[derive(Debug, Clone, PartialEq)]
 pub struct SolveReport {
     /// How the run ended.
     pub status: Status,
@@ -174,8 +230,8 @@ pub struct SolveReport {
     pub explanation: String,
     /// The inputs.
     pub inputs: Inputs,
-    /// The optimal path d* (or d̂ when untested), segment by segment.
-    pub optimal: Option<Vec<PathSegment>>,
+    /// The optimal path d* (or d̂ when untested).
+    pub optimal: Option<Ecpv>,
     /// Its total length (mm).
     pub optimal_length_mm: Option<f64>,
     /// Static margins of every segment of the optimal path at its binding test pose.
@@ -185,10 +241,13 @@ pub struct SolveReport {
     /// |D3|: chains of robust PVs that agree on every shared guide (a decimal string: it can
     /// exceed 2⁶⁴).
     pub chains: String,
-    /// The chains tried in the motion test, in length order.
+    /// The chains tried in the motion test, in the order tried (non-decreasing length).
     pub candidates: Vec<CandidateOutcome>,
-    /// Motion test of the optimal path, or of the last candidate tried when none passed.
+    /// Motion test of the optimal path, or of the last candidate tried when none passed;
+    /// `None` when none was run.
     pub motion_test: Option<MotionTestReport>,
+    /// The motion test was asked for.
+    pub motion_test_requested: bool,
     /// Stage timings (s).
     pub timings: Timings,
 }
@@ -204,8 +263,9 @@ impl SolveReport {
         poses: &SegmentPoses,
         sets: &[SegmentSets],
         search: &ChainSearch,
-        tried: Vec<(CablePath, Option<MotionTestReport>)>,
+        tried: Vec<Tried>,
         winner: Option<usize>,
+        stop: &str,
         timings: Timings,
     ) -> SolveReport {
         let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
@@ -218,9 +278,9 @@ impl SolveReport {
         };
         SolveReport {
             status,
-            explanation: explanation(status, sets, &candidates, setup),
+            explanation: explanation(status, sets, &candidates, stop, setup),
             inputs: inputs(setup, motion, options),
-            optimal: best.as_ref().map(|p| path_segments(setup, p)),
+            optimal: best.as_ref().map(|p| ecpv(setup, p)),
             optimal_length_mm: best
                 .as_ref()
                 .map(|p| p.total_sub_segments() as f64 * pitch_mm),
@@ -232,14 +292,100 @@ impl SolveReport {
             chains: search.chain_count().to_string(),
             candidates,
             motion_test,
+            motion_test_requested: options.motion_test,
             timings,
         }
     }
 }
 
+/// The result JSON's `motion_test`: the run of d* (or of the last candidate tried).
+#[derive(Serialize)]
+struct MotionTestJson<'a> {
+    candidates_tried: usize,
+    passed: Option<bool>,
+    failure: Option<&'a str>,
+    /// Largest contact force outside the clamp zones (N); 0 when the cable never touched.
+    max_contact: Option<f64>,
+    min_clearance_mm: Option<f64>,
+    max_stretch: Option<f64>,
+    min_bend_radius_mm: Option<f64>,
+    worst_clearance: Option<&'a Worst>,
+    worst_stretch: Option<&'a Worst>,
+    worst_bend_radius: Option<&'a Worst>,
+    worst_contact_force: Option<&'a Worst>,
+    simulated_s: Option<f64>,
+    wall_time_s: Option<f64>,
+}
+
+impl<'a> MotionTestJson<'a> {
+    fn new(candidates_tried: usize, report: Option<&'a MotionTestReport>) -> Self {
+        let mm = |w: &Option<Worst>| w.as_ref().map(|w| w.value * 1e3);
+        Self {
+            candidates_tried,
+            passed: report.map(|r| r.passed),
+            failure: report
+                .and_then(|r| r.failure.as_ref())
+                .map(|f| f.reason.as_str()),
+            max_contact: report.map(|r| r.worst_contact_force.as_ref().map_or(0.0, |w| w.value)),
+            min_clearance_mm: report.and_then(|r| mm(&r.worst_clearance)),
+            max_stretch: report
+                .and_then(|r| r.worst_stretch.as_ref())
+                .map(|w| w.value),
+            min_bend_radius_mm: report.and_then(|r| mm(&r.worst_bend)),
+            worst_clearance: report.and_then(|r| r.worst_clearance.as_ref()),
+            worst_stretch: report.and_then(|r| r.worst_stretch.as_ref()),
+            worst_bend_radius: report.and_then(|r| r.worst_bend.as_ref()),
+            worst_contact_force: report.and_then(|r| r.worst_contact_force.as_ref()),
+            simulated_s: report.map(|r| r.simulated_s),
+            wall_time_s: report.map(|r| r.wall_time_s),
+        }
+    }
+}
+
+/// The result JSON, field names as documented.
+#[derive(Serialize)]
+struct ResultJson<'a> {
+    status: &'static str,
+    outcome: Status,
+    method: &'a str,
+    total_length_mm: Option<f64>,
+    ecpv: Option<&'a Ecpv>,
+    sets: &'a [SegmentReport],
+    chains: &'a str,
+    motion_test: Option<MotionTestJson<'a>>,
+    candidates: &'a [CandidateOutcome],
+    margins: &'a [Margin],
+    reason: Option<&'a str>,
+    inputs: &'a Inputs,
+    timings_s: &'a Timings,
+}
+
+impl Serialize for SolveReport {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        ResultJson {
+            status: self.status.word(),
+            outcome: self.status,
+            method: &self.inputs.method,
+            total_length_mm: self.optimal_length_mm,
+            ecpv: self.optimal.as_ref(),
+            sets: &self.segments,
+            chains: &self.chains,
+            motion_test: self
+                .motion_test_requested
+                .then(|| MotionTestJson::new(self.candidates.len(), self.motion_test.as_ref())),
+            candidates: &self.candidates,
+            margins: &self.margins,
+            reason: (self.status != Status::Solved).then_some(self.explanation.as_str()),
+            inputs: &self.inputs,
+            timings_s: &self.timings,
+        }
+        .serialize(serializer)
+    }
+}
+
 fn status(options: &SolveOptions, search: &ChainSearch, winner: Option<usize>) -> Status {
     match (search.shortest().is_some(), winner, options.motion_test) {
-        (false, _, _) => Status::Unsolved,
+        (false, _, _) => Status::NoChain,
         (true, Some(_), true) => Status::Solved,
         (true, Some(_), false) => Status::Untested,
         (true, None, _) => Status::NonePassedMotionTest,
@@ -250,14 +396,18 @@ fn explanation(
     status: Status,
     sets: &[SegmentSets],
     candidates: &[CandidateOutcome],
+    stop: &str,
     setup: &Setup,
 ) -> String {
     match status {
-        Status::Solved => format!(
-            "the shortest chain that passed the motion test (candidate {} of {} tried)",
-            candidates.len(),
-            candidates.len()
-        ),
+        Status::Solved => match candidates.len() {
+            1 => "the shortest chain, and it passed the motion test".into(),
+            n => format!(
+                "the shortest chain that passed the motion test, after {} shorter or equally \
+                 long ones failed it",
+                n - 1
+            ),
+        },
         Status::Untested => "the shortest chain of robust PVs; the motion test was not run".into(),
         Status::NonePassedMotionTest => {
             let reasons: Vec<String> = candidates
@@ -271,12 +421,12 @@ fn explanation(
                 })
                 .collect();
             format!(
-                "none of the {} shortest chains passed the motion test — {}",
+                "none of the {} chains tried passed the motion test, and {stop} — {}",
                 candidates.len(),
                 reasons.join("; ")
             )
         }
-        Status::Unsolved => unsolved_reason(sets, setup),
+        Status::NoChain => unsolved_reason(sets, setup),
     }
 }
 
@@ -330,10 +480,7 @@ fn inputs(setup: &Setup, motion: &Motion, options: &SolveOptions) -> Inputs {
     }
 }
 
-fn candidate_outcomes(
-    tried: &[(CablePath, Option<MotionTestReport>)],
-    pitch_mm: f64,
-) -> Vec<CandidateOutcome> {
+fn candidate_outcomes(tried: &[Tried], pitch_mm: f64) -> Vec<CandidateOutcome> {
     tried
         .iter()
         .enumerate()
@@ -360,27 +507,50 @@ pub fn guide_names(setup: &Setup, m: usize) -> ([String; 2], [String; 2]) {
     )
 }
 
-/// The path segment by segment, with names.
-pub fn path_segments(setup: &Setup, path: &CablePath) -> Vec<PathSegment> {
+/// `inter-link` or `intra-link`: the result JSON's `kind` of segment `m`.
+fn segment_kind(setup: &Setup, m: usize) -> &'static str {
+    if setup.is_intra_link(m) {
+        "intra-link"
+    } else {
+        "inter-link"
+    }
+}
+
+/// The path with names: segment by segment, and every guide's configuration.
+pub fn ecpv(setup: &Setup, path: &CablePath) -> Ecpv {
     let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
-    (0..path.segment_count())
+    let segments = (0..path.segment_count())
         .map(|m| {
-            let pv = path.pv(m);
-            let (guides, links) = guide_names(setup, m);
-            let (a, b) = setup.segment_guides(m);
+            let sub_segments = path.lengths[m];
+            let ([from_guide, to_guide], [from_link, to_link]) = guide_names(setup, m);
             PathSegment {
-                segment: format!("C{}", m + 1),
-                guides,
-                links,
-                sub_segments: pv.sub_segments,
-                length_mm: pv.sub_segments as f64 * pitch_mm,
-                configurations: [
-                    setup.guides[a].configurations[pv.start].name.clone(),
-                    setup.guides[b].configurations[pv.end].name.clone(),
-                ],
+                name: format!("C{}", m + 1),
+                from_guide,
+                to_guide,
+                from_link,
+                to_link,
+                kind: segment_kind(setup, m),
+                sub_segments,
+                length_mm: sub_segments as f64 * pitch_mm,
             }
         })
-        .collect()
+        .collect();
+    let guides = setup
+        .guides
+        .iter()
+        .zip(&path.configurations)
+        .map(|(guide, &c)| {
+            let configuration = &guide.configurations[c];
+            PathGuide {
+                name: guide.name.clone(),
+                link: setup.robot.links[guide.link].name.clone(),
+                configuration: configuration.name.clone(),
+                xyz_mm: configuration.position_mm,
+                rpy_deg: configuration.rpy_deg,
+            }
+        })
+        .collect();
+    Ecpv { segments, guides }
 }
 
 fn segment_reports(
@@ -392,12 +562,12 @@ fn segment_reports(
     sets.iter()
         .enumerate()
         .map(|(m, s)| {
-            let (guides, links) = guide_names(setup, m);
+            let ([from_guide, to_guide], _) = guide_names(setup, m);
             SegmentReport {
                 segment: format!("C{}", m + 1),
-                guides,
-                links,
-                intra_link: setup.is_intra_link(m),
+                from_guide,
+                to_guide,
+                kind: segment_kind(setup, m),
                 traversed_joints: poses.traversed[m]
                     .iter()
                     .map(|&j| motion.joint_names()[j].clone())
@@ -489,7 +659,7 @@ fn margins(evaluator: &Evaluator<'_>, poses: &SegmentPoses, path: &CablePath) ->
 impl fmt::Display for SolveReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let i = &self.inputs;
-        writeln!(f, "status: {:?} — {}", self.status, self.explanation)?;
+        writeln!(f, "{} — {}", self.status.describe(), self.explanation)?;
         writeln!(
             f,
             "setup {} (hash {}), cable {}, {}, motion {}{:.3} s, {} samples",
@@ -522,22 +692,39 @@ impl fmt::Display for SolveReport {
     }
 }
 
-fn write_path(f: &mut fmt::Formatter<'_>, path: &[PathSegment]) -> fmt::Result {
+fn write_path(f: &mut fmt::Formatter<'_>, path: &Ecpv) -> fmt::Result {
     writeln!(
         f,
-        "  {:<4} {:<9} {:<15} {:>8}  {:<28} {:<28}",
-        "seg", "guides", "links", "length", "start configuration", "end configuration"
+        "  {:<4} {:<9} {:<15} {:<10} {:>8}",
+        "seg", "guides", "links", "kind", "length"
     )?;
-    for s in path {
+    for s in &path.segments {
         writeln!(
             f,
-            "  {:<4} {:<9} {:<15} {:>5} mm  {:<28} {:<28}",
-            s.segment,
-            format!("{}→{}", s.guides[0], s.guides[1]),
-            format!("{}→{}", s.links[0], s.links[1]),
+            "  {:<4} {:<9} {:<15} {:<10} {:>5} mm",
+            s.name,
+            format!("{}→{}", s.from_guide, s.to_guide),
+            format!("{}→{}", s.from_link, s.to_link),
+            s.kind,
             s.length_mm,
-            s.configurations[0],
-            s.configurations[1]
+        )?;
+    }
+    writeln!(
+        f,
+        "  {:<4} {:<7} {:<28} {:>24} {:>22}",
+        "guide", "link", "configuration", "xyz (mm)", "rpy (deg)"
+    )?;
+    for g in &path.guides {
+        let [x, y, z] = g.xyz_mm;
+        let [r, p, w] = g.rpy_deg;
+        writeln!(
+            f,
+            "  {:<5} {:<7} {:<28} {:>24} {:>22}",
+            g.name,
+            g.link,
+            g.configuration,
+            format!("({x:.1}, {y:.1}, {z:.1})"),
+            format!("({r:.1}, {p:.1}, {w:.1})"),
         )?;
     }
     Ok(())

@@ -1,0 +1,332 @@
+//! `cable-dict solve` and `critical-poses` end to end: the result JSON's documented fields
+//! against the setup file, exit codes, and the motion-test search (no failed PV is tried
+//! twice) against the attachment test's own sets.
+
+use cable_dict::attachment::{ConnectMethod, Evaluator, SegmentPoses, attachment_test};
+use cable_dict::motion::Motion;
+use cable_dict::setup::Setup;
+use cable_dict::solve::{SolveOptions, Status, solve};
+use serde_json::Value;
+use std::collections::BTreeSet;
+use std::path::Path;
+use std::process::{Command, Output};
+
+const MOTION: &str = "motions/viper_s850/pick_and_place.csv";
+const SMALL: &str = "tests/data/small_setup.toml";
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_cable-dict"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the binary runs")
+}
+
+/// Exit code, parsed standard output (JSON) and standard error of a run.
+fn json_run(args: &[&str]) -> (i32, Value, String) {
+    let output = run(args);
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    let value = serde_json::from_slice(&output.stdout)
+        .unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {stderr}"));
+    (output.status.code().unwrap_or(-1), value, stderr)
+}
+
+fn number(value: &Value) -> f64 {
+    value
+        .as_f64()
+        .unwrap_or_else(|| panic!("not a number: {value}"))
+}
+
+/// The small setup with other length candidates for its one segment, in a temporary folder
+/// (paths inside stay valid: they are made absolute).
+fn small_setup_with_lengths(dir: &Path, lengths: &str) -> String {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let text = std::fs::read_to_string(Path::new(root).join(SMALL))
+        .expect("small setup")
+        .replace("../../robots", &format!("{root}/robots"))
+        .replace("../../cables", &format!("{root}/cables"))
+        .replace(
+            "lengths = { min = 24, max = 36, step = 1, allow_zero = false }",
+            lengths,
+        );
+    let path = dir.join("setup.toml");
+    std::fs::write(&path, text).expect("written");
+    path.to_str().expect("utf-8").to_string()
+}
+
+#[test]
+fn the_result_json_has_the_documented_fields_with_the_setups_values() {
+    let (code, result, stderr) = json_run(&[
+        "solve",
+        "--setup",
+        SMALL,
+        MOTION,
+        "--json",
+        "--no-motion-test",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(result["status"], "untested");
+    assert_eq!(result["outcome"], "untested");
+    assert_eq!(result["method"], "method 2");
+    assert!(result["motion_test"].is_null());
+    assert!(result["reason"].is_string());
+
+    // The path: one segment, G1 on link_3 → G2 on link_4, lengths in the setup's range.
+    let segments = result["ecpv"]["segments"].as_array().expect("segments");
+    assert_eq!(segments.len(), 1);
+    let c1 = &segments[0];
+    assert_eq!(c1["name"], "C1");
+    assert_eq!(c1["from_guide"], "G1");
+    assert_eq!(c1["to_guide"], "G2");
+    assert_eq!(c1["kind"], "inter-link");
+    let s = number(&c1["sub_segments"]);
+    assert!((24.0..=36.0).contains(&s), "{s}");
+    assert_eq!(number(&c1["length_mm"]), 10.0 * s);
+    assert_eq!(number(&result["total_length_mm"]), 10.0 * s);
+
+    // The guides carry the positions and angles written in tests/data/small_setup.toml.
+    let written = [
+        ("left", [-90.0, 82.0, 100.0], [0.0, 0.0, 90.0]),
+        ("right", [-90.0, -82.0, 100.0], [0.0, 0.0, -90.0]),
+        ("left z250", [0.0, 72.0, 250.0], [0.0, 0.0, 90.0]),
+        ("right z250", [0.0, -72.0, 250.0], [0.0, 0.0, -90.0]),
+    ];
+    let guides = result["ecpv"]["guides"].as_array().expect("guides");
+    assert_eq!(guides.len(), 2);
+    for (guide, (name, link)) in guides.iter().zip([("G1", "link_3"), ("G2", "link_4")]) {
+        assert_eq!(guide["name"], name);
+        assert_eq!(guide["link"], link);
+        let configuration = guide["configuration"].as_str().expect("name");
+        let (_, xyz, rpy) = written
+            .iter()
+            .find(|(n, _, _)| *n == configuration)
+            .unwrap_or_else(|| panic!("{configuration} is not in the setup"));
+        let values =
+            |v: &Value| -> Vec<f64> { v.as_array().expect("array").iter().map(number).collect() };
+        assert_eq!(values(&guide["xyz_mm"]), xyz.to_vec());
+        assert_eq!(values(&guide["rpy_deg"]), rpy.to_vec());
+    }
+
+    // Set sizes: |D0| = 13 lengths × 2 × 2 configurations, and D0 ⊇ D'0 ⊇ D1 ⊇ D2.
+    let sets = result["sets"].as_array().expect("sets");
+    assert_eq!(sets[0]["segment"], "C1");
+    let sizes: Vec<f64> = ["d0", "d0_pruned", "d1", "d2"]
+        .iter()
+        .map(|k| number(&sets[0][k]))
+        .collect();
+    assert_eq!(sizes[0], 13.0 * 2.0 * 2.0);
+    assert!(sizes.windows(2).all(|w| w[0] >= w[1]), "{sizes:?}");
+    let timings = &result["timings_s"];
+    for stage in [
+        "critical_poses",
+        "attachment",
+        "chain_search",
+        "motion_test",
+        "total",
+    ] {
+        assert!(number(&timings[stage]) >= 0.0, "{stage}");
+    }
+    assert!(number(&timings["total"]) >= number(&timings["attachment"]));
+}
+
+#[test]
+fn no_cable_path_is_an_answer_with_exit_code_zero() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    // 10–30 mm of cable between guides ~170 mm apart: every PV is too short.
+    let setup = small_setup_with_lengths(
+        dir.path(),
+        "lengths = { min = 1, max = 3, step = 1, allow_zero = false }",
+    );
+    let (code, result, stderr) = json_run(&["solve", "--setup", &setup, MOTION, "--json"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(result["status"], "unsolved");
+    assert_eq!(result["outcome"], "no_chain");
+    assert!(result["ecpv"].is_null());
+    assert!(result["total_length_mm"].is_null());
+    assert_eq!(number(&result["sets"][0]["d1"]), 0.0);
+    let reason = result["reason"].as_str().expect("reason");
+    assert!(
+        reason.contains("C1") && reason.contains("too short"),
+        "{reason}"
+    );
+    assert_eq!(number(&result["motion_test"]["candidates_tried"]), 0.0);
+}
+
+#[test]
+fn bad_input_exits_with_two_and_names_the_file_and_place() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let csv = dir.path().join("bad.csv");
+    std::fs::write(
+        &csv,
+        "time_s,joint_1_deg,joint_2_deg,joint_3_deg,joint_4_deg,joint_5_deg,joint_6_deg\n\
+         0,0,-68.6,216.4,0,32.2,0\n\
+         0.1,0,-68.6,NaN,0,32.2,0\n",
+    )
+    .expect("written");
+    let csv = csv.to_str().expect("utf-8");
+    let missing = dir.path().join("missing.toml");
+    let missing = missing.to_str().expect("utf-8");
+    let cases: [(Vec<&str>, Vec<&str>); 5] = [
+        (
+            vec!["solve", "--setup", SMALL, csv],
+            vec!["bad.csv:3", "joint_3_deg", "NaN"],
+        ),
+        (
+            vec!["solve", "--setup", missing, MOTION],
+            vec!["missing.toml", "cannot read"],
+        ),
+        (
+            vec!["solve", "--setup", SMALL, MOTION, "--k-best", "0"],
+            vec!["--k-best"],
+        ),
+        (
+            vec![
+                "solve",
+                "--setup",
+                SMALL,
+                MOTION,
+                "--max-guides-per-link",
+                "3",
+            ],
+            vec!["max-guides-per-link"],
+        ),
+        (vec!["critical-poses", SMALL, csv], vec!["bad.csv:3", "NaN"]),
+    ];
+    for (args, expected) in cases {
+        let output = run(&args);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{args:?}: {stderr}");
+        for text in expected {
+            assert!(stderr.contains(text), "{args:?}: {stderr}");
+        }
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+    }
+}
+
+#[test]
+fn critical_poses_json_lists_the_extremes_of_the_traversed_joint() {
+    let (code, segments, stderr) = json_run(&["critical-poses", SMALL, MOTION, "--json"]);
+    assert_eq!(code, 0, "{stderr}");
+    let c1 = &segments[0];
+    assert_eq!(c1["traversed_joints"][0], "joint_4");
+    // Reference: the extremes of joint 4 read from the CSV column itself.
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(MOTION))
+        .expect("motion");
+    let joint_4: Vec<f64> = text
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with("time_s"))
+        .map(|l| {
+            l.split(',')
+                .nth(4)
+                .expect("column")
+                .parse()
+                .expect("number")
+        })
+        .collect();
+    let (lo, hi) = joint_4
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
+    let poses = c1["poses"].as_array().expect("poses");
+    assert_eq!(poses.len(), 2);
+    let mut found: Vec<f64> = poses.iter().map(|p| number(&p["joints"][3])).collect();
+    found.sort_by(f64::total_cmp);
+    assert!((found[0] - lo).abs() < 1e-9 && (found[1] - hi).abs() < 1e-9);
+}
+
+/// Every robust PV of the small setup fails the motion test (its G2 clamp zone lies in the
+/// wrist box, and the cable touches the forearm between critical poses). The search must
+/// try each PV exactly once, shortest first, and then say that no chain is left.
+#[test]
+fn the_motion_test_search_tries_every_robust_pv_once_in_length_order() {
+    let setup = Setup::from_file(SMALL).expect("setup");
+    let motion = Motion::from_csv_file(&setup.robot, MOTION).expect("motion");
+    let options = SolveOptions {
+        k_best: 1000,
+        ..SolveOptions::default()
+    };
+    let report = solve(&setup, &motion, &options).expect("solve");
+    // Reference: D2 from the attachment test run directly.
+    let poses = SegmentPoses::new(&setup, &motion).expect("poses");
+    let evaluator = Evaluator::new(&setup, ConnectMethod::Hermite).expect("evaluator");
+    let d2: BTreeSet<_> = attachment_test(&evaluator, &poses)[0]
+        .d2
+        .iter()
+        .map(|pv| (pv.sub_segments, pv.start, pv.end))
+        .collect();
+    let tried: Vec<_> = report
+        .candidates
+        .iter()
+        .map(|c| {
+            let pv = c.path.pv(0);
+            (pv.sub_segments, pv.start, pv.end)
+        })
+        .collect();
+    if report.status == Status::Solved {
+        // Then every chain tried before the winner failed, and none was tried twice.
+        let unique: BTreeSet<_> = tried.iter().collect();
+        assert_eq!(unique.len(), tried.len());
+    } else {
+        assert_eq!(report.status, Status::NonePassedMotionTest);
+        assert_eq!(tried.iter().copied().collect::<BTreeSet<_>>(), d2);
+        assert_eq!(tried.len(), d2.len());
+        assert!(report.explanation.contains("no chain is left"));
+    }
+    assert!(tried.windows(2).all(|w| w[0].0 <= w[1].0), "{tried:?}");
+    for c in &report.candidates {
+        assert_eq!(c.passed, Some(c.failure.is_none()));
+    }
+}
+
+#[test]
+fn a_budget_of_one_motion_test_tries_the_shortest_chain_only() {
+    let setup = Setup::from_file(SMALL).expect("setup");
+    let motion = Motion::from_csv_file(&setup.robot, MOTION).expect("motion");
+    let untested = solve(
+        &setup,
+        &motion,
+        &SolveOptions {
+            motion_test: false,
+            ..SolveOptions::default()
+        },
+    )
+    .expect("solve");
+    let tested = solve(
+        &setup,
+        &motion,
+        &SolveOptions {
+            k_best: 1,
+            ..SolveOptions::default()
+        },
+    )
+    .expect("solve");
+    assert_eq!(tested.candidates.len(), 1);
+    assert_eq!(tested.candidates[0].path, untested.candidates[0].path);
+    if tested.status != Status::Solved {
+        assert!(tested.explanation.contains("budget of 1 motion tests"));
+    }
+}
+
+#[test]
+fn the_result_does_not_depend_on_the_thread_count() {
+    let setup = Setup::from_file(SMALL).expect("setup");
+    let motion = Motion::from_csv_file(&setup.robot, MOTION).expect("motion");
+    let options = SolveOptions {
+        k_best: 3,
+        ..SolveOptions::default()
+    };
+    let result = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("pool");
+        let report = pool.install(|| solve(&setup, &motion, &options).expect("solve"));
+        let mut value = serde_json::to_value(&report).expect("JSON");
+        // Wall-clock times are the only values allowed to differ.
+        value["timings_s"] = Value::Null;
+        value["motion_test"]["wall_time_s"] = Value::Null;
+        value
+    };
+    assert_eq!(result(1), result(2));
+}
