@@ -78,12 +78,11 @@ fn d0_sizes_are_the_products_worked_out_by_hand() {
     // Lengths per segment (sub-segments): pick and place C1 45..=75, C2 {0} ∪ 14..=34,
     // C3 32..=64, C4 {0} ∪ 12..=32; inspection C1 5..=60, C2 {0} ∪ 2..=30, C3 8..=70,
     // C4 {0} ∪ 4..=35.
-    // Configurations: G1 7, G2 6, G3 6 + 6 copies of G2 (S2 = 0), G4 6 + the connector (S4 = 0),
-    // G5 1.
-    let (g1, g2, g3, g4, g5) = (7, 6, 12, 7, 1);
-    for (file, [l1, l2, l3, l4]) in [
-        ("pick_and_place.toml", [31, 1 + 21, 33, 1 + 21]),
-        ("inspection.toml", [56, 1 + 29, 63, 1 + 32]),
+    // Configurations: pick and place G1 7, G2 4, G3 8 + 4 copies of G2 (S2 = 0); inspection
+    // G1 7, G2 6, G3 6 + 6 copies of G2; both G4 6 + the connector (S4 = 0), G5 1.
+    for (file, [l1, l2, l3, l4], [g1, g2, g3, g4, g5]) in [
+        ("pick_and_place.toml", [31, 1 + 21, 33, 1 + 21], [7, 4, 8 + 4, 6 + 1, 1]),
+        ("inspection.toml", [56, 1 + 29, 63, 1 + 32], [7, 6, 6 + 6, 6 + 1, 1]),
     ] {
         let setup = bundled(file);
         let counts: Vec<usize> = setup
@@ -95,11 +94,11 @@ fn d0_sizes_are_the_products_worked_out_by_hand() {
         let want = [l1 * g1 * g2, l2 * g2 * g3, l3 * g3 * g4, l4 * g4 * g5];
         let got: Vec<usize> = (0..4).map(|m| setup.pv_count(m)).collect();
         assert_eq!(got, want, "{file}");
-        // Admissible: S = 0 only for a configuration and its copy (6 pairs on C2, 1 on C4),
-        // S > 0 for every other pair.
+        // Admissible: S = 0 only for a configuration and its copy (one pair per G2
+        // configuration on C2, 1 on C4), S > 0 for every other pair.
         let admissible = [
             l1 * g1 * g2,
-            6 + (l2 - 1) * (g2 * g3 - 6),
+            g2 + (l2 - 1) * (g2 * g3 - g2),
             l3 * g3 * g4,
             1 + (l4 - 1) * (g4 * g5 - 1),
         ];
@@ -112,9 +111,10 @@ fn d0_sizes_are_the_products_worked_out_by_hand() {
 fn s_zero_is_a_configuration_paired_with_its_coincident_copy() {
     let setup = bundled("pick_and_place.toml");
     let (g2, g3, g4) = (&setup.guides[1], &setup.guides[2], &setup.guides[3]);
-    // G3 ends with a copy of each G2 configuration, same pose in the shared link frame.
+    // G3 ends with a copy of each G2 configuration (after its 8 declared ones), same pose in
+    // the shared link frame.
     for (c, original) in g2.configurations.iter().enumerate() {
-        let copy = &g3.configurations[6 + c];
+        let copy = &g3.configurations[8 + c];
         assert_eq!(copy.name, format!("G2/{}", original.name));
         assert_eq!(
             copy.origin,
@@ -124,8 +124,8 @@ fn s_zero_is_a_configuration_paired_with_its_coincident_copy() {
             }
         );
         assert!((copy.pose.translation.vector - original.pose.translation.vector).norm() < 1e-15);
-        assert!(setup.is_admissible(1, 0, c, 6 + c));
-        assert!(!setup.is_admissible(1, 5, c, 6 + c));
+        assert!(setup.is_admissible(1, 0, c, 8 + c));
+        assert!(!setup.is_admissible(1, 5, c, 8 + c));
         assert!(!setup.is_admissible(1, 0, c, 0));
     }
     // G4's last configuration is the fixed connector of G5.

@@ -219,9 +219,9 @@ impl fmt::Display for Violation {
             ),
             Constraint::BendRadius => (
                 "bend radius",
-                format!("{:.1} mm", self.value * 1e3),
+                format!("{:.2} mm", self.value * 1e3),
                 "<",
-                format!("{:.1} mm", self.threshold * 1e3),
+                format!("{:.2} mm", self.threshold * 1e3),
             ),
         };
         write!(
