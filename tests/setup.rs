@@ -81,8 +81,16 @@ fn d0_sizes_are_the_products_worked_out_by_hand() {
     // Configurations: pick and place G1 7, G2 4, G3 8 + 4 copies of G2 (S2 = 0); inspection
     // G1 7, G2 6, G3 6 + 6 copies of G2; both G4 6 + the connector (S4 = 0), G5 1.
     for (file, [l1, l2, l3, l4], [g1, g2, g3, g4, g5]) in [
-        ("pick_and_place.toml", [31, 1 + 21, 33, 1 + 21], [7, 4, 8 + 4, 6 + 1, 1]),
-        ("inspection.toml", [56, 1 + 29, 63, 1 + 32], [7, 6, 6 + 6, 6 + 1, 1]),
+        (
+            "pick_and_place.toml",
+            [31, 1 + 21, 33, 1 + 21],
+            [7, 4, 8 + 4, 6 + 1, 1],
+        ),
+        (
+            "inspection.toml",
+            [56, 1 + 29, 63, 1 + 32],
+            [7, 6, 6 + 6, 6 + 1, 1],
+        ),
     ] {
         let setup = bundled(file);
         let counts: Vec<usize> = setup
