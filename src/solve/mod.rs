@@ -16,7 +16,7 @@ pub use report::{
     SolveReport, Status, Timings, ecpv, guide_names, pose_summary,
 };
 
-use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, SegmentSets, attachment_test};
+use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, attachment_test};
 use crate::chain::{ChainError, ChainSearch};
 use crate::motion::{Motion, MotionError};
 use crate::motion_test::{self, MotionTestError, MotionTestOptions, MotionTestReport};
@@ -96,7 +96,7 @@ pub fn solve(
     let chain_s = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
-    let (candidates, winner, stop) = motion_tests(setup, motion, &sets, &search, options)?;
+    let (candidates, winner, stop) = motion_tests(setup, motion, &d2, &search, options)?;
     let motion_test_s = clock.elapsed().as_secs_f64();
 
     let timings = Timings {
@@ -148,7 +148,7 @@ pub(crate) type Tried = (CablePath, Option<MotionTestReport>);
 fn motion_tests(
     setup: &Setup,
     motion: &Motion,
-    sets: &[SegmentSets],
+    d2: &[Vec<Pv>],
     search: &ChainSearch,
     options: &SolveOptions,
 ) -> Result<(Vec<Tried>, Option<usize>, String), SolveError> {
@@ -163,7 +163,7 @@ fn motion_tests(
         stop_at_first_violation: true,
         ..MotionTestOptions::for_setup(setup)
     };
-    let mut d2: Vec<Vec<Pv>> = sets.iter().map(|s| s.d2.clone()).collect();
+    let mut d2 = d2.to_vec();
     let mut tried = Vec::new();
     while tried.len() < options.k_best {
         let Some(path) = chain_search(setup, &d2)?.shortest() else {
