@@ -12,12 +12,8 @@ use crate::motion::Motion;
 use crate::pose::Pose;
 use crate::setup::Setup;
 use crate::statics::Equilibrium;
-use crate::stress::{ClampZone, GuideEnd, min_bend_radius, stretch};
+use crate::stress::{ClampZone, GuideEnd, min_bend_radius, stretch, zone_sub_segments};
 use nalgebra::{Point3, Vector3};
-
-/// Slack on clamp-zone lengths (m), as in the clearance query: a zone of `n` pitches covers
-/// exactly `n` sub-segments despite rounding.
-const CLAMP_SLACK_M: f64 = 1e-9;
 
 /// Slack (in steps) when rounding a duration to whole steps, so that a duration of exactly
 /// `n` steps is not rounded up to `n + 1` by floating-point noise.
@@ -134,12 +130,10 @@ impl Context<'_> {
         for (j, (zones, eq)) in self.clamp_zones.iter().zip(shapes).enumerate() {
             let sub_segments = eq.nodes.len() - 1;
             for zone in zones {
+                let n = zone_sub_segments(&eq.nodes, zone.end, zone.length_m);
                 let range = match zone.end {
-                    GuideEnd::Start => 0..zone_count(eq.nodes.iter(), zone.length_m),
-                    GuideEnd::End => {
-                        sub_segments - zone_count(eq.nodes.iter().rev(), zone.length_m)
-                            ..sub_segments
-                    }
+                    GuideEnd::Start => 0..n,
+                    GuideEnd::End => sub_segments - n..sub_segments,
                 };
                 world
                     .ignore_contacts(j, range, zone.link)
@@ -251,10 +245,10 @@ fn force_outside_zones(
 ) -> Option<ForceAt> {
     let forces = &contact.per_sub_segment_n;
     let (first, last) = (
-        zone_count(nodes.iter(), zone_m),
+        zone_sub_segments(nodes, GuideEnd::Start, zone_m),
         forces
             .len()
-            .saturating_sub(zone_count(nodes.iter().rev(), zone_m)),
+            .saturating_sub(zone_sub_segments(nodes, GuideEnd::End, zone_m)),
     );
     let (sub_segment, force_n) = (first..last)
         .filter_map(|k| forces.get(k).map(|&f| (k, f)))
@@ -272,23 +266,6 @@ fn force_outside_zones(
         force_n,
         link,
     })
-}
-
-/// Number of sub-segments, counted from the first node of `nodes`, whose near end lies less
-/// than `zone_m` of cable from it.
-fn zone_count<'a>(nodes: impl Iterator<Item = &'a Point3<f64>>, zone_m: f64) -> usize {
-    let limit = zone_m - CLAMP_SLACK_M;
-    let mut nodes = nodes.peekable();
-    let (mut count, mut arc) = (0, 0.0);
-    while let Some(node) = nodes.next() {
-        let Some(next) = nodes.peek() else { break };
-        if arc >= limit {
-            break;
-        }
-        arc += (*next - node).norm();
-        count += 1;
-    }
-    count
 }
 
 fn ended(failure: Option<Failure>, steps: usize) -> Ended {

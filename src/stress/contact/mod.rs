@@ -534,10 +534,12 @@ fn validate(
     Ok(())
 }
 
-/// Number of sub-segments whose near end is less than `length_m` of cable from the guide at
-/// `end`.
-fn zone_count(nodes: &[Point3<f64>], end: GuideEnd, length_m: f64) -> usize {
-    let sub_segments = nodes.len() - 1;
+/// Number of sub-segments of the cable through `nodes` whose near end is less than `length_m`
+/// of cable (arc length) from the guide at `end`: the sub-segments of a clamp zone, counted
+/// from that end, with the same slack as [`min_clearance`] so that a zone of `n` pitches
+/// covers exactly `n` sub-segments.
+pub fn zone_sub_segments(nodes: &[Point3<f64>], end: GuideEnd, length_m: f64) -> usize {
+    let sub_segments = nodes.len().saturating_sub(1);
     let limit = length_m - CLAMP_SLACK_M;
     let mut arc = 0.0;
     for k in 0..sub_segments {
@@ -651,7 +653,7 @@ fn search(
         }
         let (mut skip_start, mut skip_end) = (0, 0);
         for zone in clamp_zones.iter().filter(|z| z.link == ob.link) {
-            let n = zone_count(nodes, zone.end, zone.length_m);
+            let n = zone_sub_segments(nodes, zone.end, zone.length_m);
             match zone.end {
                 GuideEnd::Start => skip_start = skip_start.max(n),
                 GuideEnd::End => skip_end = skip_end.max(n),
