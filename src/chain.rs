@@ -409,14 +409,6 @@ impl FusedIterator for KBest<'_> {}
 mod tests {
     use super::*;
 
-    fn pv(sub_segments: usize, start: usize, end: usize) -> Pv {
-        Pv {
-            sub_segments,
-            start,
-            end,
-        }
-    }
-
     #[test]
     fn dead_ends_are_pruned_from_both_sides() {
         // Guide 1 has configurations 0, 1, 2. Configuration 1 is entered but has no way on;
@@ -424,8 +416,8 @@ mod tests {
         let search = ChainSearch::new(
             &[1, 3, 1],
             &[
-                vec![pv(1, 0, 0), pv(1, 0, 1)],
-                vec![pv(2, 0, 0), pv(9, 0, 0), pv(1, 2, 0)],
+                vec![Pv::new(1, 0, 0), Pv::new(1, 0, 1)],
+                vec![Pv::new(2, 0, 0), Pv::new(9, 0, 0), Pv::new(1, 2, 0)],
             ],
         )
         .expect("valid");
@@ -443,7 +435,7 @@ mod tests {
     #[test]
     fn count_saturates_instead_of_overflowing() {
         // 130 segments with two parallel PVs each: 2^130 chains > u128::MAX.
-        let segments = vec![vec![pv(1, 0, 0), pv(2, 0, 0)]; 130];
+        let segments = vec![vec![Pv::new(1, 0, 0), Pv::new(2, 0, 0)]; 130];
         let search = ChainSearch::new(&[1; 131], &segments).expect("valid");
         assert_eq!(search.chain_count(), u128::MAX);
         let shortest = search.shortest().expect("a chain");

@@ -20,6 +20,17 @@ pub struct Pv {
     pub end: usize,
 }
 
+impl Pv {
+    /// The PV of `sub_segments` between configurations `start` and `end`.
+    pub const fn new(sub_segments: usize, start: usize, end: usize) -> Pv {
+        Pv {
+            sub_segments,
+            start,
+            end,
+        }
+    }
+}
+
 /// A whole cable path (ECPV): `lengths[m]` for segment `C_m`, `configurations[g]` for guide
 /// `G_g` (one more than there are segments).
 #[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]

@@ -264,6 +264,12 @@ fn a_cable_held_still_stays_at_its_static_equilibrium() {
     assert!((last.max_stretch - reference_stretch).abs() < 2e-3);
     assert_eq!(final_bend.node, reference_bend.node);
     assert!((angle(&final_bend) - angle(&reference_bend)).abs() < 0.03);
+    // The motion test judges the bend radius itself: within 2 % of the equilibrium's (0.8 %
+    // measured; one solver sweep per substep instead of four left it 8.8 % off).
+    assert!(
+        (final_bend.radius_m / reference_bend.radius_m - 1.0).abs() < 0.02,
+        "{final_bend:?} vs {reference_bend:?}"
+    );
     let initial = report.series[0].min_clearance_m.unwrap();
     assert!((initial - clearance.clearance_m).abs() < 1e-6);
     assert_eq!(report.series[0].time_s, 0.0);

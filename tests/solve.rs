@@ -121,6 +121,7 @@ fn the_result_json_has_the_documented_fields_with_the_setups_values() {
         "critical_poses",
         "attachment",
         "chain_search",
+        "static_sweep",
         "motion_test",
         "total",
     ] {
@@ -268,15 +269,24 @@ fn the_motion_test_search_tries_every_robust_pv_once_in_length_order() {
         let unique: BTreeSet<_> = tried.iter().collect();
         assert_eq!(unique.len(), tried.len());
     } else {
+        // Every robust PV was either dropped by the static sweep or failed the motion test.
         assert_eq!(report.status, Status::NonePassedMotionTest);
-        assert_eq!(tried.iter().copied().collect::<BTreeSet<_>>(), d2);
-        assert_eq!(tried.len(), d2.len());
+        let swept_out = &report.static_sweep.rejected;
+        assert!(tried.iter().all(|pv| d2.contains(pv)));
+        assert_eq!(tried.len() + swept_out.len(), d2.len());
         assert!(report.explanation.contains("no chain is left"));
     }
+    assert_eq!(report.static_sweep.poses, distinct_samples(&motion));
+    assert!(report.static_sweep.pvs_swept >= report.candidates.len());
     assert!(tried.windows(2).all(|w| w[0].0 <= w[1].0), "{tried:?}");
     for c in &report.candidates {
         assert_eq!(c.passed, Some(c.failure.is_none()));
     }
+}
+
+/// Samples that differ from the one before them (the first counts).
+fn distinct_samples(motion: &Motion) -> usize {
+    1 + motion.samples().windows(2).filter(|w| w[0] != w[1]).count()
 }
 
 #[test]
@@ -297,6 +307,8 @@ fn a_budget_of_one_motion_test_tries_the_shortest_chain_only() {
         &motion,
         &SolveOptions {
             k_best: 1,
+            // Without the sweep, nothing stands between d̂ and its motion test.
+            static_sweep: false,
             ..SolveOptions::default()
         },
     )

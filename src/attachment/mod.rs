@@ -23,9 +23,11 @@
 
 mod evaluate;
 mod poses;
+mod sweep;
 
 pub use evaluate::{Check, ConnectMethod, Evaluator, Metrics, Rejection};
 pub use poses::{SegmentPoses, TestPose};
+pub use sweep::{MotionSweep, SweepFailure};
 
 use crate::path::Pv;
 use crate::setup::Setup;

@@ -74,12 +74,7 @@ fn intra_link_poses(
     critical: &[Vec<CriticalPose>],
     m: usize,
 ) -> Vec<CriticalPose> {
-    let initial = CriticalPose {
-        sample: 0,
-        time_s: motion.times_s()[0],
-        joints: motion.samples()[0].clone(),
-        reason: "initial pose".to_string(),
-    };
+    let initial = motion_sample(motion, 0, "initial pose");
     let before = (0..m).rev().find(|&n| !setup.is_intra_link(n));
     let after = (m + 1..setup.segment_count()).find(|&n| !setup.is_intra_link(n));
     let mut poses = vec![initial];
@@ -92,6 +87,25 @@ fn intra_link_poses(
     poses.sort_by_key(|pose| pose.sample);
     poses.dedup_by_key(|pose| pose.sample);
     poses
+}
+
+/// Motion sample `k` as a test pose, for `reason`.
+pub(super) fn sample_pose(
+    setup: &Setup,
+    motion: &Motion,
+    k: usize,
+    reason: &str,
+) -> Result<TestPose, MotionError> {
+    test_pose(setup, motion_sample(motion, k, reason))
+}
+
+fn motion_sample(motion: &Motion, k: usize, reason: &str) -> CriticalPose {
+    CriticalPose {
+        sample: k,
+        time_s: motion.times_s()[k],
+        joints: motion.samples()[k].clone(),
+        reason: reason.to_string(),
+    }
 }
 
 fn test_pose(setup: &Setup, pose: CriticalPose) -> Result<TestPose, MotionError> {

@@ -39,6 +39,10 @@ pub struct Args {
     /// Skip the motion test: report the shortest chain of robust PVs (d̂).
     #[arg(long)]
     no_motion_test: bool,
+    /// Skip the static sweep of each candidate's PVs over every motion pose before its
+    /// dynamic motion test (the paper's pipeline: critical poses, then dynamics only).
+    #[arg(long)]
+    no_static_sweep: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, clap::ValueEnum)]
@@ -59,6 +63,7 @@ pub fn run(args: Args) -> Result<(), Failure> {
         max_guides_per_link: args.max_guides_per_link.map(usize::from),
         k_best: args.k_best,
         motion_test: !args.no_motion_test,
+        static_sweep: !args.no_static_sweep,
     };
     let mut report = solve(&setup, &motion, &options).map_err(|e| match e {
         SolveError::Options(_)

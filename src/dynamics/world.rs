@@ -418,6 +418,9 @@ fn physics_world(settings: &DynamicsSettings) -> PhysicsWorld {
     world.integration_parameters.dt = settings.time_step_s as f32;
     world.integration_parameters.num_solver_iterations = settings.substeps;
     world.integration_parameters.num_internal_pgs_iterations = settings.sweeps_per_substep;
+    // length_unit is 1 m, so the normalized distance is in metres.
+    world.integration_parameters.normalized_prediction_distance =
+        settings.contact_prediction_m as f32;
     world
 }
 

@@ -5,18 +5,22 @@
 //! 2. The attachment test: D0 → D'0 → D1 → D2 per segment ([`attachment_test`]).
 //! 3. The chain search over D2: |D3| and the shortest chain d̂ ([`ChainSearch`]).
 //! 4. The motion test of the chains in non-decreasing length: the first that passes is d*.
-//!    A failed segment's PV is dropped before the next try (segments are independent between
-//!    clamps). When none passes within `k` tries, or there is no chain, the result says so
-//!    and why.
+//!    Each PV of a chain is first swept statically over every pose of the motion
+//!    ([`MotionSweep`]); a PV that fails there, or the PV of the segment that failed a
+//!    dynamic motion test, is dropped before the next try (segments are independent between
+//!    clamps). When none passes within `k` dynamic tries, or there is no chain, the result
+//!    says so and why.
 
 mod report;
 
 pub use report::{
     CandidateOutcome, Ecpv, Inputs, Margin, PathGuide, PathSegment, PoseSummary, SegmentReport,
-    SolveReport, Status, Timings, ecpv, guide_names, pose_summary,
+    SolveReport, Status, SweepRejection, SweepSummary, Timings, ecpv, guide_names, pose_summary,
 };
 
-use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, attachment_test};
+use crate::attachment::{
+    ConnectMethod, Evaluator, MotionSweep, SegmentPoses, SweepFailure, attachment_test,
+};
 use crate::chain::{ChainError, ChainSearch};
 use crate::motion::{Motion, MotionError};
 use crate::motion_test::{self, MotionTestError, MotionTestOptions, MotionTestReport};
@@ -37,6 +41,10 @@ pub struct SolveOptions {
     pub k_best: usize,
     /// Run the motion test; without it the shortest chain d̂ is the answer.
     pub motion_test: bool,
+    /// Before each dynamic motion test, sweep the chain's PVs statically over every pose of
+    /// the motion ([`MotionSweep`]) and drop those that fail. Off: the paper's pipeline,
+    /// where only the dynamic test follows the critical poses.
+    pub static_sweep: bool,
 }
 
 impl Default for SolveOptions {
@@ -46,6 +54,7 @@ impl Default for SolveOptions {
             max_guides_per_link: None,
             k_best: 10,
             motion_test: true,
+            static_sweep: true,
         }
     }
 }
@@ -96,19 +105,19 @@ pub fn solve(
     let chain_s = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
-    let (candidates, winner, stop) = motion_tests(setup, motion, &d2, &search, options)?;
-    let motion_test_s = clock.elapsed().as_secs_f64();
+    let outcome = motion_tests(setup, motion, &d2, &search, options)?;
+    let motion_test_s = clock.elapsed().as_secs_f64() - outcome.sweep_s;
 
     let timings = Timings {
         critical_poses_s,
         attachment_s,
         chain_s,
+        static_sweep_s: outcome.sweep_s,
         motion_test_s,
         total_s: total.elapsed().as_secs_f64(),
     };
     Ok(SolveReport::new(
-        setup, motion, options, &evaluator, &poses, &sets, &search, candidates, winner, &stop,
-        timings,
+        setup, motion, options, &evaluator, &poses, &sets, &search, outcome, timings,
     ))
 }
 
@@ -139,24 +148,71 @@ fn chain_search(setup: &Setup, d2: &[Vec<Pv>]) -> Result<ChainSearch, SolveError
 /// One chain put to the motion test (`None`: not tested).
 pub(crate) type Tried = (CablePath, Option<MotionTestReport>);
 
-/// The motion tests of the shortest chains: after each failure that belongs to a segment,
-/// that segment's PV is dropped from its D2 and the shortest chain of what is left is tried
-/// next, at most `k_best` times. Segments are independent between clamps, so every chain
-/// with a failed PV fails too: this tries, in non-decreasing length, exactly the chains of
-/// the k-best enumeration that contain no PV already seen failing. Returns the chains tried,
-/// the index of the one that passed, and why the search stopped without one.
+/// A PV the static sweep dropped: segment, PV, where it failed.
+pub(crate) type Dropped = (usize, Pv, SweepFailure);
+
+/// What the search for d* did.
+pub(crate) struct MotionSearch {
+    /// The chains put to the dynamic test, in order.
+    pub tried: Vec<Tried>,
+    /// Index of the one that passed.
+    pub winner: Option<usize>,
+    /// Why the search stopped without one (empty otherwise).
+    pub stop: String,
+    /// Distinct motion poses of the static sweep (0 when it did not run).
+    pub sweep_poses: usize,
+    /// PVs swept.
+    pub swept: usize,
+    /// PVs the sweep dropped, in the order found.
+    pub dropped: Vec<Dropped>,
+    /// Wall time spent sweeping (s).
+    pub sweep_s: f64,
+}
+
+impl MotionSearch {
+    fn stopped(mut self, stop: impl Into<String>) -> Self {
+        self.stop = stop.into();
+        self
+    }
+}
+
+/// The search for d*: the shortest chain of what is left of D2 is swept statically (its
+/// failing PVs dropped, then the next chain) and put to the dynamic motion test; after a
+/// failure that belongs to a segment, that segment's PV is dropped and the search goes on,
+/// for at most `k_best` dynamic tests. Segments are independent between clamps, so every
+/// chain with a failed PV fails too: this tries, in non-decreasing length, exactly the chains
+/// of the k-best enumeration that contain no PV already seen failing.
 fn motion_tests(
     setup: &Setup,
     motion: &Motion,
     d2: &[Vec<Pv>],
     search: &ChainSearch,
     options: &SolveOptions,
-) -> Result<(Vec<Tried>, Option<usize>, String), SolveError> {
+) -> Result<MotionSearch, SolveError> {
+    let mut outcome = MotionSearch {
+        tried: Vec::new(),
+        winner: None,
+        stop: String::new(),
+        sweep_poses: 0,
+        swept: 0,
+        dropped: Vec::new(),
+        sweep_s: 0.0,
+    };
     if !options.motion_test {
-        let shortest = search.shortest().map(|path| (path, None));
-        let winner = shortest.as_ref().map(|_| 0);
-        return Ok((shortest.into_iter().collect(), winner, String::new()));
+        outcome
+            .tried
+            .extend(search.shortest().map(|path| (path, None)));
+        outcome.winner = (!outcome.tried.is_empty()).then_some(0);
+        return Ok(outcome);
     }
+    // The sweep is a cheap static filter in front of the dynamic test: always the
+    // quasi-static solver, whatever the attachment test used.
+    let evaluator = Evaluator::new(setup, ConnectMethod::Hermite)?;
+    let mut sweep = options
+        .static_sweep
+        .then(|| MotionSweep::new(&evaluator, motion))
+        .transpose()?;
+    outcome.sweep_poses = sweep.as_ref().map_or(0, MotionSweep::pose_count);
     // Stopping at the first violation only shortens failing runs: a passing candidate is
     // simulated through the whole motion either way, series included.
     let test_options = MotionTestOptions {
@@ -164,30 +220,49 @@ fn motion_tests(
         ..MotionTestOptions::for_setup(setup)
     };
     let mut d2 = d2.to_vec();
-    let mut tried = Vec::new();
-    while tried.len() < options.k_best {
+    while outcome.tried.len() < options.k_best {
         let Some(path) = chain_search(setup, &d2)?.shortest() else {
-            let stop = "no chain is left of the robust PVs that did not fail it".to_string();
-            return Ok((tried, None, stop));
+            return Ok(outcome.stopped("no chain is left of the robust PVs that did not fail it"));
         };
+        if let Some(sweep) = sweep.as_mut() {
+            let clock = Instant::now();
+            let failed = sweep_chain(sweep, &path);
+            outcome.sweep_s += clock.elapsed().as_secs_f64();
+            outcome.swept = sweep.swept();
+            if !failed.is_empty() {
+                for (m, pv, _) in &failed {
+                    d2[*m].retain(|kept| kept != pv);
+                }
+                outcome.dropped.extend(failed);
+                continue;
+            }
+        }
         let report = motion_test::run(setup, &path, motion, &test_options)?;
         let failed_segment = report.failure.as_ref().and_then(|f| f.segment);
         let passed = report.passed;
-        tried.push((path.clone(), Some(report)));
+        outcome.tried.push((path.clone(), Some(report)));
         if passed {
-            let winner = tried.len() - 1;
-            return Ok((tried, Some(winner), String::new()));
+            outcome.winner = Some(outcome.tried.len() - 1);
+            return Ok(outcome);
         }
         let Some(m) = failed_segment else {
-            let stop = "the last failure belongs to no single segment".to_string();
-            return Ok((tried, None, stop));
+            return Ok(outcome.stopped("the last failure belongs to no single segment"));
         };
         let failed = path.pv(m);
         d2[m].retain(|pv| *pv != failed);
     }
-    let stop = format!(
-        "the budget of {} motion tests (--k-best) is spent",
-        options.k_best
-    );
-    Ok((tried, None, stop))
+    let budget = options.k_best;
+    Ok(outcome.stopped(format!(
+        "the budget of {budget} motion tests (--k-best) is spent"
+    )))
+}
+
+/// The PVs of `path` that fail the static sweep, segment by segment.
+fn sweep_chain(sweep: &mut MotionSweep<'_, '_>, path: &CablePath) -> Vec<Dropped> {
+    (0..path.segment_count())
+        .filter_map(|m| {
+            let pv = path.pv(m);
+            sweep.check(m, &pv).map(|failure| (m, pv, failure))
+        })
+        .collect()
 }

@@ -1,7 +1,7 @@
 //! The result of [`solve`](super::solve): serializable (the result JSON) and printable (the
 //! human summary).
 
-use super::{SolveOptions, Tried};
+use super::{MotionSearch, SolveOptions, Tried};
 use crate::attachment::{
     ConnectMethod, Evaluator, Metrics, Rejection, SegmentPoses, SegmentSets, TestPose,
 };
@@ -64,7 +64,10 @@ pub struct Timings {
     /// Chain search (dynamic programming and counting).
     #[serde(rename = "chain_search")]
     pub chain_s: f64,
-    /// Motion tests of every candidate tried.
+    /// Static sweeps of the candidates' PVs over the motion.
+    #[serde(rename = "static_sweep")]
+    pub static_sweep_s: f64,
+    /// Dynamic motion tests of every candidate tried (chain searches between them included).
     #[serde(rename = "motion_test")]
     pub motion_test_s: f64,
     /// Whole run.
@@ -195,6 +198,38 @@ pub struct CandidateOutcome {
     pub failure: Option<String>,
 }
 
+/// What the static sweep in front of the motion test did (result JSON `static_sweep`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepSummary {
+    /// Distinct motion poses each PV was solved at (0: the sweep did not run).
+    pub poses: usize,
+    /// PVs swept.
+    pub pvs_swept: usize,
+    /// PVs dropped, in the order found.
+    pub rejected: Vec<SweepRejection>,
+}
+
+/// A PV the static sweep dropped.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepRejection {
+    /// `C1`, `C2`, …
+    pub segment: String,
+    /// Length in sub-segments.
+    pub sub_segments: usize,
+    /// Start guide's configuration name.
+    pub from_configuration: String,
+    /// End guide's configuration name.
+    pub to_configuration: String,
+    /// The limit violated first.
+    pub rejection: Rejection,
+    /// Motion sample and time (s) of the first pose that fails.
+    pub sample: usize,
+    /// Time of that pose (s).
+    pub time_s: f64,
+    /// Why, for people.
+    pub detail: String,
+}
+
 /// The inputs, named and hashed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Inputs {
@@ -243,6 +278,8 @@ pub struct SolveReport {
     pub chains: String,
     /// The chains tried in the motion test, in the order tried (non-decreasing length).
     pub candidates: Vec<CandidateOutcome>,
+    /// The static sweep in front of the motion test.
+    pub static_sweep: SweepSummary,
     /// Motion test of the optimal path, or of the last candidate tried when none passed;
     /// `None` when none was run.
     pub motion_test: Option<MotionTestReport>,
@@ -263,22 +300,30 @@ impl SolveReport {
         poses: &SegmentPoses,
         sets: &[SegmentSets],
         search: &ChainSearch,
-        tried: Vec<Tried>,
-        winner: Option<usize>,
-        stop: &str,
+        outcome: MotionSearch,
         timings: Timings,
     ) -> SolveReport {
         let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+        let MotionSearch { tried, winner, .. } = &outcome;
+        let winner = *winner;
         let best = winner.map(|w| tried[w].0.clone());
         let status = status(options, search, winner);
-        let candidates = candidate_outcomes(&tried, pitch_mm);
+        let candidates = candidate_outcomes(tried, pitch_mm);
+        let static_sweep = sweep_summary(setup, &outcome);
         let motion_test = match winner {
             Some(w) => tried[w].1.clone(),
             None => tried.last().and_then(|(_, report)| report.clone()),
         };
         SolveReport {
             status,
-            explanation: explanation(status, sets, &candidates, stop, setup),
+            explanation: explanation(
+                status,
+                sets,
+                &candidates,
+                &outcome.stop,
+                &static_sweep,
+                setup,
+            ),
             inputs: inputs(setup, motion, options),
             optimal: best.as_ref().map(|p| ecpv(setup, p)),
             optimal_length_mm: best
@@ -291,6 +336,7 @@ impl SolveReport {
             segments: segment_reports(setup, poses, sets, motion),
             chains: search.chain_count().to_string(),
             candidates,
+            static_sweep,
             motion_test,
             motion_test_requested: options.motion_test,
             timings,
@@ -354,6 +400,7 @@ struct ResultJson<'a> {
     chains: &'a str,
     motion_test: Option<MotionTestJson<'a>>,
     candidates: &'a [CandidateOutcome],
+    static_sweep: &'a SweepSummary,
     margins: &'a [Margin],
     reason: Option<&'a str>,
     inputs: &'a Inputs,
@@ -374,6 +421,7 @@ impl Serialize for SolveReport {
                 .motion_test_requested
                 .then(|| MotionTestJson::new(self.candidates.len(), self.motion_test.as_ref())),
             candidates: &self.candidates,
+            static_sweep: &self.static_sweep,
             margins: &self.margins,
             reason: (self.status != Status::Solved).then_some(self.explanation.as_str()),
             inputs: &self.inputs,
@@ -397,6 +445,7 @@ fn explanation(
     sets: &[SegmentSets],
     candidates: &[CandidateOutcome],
     stop: &str,
+    sweep: &SweepSummary,
     setup: &Setup,
 ) -> String {
     match status {
@@ -421,12 +470,65 @@ fn explanation(
                 })
                 .collect();
             format!(
-                "none of the {} chains tried passed the motion test, and {stop} — {}",
+                "none of the {} chains tried passed the motion test, and {stop}{} — {}",
                 candidates.len(),
+                sweep_note(sweep),
                 reasons.join("; ")
             )
         }
         Status::NoChain => unsolved_reason(sets, setup),
+    }
+}
+
+/// `; the static sweep over the motion dropped N PVs (C1 n1, …)`, or nothing when it
+/// dropped none.
+fn sweep_note(sweep: &SweepSummary) -> String {
+    if sweep.rejected.is_empty() {
+        return String::new();
+    }
+    format!(
+        "; the static sweep over the motion dropped {} PVs ({})",
+        sweep.rejected.len(),
+        dropped_per_segment(sweep)
+    )
+}
+
+/// `C1 n1, C2 n2`: PVs the sweep dropped per segment.
+fn dropped_per_segment(sweep: &SweepSummary) -> String {
+    let mut per_segment: BTreeMap<&str, usize> = BTreeMap::new();
+    for r in &sweep.rejected {
+        *per_segment.entry(r.segment.as_str()).or_insert(0) += 1;
+    }
+    let counts: Vec<String> = per_segment
+        .iter()
+        .map(|(segment, n)| format!("{segment} {n}"))
+        .collect();
+    counts.join(", ")
+}
+
+/// The sweep's counts and dropped PVs, with names.
+fn sweep_summary(setup: &Setup, outcome: &MotionSearch) -> SweepSummary {
+    let rejected = outcome
+        .dropped
+        .iter()
+        .map(|(m, pv, failure)| {
+            let (a, b) = setup.segment_guides(*m);
+            SweepRejection {
+                segment: format!("C{}", m + 1),
+                sub_segments: pv.sub_segments,
+                from_configuration: setup.guides[a].configurations[pv.start].name.clone(),
+                to_configuration: setup.guides[b].configurations[pv.end].name.clone(),
+                rejection: failure.rejection,
+                sample: failure.sample,
+                time_s: failure.time_s,
+                detail: failure.detail.clone(),
+            }
+        })
+        .collect();
+    SweepSummary {
+        poses: outcome.sweep_poses,
+        pvs_swept: outcome.swept,
+        rejected,
     }
 }
 
@@ -680,14 +782,30 @@ impl fmt::Display for SolveReport {
         }
         write_sets(f, &self.segments, &self.chains)?;
         write_margins(f, &self.margins)?;
+        let sweep = &self.static_sweep;
+        if sweep.poses > 0 {
+            writeln!(
+                f,
+                "\nstatic sweep: {} PVs solved at {} motion poses, {} dropped ({})",
+                sweep.pvs_swept,
+                sweep.poses,
+                sweep.rejected.len(),
+                dropped_per_segment(sweep)
+            )?;
+        }
         if let Some(report) = &self.motion_test {
             writeln!(f, "\nmotion test: {}", report.summary())?;
         }
         let t = &self.timings;
         writeln!(
             f,
-            "\ntimings: critical poses {:.3} s, attachment {:.2} s, chain search {:.3} s, motion test {:.2} s, total {:.2} s",
-            t.critical_poses_s, t.attachment_s, t.chain_s, t.motion_test_s, t.total_s
+            "\ntimings: critical poses {:.3} s, attachment {:.2} s, chain search {:.3} s, static sweep {:.2} s, motion test {:.2} s, total {:.2} s",
+            t.critical_poses_s,
+            t.attachment_s,
+            t.chain_s,
+            t.static_sweep_s,
+            t.motion_test_s,
+            t.total_s
         )
     }
 }

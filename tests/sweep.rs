@@ -1,0 +1,97 @@
+//! The static motion sweep (`attachment::MotionSweep`) against a brute-force scan: every
+//! sample of the motion checked one after the other with the attachment test's evaluator.
+//!
+//! Run in release (`cargo test --release --test sweep`): a few PVs × 400 poses of static
+//! solves.
+
+use cable_dict::attachment::{ConnectMethod, Evaluator, MotionSweep, SegmentPoses, TestPose};
+use cable_dict::motion::Motion;
+use cable_dict::path::Pv;
+use cable_dict::setup::Setup;
+use std::path::Path;
+
+fn bundled() -> (Setup, Motion) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let setup = Setup::from_file(root.join("robots/viper_s850/pick_and_place.toml")).unwrap();
+    let motion = Motion::from_csv_file(
+        &setup.robot,
+        root.join("motions/viper_s850/pick_and_place.csv"),
+    )
+    .unwrap();
+    (setup, motion)
+}
+
+/// Motion sample `k` as a test pose.
+fn sample_pose(setup: &Setup, motion: &Motion, k: usize) -> TestPose {
+    let joints = motion.samples()[k].clone();
+    TestPose {
+        sample: k,
+        time_s: motion.times_s()[k],
+        link_poses: setup.robot.link_poses(&joints).unwrap(),
+        joints,
+        reason: String::new(),
+    }
+}
+
+/// The first sample, in time order, at which `pv` violates a limit.
+fn brute_force(evaluator: &Evaluator<'_>, motion: &Motion, m: usize, pv: &Pv) -> Option<usize> {
+    let setup = evaluator.setup();
+    (0..motion.len()).find(|&k| {
+        let check = evaluator.check(m, pv, &sample_pose(setup, motion, k));
+        check.rejection.is_some()
+    })
+}
+
+/// The sweep fails a PV at exactly the first sample a one-by-one scan fails it at (dwells
+/// skipped: a repeated pose gives the same verdict), passes the others, and catches PVs the
+/// critical poses let through — the reason it exists.
+#[test]
+fn the_sweep_agrees_with_a_scan_of_every_sample_and_catches_what_critical_poses_miss() {
+    let (setup, motion) = bundled();
+    let evaluator = Evaluator::new(&setup, ConnectMethod::Hermite).unwrap();
+    let critical = SegmentPoses::new(&setup, &motion).unwrap();
+    let mut sweep = MotionSweep::new(&evaluator, &motion).unwrap();
+
+    let samples = motion.samples();
+    let distinct = 1 + samples.windows(2).filter(|w| w[0] != w[1]).count();
+    assert_eq!(sweep.pose_count(), distinct);
+    assert!(distinct < motion.len(), "the motion has dwells");
+
+    let cases = [
+        (0, Pv::new(55, 0, 0)),
+        (0, Pv::new(56, 0, 0)),
+        (0, Pv::new(60, 3, 3)),
+        (0, Pv::new(70, 1, 2)),
+        (1, Pv::new(20, 0, 0)),
+        (1, Pv::new(21, 3, 1)),
+        (2, Pv::new(42, 1, 0)),
+        (3, Pv::new(20, 0, 0)),
+    ];
+    let mut passed = 0;
+    let mut missed_by_critical_poses = 0;
+    for (m, candidate) in cases {
+        let expected = brute_force(&evaluator, &motion, m, &candidate);
+        let found = sweep.check(m, &candidate);
+        assert_eq!(
+            found.as_ref().map(|f| f.sample),
+            expected,
+            "C{} {candidate:?}: {found:?}",
+            m + 1
+        );
+        if let Some(failure) = &found {
+            assert_eq!(failure.time_s, motion.times_s()[failure.sample]);
+            let at_critical = critical.poses[m]
+                .iter()
+                .any(|pose| !evaluator.check(m, &candidate, pose).passed());
+            missed_by_critical_poses += usize::from(!at_critical);
+        } else {
+            passed += 1;
+        }
+    }
+    assert_eq!(sweep.swept(), cases.len());
+    assert!(passed > 0, "some case passes the whole motion");
+    assert!(
+        missed_by_critical_poses > 0,
+        "some case passes its critical poses and fails between them"
+    );
+}
