@@ -2,7 +2,7 @@
 //! Viper s850 pick-and-place setup (C1 60, C2 20, C3 30, C4 35 sub-segments; every segment
 //! clear of the robot in the static check at sampled poses), simulated through the first
 //! 0.5 s of the bundled pick-and-place motion at the default settings (1/240 s steps of 16
-//! substeps), clearance, stretch and bend radius measured every step, no settle tail.
+//! substeps of 4 sweeps), clearance, stretch and bend radius measured every step, no settle tail.
 //!
 //! The figure to read is the time per run: divided by 0.5 it is the wall time per simulated
 //! second. Setup, motion and path loading are outside the measurement.

@@ -33,8 +33,8 @@ for motion in pick_and_place inspection; do
   done
 done
 
-echo "| motion | method | \|D1\| C1 / C2 / C3 / C4 | \|D2\| C1 / C2 / C3 / C4 | \|D3\| | result | length (mm) | motion tests | attachment (s) | motion test (s) | total (s) |"
-echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+echo "| motion | method | \|D1\| C1 / C2 / C3 / C4 | \|D2\| C1 / C2 / C3 / C4 | \|D3\| | result | length (mm) | motion tests | attachment (s) | static sweep (s) | motion test (s) | total (s) |"
+echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
 for motion in pick_and_place inspection; do
   for method in "${methods[@]}"; do
     jq -r --arg motion "$motion" '
@@ -44,7 +44,7 @@ for motion in pick_and_place inspection; do
         elif .outcome == "none_passed_motion_test" then "unsolved (motion test)"
         else .outcome end;
       def secs(x): (x * 100 | round) / 100 | tostring;
-      "| \($motion) | \(.method) | \(sizes("d1")) | \(sizes("d2")) | \(.chains) | \(result) | \(.total_length_mm // "-") | \(.motion_test.candidates_tried // "-") | \(secs(.timings_s.attachment)) | \(secs(.timings_s.motion_test)) | \(secs(.timings_s.total)) |"
+      "| \($motion) | \(.method) | \(sizes("d1")) | \(sizes("d2")) | \(.chains) | \(result) | \(.total_length_mm // "-") | \(.motion_test.candidates_tried // "-") | \(secs(.timings_s.attachment)) | \(secs(.timings_s.static_sweep)) | \(secs(.timings_s.motion_test)) | \(secs(.timings_s.total)) |"
     ' "$out/$motion-$method.json"
   done
 done
