@@ -196,3 +196,42 @@ fn method_one_leaves_intra_link_segments_at_zero_length() {
     };
     assert!(solve(&setup, &motion, &bad).is_err());
 }
+
+#[test]
+fn a_static_bend_margin_rejects_exactly_the_pvs_that_keep_less_than_the_limit_plus_margin() {
+    const MARGIN_MM: f64 = 3.0;
+    let text = std::fs::read_to_string(SMALL).unwrap();
+    let plain = Setup::from_file(SMALL).unwrap();
+    let margined = Setup::from_toml_str(
+        &text.replacen(
+            "clamp_zone_mm = 20.0",
+            &format!("clamp_zone_mm = 20.0\nstatic_bend_margin_mm = {MARGIN_MM}"),
+            1,
+        ),
+        Path::new(SMALL),
+    )
+    .unwrap();
+    let motion = Motion::from_csv_file(&plain.robot, MOTION).unwrap();
+    let poses = SegmentPoses::new(&plain, &motion).unwrap();
+    let without = Evaluator::new(&plain, ConnectMethod::Hermite).unwrap();
+    let with = Evaluator::new(&margined, ConnectMethod::Hermite).unwrap();
+    let limit_m = plain.thresholds.min_bend_radius_m + MARGIN_MM * 1e-3;
+    let mut flipped = 0;
+    for pv in admissible_pvs(&plain, 0) {
+        // Expected from the plain verdicts and the plain metrics alone.
+        let checks: Vec<_> = poses.poses[0]
+            .iter()
+            .map(|pose| without.check(0, &pv, pose))
+            .collect();
+        let keeps_margin = checks
+            .iter()
+            .all(|c| c.metrics.is_some_and(|m| m.min_bend_radius_m >= limit_m));
+        let expected = checks.iter().all(|c| c.passed()) && keeps_margin;
+        assert_eq!(passes(&with, &poses, 0, &pv), expected, "{pv:?}");
+        flipped += usize::from(passes(&without, &poses, 0, &pv) && !expected);
+    }
+    assert!(
+        flipped > 0,
+        "no PV between the limit and the limit + margin"
+    );
+}

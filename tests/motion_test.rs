@@ -53,6 +53,12 @@ fn truncated(setup: &Setup, motion: &Motion, end_s: f64) -> Motion {
     .unwrap()
 }
 
+/// `motion` played `factor` times faster.
+fn sped_up(setup: &Setup, motion: &Motion, factor: f64) -> Motion {
+    let times = motion.times_s().iter().map(|t| t / factor).collect();
+    Motion::new(&setup.robot, times, motion.samples().to_vec()).unwrap()
+}
+
 /// The robot resting at `joints` for `duration_s`.
 fn hold(setup: &Setup, joints: &[f64], duration_s: f64) -> Motion {
     Motion::new(
@@ -519,9 +525,10 @@ fn input_that_does_not_fit_the_setup_is_an_error() {
     );
 }
 
-/// A short stretch of the bundled pick-and-place with a whole four-segment cable (90
-/// sub-segments), run once for the tests below. The limits are set so that the first
-/// violation comes during the run: a 2 mm clearance margin, a 12 mm bend radius.
+/// The first 1.5 s of the bundled pick-and-place (down to the pick) played three times faster,
+/// with a whole four-segment cable (90 sub-segments), run once for the tests below. The limits
+/// are set so that the first violation comes during the run: a 2 mm clearance margin, a 12 mm
+/// bend radius.
 fn shared_run() -> &'static (
     Setup,
     CablePath,
@@ -540,7 +547,11 @@ fn shared_run() -> &'static (
         let mut setup = fixture_setup();
         setup.thresholds.contact_clearance_m = 2e-3;
         setup.thresholds.min_bend_radius_m = 12e-3;
-        let motion = truncated(&setup, &pick_and_place(&setup), 0.5);
+        let motion = sped_up(
+            &setup,
+            &truncated(&setup, &pick_and_place(&setup), 1.5),
+            3.0,
+        );
         let path = CablePath {
             lengths: vec![20, 20, 30, 20],
             configurations: vec![6, 5, 3, 2, 0],
@@ -626,12 +637,12 @@ fn worst_values_and_first_violation_match_the_series() {
     assert_eq!(report.passed, first.is_none());
 }
 
-/// The bundled pick-and-place motion in full (3.9 s + 0.5 s tail) with three paths: the
+/// The bundled pick-and-place motion in full (11.1 s + 0.5 s tail) with three paths: the
 /// mid-range lengths and first configurations (107 sub-segments), a 145-sub-segment path
 /// whose segments are clear of the robot in a static check at sampled poses, and the same
 /// guides with 190 sub-segments; prints the reports and the cost.
 #[test]
-#[ignore = "about 10 s in release; run with --ignored to measure"]
+#[ignore = "about 30 s in release; run with --ignored to measure"]
 fn realistic_pick_and_place_run() {
     let setup = fixture_setup();
     let motion = pick_and_place(&setup);

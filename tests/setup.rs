@@ -574,6 +574,12 @@ fn non_finite_numbers_are_refused() {
         &["thresholds.clamp_zone_mm", "≥ 0"],
     );
     assert_refused(
+        "clamp_zone_mm = 20.0",
+        "clamp_zone_mm = 20.0\nstatic_bend_margin_mm = -0.5",
+        "static_bend_margin_mm",
+        &["thresholds.static_bend_margin_mm", "≥ 0"],
+    );
+    assert_refused(
         "[-72.0, 0.0, 200.0]",
         "[-72.0, 0.0, nan]",
         "nan",
@@ -789,6 +795,10 @@ fn content_hash_changes_with_any_one_value() {
             "min_bend_radius_mm = 50.0",
         ),
         ("clamp_zone_mm = 20.0", "clamp_zone_mm = 21.0"),
+        (
+            "clamp_zone_mm = 20.0",
+            "clamp_zone_mm = 20.0\nstatic_bend_margin_mm = 1.0",
+        ),
         ("delta_s = 1", "delta_s = 2"),
         ("range = 2", "range = 3"),
         ("\"G1\"", "\"Ga\""),

@@ -342,3 +342,44 @@ fn the_result_does_not_depend_on_the_thread_count() {
     };
     assert_eq!(result(1), result(2));
 }
+
+/// The README's main job: the bundled pick-and-place is solved, and d* keeps the cable
+/// datasheet's limits (read from the cable file here, not through the setup) over the whole
+/// dynamic run; every chain tried before it failed. About 30 s in release.
+#[test]
+fn the_bundled_pick_and_place_is_solved_within_the_datasheet_limits() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let setup =
+        Setup::from_file(root.join("robots/viper_s850/pick_and_place.toml")).expect("setup");
+    let motion = Motion::from_csv_file(&setup.robot, root.join(MOTION)).expect("motion");
+    let report = solve(&setup, &motion, &SolveOptions::default()).expect("solve");
+    assert_eq!(report.status, Status::Solved, "{}", report.explanation);
+
+    let cable: toml::Table = std::fs::read_to_string(root.join("cables/smc_le_cp_3.toml"))
+        .expect("cable file")
+        .parse()
+        .expect("cable TOML");
+    let datasheet_bend_mm = cable["min_bend_radius_mm"].as_float().expect("number");
+    let dynamics = report.motion_test.as_ref().expect("motion test");
+    assert!(dynamics.passed);
+    let worst = |w: &Option<cable_dict::motion_test::Worst>| w.as_ref().expect("worst").value;
+    assert!(worst(&dynamics.worst_bend) * 1e3 >= datasheet_bend_mm);
+    assert!(worst(&dynamics.worst_clearance) >= 0.0);
+    assert!(worst(&dynamics.worst_stretch) <= 1.02);
+
+    let ecpv = report.optimal.as_ref().expect("d*");
+    let total_mm: f64 = ecpv
+        .segments
+        .iter()
+        .map(|s| s.sub_segments as f64 * 10.0)
+        .sum();
+    assert_eq!(report.optimal_length_mm, Some(total_mm));
+    let (winner, failed) = report.candidates.split_last().expect("candidates");
+    assert_eq!(winner.passed, Some(true));
+    assert!(failed.iter().all(|c| c.passed == Some(false)));
+    assert!(
+        failed
+            .iter()
+            .all(|c| c.total_length_mm <= winner.total_length_mm)
+    );
+}

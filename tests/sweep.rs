@@ -1,7 +1,7 @@
 //! The static motion sweep (`attachment::MotionSweep`) against a brute-force scan: every
 //! sample of the motion checked one after the other with the attachment test's evaluator.
 //!
-//! Run in release (`cargo test --release --test sweep`): a few PVs × 400 poses of static
+//! Run in release (`cargo test --release --test sweep`): a few PVs × 1120 poses of static
 //! solves.
 
 use cable_dict::attachment::{ConnectMethod, Evaluator, MotionSweep, SegmentPoses, TestPose};

@@ -8,7 +8,7 @@ use crate::dynamics::{
 use crate::geometry::{ConnectError, connect, sag_direction};
 use crate::path::Pv;
 use crate::pose::Pose;
-use crate::setup::Setup;
+use crate::setup::{Setup, Thresholds};
 use crate::statics::{FarEnd, RodParameters, SolverOptions, solve_segment};
 use crate::stress::contact::{ClampZone, ContactError, GuideEnd, Obstacles, min_clearance};
 use crate::stress::{BendRadius, min_bend_radius, stretch};
@@ -287,16 +287,29 @@ fn verdict(setup: &Setup, metrics: Metrics) -> Check {
         let detail = format!("stretch {:.4} (limit {})", metrics.stretch, limits.stretch);
         return Check::fail(Rejection::Stretch, detail, Some(metrics));
     }
-    if metrics.min_bend_radius_m < limits.min_bend_radius_m {
+    if metrics.min_bend_radius_m < limits.static_min_bend_radius_m() {
         let detail = format!(
-            "bend radius {:.1} mm at node {} (limit {:.1} mm)",
+            "bend radius {:.1} mm at node {} (limit {:.1} mm{})",
             metrics.min_bend_radius_m * 1e3,
             metrics.min_bend_node,
-            limits.min_bend_radius_m * 1e3
+            limits.static_min_bend_radius_m() * 1e3,
+            static_margin_note(limits)
         );
         return Check::fail(Rejection::Bend, detail, Some(metrics));
     }
     Check::pass(Some(metrics))
+}
+
+/// " incl. a 4.0 mm static margin" when the setup asks for one.
+fn static_margin_note(limits: &Thresholds) -> String {
+    if limits.static_bend_margin_m > 0.0 {
+        format!(
+            " incl. a {:.1} mm static margin",
+            limits.static_bend_margin_m * 1e3
+        )
+    } else {
+        String::new()
+    }
 }
 
 fn clamp_zone(end: GuideEnd, link: usize, setup: &Setup) -> ClampZone {

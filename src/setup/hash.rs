@@ -41,6 +41,7 @@ pub(super) fn canonical_bytes(setup: &Setup) -> Vec<u8> {
         t.stretch,
         t.min_bend_radius_m,
         t.clamp_zone_m,
+        t.static_bend_margin_m,
     ]);
     out.usize(setup.robustness.delta_s);
     out.usize(setup.robustness.range);

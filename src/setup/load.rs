@@ -177,12 +177,17 @@ fn thresholds(
     let clamp_zone = finite_at_least(src, &raw.clamp_zone_mm, "thresholds.clamp_zone_mm", 0.0)?;
     let (min_bend_radius_m, min_bend_radius_source) =
         bend_radius(src, &raw.min_bend_radius_mm, cable)?;
+    let static_bend_margin = match &raw.static_bend_margin_mm {
+        Some(margin) => finite_at_least(src, margin, "thresholds.static_bend_margin_mm", 0.0)?,
+        None => 0.0,
+    };
     Ok(Thresholds {
         contact_clearance_m: clearance * 1e-3,
         stretch,
         min_bend_radius_m,
         min_bend_radius_source,
         clamp_zone_m: clamp_zone * 1e-3,
+        static_bend_margin_m: static_bend_margin * 1e-3,
     })
 }
 

@@ -16,6 +16,7 @@
 //! stretch = 1.02               # centreline length / natural length
 //! min_bend_radius_mm = "cable" # the cable file's value, or a number of mm
 //! clamp_zone_mm = 20.0         # cable next to a guide not checked against the guide's link
+//! static_bend_margin_mm = 4.0  # optional (default 0): extra radius the static tests demand
 //!
 //! [robustness]
 //! delta_s = 1                  # ΔS, sub-segments
@@ -203,6 +204,17 @@ pub struct Thresholds {
     pub min_bend_radius_source: BendRadiusSource,
     /// Cable length next to a guide not checked for contact with the guide's own link (m).
     pub clamp_zone_m: f64,
+    /// Bend radius the quasi-static tests (attachment, robustness, static sweep) demand on top
+    /// of `min_bend_radius_m` (m), kept for the cable's swing in the motion test, which checks
+    /// `min_bend_radius_m` itself. 0 = the reference paper's test.
+    pub static_bend_margin_m: f64,
+}
+
+impl Thresholds {
+    /// The bend radius a static equilibrium must keep (m): the limit plus the static margin.
+    pub fn static_min_bend_radius_m(&self) -> f64 {
+        self.min_bend_radius_m + self.static_bend_margin_m
+    }
 }
 
 /// Where the minimum bend radius comes from.

@@ -27,6 +27,8 @@ pub(super) struct RawThresholds {
     pub stretch: Spanned<f64>,
     pub min_bend_radius_mm: Spanned<BendRadiusSetting>,
     pub clamp_zone_mm: Spanned<f64>,
+    #[serde(default)]
+    pub static_bend_margin_mm: Option<Spanned<f64>>,
 }
 
 /// `[robustness]`.
