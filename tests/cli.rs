@@ -1,20 +1,15 @@
 //! The `cable-dict` binary end to end: JSON shapes, values against closed forms, exit codes.
 
+mod common;
+
+use common::run;
 use serde_json::Value;
-use std::process::{Command, Output};
 
 const URDF: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/robots/viper_s850/viper_s850.urdf"
 );
 const CABLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/cables/smc_le_cp_3.toml");
-
-fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_cable-dict"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
 
 fn json(args: &[&str]) -> Value {
     let output = run(args);

@@ -59,6 +59,11 @@ fn sped_up(setup: &Setup, motion: &Motion, factor: f64) -> Motion {
     Motion::new(&setup.robot, times, motion.samples().to_vec()).unwrap()
 }
 
+/// The motion test of `path` with the setup's own options (a valid input: unwrapped).
+fn run_as_set_up(setup: &Setup, path: &CablePath, motion: &Motion) -> MotionTestReport {
+    run(setup, path, motion, &MotionTestOptions::for_setup(setup)).unwrap()
+}
+
 /// The robot resting at `joints` for `duration_s`.
 fn hold(setup: &Setup, joints: &[f64], duration_s: f64) -> Motion {
     Motion::new(
@@ -295,8 +300,7 @@ fn a_clamp_zone_inside_its_guides_link_does_not_push_the_cable() {
     };
     let (_, clearance, _) = reference(&setup, &q0, 0, 30, (0, 0));
     assert!(clearance.clearance_m > 3e-3, "{clearance:?}");
-    let options = MotionTestOptions::for_setup(&setup);
-    let report = run(&setup, &path, &hold(&setup, &q0, 0.2), &options).unwrap();
+    let report = run_as_set_up(&setup, &path, &hold(&setup, &q0, 0.2));
     assert!(report.passed, "{}", report.summary());
     assert!(report.worst_contact_force.is_none(), "{}", report.summary());
     let worst = report.worst_clearance.unwrap().value;
@@ -319,13 +323,7 @@ fn a_segment_shorter_than_its_guides_distance_fails_as_too_short() {
         lengths: vec![40, 0, 8, 0],
         configurations: vec![0, 0, g3, g4, 0],
     };
-    let report = run(
-        &setup,
-        &path,
-        &motion,
-        &MotionTestOptions::for_setup(&setup),
-    )
-    .unwrap();
+    let report = run_as_set_up(&setup, &path, &motion);
 
     let (a, b) = guide_poses(&setup, &motion.samples()[0], 2, (g3, g4));
     let distance = (b.translation.vector - a.translation.vector).norm();
@@ -656,13 +654,7 @@ fn realistic_pick_and_place_run() {
             lengths: lengths.to_vec(),
             configurations: configurations.to_vec(),
         };
-        let report = run(
-            &setup,
-            &path,
-            &motion,
-            &MotionTestOptions::for_setup(&setup),
-        )
-        .unwrap();
+        let report = run_as_set_up(&setup, &path, &motion);
         println!(
             "{lengths:?} {configurations:?} ({} sub-segments):\n{}\n",
             path.total_sub_segments(),

@@ -2,25 +2,19 @@
 //! against the setup file, exit codes, and the motion-test search (no failed PV is tried
 //! twice) against the attachment test's own sets.
 
+mod common;
+
 use cable_dict::attachment::{ConnectMethod, Evaluator, SegmentPoses, attachment_test};
 use cable_dict::motion::Motion;
 use cable_dict::setup::Setup;
 use cable_dict::solve::{SolveOptions, Status, solve};
+use common::run;
 use serde_json::Value;
 use std::collections::BTreeSet;
 use std::path::Path;
-use std::process::{Command, Output};
 
 const MOTION: &str = "motions/viper_s850/pick_and_place.csv";
 const SMALL: &str = "tests/data/small_setup.toml";
-
-fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_cable-dict"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
-}
 
 /// Exit code, parsed standard output (JSON) and standard error of a run.
 fn json_run(args: &[&str]) -> (i32, Value, String) {
