@@ -22,6 +22,8 @@
 //! - [`chain`]: the shortest chain of robust PVs through the guides' configurations, and the
 //!   next-shortest ones.
 //! - [`solve`]: the whole pipeline from a setup and a motion to the optimal cable path d*.
+//! - [`dictionary`]: the intra-link results precomputed per robot, cable and guide catalogue
+//!   over sampled gravity directions, in a shareable memory-mapped `.cdict` file.
 //! - [`attachment`]: the attachment test — which PVs hold the stress limits at the critical
 //!   poses (D1) and are robust to a length error (D2).
 //!
@@ -51,6 +53,7 @@ pub mod atomic_file;
 pub mod attachment;
 pub mod cable;
 pub mod chain;
+pub mod dictionary;
 pub mod dynamics;
 pub mod geometry;
 pub mod motion;

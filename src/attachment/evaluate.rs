@@ -10,7 +10,9 @@ use crate::path::Pv;
 use crate::pose::Pose;
 use crate::setup::{Setup, Thresholds};
 use crate::statics::{FarEnd, RodParameters, SolverOptions, solve_segment};
-use crate::stress::contact::{ClampZone, ContactError, GuideEnd, Obstacles, min_clearance};
+use crate::stress::contact::{
+    ClampZone, ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
+};
 use crate::stress::{BendRadius, min_bend_radius, stretch};
 use nalgebra::{Point3, Vector3};
 use serde::Serialize;
@@ -147,17 +149,46 @@ impl<'a> Evaluator<'a> {
     /// Checks PV `pv` of segment `m` at `pose`. A zero-length PV (coincident guides) has no
     /// cable and passes.
     pub fn check(&self, m: usize, pv: &Pv, pose: &TestPose) -> Check {
+        let scene = Scene {
+            link_poses: &pose.link_poses,
+            gravity_m_s2: self.rod.gravity_m_s2,
+            links: None,
+        };
+        self.check_in(m, pv, &scene)
+    }
+
+    /// Checks PV `pv` of intra-link segment `m` in its link's frame, with gravity
+    /// `gravity_in_link_m_s2` expressed in that frame: the motion-independent test a
+    /// dictionary stores. Clearance is measured against the segment's own link only (the
+    /// other links' places depend on the pose).
+    pub fn check_in_link_frame(
+        &self,
+        m: usize,
+        pv: &Pv,
+        gravity_in_link_m_s2: &Vector3<f64>,
+    ) -> Check {
+        let link = self.setup.guides[self.setup.segment_guides(m).0].link;
+        let link_poses = vec![Pose::identity(); self.setup.robot.links.len()];
+        let scene = Scene {
+            link_poses: &link_poses,
+            gravity_m_s2: *gravity_in_link_m_s2,
+            links: Some(&[link]),
+        };
+        self.check_in(m, pv, &scene)
+    }
+
+    fn check_in(&self, m: usize, pv: &Pv, scene: &Scene<'_>) -> Check {
         if pv.sub_segments == 0 {
             return Check::pass(None);
         }
         let (a, b) = self.setup.segment_guides(m);
-        let start = self.setup.guide_world_pose(&pose.link_poses, a, pv.start);
-        let end = self.setup.guide_world_pose(&pose.link_poses, b, pv.end);
-        let nodes = match self.equilibrium(&start, &end, pv.sub_segments) {
+        let start = self.setup.guide_world_pose(scene.link_poses, a, pv.start);
+        let end = self.setup.guide_world_pose(scene.link_poses, b, pv.end);
+        let nodes = match self.equilibrium(&start, &end, pv.sub_segments, scene.gravity_m_s2) {
             Ok(nodes) => nodes,
             Err(check) => return check,
         };
-        self.judge(m, &start, &end, &nodes, pv.sub_segments, pose)
+        self.judge(m, &start, &end, &nodes, pv.sub_segments, scene)
     }
 
     /// Equilibrium nodes between two guide poses, or the failed check.
@@ -166,10 +197,11 @@ impl<'a> Evaluator<'a> {
         start: &Pose,
         end: &Pose,
         sub_segments: usize,
+        gravity_m_s2: Vector3<f64>,
     ) -> Result<Vec<Point3<f64>>, Check> {
         match self.method {
-            ConnectMethod::Hermite => self.quasi_static(start, end, sub_segments),
-            ConnectMethod::Linear => self.relaxed(start, end, sub_segments),
+            ConnectMethod::Hermite => self.quasi_static(start, end, sub_segments, gravity_m_s2),
+            ConnectMethod::Linear => self.relaxed(start, end, sub_segments, gravity_m_s2),
         }
     }
 
@@ -178,12 +210,17 @@ impl<'a> Evaluator<'a> {
         start: &Pose,
         end: &Pose,
         sub_segments: usize,
+        gravity_m_s2: Vector3<f64>,
     ) -> Result<Vec<Point3<f64>>, Check> {
         let pitch = self.setup.cable.sub_segment_pitch_m;
-        let sag = sag_direction(&self.setup.gravity_m_s2);
+        let sag = sag_direction(&gravity_m_s2);
         let connected = connect(start, end, sub_segments, pitch, &sag).map_err(connect_failure)?;
+        let rod = RodParameters {
+            gravity_m_s2,
+            ..self.rod
+        };
         let solved = solve_segment(
-            &self.rod,
+            &rod,
             start,
             &FarEnd::Clamped(*end),
             &connected.nodes,
@@ -199,9 +236,10 @@ impl<'a> Evaluator<'a> {
         start: &Pose,
         end: &Pose,
         sub_segments: usize,
+        gravity_m_s2: Vector3<f64>,
     ) -> Result<Vec<Point3<f64>>, Check> {
         let cable = &self.setup.cable;
-        let settings = DynamicsSettings::relaxation(self.setup.gravity_m_s2);
+        let settings = DynamicsSettings::relaxation(gravity_m_s2);
         if let Some(check) = too_short(start, end, sub_segments, cable.sub_segment_pitch_m) {
             return Err(check);
         }
@@ -236,7 +274,7 @@ impl<'a> Evaluator<'a> {
         end: &Pose,
         nodes: &[Point3<f64>],
         sub_segments: usize,
-        pose: &TestPose,
+        scene: &Scene<'_>,
     ) -> Check {
         let setup = self.setup;
         let pitch = setup.cable.sub_segment_pitch_m;
@@ -246,11 +284,21 @@ impl<'a> Evaluator<'a> {
             clamp_zone(GuideEnd::End, setup.guides[b].link, setup),
         ];
         let radius = 0.5 * setup.cable.diameter_m;
-        let clearance =
-            match min_clearance(&self.obstacles, &pose.link_poses, nodes, radius, &zones) {
-                Ok(clearance) => clearance,
-                Err(e) => return Check::fail(Rejection::Diverged, e.to_string(), None),
-            };
+        let clearance = match scene.links {
+            None => min_clearance(&self.obstacles, scene.link_poses, nodes, radius, &zones),
+            Some(links) => min_clearance_to_links(
+                &self.obstacles,
+                scene.link_poses,
+                nodes,
+                radius,
+                &zones,
+                links,
+            ),
+        };
+        let clearance = match clearance {
+            Ok(clearance) => clearance,
+            Err(e) => return Check::fail(Rejection::Diverged, e.to_string(), None),
+        };
         let bend: BendRadius = min_bend_radius(
             nodes,
             &start.rotation.transform_vector(&Vector3::z()),
@@ -267,6 +315,14 @@ impl<'a> Evaluator<'a> {
         };
         verdict(setup, metrics)
     }
+}
+
+/// Where a PV is checked: the links' poses, gravity in the same frame, and which links count
+/// for clearance (`None`: all).
+struct Scene<'p> {
+    link_poses: &'p [Pose],
+    gravity_m_s2: Vector3<f64>,
+    links: Option<&'p [usize]>,
 }
 
 /// The first limit `metrics` violates, in the order contact, stretch, bend.

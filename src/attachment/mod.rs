@@ -58,12 +58,25 @@ pub struct SegmentSets {
 /// Runs the attachment test on every segment: intra-link segments first, then the inter-link
 /// ones pruned by their intra-link neighbours' D2.
 pub fn attachment_test(evaluator: &Evaluator<'_>, poses: &SegmentPoses) -> Vec<SegmentSets> {
+    attachment_test_with(evaluator, poses, None)
+}
+
+/// [`attachment_test`], with the intra-link segments' verdicts given by `intra_link` (e.g.
+/// a dictionary's, over the motion's gravity directions) instead of tested at their poses
+/// when it is `Some`: `intra_link(m, pv)` is the first limit PV `pv` of segment `m` violates.
+pub fn attachment_test_with(
+    evaluator: &Evaluator<'_>,
+    poses: &SegmentPoses,
+    intra_link: Option<&IntraLinkVerdict<'_>>,
+) -> Vec<SegmentSets> {
     let setup = evaluator.setup();
     let count = setup.segment_count();
+    let at_poses = |m: usize, pv: &Pv| first_rejection(evaluator, m, pv, &poses.poses[m]);
+    let intra_link = intra_link.unwrap_or(&at_poses);
     let mut sets: Vec<Option<SegmentSets>> = vec![None; count];
     for m in (0..count).filter(|&m| setup.is_intra_link(m)) {
         let candidates = admissible_pvs(setup, m);
-        sets[m] = Some(test_segment(evaluator, m, &poses.poses[m], candidates));
+        sets[m] = Some(test_segment(setup, candidates, |pv| intra_link(m, pv)));
     }
     for m in (0..count).filter(|&m| !setup.is_intra_link(m)) {
         let allowed_start = neighbour_configurations(&sets, m.checked_sub(1), |pv| pv.end);
@@ -75,12 +88,16 @@ pub fn attachment_test(evaluator: &Evaluator<'_>, poses: &SegmentPoses) -> Vec<S
             .filter(|pv| allowed_start.as_ref().is_none_or(|a| a.contains(&pv.start)))
             .filter(|pv| allowed_end.as_ref().is_none_or(|a| a.contains(&pv.end)))
             .collect();
-        let mut tested = test_segment(evaluator, m, &poses.poses[m], candidates);
+        let mut tested = test_segment(setup, candidates, |pv| at_poses(m, pv));
         tested.d0 = d0_count;
         sets[m] = Some(tested);
     }
     sets.into_iter().flatten().collect()
 }
+
+/// The first limit a PV of a segment violates (`None`: it passes), from elsewhere than the
+/// test poses.
+pub type IntraLinkVerdict<'v> = dyn Fn(usize, &Pv) -> Option<Rejection> + Sync + 'v;
 
 /// The configurations of the shared guide used by the D2 of neighbour `n`, when `n` is an
 /// intra-link segment already tested; `None` (no pruning) otherwise.
@@ -117,20 +134,16 @@ pub fn admissible_pvs(setup: &Setup, m: usize) -> Vec<Pv> {
     pvs
 }
 
-/// D1 and D2 of segment `m` from its candidates (D'0).
+/// D1 and D2 of a segment from its candidates (D'0), given the verdict of one PV.
 fn test_segment(
-    evaluator: &Evaluator<'_>,
-    m: usize,
-    poses: &[TestPose],
+    setup: &Setup,
     candidates: Vec<Pv>,
+    verdict: impl Fn(&Pv) -> Option<Rejection> + Sync,
 ) -> SegmentSets {
     let timer = Instant::now();
-    let robustness = &evaluator.setup().robustness;
+    let robustness = &setup.robustness;
     let needed = needed_pvs(&candidates, robustness.delta_s, robustness.range);
-    let results: Vec<Option<Rejection>> = needed
-        .par_iter()
-        .map(|pv| first_rejection(evaluator, m, pv, poses))
-        .collect();
+    let results: Vec<Option<Rejection>> = needed.par_iter().map(&verdict).collect();
     let verdicts: BTreeMap<Pv, Option<Rejection>> = needed.into_iter().zip(results).collect();
     let passes = |pv: &Pv| matches!(verdicts.get(pv), Some(None));
     let mut rejections = BTreeMap::new();

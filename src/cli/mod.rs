@@ -1,6 +1,7 @@
 //! Command-line interface: argument definitions and dispatch to one module per subcommand.
 
 mod args;
+mod dictionary;
 mod fk;
 mod motion;
 mod robot_info;
@@ -33,8 +34,16 @@ enum Command {
     Motion(motion::Args),
     /// The poses of a motion at which each segment of a setup is tested.
     CriticalPoses(solve::CriticalArgs),
-    /// The optimal cable path for a setup and a motion.
+    /// The optimal cable path for a setup (or a dictionary) and a motion.
     Solve(Box<solve::Args>),
+    /// Precompute a setup's intra-link segments into a dictionary (or one shard of it).
+    Build(dictionary::BuildArgs),
+    /// Describe a dictionary: build parameters, setup, set sizes.
+    Info(dictionary::InfoArgs),
+    /// Check every checksum and record of a dictionary.
+    Verify(dictionary::VerifyArgs),
+    /// Merge the shards of a sharded build into one dictionary.
+    Merge(dictionary::MergeArgs),
 }
 
 /// Why a command failed, and the exit code that says so.
@@ -72,6 +81,10 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Motion(args) => motion::run(args),
         Command::CriticalPoses(args) => solve::run_critical(args),
         Command::Solve(args) => solve::run(*args),
+        Command::Build(args) => dictionary::run_build(args),
+        Command::Info(args) => dictionary::run_info(args),
+        Command::Verify(args) => dictionary::run_verify(args),
+        Command::Merge(args) => dictionary::run_merge(args),
     }
 }
 

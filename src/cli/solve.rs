@@ -4,18 +4,24 @@
 use super::{Failure, emit, print_json};
 use cable_dict::atomic_file::write_atomically;
 use cable_dict::attachment::{ConnectMethod, SegmentPoses};
+use cable_dict::dictionary::Dictionary;
 use cable_dict::motion::Motion;
 use cable_dict::setup::Setup;
-use cable_dict::solve::{SolveError, SolveOptions, guide_names, solve};
+use cable_dict::solve::{SolveError, SolveOptions, guide_names, solve, solve_with_dictionary};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// The setup file (robot, cable, guide candidates, segment lengths, limits; see
-    /// docs/setup-format.md).
-    #[arg(long, value_name = "SETUP.toml")]
-    setup: PathBuf,
+    /// docs/setup-format.md). Optional with --dict (which embeds its setup); given with it,
+    /// it must be the setup the dictionary was built for.
+    #[arg(long, value_name = "SETUP.toml", required_unless_present = "dict")]
+    setup: Option<PathBuf>,
+    /// Take the intra-link segments' sets from this dictionary (cable-dict build) instead of
+    /// testing them at their poses.
+    #[arg(long, value_name = "DICT.cdict")]
+    dict: Option<PathBuf>,
     /// The motion CSV (see motions/README.md).
     motion: PathBuf,
     /// Print the result as JSON instead of the summary.
@@ -54,7 +60,17 @@ enum Connect {
 }
 
 pub fn run(args: Args) -> Result<(), Failure> {
-    let (setup, motion) = load(&args.setup, &args.motion)?;
+    let dictionary = args.dict.as_deref().map(open_verified).transpose()?;
+    let setup = match (&args.setup, &dictionary) {
+        (Some(path), _) => Setup::from_file(path).map_err(Failure::input)?,
+        (None, Some(dictionary)) => dictionary.setup().map_err(Failure::input)?,
+        (None, None) => {
+            return Err(Failure::input(anyhow::anyhow!(
+                "give --setup, --dict or both"
+            )));
+        }
+    };
+    let motion = Motion::from_csv_file(&setup.robot, &args.motion).map_err(Failure::input)?;
     let options = SolveOptions {
         method: match args.connect {
             Connect::Hermite => ConnectMethod::Hermite,
@@ -65,11 +81,16 @@ pub fn run(args: Args) -> Result<(), Failure> {
         motion_test: !args.no_motion_test,
         static_sweep: !args.no_static_sweep,
     };
-    let mut report = solve(&setup, &motion, &options).map_err(|e| match e {
+    let report = match &dictionary {
+        Some(dictionary) => solve_with_dictionary(dictionary, &setup, &motion, &options),
+        None => solve(&setup, &motion, &options),
+    };
+    let mut report = report.map_err(|e| match e {
         SolveError::Options(_)
         | SolveError::Setup(_)
         | SolveError::Motion(_)
-        | SolveError::Obstacles(_) => Failure::input(e),
+        | SolveError::Obstacles(_)
+        | SolveError::Dictionary(_) => Failure::input(e),
         SolveError::Chain(_) | SolveError::MotionTest(_) => Failure::unsolved(e),
     })?;
     report.inputs.motion_file = Some(args.motion.display().to_string());
@@ -86,6 +107,14 @@ pub fn run(args: Args) -> Result<(), Failure> {
     }
     // "No cable path" is an answer, not a failure: exit 0 like "solved" (the status says which).
     Ok(())
+}
+
+/// Opens a dictionary and checks every byte of it (milliseconds for the bundled ones): a
+/// damaged file is refused before it can decide anything.
+pub(super) fn open_verified(path: &Path) -> Result<Dictionary, Failure> {
+    let dictionary = Dictionary::open(path).map_err(Failure::input)?;
+    dictionary.verify().map_err(Failure::input)?;
+    Ok(dictionary)
 }
 
 /// Reads the setup and the motion for its robot.

@@ -2,7 +2,9 @@
 //!
 //! 1. Critical poses of every inter-link segment, test poses of the intra-link ones
 //!    ([`SegmentPoses`]).
-//! 2. The attachment test: D0 → D'0 → D1 → D2 per segment ([`attachment_test`]).
+//! 2. The attachment test: D0 → D'0 → D1 → D2 per segment ([`crate::attachment::attachment_test`]); with a
+//!    dictionary ([`solve_with_dictionary`]) the intra-link segments' verdicts are looked up
+//!    for the motion's gravity directions instead ([`MotionLookup`]).
 //! 3. The chain search over D2: |D3| and the shortest chain d̂ ([`ChainSearch`]).
 //! 4. The motion test of the chains in non-decreasing length: the first that passes is d*.
 //!    Each PV of a chain is first swept statically over every pose of the motion
@@ -14,14 +16,16 @@
 mod report;
 
 pub use report::{
-    CandidateOutcome, Ecpv, Inputs, Margin, PathGuide, PathSegment, PoseSummary, SegmentReport,
-    SolveReport, Status, SweepRejection, SweepSummary, Timings, ecpv, guide_names, pose_summary,
+    CandidateOutcome, DictionaryUse, Ecpv, Inputs, Margin, PathGuide, PathSegment, PoseSummary,
+    SegmentReport, SolveReport, Status, SweepRejection, SweepSummary, Timings, ecpv, guide_names,
+    pose_summary,
 };
 
 use crate::attachment::{
-    ConnectMethod, Evaluator, MotionSweep, SegmentPoses, SweepFailure, attachment_test,
+    ConnectMethod, Evaluator, MotionSweep, SegmentPoses, SweepFailure, attachment_test_with,
 };
 use crate::chain::{ChainError, ChainSearch};
+use crate::dictionary::{Dictionary, LookupError, MotionLookup};
 use crate::motion::{Motion, MotionError};
 use crate::motion_test::{self, MotionTestError, MotionTestOptions, MotionTestReport};
 use crate::path::{CablePath, Pv};
@@ -80,6 +84,9 @@ pub enum SolveError {
     /// Invalid options.
     #[error("{0}")]
     Options(String),
+    /// The dictionary cannot answer for this setup and motion.
+    #[error("{0}")]
+    Dictionary(#[from] LookupError),
 }
 
 /// Runs the whole pipeline on `setup` and `motion`.
@@ -87,6 +94,35 @@ pub fn solve(
     setup: &Setup,
     motion: &Motion,
     options: &SolveOptions,
+) -> Result<SolveReport, SolveError> {
+    solve_with(setup, motion, options, None)
+}
+
+/// Runs the whole pipeline with the intra-link segments' verdicts from `dictionary`, whose
+/// embedded setup is `setup` ([`Dictionary::setup`]): only the inter-link segments are
+/// tested at their critical poses.
+pub fn solve_with_dictionary(
+    dictionary: &Dictionary,
+    setup: &Setup,
+    motion: &Motion,
+    options: &SolveOptions,
+) -> Result<SolveReport, SolveError> {
+    if setup.content_hash != dictionary.header().setup_hash {
+        return Err(SolveError::Options(format!(
+            "{} was built for setup {:016x}, this setup is {}",
+            dictionary.path().display(),
+            dictionary.header().setup_hash,
+            setup.content_hash_hex()
+        )));
+    }
+    solve_with(setup, motion, options, Some(dictionary))
+}
+
+fn solve_with(
+    setup: &Setup,
+    motion: &Motion,
+    options: &SolveOptions,
+    dictionary: Option<&Dictionary>,
 ) -> Result<SolveReport, SolveError> {
     let total = Instant::now();
     let setup = &method_setup(setup, options)?;
@@ -96,7 +132,11 @@ pub fn solve(
 
     let clock = Instant::now();
     let evaluator = Evaluator::new(setup, options.method)?;
-    let sets = attachment_test(&evaluator, &poses);
+    let lookup = dictionary
+        .map(|d| MotionLookup::new(d, setup, motion))
+        .transpose()?;
+    let verdict = |m: usize, pv: &Pv| lookup.as_ref().and_then(|l| l.verdict(m, pv));
+    let sets = attachment_test_with(&evaluator, &poses, lookup.is_some().then_some(&verdict));
     let attachment_s = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
@@ -116,9 +156,32 @@ pub fn solve(
         motion_test_s,
         total_s: total.elapsed().as_secs_f64(),
     };
-    Ok(SolveReport::new(
+    let mut report = SolveReport::new(
         setup, motion, options, &evaluator, &poses, &sets, &search, outcome, timings,
-    ))
+    );
+    if let Some(lookup) = &lookup {
+        report.inputs.dictionary = Some(dictionary_use(lookup, setup));
+        // Their verdicts came from the dictionary's directions, not from poses.
+        for m in (0..setup.segment_count()).filter(|&m| setup.is_intra_link(m)) {
+            report.segments[m].test_poses.clear();
+        }
+    }
+    Ok(report)
+}
+
+/// What the report says of the dictionary a solve used.
+fn dictionary_use(lookup: &MotionLookup<'_>, setup: &Setup) -> DictionaryUse {
+    let dictionary = lookup.dictionary();
+    let header = dictionary.header();
+    DictionaryUse {
+        file: dictionary.path().display().to_string(),
+        directions: header.directions.count,
+        covering_radius_deg: header.directions.covering_radius_rad.to_degrees(),
+        required_directions: (0..setup.segment_count())
+            .filter(|&m| setup.is_intra_link(m))
+            .map(|m| (format!("C{}", m + 1), lookup.required_count(m)))
+            .collect(),
+    }
 }
 
 /// The setup restricted to one guide per link for method 1.

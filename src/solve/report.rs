@@ -253,6 +253,22 @@ pub struct Inputs {
     pub method: String,
     /// `hermite` or `linear`.
     pub connect: ConnectMethod,
+    /// The dictionary the intra-link sets came from (`None`: tested at their poses).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dictionary: Option<DictionaryUse>,
+}
+
+/// How a dictionary answered for the intra-link segments.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DictionaryUse {
+    /// The dictionary file.
+    pub file: String,
+    /// Gravity directions it stores.
+    pub directions: u32,
+    /// Neighbourhood radius of the lookup (deg).
+    pub covering_radius_deg: f64,
+    /// Per intra-link segment (`C2`, …): stored directions the motion required.
+    pub required_directions: Vec<(String, usize)>,
 }
 
 /// Everything `solve` found. Serializes as the result JSON (README, "Result JSON"): the names
@@ -579,6 +595,7 @@ fn inputs(setup: &Setup, motion: &Motion, options: &SolveOptions) -> Inputs {
         motion_samples: motion.len(),
         method: method.into(),
         connect: options.method,
+        dictionary: None,
     }
 }
 
@@ -776,6 +793,21 @@ impl fmt::Display for SolveReport {
             i.motion_duration_s,
             i.motion_samples
         )?;
+        if let Some(d) = &i.dictionary {
+            let required: Vec<String> = d
+                .required_directions
+                .iter()
+                .map(|(segment, n)| format!("{segment} {n}"))
+                .collect();
+            writeln!(
+                f,
+                "intra-link sets from dictionary {} ({} directions, radius {:.1}°; required: {})",
+                d.file,
+                d.directions,
+                d.covering_radius_deg,
+                required.join(", ")
+            )?;
+        }
         if let (Some(path), Some(total)) = (&self.optimal, self.optimal_length_mm) {
             writeln!(f, "\noptimal cable path — total {total:.0} mm")?;
             write_path(f, path)?;

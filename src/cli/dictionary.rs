@@ -1,0 +1,200 @@
+//! `cable-dict build`, `info`, `verify` and `merge`: dictionaries from the command line.
+
+use super::solve::open_verified;
+use super::{Failure, emit, print_json};
+use cable_dict::dictionary::{
+    BuildOptions, DEFAULT_DIRECTION_COUNT, Dictionary, Info, build, merge, write_dictionary,
+};
+use cable_dict::setup::Setup;
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(Debug, clap::Args)]
+pub struct BuildArgs {
+    /// The setup whose intra-link segments to store.
+    setup: PathBuf,
+    /// The dictionary (or shard) to write; replaced atomically.
+    #[arg(short, long, value_name = "DICT.cdict")]
+    output: PathBuf,
+    /// Gravity directions sampled on the sphere (README, "Dictionaries": why 256).
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_DIRECTION_COUNT)]
+    directions: usize,
+    /// Worker threads (default: one per core). The bytes do not depend on it.
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+    /// Build only shard i of n (0-based, e.g. 0/4 … 3/4), for `cable-dict merge`.
+    #[arg(long, value_name = "i/n", value_parser = shard_arg)]
+    shard: Option<(u32, u32)>,
+    /// No progress bar (there is none on a pipe anyway).
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+/// Parses `i/n`.
+fn shard_arg(text: &str) -> Result<(u32, u32), String> {
+    let (i, n) = text
+        .split_once('/')
+        .ok_or_else(|| format!("'{text}' is not i/n (e.g. 0/4)"))?;
+    let parse = |s: &str| {
+        s.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("'{s}' in '{text}' is not a whole number"))
+    };
+    let (i, n) = (parse(i)?, parse(n)?);
+    if n == 0 || i >= n {
+        return Err(format!(
+            "shard {i}/{n}: the index counts from 0 to n − 1 and n is at least 1"
+        ));
+    }
+    Ok((i, n))
+}
+
+pub fn run_build(args: BuildArgs) -> Result<(), Failure> {
+    let setup = Setup::from_file(&args.setup).map_err(Failure::input)?;
+    let options = BuildOptions {
+        directions: args.directions,
+        shard: args.shard,
+        progress: !args.quiet,
+    };
+    let clock = Instant::now();
+    let built = match args.threads {
+        None => build(&setup, &options),
+        Some(threads) => rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| Failure::input(anyhow::anyhow!("--threads {threads}: {e}")))?
+            .install(|| build(&setup, &options)),
+    }
+    .map_err(|problem| Failure::input(anyhow::anyhow!("{}: {problem}", args.setup.display())))?;
+    write_dictionary(&args.output, &built).map_err(Failure::unsolved)?;
+    let mut text = format!(
+        "wrote {}: {} PVs × {} directions in {:.1} s",
+        args.output.display(),
+        built.pvs.len(),
+        built.directions.len(),
+        clock.elapsed().as_secs_f64()
+    );
+    if let Some(shard) = built.header.shard {
+        let _ = write!(
+            text,
+            " (shard {}/{}: PVs {}..{} of {})",
+            shard.index, shard.count, shard.first_pv, shard.end_pv, built.header.pv_total
+        );
+    }
+    for e in &built.header.segments {
+        let _ = write!(
+            text,
+            "; C{} |D1| {} |D2| {}",
+            e.segment + 1,
+            e.d1_all,
+            e.d2_all
+        );
+    }
+    emit(&(text + "\n"))
+}
+
+#[derive(Debug, clap::Args)]
+pub struct InfoArgs {
+    /// The dictionary.
+    dict: PathBuf,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run_info(args: InfoArgs) -> Result<(), Failure> {
+    let dictionary = Dictionary::open(&args.dict).map_err(Failure::input)?;
+    let info = Info::of(&dictionary);
+    if args.json {
+        return print_json(&info);
+    }
+    emit(&describe(&info))
+}
+
+fn describe(info: &Info) -> String {
+    let mut text = String::new();
+    let _ = writeln!(
+        text,
+        "{}: cable-dict dictionary, format v{}, physics v{}, {} bytes{}",
+        info.file,
+        info.format_version,
+        info.physics_version,
+        info.file_bytes,
+        info.shard
+            .as_ref()
+            .map(|s| format!(", shard {s} ({} of {} PVs)", info.pv_records, info.pv_total))
+            .unwrap_or_default()
+    );
+    let _ = writeln!(
+        text,
+        "setup {} (hash {}): robot {}, cable {}",
+        info.setup_file, info.setup_hash, info.robot, info.cable
+    );
+    let _ = writeln!(
+        text,
+        "{} gravity directions ({}, covering radius {:.2}°); {}",
+        info.directions, info.direction_method, info.covering_radius_deg, info.solver
+    );
+    let _ = writeln!(
+        text,
+        "\nsegment  link      lengths (S)    configs    PVs  candidates  |D1| all  |D2| all"
+    );
+    for s in &info.segments {
+        let _ = writeln!(
+            text,
+            "  {:<6} {:<9} {:>3}..={:<3} ({:>2})  {:>2} × {:<2} {:>6} {:>11} {:>9} {:>9}",
+            s.segment,
+            s.link,
+            s.lengths[0],
+            s.lengths[1],
+            s.length_count,
+            s.configurations[0],
+            s.configurations[1],
+            s.pvs,
+            s.candidates,
+            s.d1_all,
+            s.d2_all
+        );
+    }
+    text
+}
+
+#[derive(Debug, clap::Args)]
+pub struct VerifyArgs {
+    /// The dictionary (or shard).
+    dict: PathBuf,
+}
+
+pub fn run_verify(args: VerifyArgs) -> Result<(), Failure> {
+    let dictionary = open_verified(&args.dict)?;
+    emit(&format!(
+        "{}: ok ({} bytes; every section checksum and {} PV records × {} directions verified)\n",
+        args.dict.display(),
+        dictionary.file_len(),
+        dictionary.pv_records().len(),
+        dictionary.directions().len()
+    ))
+}
+
+#[derive(Debug, clap::Args)]
+pub struct MergeArgs {
+    /// The shards, in any order (cable-dict build --shard i/n).
+    #[arg(required = true)]
+    shards: Vec<PathBuf>,
+    /// The whole dictionary to write; replaced atomically.
+    #[arg(short, long, value_name = "DICT.cdict")]
+    output: PathBuf,
+}
+
+pub fn run_merge(args: MergeArgs) -> Result<(), Failure> {
+    let built = merge(&args.shards).map_err(Failure::input)?;
+    write_dictionary(&args.output, &built).map_err(Failure::unsolved)?;
+    emit(&format!(
+        "wrote {}: {} shards merged, {} PVs × {} directions\n",
+        args.output.display(),
+        args.shards.len(),
+        built.pvs.len(),
+        built.directions.len()
+    ))
+}

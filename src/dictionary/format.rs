@@ -1,0 +1,677 @@
+//! The `.cdict` byte layout, version 1 (docs/cdict-format.md): a checksummed preamble, a
+//! checksummed section table, then four sections at 16-byte aligned offsets — the header
+//! (bincode), the gravity directions, the PV records and the result records (fixed-size,
+//! little-endian, read in place from the memory map).
+//!
+//! [`parse`] checks everything that is O(1) or O(header): magic, version, length, the
+//! preamble's and the table's checksums, every section's bounds, alignment and record size,
+//! and the header's own checksum; [`verify_sections`] checks the bulk sections' checksums.
+
+use super::error::Problem;
+use crate::attachment::Rejection;
+use serde::{Deserialize, Serialize};
+use std::ops::Range;
+use xxhash_rust::xxh3::xxh3_64;
+
+#[cfg(target_endian = "big")]
+compile_error!("the .cdict records are read in place as little-endian values");
+
+/// The first 8 bytes of every dictionary (the CR LF catches text-mode copies).
+pub const MAGIC: [u8; 8] = *b"CDICT\0\r\n";
+/// The format version this build writes and reads.
+pub const FORMAT_VERSION: u32 = 1;
+/// Bytes of the preamble; the section table follows.
+pub const PREAMBLE_LEN: usize = 64;
+/// Bytes of one section-table entry.
+pub const TABLE_ENTRY_LEN: usize = 32;
+/// Section offsets are multiples of this (the widest record field is 8 bytes).
+pub const ALIGNMENT: usize = 16;
+/// Version of the physics behind the stored results: bumped whenever the static solver or
+/// the metrics change what they compute, so that old dictionaries are refused, not trusted.
+pub const PHYSICS_VERSION: u32 = 1;
+/// Largest header accepted when decoding (the URDF text dominates it).
+const HEADER_LIMIT: usize = 64 << 20;
+
+/// The four sections, in file order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SectionKind {
+    /// bincode-encoded [`Header`].
+    Header = 1,
+    /// Gravity directions in the link frame: `[f64; 3]` unit vectors.
+    Directions = 2,
+    /// [`PvRecord`]s.
+    Pvs = 3,
+    /// [`ResultRecord`]s, `directions` per PV, PV-major.
+    Results = 4,
+}
+
+impl SectionKind {
+    /// Every kind, in file order.
+    pub const ALL: [SectionKind; 4] = [
+        SectionKind::Header,
+        SectionKind::Directions,
+        SectionKind::Pvs,
+        SectionKind::Results,
+    ];
+
+    /// Name used in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            SectionKind::Header => "header",
+            SectionKind::Directions => "directions",
+            SectionKind::Pvs => "pvs",
+            SectionKind::Results => "results",
+        }
+    }
+
+    /// Bytes per record (1 for the header's free-form bytes).
+    fn record_len(self) -> usize {
+        match self {
+            SectionKind::Header => 1,
+            SectionKind::Directions => size_of::<[f64; 3]>(),
+            SectionKind::Pvs => size_of::<PvRecord>(),
+            SectionKind::Results => size_of::<ResultRecord>(),
+        }
+    }
+}
+
+/// One PV of an intra-link segment, in the dense grid (length, start configuration, end
+/// configuration) of its segment.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct PvRecord {
+    /// Length S in sub-segments.
+    pub sub_segments: u32,
+    /// Configuration index of the start guide.
+    pub start: u16,
+    /// Configuration index of the end guide.
+    pub end: u16,
+    /// Segment index m (0-based).
+    pub segment: u16,
+    /// [`PvRecord::ADMISSIBLE`] | [`PvRecord::CANDIDATE`] | [`PvRecord::D1_ALL`] |
+    /// [`PvRecord::D2_ALL`].
+    pub flags: u16,
+    /// Zero.
+    pub reserved: u32,
+}
+
+impl PvRecord {
+    /// S = 0 exactly when the two configurations coincide: a real cable (or a real single
+    /// clamp). Other grid cells are placeholders and were not evaluated.
+    pub const ADMISSIBLE: u16 = 1;
+    /// The length is one of the setup's candidates (others are robustness neighbours only).
+    pub const CANDIDATE: u16 = 2;
+    /// In D1 for every stored direction (whole dictionaries only).
+    pub const D1_ALL: u16 = 4;
+    /// In D2 for every stored direction (whole dictionaries only).
+    pub const D2_ALL: u16 = 8;
+
+    /// True when `flag` is set.
+    pub fn has(&self, flag: u16) -> bool {
+        self.flags & flag != 0
+    }
+}
+
+/// The static test of one PV under one gravity direction.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ResultRecord {
+    /// Lowest clearance to the segment's own link (mm), clamp zones excluded; NaN when none
+    /// was measured.
+    pub clearance_mm: f32,
+    /// Centreline length / natural length; NaN without an equilibrium.
+    pub stretch: f32,
+    /// Smallest bend radius (mm); NaN without an equilibrium, infinite when straight.
+    pub min_bend_radius_mm: f32,
+    /// [`Verdict`] as a byte.
+    pub verdict: u8,
+    /// Zero.
+    pub reserved: [u8; 3],
+}
+
+/// The outcome stored in a [`ResultRecord`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Verdict {
+    /// All three limits hold.
+    Pass = 0,
+    /// Shorter than the distance between the guides.
+    TooShort = 1,
+    /// The connected geometry or the static solver failed.
+    Diverged = 2,
+    /// Clearance below the threshold.
+    Contact = 3,
+    /// Stretch above the threshold.
+    Stretch = 4,
+    /// Bend radius below the minimum.
+    Bend = 5,
+    /// Not a real PV (grid placeholder); never evaluated.
+    NotEvaluated = 6,
+}
+
+impl Verdict {
+    /// The verdict of an attachment-test outcome (`None`: passed).
+    pub fn from_rejection(rejection: Option<Rejection>) -> Verdict {
+        match rejection {
+            None => Verdict::Pass,
+            Some(Rejection::TooShort) => Verdict::TooShort,
+            Some(Rejection::Diverged) => Verdict::Diverged,
+            Some(Rejection::Contact) => Verdict::Contact,
+            Some(Rejection::Stretch) => Verdict::Stretch,
+            Some(Rejection::Bend) => Verdict::Bend,
+        }
+    }
+
+    /// The attachment-test outcome (`None`: passed); a placeholder counts as a failed solve.
+    pub fn rejection(self) -> Option<Rejection> {
+        match self {
+            Verdict::Pass => None,
+            Verdict::TooShort => Some(Rejection::TooShort),
+            Verdict::Contact => Some(Rejection::Contact),
+            Verdict::Stretch => Some(Rejection::Stretch),
+            Verdict::Bend => Some(Rejection::Bend),
+            Verdict::Diverged | Verdict::NotEvaluated => Some(Rejection::Diverged),
+        }
+    }
+
+    /// The verdict of a stored byte, `None` for a byte no writer produces.
+    pub fn from_byte(byte: u8) -> Option<Verdict> {
+        Some(match byte {
+            0 => Verdict::Pass,
+            1 => Verdict::TooShort,
+            2 => Verdict::Diverged,
+            3 => Verdict::Contact,
+            4 => Verdict::Stretch,
+            5 => Verdict::Bend,
+            6 => Verdict::NotEvaluated,
+            _ => return None,
+        })
+    }
+}
+
+/// Everything about a dictionary that is not bulk data. Encoded with bincode 2 (standard
+/// configuration: little-endian, variable-length integers).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Header {
+    /// [`PHYSICS_VERSION`] of the build.
+    pub physics_version: u32,
+    /// The setup: its file name (for messages) and the texts of the setup, URDF and cable
+    /// files, so that the dictionary is self-contained.
+    pub setup: EmbeddedSetup,
+    /// Content hash of the setup ([`crate::setup::Setup::content_hash`]).
+    pub setup_hash: u64,
+    /// How each PV was evaluated.
+    pub solver: SolverParameters,
+    /// The sampled gravity directions.
+    pub directions: DirectionParameters,
+    /// The intra-link segments, in setup order.
+    pub segments: Vec<SegmentEntry>,
+    /// PVs of all segments together (the length of a whole dictionary's PV section).
+    pub pv_total: u64,
+    /// `Some` for one shard of a sharded build.
+    pub shard: Option<ShardRange>,
+}
+
+/// The setup files' texts.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EmbeddedSetup {
+    /// File name of the setup (no folders: the bytes must not depend on the machine).
+    pub file_name: String,
+    /// The setup TOML.
+    pub text: String,
+    /// The URDF.
+    pub robot_text: String,
+    /// The cable TOML.
+    pub cable_text: String,
+}
+
+/// Static solver and metric settings of the build.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SolverParameters {
+    /// Connected geometry: always `hermite` (Hermite curve + RMF, then the Newton solver).
+    pub connect: String,
+    /// Residual force tolerance of the Newton solver (N).
+    pub force_tolerance_n: f64,
+    /// Newton iteration limit.
+    pub max_iterations: u32,
+    /// Which links clearance is measured against: `own link`.
+    pub clearance_links: String,
+}
+
+/// The direction sample.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DirectionParameters {
+    /// `fibonacci` (the golden-angle spiral lattice).
+    pub method: String,
+    /// Number of directions N.
+    pub count: u32,
+    /// Largest angle from any direction on the sphere to its nearest sample (rad), an upper
+    /// estimate: the neighbourhood radius of the conservative lookup.
+    pub covering_radius_rad: f64,
+    /// Magnitude of gravity (m/s²), from the setup.
+    pub gravity_m_s2: f64,
+}
+
+/// One intra-link segment's block of PV records.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SegmentEntry {
+    /// Segment index m (0-based; `C{m+1}` for people).
+    pub segment: u32,
+    /// Link both guides are on (URDF name).
+    pub link: String,
+    /// Every length stored, ascending: the candidates and their robustness neighbours.
+    pub lengths: Vec<u32>,
+    /// Configurations of the start guide.
+    pub start_configurations: u32,
+    /// Configurations of the end guide.
+    pub end_configurations: u32,
+    /// Index of the segment's first PV record in the whole dictionary.
+    pub first_pv: u64,
+    /// |D1| over every stored direction (0 in a shard).
+    pub d1_all: u64,
+    /// |D2| over every stored direction (0 in a shard).
+    pub d2_all: u64,
+}
+
+impl SegmentEntry {
+    /// PV records of this segment: lengths × start × end configurations (saturating; a
+    /// header [`parse`] accepted never saturates).
+    pub fn pv_count(&self) -> u64 {
+        self.checked_pv_count().unwrap_or(u64::MAX)
+    }
+
+    /// [`SegmentEntry::pv_count`], `None` on overflow (a forged header).
+    fn checked_pv_count(&self) -> Option<u64> {
+        (self.lengths.len() as u64)
+            .checked_mul(u64::from(self.start_configurations))?
+            .checked_mul(u64::from(self.end_configurations))
+    }
+
+    /// Index of (S, i, j) within the segment's block, `None` when not stored.
+    pub fn grid_index(&self, sub_segments: usize, start: usize, end: usize) -> Option<u64> {
+        let (na, nb) = (
+            self.start_configurations as usize,
+            self.end_configurations as usize,
+        );
+        let length = self
+            .lengths
+            .binary_search(&u32::try_from(sub_segments).ok()?)
+            .ok()?;
+        (start < na && end < nb).then(|| ((length * na + start) * nb + end) as u64)
+    }
+}
+
+/// The PVs one shard covers: `first_pv..end_pv` of the whole dictionary.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ShardRange {
+    /// 0-based shard index.
+    pub index: u32,
+    /// Number of shards.
+    pub count: u32,
+    /// First PV (inclusive).
+    pub first_pv: u64,
+    /// Last PV (exclusive).
+    pub end_pv: u64,
+}
+
+impl ShardRange {
+    /// Shard `index` of `count` over `total` PVs: contiguous, sizes differing by at most one.
+    pub fn new(index: u32, count: u32, total: u64) -> ShardRange {
+        let bound = |k: u32| total * u64::from(k) / u64::from(count);
+        ShardRange {
+            index,
+            count,
+            first_pv: bound(index),
+            end_pv: bound(index + 1),
+        }
+    }
+}
+
+impl Header {
+    /// PVs whose records this file holds.
+    pub fn stored_pvs(&self) -> Range<u64> {
+        match self.shard {
+            Some(shard) => shard.first_pv..shard.end_pv,
+            None => 0..self.pv_total,
+        }
+    }
+}
+
+/// Byte ranges of the four sections, checked against the file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layout {
+    /// Decoded header.
+    pub header: Header,
+    /// Byte range of each section, indexed like [`SectionKind::ALL`].
+    pub sections: [Range<usize>; 4],
+    /// Stored checksum of each section.
+    pub checksums: [u64; 4],
+}
+
+impl Layout {
+    /// Byte range of `kind`.
+    pub fn range(&self, kind: SectionKind) -> Range<usize> {
+        self.sections[kind as usize - 1].clone()
+    }
+}
+
+/// Serializes a dictionary: preamble, table, the four sections.
+pub fn encode(
+    header: &Header,
+    directions: &[[f64; 3]],
+    pvs: &[PvRecord],
+    results: &[ResultRecord],
+) -> Result<Vec<u8>, Problem> {
+    let header_bytes = bincode::serde::encode_to_vec(header, bincode::config::standard())
+        .map_err(|e| Problem::Header(format!("cannot encode: {e}")))?;
+    let bodies: [&[u8]; 4] = [
+        &header_bytes,
+        bytemuck::cast_slice(directions),
+        bytemuck::cast_slice(pvs),
+        bytemuck::cast_slice(results),
+    ];
+    let table_end = PREAMBLE_LEN + TABLE_ENTRY_LEN * bodies.len();
+    let mut out = vec![0u8; table_end];
+    let mut table = Vec::with_capacity(TABLE_ENTRY_LEN * bodies.len());
+    for (kind, body) in SectionKind::ALL.iter().zip(bodies) {
+        out.resize(out.len().next_multiple_of(ALIGNMENT), 0);
+        table.extend_from_slice(&(*kind as u32).to_le_bytes());
+        table.extend_from_slice(&0u32.to_le_bytes());
+        table.extend_from_slice(&(out.len() as u64).to_le_bytes());
+        table.extend_from_slice(&(body.len() as u64).to_le_bytes());
+        table.extend_from_slice(&xxh3_64(body).to_le_bytes());
+        out.extend_from_slice(body);
+    }
+    out[PREAMBLE_LEN..table_end].copy_from_slice(&table);
+    let mut preamble = [0u8; PREAMBLE_LEN];
+    preamble[0..8].copy_from_slice(&MAGIC);
+    preamble[8..12].copy_from_slice(&FORMAT_VERSION.to_le_bytes());
+    preamble[12..16].copy_from_slice(&(bodies.len() as u32).to_le_bytes());
+    preamble[16..24].copy_from_slice(&(out.len() as u64).to_le_bytes());
+    preamble[24..32].copy_from_slice(&(PREAMBLE_LEN as u64).to_le_bytes());
+    preamble[32..40].copy_from_slice(&xxh3_64(&table).to_le_bytes());
+    let checksum = xxh3_64(&preamble[..56]);
+    preamble[56..64].copy_from_slice(&checksum.to_le_bytes());
+    out[..PREAMBLE_LEN].copy_from_slice(&preamble);
+    Ok(out)
+}
+
+/// Checks the structure of `bytes` and decodes the header. Costs O(header), independent of
+/// the bulk sections' size; their checksums are [`verify_sections`]'s job.
+pub fn parse(bytes: &[u8]) -> Result<Layout, Problem> {
+    let table = parse_preamble(bytes)?;
+    let mut sections: [Option<(Range<usize>, u64)>; 4] = Default::default();
+    for (i, entry) in table.chunks_exact(TABLE_ENTRY_LEN).enumerate() {
+        let (kind, range, checksum) = parse_entry(i, entry, bytes.len())?;
+        let slot = &mut sections[kind as usize - 1];
+        if slot.is_some() {
+            return Err(layout(
+                format!("section table entry {i}"),
+                format!("a second '{}' section", kind.name()),
+            ));
+        }
+        *slot = Some((range, checksum));
+    }
+    let mut ranges: [Range<usize>; 4] = Default::default();
+    let mut checksums = [0u64; 4];
+    for (k, kind) in SectionKind::ALL.iter().enumerate() {
+        let (range, checksum) = sections[k].clone().ok_or_else(|| {
+            layout(
+                "section table".into(),
+                format!("no '{}' section", kind.name()),
+            )
+        })?;
+        ranges[k] = range;
+        checksums[k] = checksum;
+    }
+    let header_bytes = &bytes[ranges[0].clone()];
+    check_checksum(SectionKind::Header, header_bytes, checksums[0])?;
+    let header = decode_header(header_bytes)?;
+    let layout = Layout {
+        header,
+        sections: ranges,
+        checksums,
+    };
+    check_counts(&layout)?;
+    Ok(layout)
+}
+
+/// Checks the checksums of the directions, PV and result sections (the header's was checked
+/// by [`parse`]).
+pub fn verify_sections(bytes: &[u8], layout: &Layout) -> Result<(), Problem> {
+    for (k, kind) in SectionKind::ALL.iter().enumerate().skip(1) {
+        check_checksum(
+            *kind,
+            &bytes[layout.sections[k].clone()],
+            layout.checksums[k],
+        )?;
+    }
+    Ok(())
+}
+
+/// The preamble's checks; returns the section table's bytes.
+fn parse_preamble(bytes: &[u8]) -> Result<&[u8], Problem> {
+    if bytes.len() < PREAMBLE_LEN {
+        return Err(Problem::NotADictionary(format!(
+            "{} bytes, shorter than the {PREAMBLE_LEN}-byte preamble",
+            bytes.len()
+        )));
+    }
+    if bytes[0..8] != MAGIC {
+        return Err(Problem::NotADictionary(format!(
+            "the first bytes are {:02x?}, not the magic {:02x?}",
+            &bytes[0..8],
+            MAGIC
+        )));
+    }
+    let version = u32_at(bytes, 8);
+    if version > FORMAT_VERSION {
+        return Err(Problem::FutureVersion {
+            found: version,
+            supported: FORMAT_VERSION,
+        });
+    }
+    if version != FORMAT_VERSION {
+        return Err(Problem::UnknownVersion {
+            found: version,
+            supported: FORMAT_VERSION,
+        });
+    }
+    check_bytes("preamble", &bytes[..56], u64_at(bytes, 56))?;
+    let expected = u64_at(bytes, 16);
+    if expected != bytes.len() as u64 {
+        return Err(Problem::Length {
+            expected,
+            actual: bytes.len() as u64,
+        });
+    }
+    let count = u32_at(bytes, 12) as usize;
+    let offset = u64_at(bytes, 24);
+    if count != SectionKind::ALL.len() || offset != PREAMBLE_LEN as u64 {
+        return Err(layout(
+            "preamble".into(),
+            format!(
+                "{count} sections at offset {offset}; version {FORMAT_VERSION} has {} at \
+                 {PREAMBLE_LEN}",
+                SectionKind::ALL.len()
+            ),
+        ));
+    }
+    let table_end = PREAMBLE_LEN + count * TABLE_ENTRY_LEN;
+    let table = bytes.get(PREAMBLE_LEN..table_end).ok_or_else(|| {
+        layout(
+            "section table".into(),
+            "extends past the end of the file".into(),
+        )
+    })?;
+    check_bytes("section table", table, u64_at(bytes, 32))?;
+    Ok(table)
+}
+
+/// One table entry: its kind, checked byte range and checksum.
+fn parse_entry(
+    i: usize,
+    entry: &[u8],
+    file_len: usize,
+) -> Result<(SectionKind, Range<usize>, u64), Problem> {
+    let place = || format!("section table entry {i}");
+    let code = u32_at(entry, 0);
+    let kind = SectionKind::ALL
+        .into_iter()
+        .find(|k| *k as u32 == code)
+        .ok_or_else(|| layout(place(), format!("unknown section kind {code}")))?;
+    let (offset, len) = (u64_at(entry, 8), u64_at(entry, 16));
+    let end = offset
+        .checked_add(len)
+        .filter(|&end| end <= file_len as u64);
+    let Some(end) = end else {
+        return Err(layout(
+            place(),
+            format!(
+                "section '{}' at {offset} + {len} bytes ends past the end of the file \
+                 ({file_len} bytes)",
+                kind.name()
+            ),
+        ));
+    };
+    let table_end = (PREAMBLE_LEN + SectionKind::ALL.len() * TABLE_ENTRY_LEN) as u64;
+    if offset < table_end || offset % ALIGNMENT as u64 != 0 {
+        return Err(layout(
+            place(),
+            format!(
+                "section '{}' starts at {offset}: inside the table or not a multiple of \
+                 {ALIGNMENT}",
+                kind.name()
+            ),
+        ));
+    }
+    if len % kind.record_len() as u64 != 0 {
+        return Err(layout(
+            place(),
+            format!(
+                "section '{}' has {len} bytes, not a whole number of {}-byte records",
+                kind.name(),
+                kind.record_len()
+            ),
+        ));
+    }
+    Ok((kind, offset as usize..end as usize, u64_at(entry, 24)))
+}
+
+fn decode_header(bytes: &[u8]) -> Result<Header, Problem> {
+    let config = bincode::config::standard().with_limit::<HEADER_LIMIT>();
+    let (header, used): (Header, usize) = bincode::serde::decode_from_slice(bytes, config)
+        .map_err(|e| Problem::Header(format!("does not decode: {e}")))?;
+    if used != bytes.len() {
+        return Err(Problem::Header(format!(
+            "{} bytes follow the encoded header",
+            bytes.len() - used
+        )));
+    }
+    Ok(header)
+}
+
+/// The sections' record counts agree with the header.
+fn check_counts(layout: &Layout) -> Result<(), Problem> {
+    let header = &layout.header;
+    let count = |kind: SectionKind| (layout.range(kind).len() / kind.record_len()) as u64;
+    let directions = u64::from(header.directions.count);
+    if count(SectionKind::Directions) != directions {
+        return Err(Problem::Header(format!(
+            "announces {directions} directions, the section holds {}",
+            count(SectionKind::Directions)
+        )));
+    }
+    check_segments(header)?;
+    let grid: u64 = header.segments.iter().map(SegmentEntry::pv_count).sum();
+    let stored = header.stored_pvs();
+    if grid != header.pv_total || stored.start > stored.end || stored.end > header.pv_total {
+        return Err(Problem::Header(format!(
+            "the segments hold {grid} PVs, the header says {} and stores {}..{}",
+            header.pv_total, stored.start, stored.end
+        )));
+    }
+    let pvs = stored.end - stored.start;
+    if count(SectionKind::Pvs) != pvs {
+        return Err(Problem::Header(format!(
+            "announces {pvs} PV records, the section holds {}",
+            count(SectionKind::Pvs)
+        )));
+    }
+    let results = pvs.checked_mul(directions);
+    if results != Some(count(SectionKind::Results)) {
+        return Err(Problem::Header(format!(
+            "{pvs} PVs × {directions} directions, but the results section holds {} records",
+            count(SectionKind::Results)
+        )));
+    }
+    Ok(())
+}
+
+/// The segment table is a valid grid: non-empty configuration sets, strictly ascending
+/// lengths, blocks that follow each other; a shard's index is below its count.
+fn check_segments(header: &Header) -> Result<(), Problem> {
+    let mut next = 0u64;
+    for entry in &header.segments {
+        let name = format!("segment C{}", u64::from(entry.segment) + 1);
+        if entry.start_configurations == 0 || entry.end_configurations == 0 {
+            return Err(Problem::Header(format!("{name} has no configurations")));
+        }
+        if entry.lengths.is_empty() || entry.lengths.windows(2).any(|w| w[0] >= w[1]) {
+            return Err(Problem::Header(format!(
+                "{name}: lengths are not strictly ascending"
+            )));
+        }
+        if entry.first_pv != next {
+            return Err(Problem::Header(format!(
+                "{name} starts at PV {}, the previous segments end at {next}",
+                entry.first_pv
+            )));
+        }
+        next = entry
+            .checked_pv_count()
+            .and_then(|count| next.checked_add(count))
+            .ok_or_else(|| Problem::Header(format!("{name}: the PV count overflows")))?;
+    }
+    if let Some(shard) = header.shard
+        && shard.index >= shard.count
+    {
+        return Err(Problem::Header(format!(
+            "shard {}/{}: the index is not below the count",
+            shard.index, shard.count
+        )));
+    }
+    Ok(())
+}
+
+fn check_checksum(kind: SectionKind, bytes: &[u8], stored: u64) -> Result<(), Problem> {
+    check_bytes(&format!("section '{}'", kind.name()), bytes, stored)
+}
+
+fn check_bytes(place: &str, bytes: &[u8], stored: u64) -> Result<(), Problem> {
+    let computed = xxh3_64(bytes);
+    if computed == stored {
+        Ok(())
+    } else {
+        Err(Problem::Checksum {
+            place: place.into(),
+            stored,
+            computed,
+        })
+    }
+}
+
+fn layout(place: String, detail: String) -> Problem {
+    Problem::Layout { place, detail }
+}
+
+fn u32_at(bytes: &[u8], at: usize) -> u32 {
+    let mut word = [0u8; 4];
+    word.copy_from_slice(&bytes[at..at + 4]);
+    u32::from_le_bytes(word)
+}
+
+fn u64_at(bytes: &[u8], at: usize) -> u64 {
+    let mut word = [0u8; 8];
+    word.copy_from_slice(&bytes[at..at + 8]);
+    u64::from_le_bytes(word)
+}

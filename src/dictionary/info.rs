@@ -1,0 +1,132 @@
+//! What `cable-dict info` shows of a dictionary: build parameters, the embedded setup and
+//! per-segment set sizes, read from the header and the PV flags (no checksum pass).
+
+use super::format::{FORMAT_VERSION, PvRecord};
+use super::reader::{Dictionary, embedded_setup};
+use serde::Serialize;
+
+/// A dictionary's description.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Info {
+    /// The file.
+    pub file: String,
+    /// Its size (bytes).
+    pub file_bytes: usize,
+    /// `.cdict` format version.
+    pub format_version: u32,
+    /// Physics version of the stored results.
+    pub physics_version: u32,
+    /// Setup file name as built.
+    pub setup_file: String,
+    /// Content hash of the setup (16 hex digits).
+    pub setup_hash: String,
+    /// Robot name, or why the embedded setup does not load.
+    pub robot: String,
+    /// Cable name (empty when the setup does not load).
+    pub cable: String,
+    /// Sampled directions N.
+    pub directions: u32,
+    /// Direction sampling method.
+    pub direction_method: String,
+    /// Neighbourhood radius of the lookup (deg).
+    pub covering_radius_deg: f64,
+    /// Connected geometry and solver of the build.
+    pub solver: String,
+    /// `i/n` for a shard, `None` for a whole dictionary.
+    pub shard: Option<String>,
+    /// PVs in a whole dictionary.
+    pub pv_total: u64,
+    /// PV records in this file.
+    pub pv_records: usize,
+    /// The intra-link segments.
+    pub segments: Vec<SegmentInfo>,
+}
+
+/// One intra-link segment of a dictionary.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SegmentInfo {
+    /// `C2`, …
+    pub segment: String,
+    /// Link of both guides.
+    pub link: String,
+    /// Stored lengths (sub-segments), shortest and longest.
+    pub lengths: [u32; 2],
+    /// Number of stored lengths.
+    pub length_count: usize,
+    /// Start × end guide configurations.
+    pub configurations: [u32; 2],
+    /// PV records (grid cells) of the segment.
+    pub pvs: u64,
+    /// Candidate PVs (admissible, with a candidate length) held in this file.
+    pub candidates: usize,
+    /// |D1| for every stored direction (0 in a shard).
+    pub d1_all: u64,
+    /// |D2| for every stored direction (0 in a shard).
+    pub d2_all: u64,
+}
+
+impl Info {
+    /// Describes `dictionary`.
+    pub fn of(dictionary: &Dictionary) -> Info {
+        let header = dictionary.header();
+        let (robot, cable) = match embedded_setup(header) {
+            Ok(setup) => (setup.robot.name, setup.cable.name),
+            Err(problem) => (format!("(embedded setup: {problem})"), String::new()),
+        };
+        let records = dictionary.pv_records();
+        let first = header.stored_pvs().start;
+        let segments = header
+            .segments
+            .iter()
+            .map(|e| {
+                let block = e.first_pv..e.first_pv + e.pv_count();
+                let candidates = records
+                    .iter()
+                    .enumerate()
+                    .filter(|(k, r)| {
+                        block.contains(&(first + *k as u64)) && r.has(PvRecord::CANDIDATE)
+                    })
+                    .count();
+                SegmentInfo {
+                    segment: format!("C{}", u64::from(e.segment) + 1),
+                    link: e.link.clone(),
+                    lengths: [
+                        e.lengths.first().copied().unwrap_or(0),
+                        e.lengths.last().copied().unwrap_or(0),
+                    ],
+                    length_count: e.lengths.len(),
+                    configurations: [e.start_configurations, e.end_configurations],
+                    pvs: e.pv_count(),
+                    candidates,
+                    d1_all: e.d1_all,
+                    d2_all: e.d2_all,
+                }
+            })
+            .collect();
+        let solver = &header.solver;
+        Info {
+            file: dictionary.path().display().to_string(),
+            file_bytes: dictionary.file_len(),
+            format_version: FORMAT_VERSION,
+            physics_version: header.physics_version,
+            setup_file: header.setup.file_name.clone(),
+            setup_hash: format!("{:016x}", header.setup_hash),
+            robot,
+            cable,
+            directions: header.directions.count,
+            direction_method: header.directions.method.clone(),
+            covering_radius_deg: header.directions.covering_radius_rad.to_degrees(),
+            solver: format!(
+                "{} connect, Newton to {:e} N in ≤ {} iterations, clearance to the {}",
+                solver.connect,
+                solver.force_tolerance_n,
+                solver.max_iterations,
+                solver.clearance_links
+            ),
+            shard: header.shard.map(|s| format!("{}/{}", s.index, s.count)),
+            pv_total: header.pv_total,
+            pv_records: records.len(),
+            segments,
+        }
+    }
+}

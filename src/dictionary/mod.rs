@@ -1,0 +1,69 @@
+//! Dictionaries (DESIGN §3.7): the motion-independent part of the attachment test, computed
+//! once per robot + cable + guide catalogue and shared as a `.cdict` file.
+//!
+//! An intra-link segment's shape depends only on gravity's direction in its link's frame. A
+//! build evaluates every PV of every intra-link segment (the setup's lengths and their
+//! robustness neighbours) under N gravity directions sampled on the sphere ([`directions`])
+//! and stores, per PV and direction, the verdict and the three metrics ([`format`](mod@format)). Solving
+//! a motion then needs no static solve for those segments: the motion's gravity directions in
+//! each link frame select the stored directions to require ([`MotionLookup`]).
+//!
+//! - [`build()`]: the whole dictionary or one shard (`--shard i/n`), in parallel, the same
+//!   bytes at any thread count.
+//! - [`Dictionary::open`]: a memory map with O(1) structural checks; [`Dictionary::verify`]
+//!   checks every checksum and record.
+//! - [`merge()`]: shards → the whole dictionary, the same bytes as a single build.
+//! - [`write_dictionary`]: atomic replacement (temporary file, fsync, rename).
+//!
+//! The byte layout is documented in docs/cdict-format.md.
+
+mod build;
+pub mod directions;
+mod error;
+pub mod format;
+mod info;
+mod lookup;
+mod merge;
+mod reader;
+
+pub use build::{BuildOptions, Built, build};
+pub use directions::DEFAULT_DIRECTION_COUNT;
+pub use error::{DictionaryError, Problem};
+pub use info::{Info, SegmentInfo};
+pub use lookup::{LookupError, MotionLookup};
+pub use merge::merge;
+pub use reader::Dictionary;
+
+use crate::atomic_file::write_atomically;
+use std::path::Path;
+
+/// Encodes `built` and replaces `path` with it atomically: readers (and an interrupted
+/// writer) never leave a file that opens half-written.
+pub fn write_dictionary(path: &Path, built: &Built) -> Result<(), DictionaryError> {
+    let bytes = built
+        .to_bytes()
+        .map_err(|problem| DictionaryError::new(path, problem))?;
+    write_atomically(path, &bytes)
+        .map_err(|e| DictionaryError::new(path, Problem::Write(e.to_string())))
+}
+
+/// Every check a reader makes, on bytes in memory (any alignment): the structure, every
+/// checksum and every record. For fuzzing and for tools that hold a file in memory.
+pub fn check_bytes(bytes: &[u8]) -> Result<format::Header, Problem> {
+    use format::SectionKind;
+    let layout = format::parse(bytes)?;
+    format::verify_sections(bytes, &layout)?;
+    // Copies: `bytes` need not be aligned for in-place reading.
+    let pvs: Vec<format::PvRecord> = records(&bytes[layout.range(SectionKind::Pvs)]);
+    let results: Vec<format::ResultRecord> = records(&bytes[layout.range(SectionKind::Results)]);
+    reader::check_records(&layout.header, &pvs, &results)?;
+    Ok(layout.header)
+}
+
+/// Fixed-size records copied out of bytes of any alignment.
+fn records<T: bytemuck::Pod>(bytes: &[u8]) -> Vec<T> {
+    bytes
+        .chunks_exact(size_of::<T>())
+        .map(bytemuck::pod_read_unaligned)
+        .collect()
+}

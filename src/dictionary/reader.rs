@@ -1,0 +1,245 @@
+//! Opening a dictionary: a memory map, the O(1) structural checks of [`parse`], and
+//! zero-copy access to its records; [`Dictionary::verify`] checks every byte.
+
+use super::error::{DictionaryError, Problem};
+use super::format::{
+    Header, Layout, PHYSICS_VERSION, PvRecord, ResultRecord, SectionKind, SegmentEntry, Verdict,
+    parse, verify_sections,
+};
+use crate::path::Pv;
+use crate::setup::Setup;
+use memmap2::Mmap;
+use std::fs::File;
+use std::path::{Path, PathBuf};
+
+/// An open dictionary file.
+#[derive(Debug)]
+pub struct Dictionary {
+    path: PathBuf,
+    map: Mmap,
+    layout: Layout,
+}
+
+impl Dictionary {
+    /// Maps `path` and checks its structure (magic, version, length, preamble and table
+    /// checksums, section bounds, record sizes, the header). Cost: independent of the size of
+    /// the bulk sections.
+    pub fn open(path: impl AsRef<Path>) -> Result<Dictionary, DictionaryError> {
+        let path = path.as_ref();
+        let error = |problem| DictionaryError::new(path, problem);
+        let file = File::open(path).map_err(|e| error(Problem::Io(e.to_string())))?;
+        // SAFETY: the map is read-only and dictionaries are immutable once written: builds
+        // and merges replace files by rename, never in place. A file truncated by another
+        // process while mapped would fault, as with any mapped reader.
+        let map = unsafe { Mmap::map(&file) }.map_err(|e| error(Problem::Io(e.to_string())))?;
+        let layout = parse(&map).map_err(error)?;
+        check_alignment(&map, &layout).map_err(error)?;
+        Ok(Dictionary {
+            path: path.to_path_buf(),
+            map,
+            layout,
+        })
+    }
+
+    /// The file it was opened from.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The decoded header.
+    pub fn header(&self) -> &Header {
+        &self.layout.header
+    }
+
+    /// Size of the file (bytes).
+    pub fn file_len(&self) -> usize {
+        self.map.len()
+    }
+
+    /// The sampled gravity directions (unit vectors in the link frame).
+    pub fn directions(&self) -> &[[f64; 3]] {
+        bytemuck::cast_slice(self.section(SectionKind::Directions))
+    }
+
+    /// The PV records this file holds.
+    pub fn pv_records(&self) -> &[PvRecord] {
+        bytemuck::cast_slice(self.section(SectionKind::Pvs))
+    }
+
+    /// The result records, `directions().len()` per PV record.
+    pub fn results(&self) -> &[ResultRecord] {
+        bytemuck::cast_slice(self.section(SectionKind::Results))
+    }
+
+    /// The entry of intra-link segment `m`, `None` when `m` is not one.
+    pub fn segment(&self, m: usize) -> Option<&SegmentEntry> {
+        self.header()
+            .segments
+            .iter()
+            .find(|e| e.segment as usize == m)
+    }
+
+    /// The stored results of `pv` of segment `m`, one per direction; `None` when the
+    /// dictionary does not hold it. O(log lengths).
+    pub fn lookup(&self, m: usize, pv: &Pv) -> Option<&[ResultRecord]> {
+        let entry = self.segment(m)?;
+        let local = entry.grid_index(pv.sub_segments, pv.start, pv.end)?;
+        let stored = self.header().stored_pvs();
+        let g = (entry.first_pv + local).checked_sub(stored.start)?;
+        let n = self.directions().len();
+        let first = usize::try_from(g).ok()?.checked_mul(n)?;
+        self.results().get(first..first.checked_add(n)?)
+    }
+
+    /// Checks every section's checksum and that the records agree with the header: grid
+    /// positions, flags, verdict bytes and the all-directions |D1| and |D2| counts.
+    pub fn verify(&self) -> Result<(), DictionaryError> {
+        let error = |problem| DictionaryError::new(&self.path, problem);
+        verify_sections(&self.map, &self.layout).map_err(error)?;
+        check_records(self.header(), self.pv_records(), self.results()).map_err(error)
+    }
+
+    /// The embedded setup, loaded and checked against the header's content hash; refuses a
+    /// shard and a dictionary of another physics version.
+    pub fn setup(&self) -> Result<Setup, DictionaryError> {
+        let error = |problem| DictionaryError::new(&self.path, problem);
+        let header = self.header();
+        if let Some(shard) = header.shard {
+            return Err(error(Problem::Shard {
+                index: shard.index,
+                count: shard.count,
+            }));
+        }
+        let setup = embedded_setup(header).map_err(error)?;
+        if header.physics_version != PHYSICS_VERSION {
+            return Err(error(Problem::Mismatch(format!(
+                "built with physics version {}, this cable-dict computes version \
+                 {PHYSICS_VERSION}: rebuild it (cable-dict build)",
+                header.physics_version
+            ))));
+        }
+        Ok(setup)
+    }
+
+    fn section(&self, kind: SectionKind) -> &[u8] {
+        &self.map[self.layout.range(kind)]
+    }
+}
+
+/// The records agree with the header: grid positions, zero padding, verdict bytes, flags,
+/// and (whole dictionaries) the |D1|/|D2| counts. `results` holds `header.directions.count`
+/// rows per PV record, as [`parse`] checked.
+pub(super) fn check_records(
+    header: &Header,
+    pv_records: &[PvRecord],
+    results: &[ResultRecord],
+) -> Result<(), Problem> {
+    let stored = header.stored_pvs();
+    let mut counts = vec![(0u64, 0u64); header.segments.len()];
+    let n = usize::try_from(header.directions.count).unwrap_or(usize::MAX);
+    for (k, record) in pv_records.iter().enumerate() {
+        let g = stored.start + k as u64;
+        let place = || format!("PV record {g}");
+        let (slot, pv) = super::build::pv_at(header, g);
+        let at_place = record.segment == header.segments[slot].segment as u16
+            && record.sub_segments as usize == pv.sub_segments
+            && record.start as usize == pv.start
+            && record.end as usize == pv.end;
+        if !at_place || record.reserved != 0 {
+            return Err(record_error(place(), "does not match its grid position"));
+        }
+        let rows = results.get(k * n..(k + 1) * n).unwrap_or_default();
+        check_results(record, rows).map_err(|detail| record_error(place(), &detail))?;
+        counts[slot].0 += u64::from(record.has(PvRecord::D1_ALL));
+        counts[slot].1 += u64::from(record.has(PvRecord::D2_ALL));
+    }
+    if header.shard.is_some() {
+        return Ok(());
+    }
+    for (entry, (d1, d2)) in header.segments.iter().zip(counts) {
+        if (d1, d2) != (entry.d1_all, entry.d2_all) {
+            return Err(Problem::Header(format!(
+                "segment C{}: |D1| {} and |D2| {} in the header, {d1} and {d2} flagged",
+                u64::from(entry.segment) + 1,
+                entry.d1_all,
+                entry.d2_all
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The rows of one PV: known verdict bytes, zero padding, placeholders only for
+/// placeholders, D1/D2 flags only on candidates that pass everywhere.
+fn check_results(record: &PvRecord, rows: &[ResultRecord]) -> Result<(), String> {
+    let admissible = record.has(PvRecord::ADMISSIBLE);
+    let mut all_pass = true;
+    for (d, row) in rows.iter().enumerate() {
+        let verdict = Verdict::from_byte(row.verdict)
+            .ok_or_else(|| format!("direction {d}: unknown verdict byte {}", row.verdict))?;
+        if row.reserved != [0; 3] || (verdict == Verdict::NotEvaluated) == admissible {
+            return Err(format!("direction {d}: inconsistent result record"));
+        }
+        all_pass &= verdict == Verdict::Pass;
+    }
+    let d1 = record.has(PvRecord::D1_ALL);
+    let d2 = record.has(PvRecord::D2_ALL);
+    let known = PvRecord::ADMISSIBLE | PvRecord::CANDIDATE | PvRecord::D1_ALL | PvRecord::D2_ALL;
+    if record.flags & !known != 0
+        || (d1 && !(all_pass && record.has(PvRecord::CANDIDATE)))
+        || (d2 && !d1)
+    {
+        return Err(format!(
+            "flags {:#06x} contradict its results",
+            record.flags
+        ));
+    }
+    Ok(())
+}
+
+fn record_error(place: String, detail: &str) -> Problem {
+    Problem::Layout {
+        place,
+        detail: detail.into(),
+    }
+}
+
+/// Every record section starts at an address its records may be read from in place.
+fn check_alignment(bytes: &[u8], layout: &Layout) -> Result<(), Problem> {
+    let ok =
+        bytemuck::try_cast_slice::<u8, [f64; 3]>(&bytes[layout.range(SectionKind::Directions)])
+            .is_ok()
+            && bytemuck::try_cast_slice::<u8, PvRecord>(&bytes[layout.range(SectionKind::Pvs)])
+                .is_ok()
+            && bytemuck::try_cast_slice::<u8, ResultRecord>(
+                &bytes[layout.range(SectionKind::Results)],
+            )
+            .is_ok();
+    if ok {
+        Ok(())
+    } else {
+        Err(Problem::Layout {
+            place: "memory map".into(),
+            detail: "a section is not aligned for in-place reading".into(),
+        })
+    }
+}
+
+/// The setup embedded in `header`, with its content hash checked.
+pub(super) fn embedded_setup(header: &Header) -> Result<Setup, Problem> {
+    let embedded = &header.setup;
+    let setup = Setup::from_texts(
+        &embedded.text,
+        Path::new(&embedded.file_name),
+        &embedded.robot_text,
+        &embedded.cable_text,
+    )
+    .map_err(|e| Problem::Setup(e.to_string()))?;
+    if setup.content_hash != header.setup_hash {
+        return Err(Problem::SetupHash {
+            stored: header.setup_hash,
+            computed: setup.content_hash,
+        });
+    }
+    Ok(setup)
+}

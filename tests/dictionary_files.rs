@@ -1,0 +1,454 @@
+//! `.cdict` dictionary files as they are found on disk: a valid file opens, verifies and is
+//! described by `info --json`; every kind of damage (truncation, wrong magic, another format
+//! version, a flipped byte in the preamble, the section table or any of the four sections, a
+//! header that contradicts its setup hash) is refused with its own [`Problem`] variant and a
+//! message naming the file (and the section); shards that do not make one dictionary are
+//! refused by `merge`, shards that do merge give the single build's bytes; a shard is refused
+//! where a whole dictionary is needed. The binary's exit code for all of these is 2.
+
+mod common;
+
+use cable_dict::dictionary::format::{self, SectionKind};
+use cable_dict::dictionary::{
+    BuildOptions, Built, Dictionary, DictionaryError, Problem, build, merge, write_dictionary,
+};
+use cable_dict::setup::Setup;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+const SETUP: &str = "tests/data/dict_setup.toml";
+const MOTION: &str = "motions/viper_s850/pick_and_place.csv";
+const DIRECTIONS: usize = 8;
+
+/// The fixture setup built with `directions` (whole, or one shard `(i, n)`).
+fn fixture(setup: &Setup, directions: usize, shard: Option<(u32, u32)>) -> Built {
+    let options = BuildOptions {
+        directions,
+        shard,
+        progress: false,
+    };
+    build(setup, &options).expect("the fixture builds")
+}
+
+/// The fixture setup and its whole dictionary with [`DIRECTIONS`], built once per process.
+fn whole() -> &'static (Setup, Built) {
+    static WHOLE: OnceLock<(Setup, Built)> = OnceLock::new();
+    WHOLE.get_or_init(|| {
+        let setup = Setup::from_file(Path::new(env!("CARGO_MANIFEST_DIR")).join(SETUP))
+            .expect("the fixture setup loads");
+        let built = fixture(&setup, DIRECTIONS, None);
+        (setup, built)
+    })
+}
+
+/// (kind code, byte range) of each section-table entry, read from the bytes themselves.
+fn sections(bytes: &[u8]) -> Vec<(u32, Range<usize>)> {
+    let word = |at: usize, n: usize| {
+        let mut le = [0u8; 8];
+        le[..n].copy_from_slice(&bytes[at..at + n]);
+        u64::from_le_bytes(le) as usize
+    };
+    (0..4)
+        .map(|i| {
+            let entry = format::PREAMBLE_LEN + i * format::TABLE_ENTRY_LEN;
+            let offset = word(entry + 8, 8);
+            (word(entry, 4) as u32, offset..offset + word(entry + 16, 8))
+        })
+        .collect()
+}
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).expect("written");
+    path
+}
+
+/// The message names the file (and, for a checksum, the place).
+fn assert_names(error: &DictionaryError, path: &Path, place: &str) {
+    let message = error.to_string();
+    assert_eq!(error.path, path, "{message}");
+    assert!(message.contains(&path.display().to_string()), "{message}");
+    assert!(message.contains(place), "{message}");
+}
+
+fn open_error(path: &Path) -> DictionaryError {
+    Dictionary::open(path).expect_err("the damaged file is refused")
+}
+
+#[test]
+fn a_valid_file_opens_verifies_and_info_reports_the_build() {
+    let (setup, built) = whole();
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("dict.cdict");
+    write_dictionary(&path, built).expect("written");
+    let bytes = std::fs::read(&path).expect("read back");
+    assert_eq!(bytes, built.to_bytes().expect("encodes"));
+
+    let dictionary = Dictionary::open(&path).expect("opens");
+    dictionary.verify().expect("verifies");
+    assert_eq!(dictionary.directions().len(), DIRECTIONS);
+    assert_eq!(
+        dictionary.setup().expect("setup").content_hash,
+        setup.content_hash
+    );
+
+    let output = common::run(&["info", path.to_str().expect("utf-8"), "--json"]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(0), "{stderr}");
+    let info: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    assert_eq!(info["directions"], DIRECTIONS);
+    assert!(info["shard"].is_null());
+    let segments = info["segments"].as_array().expect("segments");
+    let intra: Vec<usize> = (0..setup.segment_count())
+        .filter(|&m| setup.is_intra_link(m))
+        .collect();
+    assert_eq!(segments.len(), intra.len());
+    for (segment, m) in segments.iter().zip(intra) {
+        let (start, end) = (&setup.guides[m], &setup.guides[m + 1]);
+        assert_eq!(segment["segment"], format!("C{}", m + 1));
+        assert_eq!(segment["link"], setup.robot.links[start.link].name);
+        assert_eq!(
+            segment["configurations"],
+            serde_json::json!([start.configurations.len(), end.configurations.len()])
+        );
+    }
+    assert!(
+        segments.iter().any(|s| s["segment"] == "C2"),
+        "{segments:?}"
+    );
+}
+
+#[test]
+fn a_truncated_file_is_not_a_dictionary_or_has_the_wrong_length() {
+    let bytes = whole().1.to_bytes().expect("encodes");
+    let dir = tempfile::tempdir().expect("temp dir");
+    for cut in [0, 10, 63, 64, 100, bytes.len() - 1] {
+        let path = write(dir.path(), &format!("cut{cut}.cdict"), &bytes[..cut]);
+        let error = open_error(&path);
+        if cut < format::PREAMBLE_LEN {
+            assert!(
+                matches!(error.problem, Problem::NotADictionary(_)),
+                "{cut}: {error}"
+            );
+        } else {
+            assert!(
+                matches!(
+                    error.problem,
+                    Problem::Length { expected, actual }
+                        if expected == bytes.len() as u64 && actual == cut as u64
+                ),
+                "{cut}: {error}"
+            );
+        }
+        assert_names(&error, &path, "");
+    }
+}
+
+#[test]
+fn a_wrong_magic_is_not_a_dictionary() {
+    let mut bytes = whole().1.to_bytes().expect("encodes");
+    bytes[0] ^= 0x01;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = write(dir.path(), "magic.cdict", &bytes);
+    let error = open_error(&path);
+    assert!(
+        matches!(error.problem, Problem::NotADictionary(_)),
+        "{error}"
+    );
+    assert_names(&error, &path, "magic");
+}
+
+#[test]
+fn a_future_or_unknown_version_is_refused_as_such() {
+    let bytes = whole().1.to_bytes().expect("encodes");
+    let dir = tempfile::tempdir().expect("temp dir");
+    for version in [2u32, 0] {
+        let mut altered = bytes.clone();
+        altered[8..12].copy_from_slice(&version.to_le_bytes());
+        let path = write(dir.path(), &format!("v{version}.cdict"), &altered);
+        let error = open_error(&path);
+        if version == 2 {
+            assert!(
+                matches!(
+                    error.problem,
+                    Problem::FutureVersion {
+                        found: 2,
+                        supported: 1
+                    }
+                ),
+                "{error}"
+            );
+            assert_names(&error, &path, "newer");
+        } else {
+            assert!(
+                matches!(
+                    error.problem,
+                    Problem::UnknownVersion {
+                        found: 0,
+                        supported: 1
+                    }
+                ),
+                "{error}"
+            );
+            assert_names(&error, &path, "version 0");
+        }
+    }
+}
+
+#[test]
+fn a_flipped_byte_is_caught_by_the_checksum_of_its_place() {
+    let bytes = whole().1.to_bytes().expect("encodes");
+    let dir = tempfile::tempdir().expect("temp dir");
+    let flipped = |name: &str, at: usize| {
+        let mut altered = bytes.clone();
+        altered[at] ^= 0x01;
+        write(dir.path(), name, &altered)
+    };
+    let is_checksum = |problem: &Problem, expected: &str| {
+        matches!(problem, Problem::Checksum { place, stored, computed }
+            if place == expected && stored != computed)
+    };
+
+    // The preamble's reserved bytes and the section table are checked by open().
+    for (name, at, place) in [
+        ("preamble.cdict", 45, "preamble"),
+        ("table.cdict", format::PREAMBLE_LEN + 8, "section table"),
+    ] {
+        let path = flipped(name, at);
+        let error = open_error(&path);
+        assert!(is_checksum(&error.problem, place), "{error}");
+        assert_names(&error, &path, place);
+    }
+
+    // Each section, in the middle: the header by open(), the bulk sections by verify().
+    let table = sections(&bytes);
+    let kinds: Vec<u32> = table.iter().map(|(kind, _)| *kind).collect();
+    assert_eq!(kinds, SectionKind::ALL.map(|k| k as u32));
+    for ((_, range), kind) in table.into_iter().zip(SectionKind::ALL) {
+        assert!(!range.is_empty(), "section '{}' is empty", kind.name());
+        let path = flipped(
+            &format!("{}.cdict", kind.name()),
+            range.start + range.len() / 2,
+        );
+        let place = format!("section '{}'", kind.name());
+        let error = match kind {
+            SectionKind::Header => open_error(&path),
+            _ => Dictionary::open(&path)
+                .expect("the bulk sections are not read by open")
+                .verify()
+                .expect_err("verify reads every byte"),
+        };
+        assert!(is_checksum(&error.problem, &place), "{error}");
+        assert_names(&error, &path, &place);
+    }
+}
+
+#[test]
+fn a_header_whose_setup_does_not_match_its_hash_is_refused_by_setup_and_solve() {
+    let built = &whole().1;
+    let mut header = built.header.clone();
+    let original = "stretch = 1.02";
+    assert!(header.setup.text.contains(original));
+    header.setup.text = header.setup.text.replace(original, "stretch = 1.03");
+    let bytes =
+        format::encode(&header, &built.directions, &built.pvs, &built.results).expect("encodes");
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = write(dir.path(), "altered.cdict", &bytes);
+
+    let dictionary = Dictionary::open(&path).expect("the checksums are valid");
+    dictionary.verify().expect("so is every record");
+    let error = dictionary.setup().expect_err("the hash does not match");
+    assert!(
+        matches!(error.problem, Problem::SetupHash { stored, computed }
+            if stored == built.header.setup_hash && computed != stored),
+        "{error}"
+    );
+    assert_names(&error, &path, "hash");
+
+    let output = common::run(&["solve", "--dict", path.to_str().expect("utf-8"), MOTION]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("altered.cdict"), "{stderr}");
+}
+
+/// Writes each shard under `dir` as `shard{i}of{n}-{tag}.cdict`.
+fn write_shards(dir: &Path, tag: &str, shards: &[&Built]) -> Vec<PathBuf> {
+    shards
+        .iter()
+        .map(|built| {
+            let range = built.header.shard.expect("a shard");
+            let name = format!("shard{}of{}-{tag}.cdict", range.index, range.count);
+            let path = dir.join(name);
+            write_dictionary(&path, built).expect("written");
+            path
+        })
+        .collect()
+}
+
+fn merge_error(paths: &[PathBuf], culprit: &Path, words: &str) {
+    let error = merge(paths).expect_err("the shards do not make one dictionary");
+    assert!(matches!(error.problem, Problem::Merge(_)), "{error}");
+    assert_names(&error, culprit, words);
+}
+
+#[test]
+fn shards_of_different_direction_sets_do_not_merge() {
+    let setup = &whole().0;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let first = fixture(setup, DIRECTIONS, Some((0, 2)));
+    let second = fixture(setup, DIRECTIONS + 4, Some((1, 2)));
+    let paths = write_shards(dir.path(), "mixed", &[&first, &second]);
+    merge_error(&paths, &paths[1], "direction");
+}
+
+#[test]
+fn overlapping_missing_and_whole_files_do_not_merge() {
+    let (setup, whole) = whole();
+    let dir = tempfile::tempdir().expect("temp dir");
+    let halves = [
+        fixture(setup, DIRECTIONS, Some((0, 2))),
+        fixture(setup, DIRECTIONS, Some((1, 2))),
+    ];
+    let halves = write_shards(dir.path(), "half", &[&halves[0], &halves[1]]);
+    let thirds = [
+        fixture(setup, DIRECTIONS, Some((0, 3))),
+        fixture(setup, DIRECTIONS, Some((2, 3))),
+    ];
+    let thirds = write_shards(dir.path(), "third", &[&thirds[0], &thirds[1]]);
+    let whole_path = dir.path().join("whole.cdict");
+    write_dictionary(&whole_path, whole).expect("written");
+
+    // The halves alone do merge: the failures below come from what was added or left out.
+    merge(&halves).expect("the halves merge");
+    let twice = [halves[0].clone(), halves[0].clone(), halves[1].clone()];
+    merge_error(&twice, &halves[0], "overlap");
+    merge_error(&thirds, &thirds[1], "missing");
+    merge_error(
+        &[halves[0].clone(), whole_path.clone()],
+        &whole_path,
+        "whole dictionary",
+    );
+}
+
+#[test]
+fn shards_of_another_setup_do_not_merge() {
+    let setup = &whole().0;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let root = env!("CARGO_MANIFEST_DIR");
+    let text = std::fs::read_to_string(Path::new(root).join(SETUP))
+        .expect("fixture setup")
+        .replace("../../robots", &format!("{root}/robots"))
+        .replace("../../cables", &format!("{root}/cables"))
+        .replace("stretch = 1.02", "stretch = 1.03");
+    let other_path = write(dir.path(), "other_setup.toml", text.as_bytes());
+    let other = Setup::from_file(&other_path).expect("the modified setup loads");
+    assert_ne!(other.thresholds.stretch, setup.thresholds.stretch);
+
+    let first = fixture(setup, DIRECTIONS, Some((0, 2)));
+    let second = fixture(&other, DIRECTIONS, Some((1, 2)));
+    let paths = write_shards(dir.path(), "setups", &[&first, &second]);
+    merge_error(&paths, &paths[1], "another setup");
+}
+
+#[test]
+fn shards_given_out_of_order_merge_to_the_single_builds_bytes() {
+    let (setup, whole) = whole();
+    let dir = tempfile::tempdir().expect("temp dir");
+    let thirds: Vec<Built> = [1, 0, 2]
+        .map(|i| fixture(setup, DIRECTIONS, Some((i, 3))))
+        .into();
+    let paths = write_shards(dir.path(), "all", &thirds.iter().collect::<Vec<_>>());
+    let merged = merge(&paths).expect("the shards merge");
+    assert_eq!(
+        merged.to_bytes().expect("encodes"),
+        whole.to_bytes().expect("encodes")
+    );
+}
+
+#[test]
+fn a_shard_is_not_a_whole_dictionary() {
+    let setup = &whole().0;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let shard = fixture(setup, DIRECTIONS, Some((1, 2)));
+    let path = write_shards(dir.path(), "solo", &[&shard]).remove(0);
+
+    let dictionary = Dictionary::open(&path).expect("a shard opens");
+    dictionary.verify().expect("and verifies");
+    let error = dictionary
+        .setup()
+        .expect_err("a shard has no whole setup to solve with");
+    assert!(
+        matches!(error.problem, Problem::Shard { index: 1, count: 2 }),
+        "{error}"
+    );
+    assert_names(&error, &path, "merge");
+
+    let output = common::run(&["solve", "--dict", path.to_str().expect("utf-8"), MOTION]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("shard1of2-solo.cdict"), "{stderr}");
+}
+
+#[test]
+fn the_binary_refuses_damaged_files_with_exit_code_2() {
+    let bytes = whole().1.to_bytes().expect("encodes");
+    let dir = tempfile::tempdir().expect("temp dir");
+    let results = sections(&bytes)[SectionKind::Results as usize - 1]
+        .1
+        .clone();
+    let mut damaged = bytes.clone();
+    damaged[results.start + results.len() / 2] ^= 0x01;
+    let damaged = write(dir.path(), "damaged.cdict", &damaged);
+    let truncated = write(dir.path(), "truncated.cdict", &bytes[..bytes.len() / 2]);
+    let intact = write(dir.path(), "intact.cdict", &bytes);
+
+    let run = |args: &[&str]| {
+        let output = common::run(args);
+        let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+        (output.status.code(), stderr)
+    };
+    let (code, stderr) = run(&["verify", intact.to_str().expect("utf-8")]);
+    assert_eq!(code, Some(0), "{stderr}");
+    let (code, stderr) = run(&["verify", damaged.to_str().expect("utf-8")]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(
+        stderr.contains("damaged.cdict") && stderr.contains("results"),
+        "{stderr}"
+    );
+    let (code, stderr) = run(&["info", truncated.to_str().expect("utf-8")]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("truncated.cdict"), "{stderr}");
+}
+
+/// A forged header whose grid (lengths × configurations) overflows 64 bits is refused, not
+/// multiplied (found by review of the reader: it panicked in debug builds, passed in release).
+#[test]
+fn a_header_whose_pv_count_overflows_is_refused() {
+    let built = &whole().1;
+    let mut header = built.header.clone();
+    let segment = &mut header.segments[0];
+    segment.lengths = vec![1, 2];
+    segment.start_configurations = u32::MAX;
+    segment.end_configurations = u32::MAX;
+    header.pv_total = 2u64.wrapping_mul(u64::from(u32::MAX) * u64::from(u32::MAX));
+    header.shard = Some(format::ShardRange {
+        index: 0,
+        count: 1,
+        first_pv: 0,
+        end_pv: 1,
+    });
+    let n = built.directions.len();
+    let bytes = format::encode(
+        &header,
+        &built.directions,
+        &built.pvs[..1],
+        &built.results[..n],
+    )
+    .expect("encodes");
+    let problem = cable_dict::dictionary::check_bytes(&bytes).expect_err("refused");
+    assert!(
+        matches!(&problem, Problem::Header(detail) if detail.contains("overflows")),
+        "{problem}"
+    );
+}
