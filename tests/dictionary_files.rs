@@ -452,3 +452,17 @@ fn a_header_whose_pv_count_overflows_is_refused() {
         "{problem}"
     );
 }
+
+/// An output path that cannot be written is a bad argument: exit code 2, the path named, and
+/// nothing left behind.
+#[test]
+fn an_unwritable_output_is_refused_with_exit_code_2() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let target = dir.path().join("missing-folder").join("out.cdict");
+    let target = target.to_str().expect("utf-8");
+    let output = common::run(&["build", SETUP, "-o", target, "--directions", "8", "-q"]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("out.cdict"), "{stderr}");
+    assert!(!dir.path().join("missing-folder").exists());
+}

@@ -67,7 +67,7 @@ pub fn run_build(args: BuildArgs) -> Result<(), Failure> {
             .install(|| build(&setup, &options)),
     }
     .map_err(|problem| Failure::input(anyhow::anyhow!("{}: {problem}", args.setup.display())))?;
-    write_dictionary(&args.output, &built).map_err(Failure::unsolved)?;
+    write_dictionary(&args.output, &built).map_err(Failure::input)?;
     let mut text = format!(
         "wrote {}: {} PVs × {} directions in {:.1} s",
         args.output.display(),
@@ -189,7 +189,7 @@ pub struct MergeArgs {
 
 pub fn run_merge(args: MergeArgs) -> Result<(), Failure> {
     let built = merge(&args.shards).map_err(Failure::input)?;
-    write_dictionary(&args.output, &built).map_err(Failure::unsolved)?;
+    write_dictionary(&args.output, &built).map_err(Failure::input)?;
     emit(&format!(
         "wrote {}: {} shards merged, {} PVs × {} directions\n",
         args.output.display(),

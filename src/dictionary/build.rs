@@ -107,6 +107,14 @@ fn check_buildable(setup: &Setup, options: &BuildOptions) -> Result<(), Problem>
             "--shard {index}/{count}: the index must be 0 … count − 1 and the count at least 1"
         )));
     }
+    let widest = setup.guides.iter().map(|g| g.configurations.len()).max();
+    if widest.unwrap_or(0) > usize::from(u16::MAX) || setup.segment_count() > usize::from(u16::MAX)
+    {
+        return Err(Problem::Build(format!(
+            "a PV record holds configuration and segment indices below {}",
+            u16::MAX
+        )));
+    }
     if setup.gravity_m_s2.norm() == 0.0 {
         return Err(Problem::Build(
             "the setup has no gravity, so there is no direction to sample; use solve --setup"
