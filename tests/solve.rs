@@ -377,3 +377,49 @@ fn the_bundled_pick_and_place_is_solved_within_the_datasheet_limits() {
             .all(|c| c.total_length_mm <= winner.total_length_mm)
     );
 }
+
+/// `-v` logs each stage with its set sizes and time on standard error and leaves standard
+/// output as it was; `-q` leaves standard error empty; both together are refused.
+#[test]
+fn verbosity_changes_standard_error_only() {
+    let args = [
+        "solve",
+        "--setup",
+        SMALL,
+        MOTION,
+        "--no-motion-test",
+        "--json",
+    ];
+    let with = |flag: &str| run(&[&[flag][..], &args[..]].concat());
+    let (verbose, quiet) = (with("-v"), with("-q"));
+    assert!(verbose.status.success() && quiet.status.success());
+    assert!(
+        quiet.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&quiet.stderr)
+    );
+    let result: Value = serde_json::from_slice(&quiet.stdout).expect("JSON");
+    let without_timings = |output: &[u8]| {
+        let mut value: Value = serde_json::from_slice(output).expect("JSON");
+        value["timings_s"] = Value::Null;
+        value
+    };
+    assert_eq!(
+        without_timings(&verbose.stdout),
+        without_timings(&quiet.stdout)
+    );
+    let log = String::from_utf8_lossy(&verbose.stderr);
+    let d1 = &result["sets"][0]["d1"];
+    assert!(log.contains(&format!("|D1| {d1} ")), "{log}");
+    for stage in [
+        "critical poses:",
+        "attachment test:",
+        "chain search: |D3| =",
+    ] {
+        assert!(log.contains(stage), "{stage} missing: {log}");
+    }
+    assert_eq!(
+        run(&[&["-q", "-v"][..], &args[..]].concat()).status.code(),
+        Some(2)
+    );
+}

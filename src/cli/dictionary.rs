@@ -26,9 +26,6 @@ pub struct BuildArgs {
     /// Build only shard i of n (0-based, e.g. 0/4 … 3/4), for `cable-dict merge`.
     #[arg(long, value_name = "i/n", value_parser = shard_arg)]
     shard: Option<(u32, u32)>,
-    /// No progress bar (there is none on a pipe anyway).
-    #[arg(short, long)]
-    quiet: bool,
 }
 
 /// Parses `i/n`.
@@ -50,12 +47,13 @@ fn shard_arg(text: &str) -> Result<(u32, u32), String> {
     Ok((i, n))
 }
 
-pub fn run_build(args: BuildArgs) -> Result<(), Failure> {
+/// `progress`: a progress bar on a terminal (off with the global `--quiet`).
+pub fn run_build(args: BuildArgs, progress: bool) -> Result<(), Failure> {
     let setup = Setup::from_file(&args.setup).map_err(Failure::input)?;
     let options = BuildOptions {
         directions: args.directions,
         shard: args.shard,
-        progress: !args.quiet,
+        progress,
     };
     let clock = Instant::now();
     let built = match args.threads {

@@ -20,6 +20,12 @@ use clap::{Parser, Subcommand};
 pub struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Stage logs on standard error: -v the stages and their timings, -vv details.
+    #[arg(short, long, global = true, action = clap::ArgAction::Count)]
+    verbose: u8,
+    /// Nothing on standard error but errors: no progress bars, no logs.
+    #[arg(short, long, global = true, conflicts_with = "verbose")]
+    quiet: bool,
 }
 
 #[derive(Debug, Subcommand)]
@@ -74,6 +80,7 @@ impl Failure {
 
 /// Runs the parsed command.
 pub fn run(cli: Cli) -> Result<(), Failure> {
+    init_logging(cli.verbose, cli.quiet);
     match cli.command {
         Command::RobotInfo(args) => robot_info::run(args),
         Command::Fk(args) => fk::run(args),
@@ -81,11 +88,27 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Motion(args) => motion::run(args),
         Command::CriticalPoses(args) => solve::run_critical(args),
         Command::Solve(args) => solve::run(*args),
-        Command::Build(args) => dictionary::run_build(args),
+        Command::Build(args) => dictionary::run_build(args, !cli.quiet),
         Command::Info(args) => dictionary::run_info(args),
         Command::Verify(args) => dictionary::run_verify(args),
         Command::Merge(args) => dictionary::run_merge(args),
     }
+}
+
+/// Sends the library's `log` records to standard error: warnings by default, stage timings
+/// (`info`) with `-v`, details (`debug`) with `-vv`, errors only with `--quiet`.
+fn init_logging(verbose: u8, quiet: bool) {
+    let level = match (quiet, verbose) {
+        (true, _) => log::LevelFilter::Error,
+        (false, 0) => log::LevelFilter::Warn,
+        (false, 1) => log::LevelFilter::Info,
+        (false, _) => log::LevelFilter::Debug,
+    };
+    let _ = env_logger::Builder::new()
+        .filter_level(level)
+        .format_timestamp(None)
+        .format_target(false)
+        .try_init();
 }
 
 /// Prints a value as pretty JSON on standard output.

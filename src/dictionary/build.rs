@@ -80,6 +80,7 @@ pub fn build(setup: &Setup, options: &BuildOptions) -> Result<Built, Problem> {
         .collect::<Vec<_>>()
         .concat();
     progress.finish_and_clear();
+    log::info!("built {} PVs × {} directions", pvs.len(), directions.len());
     let mut built = Built {
         header,
         directions,

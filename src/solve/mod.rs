@@ -22,7 +22,8 @@ pub use report::{
 };
 
 use crate::attachment::{
-    ConnectMethod, Evaluator, MotionSweep, SegmentPoses, SweepFailure, attachment_test_with,
+    ConnectMethod, Evaluator, MotionSweep, SegmentPoses, SegmentSets, SweepFailure,
+    attachment_test_with,
 };
 use crate::chain::{ChainError, ChainSearch};
 use crate::dictionary::{Dictionary, LookupError, MotionLookup};
@@ -129,6 +130,7 @@ fn solve_with(
     let clock = Instant::now();
     let poses = SegmentPoses::new(setup, motion)?;
     let critical_poses_s = clock.elapsed().as_secs_f64();
+    log::info!("critical poses: {critical_poses_s:.3} s");
 
     let clock = Instant::now();
     let evaluator = Evaluator::new(setup, options.method)?;
@@ -138,15 +140,26 @@ fn solve_with(
     let verdict = |m: usize, pv: &Pv| lookup.as_ref().and_then(|l| l.verdict(m, pv));
     let sets = attachment_test_with(&evaluator, &poses, lookup.is_some().then_some(&verdict));
     let attachment_s = clock.elapsed().as_secs_f64();
+    log_sets(&sets, lookup.as_ref(), attachment_s);
 
     let clock = Instant::now();
     let d2: Vec<Vec<Pv>> = sets.iter().map(|s| s.d2.clone()).collect();
     let search = chain_search(setup, &d2)?;
     let chain_s = clock.elapsed().as_secs_f64();
+    log::info!(
+        "chain search: |D3| = {}, {chain_s:.3} s",
+        search.chain_count()
+    );
 
     let clock = Instant::now();
     let outcome = motion_tests(setup, motion, &d2, &search, options)?;
     let motion_test_s = clock.elapsed().as_secs_f64() - outcome.sweep_s;
+    log::info!(
+        "static sweep: {} PVs dropped, {:.2} s; motion test: {} runs, {motion_test_s:.2} s",
+        outcome.dropped.len(),
+        outcome.sweep_s,
+        outcome.tried.len()
+    );
 
     let timings = Timings {
         critical_poses_s,
@@ -182,6 +195,26 @@ fn dictionary_use(lookup: &MotionLookup<'_>, setup: &Setup) -> DictionaryUse {
             .map(|m| (format!("C{}", m + 1), lookup.required_count(m)))
             .collect(),
     }
+}
+
+/// One `info` line per segment: its set sizes, and where intra-link verdicts came from.
+fn log_sets(sets: &[SegmentSets], lookup: Option<&MotionLookup<'_>>, attachment_s: f64) {
+    for (m, s) in sets.iter().enumerate() {
+        let source = match lookup.and_then(|l| l.required(m).map(|_| l.required_count(m))) {
+            Some(n) => format!(", from the dictionary ({n} directions)"),
+            None => String::new(),
+        };
+        log::info!(
+            "attachment C{}: |D0| {} |D'0| {} |D1| {} |D2| {}, {:.2} s{source}",
+            m + 1,
+            s.d0,
+            s.d0_pruned,
+            s.d1,
+            s.d2.len(),
+            s.time_s
+        );
+    }
+    log::info!("attachment test: {attachment_s:.2} s");
 }
 
 /// The setup restricted to one guide per link for method 1.
@@ -293,7 +326,8 @@ fn motion_tests(
             outcome.sweep_s += clock.elapsed().as_secs_f64();
             outcome.swept = sweep.swept();
             if !failed.is_empty() {
-                for (m, pv, _) in &failed {
+                for (m, pv, failure) in &failed {
+                    log::debug!("static sweep drops C{} {pv:?}: {}", m + 1, failure.detail);
                     d2[*m].retain(|kept| kept != pv);
                 }
                 outcome.dropped.extend(failed);
@@ -301,6 +335,15 @@ fn motion_tests(
             }
         }
         let report = motion_test::run(setup, &path, motion, &test_options)?;
+        log::info!(
+            "motion test {}: {:.0} mm, {}",
+            outcome.tried.len() + 1,
+            path.total_sub_segments() as f64 * setup.cable.sub_segment_pitch_m * 1e3,
+            report
+                .failure
+                .as_ref()
+                .map_or("passed".to_string(), |f| f.reason.clone())
+        );
         let failed_segment = report.failure.as_ref().and_then(|f| f.segment);
         let passed = report.passed;
         outcome.tried.push((path.clone(), Some(report)));
