@@ -21,7 +21,6 @@ fn built_file(dir: &Path, directions: usize) -> PathBuf {
     let options = BuildOptions {
         directions,
         shard: None,
-        progress: false,
     };
     let built = build(&setup, &options).expect("builds");
     let path = dir.join(format!("fixture-{directions}.cdict"));

@@ -8,6 +8,7 @@
 //!
 //! - [`atomic_file`]: replacing a file so that readers never see a torn one.
 //! - [`pose`]: rigid poses and the URDF roll–pitch–yaw convention shared by every module.
+//! - [`progress`]: progress of long stages, reported to a sink a front end draws.
 //! - [`robot`]: URDF loading, forward kinematics and collision geometry of the arm.
 //! - [`cable`]: the physical specification of a cable (stiffness, mass, bend radius).
 //! - [`geometry`]: the *connected geometry* of a segment — a cubic Hermite curve carrying the
@@ -60,6 +61,7 @@ pub mod motion;
 pub mod motion_test;
 pub mod path;
 pub mod pose;
+pub mod progress;
 pub mod robot;
 pub mod setup;
 pub mod solve;

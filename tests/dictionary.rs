@@ -27,7 +27,6 @@ fn built(setup: &Setup, directions: usize) -> Built {
     let options = BuildOptions {
         directions,
         shard: None,
-        progress: false,
     };
     build(setup, &options).expect("builds")
 }

@@ -23,11 +23,7 @@ const DIRECTIONS: usize = 8;
 
 /// The fixture setup built with `directions` (whole, or one shard `(i, n)`).
 fn fixture(setup: &Setup, directions: usize, shard: Option<(u32, u32)>) -> Built {
-    let options = BuildOptions {
-        directions,
-        shard,
-        progress: false,
-    };
+    let options = BuildOptions { directions, shard };
     build(setup, &options).expect("the fixture builds")
 }
 

@@ -21,7 +21,6 @@ fn rebuilds_to_the_same_bytes(name: &str) {
     let options = BuildOptions {
         directions: header.directions.count as usize,
         shard: None,
-        progress: false,
     };
     let rebuilt = build(&setup, &options)
         .expect("builds")

@@ -379,7 +379,8 @@ fn the_bundled_pick_and_place_is_solved_within_the_datasheet_limits() {
 }
 
 /// `-v` logs each stage with its set sizes and time on standard error and leaves standard
-/// output as it was; `-q` leaves standard error empty; both together are refused.
+/// output as it was; `-q`, and a plain run on a pipe (no progress bars there), leave standard
+/// error empty; `-q` and `-v` together are refused.
 #[test]
 fn verbosity_changes_standard_error_only() {
     let args = [

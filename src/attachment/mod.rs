@@ -30,6 +30,7 @@ pub use poses::{SegmentPoses, TestPose};
 pub use sweep::{MotionSweep, SweepFailure};
 
 use crate::path::Pv;
+use crate::progress;
 use crate::setup::Setup;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -76,7 +77,7 @@ pub fn attachment_test_with(
     let mut sets: Vec<Option<SegmentSets>> = vec![None; count];
     for m in (0..count).filter(|&m| setup.is_intra_link(m)) {
         let candidates = admissible_pvs(setup, m);
-        sets[m] = Some(test_segment(setup, candidates, |pv| intra_link(m, pv)));
+        sets[m] = Some(test_segment(setup, m, candidates, |pv| intra_link(m, pv)));
     }
     for m in (0..count).filter(|&m| !setup.is_intra_link(m)) {
         let allowed_start = neighbour_configurations(&sets, m.checked_sub(1), |pv| pv.end);
@@ -88,7 +89,7 @@ pub fn attachment_test_with(
             .filter(|pv| allowed_start.as_ref().is_none_or(|a| a.contains(&pv.start)))
             .filter(|pv| allowed_end.as_ref().is_none_or(|a| a.contains(&pv.end)))
             .collect();
-        let mut tested = test_segment(setup, candidates, |pv| at_poses(m, pv));
+        let mut tested = test_segment(setup, m, candidates, |pv| at_poses(m, pv));
         tested.d0 = d0_count;
         sets[m] = Some(tested);
     }
@@ -134,16 +135,26 @@ pub fn admissible_pvs(setup: &Setup, m: usize) -> Vec<Pv> {
     pvs
 }
 
-/// D1 and D2 of a segment from its candidates (D'0), given the verdict of one PV.
+/// D1 and D2 of segment `m` from its candidates (D'0), given the verdict of one PV.
 fn test_segment(
     setup: &Setup,
+    m: usize,
     candidates: Vec<Pv>,
     verdict: impl Fn(&Pv) -> Option<Rejection> + Sync,
 ) -> SegmentSets {
     let timer = Instant::now();
     let robustness = &setup.robustness;
     let needed = needed_pvs(&candidates, robustness.delta_s, robustness.range);
-    let results: Vec<Option<Rejection>> = needed.par_iter().map(&verdict).collect();
+    progress::begin(&format!("attachment C{}", m + 1), needed.len() as u64);
+    let results: Vec<Option<Rejection>> = needed
+        .par_iter()
+        .map(|pv| {
+            let result = verdict(pv);
+            progress::advance(1);
+            result
+        })
+        .collect();
+    progress::end();
     let verdicts: BTreeMap<Pv, Option<Rejection>> = needed.into_iter().zip(results).collect();
     let passes = |pv: &Pv| matches!(verdicts.get(pv), Some(None));
     let mut rejections = BTreeMap::new();

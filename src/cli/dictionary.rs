@@ -47,13 +47,11 @@ fn shard_arg(text: &str) -> Result<(u32, u32), String> {
     Ok((i, n))
 }
 
-/// `progress`: a progress bar on a terminal (off with the global `--quiet`).
-pub fn run_build(args: BuildArgs, progress: bool) -> Result<(), Failure> {
+pub fn run_build(args: BuildArgs) -> Result<(), Failure> {
     let setup = Setup::from_file(&args.setup).map_err(Failure::input)?;
     let options = BuildOptions {
         directions: args.directions,
         shard: args.shard,
-        progress,
     };
     let clock = Instant::now();
     let built = match args.threads {

@@ -4,6 +4,7 @@ mod args;
 mod dictionary;
 mod fk;
 mod motion;
+mod progress_bars;
 mod robot_info;
 mod segment;
 mod solve;
@@ -81,6 +82,7 @@ impl Failure {
 /// Runs the parsed command.
 pub fn run(cli: Cli) -> Result<(), Failure> {
     init_logging(cli.verbose, cli.quiet);
+    progress_bars::install(cli.quiet);
     match cli.command {
         Command::RobotInfo(args) => robot_info::run(args),
         Command::Fk(args) => fk::run(args),
@@ -88,7 +90,7 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Motion(args) => motion::run(args),
         Command::CriticalPoses(args) => solve::run_critical(args),
         Command::Solve(args) => solve::run(*args),
-        Command::Build(args) => dictionary::run_build(args, !cli.quiet),
+        Command::Build(args) => dictionary::run_build(args),
         Command::Info(args) => dictionary::run_info(args),
         Command::Verify(args) => dictionary::run_verify(args),
         Command::Merge(args) => dictionary::run_merge(args),

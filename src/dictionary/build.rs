@@ -14,10 +14,10 @@ use super::format::{
 };
 use crate::attachment::{Check, ConnectMethod, Evaluator, robust_neighbours};
 use crate::path::Pv;
+use crate::progress;
 use crate::robot::Shape;
 use crate::setup::{Robustness, Setup};
 use crate::statics::SolverOptions;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::collections::BTreeSet;
 
@@ -28,8 +28,6 @@ pub struct BuildOptions {
     pub directions: usize,
     /// `Some((i, n))`: only shard `i` (0-based) of `n`.
     pub shard: Option<(u32, u32)>,
-    /// Draw a progress bar on a terminal (never on a pipe).
-    pub progress: bool,
 }
 
 /// A dictionary or shard in memory, ready to be encoded.
@@ -69,17 +67,17 @@ pub fn build(setup: &Setup, options: &BuildOptions) -> Result<Built, Problem> {
     let evaluator =
         Evaluator::new(setup, ConnectMethod::Hermite).map_err(|e| Problem::Build(e.to_string()))?;
     let gravity = header.directions.gravity_m_s2;
-    let progress = progress_bar(pvs.len(), options.progress);
+    progress::begin("dictionary build", pvs.len() as u64);
     let results: Vec<ResultRecord> = pvs
         .par_iter()
         .map(|record| {
             let rows = evaluate_pv(&evaluator, record, &directions, gravity);
-            progress.inc(1);
+            progress::advance(1);
             rows
         })
         .collect::<Vec<_>>()
         .concat();
-    progress.finish_and_clear();
+    progress::end();
     log::info!("built {} PVs × {} directions", pvs.len(), directions.len());
     let mut built = Built {
         header,
@@ -331,18 +329,4 @@ pub(super) fn finalize(built: &mut Built, robustness: &Robustness) {
         entry.d1_all = d1;
         entry.d2_all = d2;
     }
-}
-
-fn progress_bar(len: usize, enabled: bool) -> ProgressBar {
-    if !enabled {
-        return ProgressBar::hidden();
-    }
-    let bar = ProgressBar::with_draw_target(Some(len as u64), ProgressDrawTarget::stderr());
-    if let Ok(style) =
-        ProgressStyle::with_template("{msg} {wide_bar} {pos}/{len} PVs, {elapsed} (ETA {eta})")
-    {
-        bar.set_style(style);
-    }
-    bar.set_message("building");
-    bar
 }

@@ -10,6 +10,7 @@ use super::{MotionTestError, MotionTestOptions};
 use crate::dynamics::{CableWorld, ContactSummary, DynamicsError, SegmentShape, StepRecord};
 use crate::motion::Motion;
 use crate::pose::Pose;
+use crate::progress;
 use crate::setup::Setup;
 use crate::statics::Equilibrium;
 use crate::stress::{ClampZone, GuideEnd, min_bend_radius, stretch, zone_sub_segments};
@@ -71,7 +72,23 @@ impl Context<'_> {
         let t0 = self.motion.times_s()[0];
         let dt = self.options.settings.time_step_s;
         let total = self.step_count();
+        progress::begin("motion test", total as u64);
+        let ended = self.steps(world, tracker, t0, dt, total);
+        progress::end();
+        ended
+    }
+
+    /// Steps 1 … `total` of [`Self::step_through`], reporting each to [`progress`].
+    fn steps(
+        &self,
+        world: &mut CableWorld,
+        tracker: &mut Tracker,
+        t0: f64,
+        dt: f64,
+        total: usize,
+    ) -> Result<Ended, MotionTestError> {
         for k in 1..=total {
+            progress::advance(1);
             let t = t0 + k as f64 * dt;
             let links = self.link_poses(t)?;
             world
