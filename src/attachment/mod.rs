@@ -219,7 +219,7 @@ pub fn robust_neighbours(pv: &Pv, delta_s: usize, range: usize) -> Option<Vec<Pv
 }
 
 /// Every PV to evaluate: the candidates and their robustness neighbours, each once, sorted.
-fn needed_pvs(candidates: &[Pv], delta_s: usize, range: usize) -> Vec<Pv> {
+pub fn needed_pvs(candidates: &[Pv], delta_s: usize, range: usize) -> Vec<Pv> {
     let mut needed: BTreeSet<Pv> = candidates.iter().copied().collect();
     for pv in candidates {
         if let Some(neighbours) = robust_neighbours(pv, delta_s, range) {

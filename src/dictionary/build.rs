@@ -12,7 +12,7 @@ use super::format::{
     DirectionParameters, EmbeddedSetup, Header, PHYSICS_VERSION, PvRecord, ResultRecord,
     SegmentEntry, ShardRange, SolverParameters, Verdict, encode,
 };
-use crate::attachment::{Check, ConnectMethod, Evaluator, robust_neighbours};
+use crate::attachment::{Check, ConnectMethod, Evaluator, needed_pvs, robust_neighbours};
 use crate::path::Pv;
 use crate::progress;
 use crate::robot::Shape;
@@ -191,21 +191,18 @@ fn header(setup: &Setup, directions: &[[f64; 3]]) -> Result<Header, Problem> {
     })
 }
 
-/// The setup's candidate lengths of segment `m` and their robustness neighbours, ascending.
+/// The setup's candidate lengths of segment `m` and their robustness neighbours, ascending:
+/// the lengths the attachment test evaluates ([`needed_pvs`]).
 fn stored_lengths(setup: &Setup, m: usize) -> Vec<u32> {
     let robustness = &setup.robustness;
-    let mut lengths = BTreeSet::new();
-    for &s in &setup.segments[m].lengths {
-        lengths.insert(s);
-        let pv = Pv {
-            sub_segments: s,
-            start: 0,
-            end: 0,
-        };
-        let neighbours = robust_neighbours(&pv, robustness.delta_s, robustness.range);
-        lengths.extend(neighbours.into_iter().flatten().map(|n| n.sub_segments));
-    }
-    lengths.into_iter().map(|s| s as u32).collect()
+    let candidates: Vec<Pv> = setup.segments[m]
+        .lengths
+        .iter()
+        .map(|&s| Pv::new(s, 0, 0))
+        .collect();
+    let needed = needed_pvs(&candidates, robustness.delta_s, robustness.range);
+    let lengths: BTreeSet<u32> = needed.iter().map(|pv| pv.sub_segments as u32).collect();
+    lengths.into_iter().collect()
 }
 
 /// The record of global PV `g` (flags: admissible, candidate).
@@ -237,11 +234,11 @@ pub(super) fn pv_at(header: &Header, g: u64) -> (usize, Pv) {
         entry.start_configurations as usize,
         entry.end_configurations as usize,
     );
-    let pv = Pv {
-        sub_segments: entry.lengths[local / (na * nb)] as usize,
-        start: local / nb % na,
-        end: local % nb,
-    };
+    let pv = Pv::new(
+        entry.lengths[local / (na * nb)] as usize,
+        local / nb % na,
+        local % nb,
+    );
     (slot, pv)
 }
 
@@ -255,11 +252,7 @@ fn evaluate_pv(
     if !record.has(PvRecord::ADMISSIBLE) {
         return vec![result(Verdict::NotEvaluated, None); directions.len()];
     }
-    let pv = Pv {
-        sub_segments: record.sub_segments as usize,
-        start: record.start as usize,
-        end: record.end as usize,
-    };
+    let pv = record.pv();
     directions
         .iter()
         .map(|d| {
@@ -315,12 +308,7 @@ pub(super) fn finalize(built: &mut Built, robustness: &Robustness) {
             }
             record.flags |= PvRecord::D1_ALL;
             d1 += 1;
-            let pv = Pv {
-                sub_segments: record.sub_segments as usize,
-                start: record.start as usize,
-                end: record.end as usize,
-            };
-            let robust = robust_neighbours(&pv, robustness.delta_s, robustness.range);
+            let robust = robust_neighbours(&record.pv(), robustness.delta_s, robustness.range);
             if robust.is_some_and(|n| n.iter().all(passes)) {
                 record.flags |= PvRecord::D2_ALL;
                 d2 += 1;

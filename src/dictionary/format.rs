@@ -9,6 +9,7 @@
 
 use super::error::Problem;
 use crate::attachment::Rejection;
+use crate::path::Pv;
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
 use xxhash_rust::xxh3::xxh3_64;
@@ -109,6 +110,15 @@ impl PvRecord {
     /// True when `flag` is set.
     pub fn has(&self, flag: u16) -> bool {
         self.flags & flag != 0
+    }
+
+    /// The PV (length and configurations) this record stores.
+    pub fn pv(&self) -> Pv {
+        Pv::new(
+            self.sub_segments as usize,
+            usize::from(self.start),
+            usize::from(self.end),
+        )
     }
 }
 

@@ -74,18 +74,13 @@ impl Info {
             Err(problem) => (format!("(embedded setup: {problem})"), String::new()),
         };
         let records = dictionary.pv_records();
-        let first = header.stored_pvs().start;
         let segments = header
             .segments
             .iter()
             .map(|e| {
-                let block = e.first_pv..e.first_pv + e.pv_count();
                 let candidates = records
                     .iter()
-                    .enumerate()
-                    .filter(|(k, r)| {
-                        block.contains(&(first + *k as u64)) && r.has(PvRecord::CANDIDATE)
-                    })
+                    .filter(|r| u32::from(r.segment) == e.segment && r.has(PvRecord::CANDIDATE))
                     .count();
                 SegmentInfo {
                     segment: format!("C{}", u64::from(e.segment) + 1),

@@ -10,9 +10,10 @@ use super::directions::mark_neighbourhood;
 use super::error::{DictionaryError, Problem};
 use super::format::{ResultRecord, Verdict};
 use super::reader::Dictionary;
-use crate::attachment::{Rejection, admissible_pvs, robust_neighbours};
+use crate::attachment::{Rejection, admissible_pvs, needed_pvs};
 use crate::motion::{Motion, MotionError};
 use crate::path::Pv;
+use crate::pose::Pose;
 use crate::setup::Setup;
 
 /// The dictionary's answer for one motion.
@@ -32,9 +33,10 @@ impl<'d> MotionLookup<'d> {
         motion: &Motion,
     ) -> Result<MotionLookup<'d>, LookupError> {
         let mut required = vec![None; setup.segment_count()];
+        let samples = sample_link_poses(setup, motion)?;
         for m in (0..setup.segment_count()).filter(|&m| setup.is_intra_link(m)) {
             check_coverage(dictionary, setup, m)?;
-            required[m] = Some(required_directions(dictionary, setup, motion, m)?);
+            required[m] = Some(required_directions(dictionary, setup, &samples, m));
         }
         Ok(MotionLookup {
             dictionary,
@@ -91,51 +93,60 @@ fn first_failure(rows: &[ResultRecord], required: &[bool]) -> Option<Rejection> 
         })
 }
 
-/// Every PV segment `m` of `setup` may ask about (candidates and robustness neighbours) is
-/// stored.
+/// Every PV the attachment test of segment `m` asks about ([`needed_pvs`]: candidates and
+/// robustness neighbours) is stored.
 fn check_coverage(dictionary: &Dictionary, setup: &Setup, m: usize) -> Result<(), DictionaryError> {
     let robustness = &setup.robustness;
-    for pv in admissible_pvs(setup, m) {
-        let neighbours = robust_neighbours(&pv, robustness.delta_s, robustness.range);
-        for needed in std::iter::once(pv).chain(neighbours.into_iter().flatten()) {
-            if needed.sub_segments > 0 && dictionary.lookup(m, &needed).is_none() {
-                return Err(DictionaryError::new(
-                    dictionary.path(),
-                    Problem::Mismatch(format!(
-                        "segment C{} S = {} configurations ({}, {}) is not stored: the \
-                         dictionary was built for another setup",
-                        m + 1,
-                        needed.sub_segments,
-                        needed.start,
-                        needed.end
-                    )),
-                ));
-            }
+    let candidates = admissible_pvs(setup, m);
+    for needed in needed_pvs(&candidates, robustness.delta_s, robustness.range) {
+        if needed.sub_segments > 0 && dictionary.lookup(m, &needed).is_none() {
+            return Err(DictionaryError::new(
+                dictionary.path(),
+                Problem::Mismatch(format!(
+                    "segment C{} S = {} configurations ({}, {}) is not stored: the \
+                     dictionary was built for another setup",
+                    m + 1,
+                    needed.sub_segments,
+                    needed.start,
+                    needed.end
+                )),
+            ));
         }
     }
     Ok(())
 }
 
+/// The link poses at every sample of `motion`, computed once for all segments.
+fn sample_link_poses(setup: &Setup, motion: &Motion) -> Result<Vec<Vec<Pose>>, MotionError> {
+    motion
+        .samples()
+        .iter()
+        .enumerate()
+        .map(|(k, joints)| {
+            setup
+                .robot
+                .link_poses(joints)
+                .map_err(|e| MotionError::data(format!("sample {k}: {e}")))
+        })
+        .collect()
+}
+
 /// The stored directions within the covering radius of gravity in segment `m`'s link frame
-/// at some sample of `motion`.
+/// at some sample (`samples`: the link poses of every sample).
 fn required_directions(
     dictionary: &Dictionary,
     setup: &Setup,
-    motion: &Motion,
+    samples: &[Vec<Pose>],
     m: usize,
-) -> Result<Vec<bool>, MotionError> {
+) -> Vec<bool> {
     let directions = dictionary.directions();
     let radius = dictionary.header().directions.covering_radius_rad;
     let link = setup.guides[setup.segment_guides(m).0].link;
     let down = setup.gravity_m_s2.normalize();
     let mut required = vec![false; directions.len()];
-    for (k, joints) in motion.samples().iter().enumerate() {
-        let poses = setup
-            .robot
-            .link_poses(joints)
-            .map_err(|e| MotionError::data(format!("sample {k}: {e}")))?;
+    for poses in samples {
         let in_link = poses[link].rotation.inverse_transform_vector(&down);
         mark_neighbourhood(directions, &in_link, radius, &mut required);
     }
-    Ok(required)
+    required
 }

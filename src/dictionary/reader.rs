@@ -141,10 +141,7 @@ pub(super) fn check_records(
         let g = stored.start + k as u64;
         let place = || format!("PV record {g}");
         let (slot, pv) = super::build::pv_at(header, g);
-        let at_place = record.segment == header.segments[slot].segment as u16
-            && record.sub_segments as usize == pv.sub_segments
-            && record.start as usize == pv.start
-            && record.end as usize == pv.end;
+        let at_place = record.segment == header.segments[slot].segment as u16 && record.pv() == pv;
         if !at_place || record.reserved != 0 {
             return Err(record_error(place(), "does not match its grid position"));
         }
