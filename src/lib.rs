@@ -25,6 +25,8 @@
 //! - [`solve`]: the whole pipeline from a setup and a motion to the optimal cable path d*.
 //! - [`dictionary`]: the intra-link results precomputed per robot, cable and guide catalogue
 //!   over sampled gravity directions, in a shareable memory-mapped `.cdict` file.
+//! - [`report`]: the report folder of a solve — summary, SVG plots, a glTF scene of robot,
+//!   cable and motion test, and a page that shows them.
 //! - [`attachment`]: the attachment test — which PVs hold the stress limits at the critical
 //!   poses (D1) and are robust to a length error (D2).
 //!
@@ -62,6 +64,7 @@ pub mod motion_test;
 pub mod path;
 pub mod pose;
 pub mod progress;
+pub mod report;
 pub mod robot;
 pub mod setup;
 pub mod solve;

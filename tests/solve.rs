@@ -6,6 +6,7 @@ mod common;
 
 use cable_dict::attachment::{ConnectMethod, Evaluator, SegmentPoses, attachment_test};
 use cable_dict::motion::Motion;
+use cable_dict::report::write_report;
 use cable_dict::setup::Setup;
 use cable_dict::solve::{SolveOptions, Status, solve};
 use common::run;
@@ -346,8 +347,13 @@ fn the_bundled_pick_and_place_is_solved_within_the_datasheet_limits() {
     let setup =
         Setup::from_file(root.join("robots/viper_s850/pick_and_place.toml")).expect("setup");
     let motion = Motion::from_csv_file(&setup.robot, root.join(MOTION)).expect("motion");
-    let report = solve(&setup, &motion, &SolveOptions::default()).expect("solve");
+    let options = SolveOptions {
+        shape_interval_s: Some(FRAME_S),
+        ..SolveOptions::default()
+    };
+    let report = solve(&setup, &motion, &options).expect("solve");
     assert_eq!(report.status, Status::Solved, "{}", report.explanation);
+    check_report_folder(&setup, &motion, &report);
 
     let cable: toml::Table = std::fs::read_to_string(root.join("cables/smc_le_cp_3.toml"))
         .expect("cable file")
@@ -376,6 +382,61 @@ fn the_bundled_pick_and_place_is_solved_within_the_datasheet_limits() {
             .iter()
             .all(|c| c.total_length_mm <= winner.total_length_mm)
     );
+}
+
+/// Keyframe interval of the report scene (s).
+const FRAME_S: f64 = 1.0 / 30.0;
+
+/// The report of the bundled pick-and-place: the stress plot says d* passed, the scene
+/// animates the whole motion test at 30 frames/s and has one snapshot per critical pose.
+/// Written to `$CABLE_DICT_REPORT_OUT` when set (CI validates its scene.glb with the Khronos
+/// validator), else to a temporary folder.
+fn check_report_folder(setup: &Setup, motion: &Motion, report: &cable_dict::solve::SolveReport) {
+    let temporary = tempfile::tempdir().expect("temporary folder");
+    let dir = std::env::var_os("CABLE_DICT_REPORT_OUT")
+        .map_or_else(|| temporary.path().to_path_buf(), std::path::PathBuf::from);
+    write_report(&dir, setup, motion, report).expect("report written");
+
+    let stress = std::fs::read_to_string(dir.join("stress.svg")).expect("stress.svg");
+    assert!(stress.contains("motion test passed"));
+    let bytes = std::fs::read(dir.join("scene.glb")).expect("scene.glb");
+    let scene = gltf::Gltf::from_slice(&bytes).expect("valid glTF");
+    let animation = scene.animations().next().expect("an animation");
+    let times: Vec<f32> = animation
+        .channels()
+        .next()
+        .and_then(|c| c.reader(|_| scene.blob.as_deref()).read_inputs())
+        .expect("keyframe times")
+        .collect();
+    let simulated = report
+        .motion_test
+        .as_ref()
+        .expect("motion test")
+        .simulated_s;
+    let step = 1.0 / 240.0;
+    assert_eq!(times[0], 0.0);
+    assert!((f64::from(times[times.len() - 1]) - simulated).abs() < 1e-4);
+    for pair in times[..times.len() - 1].windows(2) {
+        assert!(
+            (f64::from(pair[1] - pair[0]) - FRAME_S).abs() < step,
+            "{pair:?}"
+        );
+    }
+    let named = |prefix: &str| {
+        scene
+            .nodes()
+            .filter(|n| n.name().is_some_and(|name| name.starts_with(prefix)))
+            .count()
+    };
+    let critical: BTreeSet<usize> = report
+        .segments
+        .iter()
+        .filter(|s| s.kind == "inter-link")
+        .flat_map(|s| s.test_poses.iter().map(|p| p.sample))
+        .collect();
+    assert_eq!(named("critical pose "), critical.len());
+    let c1 = &report.optimal.as_ref().expect("d*").segments[0];
+    assert_eq!(named("C1 sub-segment "), c1.sub_segments);
 }
 
 /// `-v` logs each stage with its set sizes and time on standard error and leaves standard

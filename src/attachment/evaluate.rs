@@ -149,8 +149,13 @@ impl<'a> Evaluator<'a> {
     /// Checks PV `pv` of segment `m` at `pose`. A zero-length PV (coincident guides) has no
     /// cable and passes.
     pub fn check(&self, m: usize, pv: &Pv, pose: &TestPose) -> Check {
+        self.check_at(m, pv, &pose.link_poses)
+    }
+
+    /// Checks PV `pv` of segment `m` with the links at `link_poses` (world frame).
+    pub fn check_at(&self, m: usize, pv: &Pv, link_poses: &[Pose]) -> Check {
         let scene = Scene {
-            link_poses: &pose.link_poses,
+            link_poses,
             gravity_m_s2: self.rod.gravity_m_s2,
             links: None,
         };
@@ -175,6 +180,25 @@ impl<'a> Evaluator<'a> {
             links: Some(&[link]),
         };
         self.check_in(m, pv, &scene)
+    }
+
+    /// The equilibrium of PV `pv` of segment `m` with the links at `link_poses` under the
+    /// setup's gravity: the shape the checks judge, for drawing it. Empty for a zero-length
+    /// PV; `Err` with the reason when there is no equilibrium.
+    pub fn equilibrium_nodes(
+        &self,
+        m: usize,
+        pv: &Pv,
+        link_poses: &[Pose],
+    ) -> Result<Vec<Point3<f64>>, String> {
+        if pv.sub_segments == 0 {
+            return Ok(Vec::new());
+        }
+        let (a, b) = self.setup.segment_guides(m);
+        let start = self.setup.guide_world_pose(link_poses, a, pv.start);
+        let end = self.setup.guide_world_pose(link_poses, b, pv.end);
+        self.equilibrium(&start, &end, pv.sub_segments, self.rod.gravity_m_s2)
+            .map_err(|check| check.detail.unwrap_or_else(|| "no equilibrium".into()))
     }
 
     fn check_in(&self, m: usize, pv: &Pv, scene: &Scene<'_>) -> Check {

@@ -11,6 +11,7 @@
 use super::{Evaluator, Rejection, TestPose, poses::sample_pose};
 use crate::motion::{Motion, MotionError};
 use crate::path::Pv;
+use crate::progress;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 
@@ -69,15 +70,19 @@ impl<'e, 'a> MotionSweep<'e, 'a> {
         self.verdicts
             .entry((m, *pv))
             .or_insert_with(|| {
-                poses.par_iter().find_map_first(|pose| {
+                progress::begin(&format!("static sweep C{}", m + 1), poses.len() as u64);
+                let failure = poses.par_iter().find_map_first(|pose| {
                     let check = evaluator.check(m, pv, pose);
+                    progress::advance(1);
                     Some(SweepFailure {
                         rejection: check.rejection?,
                         sample: pose.sample,
                         time_s: pose.time_s,
                         detail: check.detail.unwrap_or_default(),
                     })
-                })
+                });
+                progress::end();
+                failure
             })
             .clone()
     }

@@ -6,6 +6,7 @@ mod fk;
 mod motion;
 mod progress_bars;
 mod robot_info;
+mod scene;
 mod segment;
 mod solve;
 
@@ -43,6 +44,8 @@ enum Command {
     CriticalPoses(solve::CriticalArgs),
     /// The optimal cable path for a setup (or a dictionary) and a motion.
     Solve(Box<solve::Args>),
+    /// Write a 3D scene (glTF .glb) of a cable path at a pose, or of one segment.
+    ExportScene(scene::Args),
     /// Precompute a setup's intra-link segments into a dictionary (or one shard of it).
     Build(dictionary::BuildArgs),
     /// Describe a dictionary: build parameters, setup, set sizes.
@@ -90,6 +93,7 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Motion(args) => motion::run(args),
         Command::CriticalPoses(args) => solve::run_critical(args),
         Command::Solve(args) => solve::run(*args),
+        Command::ExportScene(args) => scene::run(args),
         Command::Build(args) => dictionary::run_build(args),
         Command::Info(args) => dictionary::run_info(args),
         Command::Verify(args) => dictionary::run_verify(args),

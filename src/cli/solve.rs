@@ -6,8 +6,11 @@ use cable_dict::atomic_file::write_atomically;
 use cable_dict::attachment::{ConnectMethod, SegmentPoses};
 use cable_dict::dictionary::Dictionary;
 use cable_dict::motion::Motion;
+use cable_dict::report::{ReportError, write_report};
 use cable_dict::setup::Setup;
-use cable_dict::solve::{SolveError, SolveOptions, guide_names, solve, solve_with_dictionary};
+use cable_dict::solve::{
+    SolveError, SolveOptions, SolveReport, guide_names, solve, solve_with_dictionary,
+};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -30,6 +33,10 @@ pub struct Args {
     /// Also write the result JSON to this file (replaced atomically).
     #[arg(short, long, value_name = "RESULT.json")]
     output: Option<PathBuf>,
+    /// Also write a report folder: result.json, summary.md, plots (SVG), a 3D scene
+    /// (scene.glb) and index.html to open in a browser.
+    #[arg(long, value_name = "DIR")]
+    report: Option<PathBuf>,
     /// 1: one guide per link (the paper's method 1: intra-link segments only at S = 0);
     /// 2: as many as the setup declares (method 2).
     #[arg(long, value_name = "1|2", value_parser = clap::value_parser!(u8).range(1..=2))]
@@ -60,6 +67,15 @@ enum Connect {
 }
 
 pub fn run(args: Args) -> Result<(), Failure> {
+    if let Some(dir) = &args.report {
+        // Before the solve, not after: a typo should not cost the whole run.
+        std::fs::create_dir_all(dir).map_err(|e| {
+            Failure::input(anyhow::anyhow!(
+                "cannot create the report folder {}: {e}",
+                dir.display()
+            ))
+        })?;
+    }
     let dictionary = args.dict.as_deref().map(open_verified).transpose()?;
     let setup = match (&args.setup, &dictionary) {
         (Some(path), _) => Setup::from_file(path).map_err(Failure::input)?,
@@ -80,6 +96,7 @@ pub fn run(args: Args) -> Result<(), Failure> {
         k_best: args.k_best,
         motion_test: !args.no_motion_test,
         static_sweep: !args.no_static_sweep,
+        shape_interval_s: args.report.is_some().then_some(SCENE_FRAME_INTERVAL_S),
     };
     let report = match &dictionary {
         Some(dictionary) => solve_with_dictionary(dictionary, &setup, &motion, &options),
@@ -100,12 +117,35 @@ pub fn run(args: Args) -> Result<(), Failure> {
         write_atomically(path, (text + "\n").as_bytes())
             .map_err(|e| Failure::input(anyhow::anyhow!("cannot write {}: {e}", path.display())))?;
     }
+    if let Some(dir) = &args.report {
+        write_report_folder(dir, &setup, &motion, &options, &report)?;
+    }
     if args.json {
         print_json(&report)?;
     } else {
         emit(&report.to_string())?;
     }
     // "No cable path" is an answer, not a failure: exit 0 like "solved" (the status says which).
+    Ok(())
+}
+
+/// Keyframe interval of the report scene's animation (s): 30 frames per second.
+const SCENE_FRAME_INTERVAL_S: f64 = 1.0 / 30.0;
+
+/// Writes the `--report` folder; an unwritable folder is a bad argument.
+fn write_report_folder(
+    dir: &Path,
+    setup: &Setup,
+    motion: &Motion,
+    options: &SolveOptions,
+    report: &SolveReport,
+) -> Result<(), Failure> {
+    let solved = options.setup_for(setup).map_err(Failure::input)?;
+    let files = write_report(dir, &solved, motion, report).map_err(|e| match e {
+        ReportError::Write { .. } => Failure::input(e),
+        _ => Failure::unsolved(e),
+    })?;
+    log::info!("report: {} files in {}", files.len(), dir.display());
     Ok(())
 }
 

@@ -64,7 +64,7 @@ pub use error::MotionTestError;
 pub use options::{DEFAULT_SETTLE_TAIL_S, MotionTestOptions};
 pub use report::{
     Constraint, Failure, FailureCause, MotionTestReport, Place, SegmentNodes, SeriesPoint,
-    Violation, Worst,
+    ShapeFrame, Violation, Worst,
 };
 
 use crate::motion::Motion;
@@ -111,7 +111,8 @@ pub fn run(
         setup,
         options.record_series,
         options.contact_force_is_violation,
-    );
+    )
+    .keeping_shapes(options.shape_interval_s);
     let ended = context.simulate(&mut tracker)?;
     let dt = options.settings.time_step_s;
     let facts = RunFacts {

@@ -37,6 +37,10 @@ pub struct MotionTestOptions {
     /// through the solver's residual penetration. Off: contact is judged by the clearance
     /// alone (e.g. under a negative clearance threshold, which tolerates touching).
     pub contact_force_is_violation: bool,
+    /// Keep the cable's shape every this many seconds of simulated time (and at the last
+    /// instant) in [`MotionTestReport::shapes`](super::MotionTestReport::shapes), e.g. for an
+    /// animation; `None`: keep only the final shape.
+    pub shape_interval_s: Option<f64>,
 }
 
 impl MotionTestOptions {
@@ -50,6 +54,7 @@ impl MotionTestOptions {
             stop_at_first_violation: false,
             record_series: true,
             contact_force_is_violation: true,
+            shape_interval_s: None,
         }
     }
 
@@ -68,6 +73,13 @@ impl MotionTestOptions {
         if !(tail.is_finite() && (0.0..=MAX_SETTLE_TAIL_S).contains(&tail)) {
             return Err(invalid(format!(
                 "settle_tail_s = {tail} must be finite and in [0, {MAX_SETTLE_TAIL_S}] s"
+            )));
+        }
+        if let Some(interval) = self.shape_interval_s
+            && !(interval.is_finite() && interval > 0.0)
+        {
+            return Err(invalid(format!(
+                "shape_interval_s = {interval} must be finite and positive"
             )));
         }
         if self.settings.gravity_m_s2 != setup.gravity_m_s2 {

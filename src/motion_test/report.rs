@@ -38,6 +38,11 @@ pub struct MotionTestReport {
     /// The simulated shape at the last step taken, per simulated segment (empty when the
     /// candidate failed before the simulation started).
     pub final_shape: Vec<SegmentNodes>,
+    /// The cable's shape over time, one frame per
+    /// [`shape_interval_s`](super::MotionTestOptions::shape_interval_s) and one at the last
+    /// instant measured; empty when not asked for. Not serialized: it is bulky.
+    #[serde(skip)]
+    pub shapes: Vec<ShapeFrame>,
     /// Duration of the motion (s).
     pub motion_duration_s: f64,
     /// Simulation steps taken.
@@ -155,6 +160,15 @@ pub struct SeriesPoint {
     /// Largest contact force on one sub-segment outside the clamp zones during the step (N);
     /// 0 for the initial shape.
     pub max_contact_force_n: f64,
+}
+
+/// The whole simulated cable at one instant.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ShapeFrame {
+    /// Time on the motion's time axis (s).
+    pub time_s: f64,
+    /// Every simulated segment's nodes.
+    pub segments: Vec<SegmentNodes>,
 }
 
 /// The nodes of one simulated segment.

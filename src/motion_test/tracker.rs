@@ -2,7 +2,7 @@
 
 use super::report::{
     Constraint, Failure, FailureCause, MotionTestReport, Place, SegmentNodes, SeriesPoint,
-    Violation, Worst,
+    ShapeFrame, Violation, Worst,
 };
 use crate::setup::{Setup, Thresholds};
 use crate::stress::{BendRadius, Clearance};
@@ -50,6 +50,9 @@ pub(super) struct Tracker<'a> {
     max_joint_gap_m: f64,
     series: Vec<SeriesPoint>,
     final_shape: Vec<SegmentNodes>,
+    last_time_s: f64,
+    shape_interval_s: Option<f64>,
+    shapes: Vec<ShapeFrame>,
 }
 
 impl<'a> Tracker<'a> {
@@ -67,7 +70,17 @@ impl<'a> Tracker<'a> {
             max_joint_gap_m: 0.0,
             series: Vec::new(),
             final_shape: Vec::new(),
+            last_time_s: f64::NEG_INFINITY,
+            shape_interval_s: None,
+            shapes: Vec::new(),
         }
+    }
+
+    /// Also keeps the whole cable's shape every `interval_s` (see
+    /// [`MotionTestOptions::shape_interval_s`](super::MotionTestOptions::shape_interval_s)).
+    pub fn keeping_shapes(mut self, interval_s: Option<f64>) -> Self {
+        self.shape_interval_s = interval_s;
+        self
     }
 
     /// Whether a limit has been violated so far.
@@ -90,6 +103,25 @@ impl<'a> Tracker<'a> {
                 nodes_m: m.nodes.iter().map(|p| [p.x, p.y, p.z]).collect(),
             })
             .collect();
+        self.last_time_s = time_s;
+        if let Some(interval) = self.shape_interval_s {
+            // A little slack, so that rounding in the step times never delays a frame a step.
+            let due = self
+                .shapes
+                .last()
+                .is_none_or(|frame| time_s >= frame.time_s + interval * (1.0 - 1e-6));
+            if due {
+                self.keep_shape();
+            }
+        }
+    }
+
+    /// Adds the current shape as a frame.
+    fn keep_shape(&mut self) {
+        self.shapes.push(ShapeFrame {
+            time_s: self.last_time_s,
+            segments: self.final_shape.clone(),
+        });
     }
 
     /// A segment too short at the first pose: `required` is the stretch it would need.
@@ -99,7 +131,14 @@ impl<'a> Tracker<'a> {
     }
 
     /// The report, with `failure` if the run itself failed (else a violation's, if any).
-    pub fn into_report(self, failure: Option<Failure>, run: RunFacts) -> MotionTestReport {
+    pub fn into_report(mut self, failure: Option<Failure>, run: RunFacts) -> MotionTestReport {
+        let last_kept = self.shapes.last().map(|frame| frame.time_s);
+        if self.shape_interval_s.is_some()
+            && !self.final_shape.is_empty()
+            && last_kept != Some(self.last_time_s)
+        {
+            self.keep_shape();
+        }
         let failure = failure.or_else(|| {
             self.first_violation.as_ref().map(|v| Failure {
                 cause: FailureCause::Violation,
@@ -118,6 +157,7 @@ impl<'a> Tracker<'a> {
             max_joint_gap_m: self.max_joint_gap_m,
             series: self.series,
             final_shape: self.final_shape,
+            shapes: self.shapes,
             motion_duration_s: run.motion_duration_s,
             steps: run.steps,
             simulated_s: run.simulated_s,

@@ -158,6 +158,22 @@ impl Robot {
         load::from_str(text, source)
     }
 
+    /// A robot of one fixed link `world` without colliders: the frame a scene of a segment in
+    /// free space is drawn in.
+    pub fn world_only() -> Robot {
+        Robot {
+            name: "world".into(),
+            source: PathBuf::new(),
+            links: vec![Link {
+                name: "world".into(),
+                parent_joint: None,
+                colliders: Vec::new(),
+            }],
+            joints: Vec::new(),
+            actuated: Vec::new(),
+        }
+    }
+
     /// Number of entries in a joint vector.
     pub fn dof(&self) -> usize {
         self.actuated.len()

@@ -50,6 +50,9 @@ pub struct SolveOptions {
     /// the motion ([`MotionSweep`]) and drop those that fail. Off: the paper's pipeline,
     /// where only the dynamic test follows the critical poses.
     pub static_sweep: bool,
+    /// Keep the cable's shape every this many seconds in each motion test's report
+    /// ([`MotionTestOptions::shape_interval_s`]), e.g. for the report's animation.
+    pub shape_interval_s: Option<f64>,
 }
 
 impl Default for SolveOptions {
@@ -60,6 +63,24 @@ impl Default for SolveOptions {
             k_best: 10,
             motion_test: true,
             static_sweep: true,
+            shape_interval_s: None,
+        }
+    }
+}
+
+impl SolveOptions {
+    /// The setup as these options solve it: restricted to one guide per link for method 1.
+    /// The indices of a [`SolveReport`]'s paths refer to this setup.
+    pub fn setup_for(&self, setup: &Setup) -> Result<Setup, SolveError> {
+        if self.k_best == 0 {
+            return Err(SolveError::Options("--k-best must be at least 1".into()));
+        }
+        match self.max_guides_per_link {
+            Some(1) => Ok(setup.inter_link_only()?),
+            Some(2) | None => Ok(setup.clone()),
+            Some(n) => Err(SolveError::Options(format!(
+                "max guides per link must be 1 (method 1) or 2 (method 2), got {n}"
+            ))),
         }
     }
 }
@@ -126,7 +147,7 @@ fn solve_with(
     dictionary: Option<&Dictionary>,
 ) -> Result<SolveReport, SolveError> {
     let total = Instant::now();
-    let setup = &method_setup(setup, options)?;
+    let setup = &options.setup_for(setup)?;
     let clock = Instant::now();
     let poses = SegmentPoses::new(setup, motion)?;
     let critical_poses_s = clock.elapsed().as_secs_f64();
@@ -217,20 +238,6 @@ fn log_sets(sets: &[SegmentSets], lookup: Option<&MotionLookup<'_>>, attachment_
     log::info!("attachment test: {attachment_s:.2} s");
 }
 
-/// The setup restricted to one guide per link for method 1.
-fn method_setup(setup: &Setup, options: &SolveOptions) -> Result<Setup, SolveError> {
-    if options.k_best == 0 {
-        return Err(SolveError::Options("--k-best must be at least 1".into()));
-    }
-    match options.max_guides_per_link {
-        Some(1) => Ok(setup.inter_link_only()?),
-        Some(2) | None => Ok(setup.clone()),
-        Some(n) => Err(SolveError::Options(format!(
-            "max guides per link must be 1 (method 1) or 2 (method 2), got {n}"
-        ))),
-    }
-}
-
 /// The chain search over the sets `d2`, one per segment.
 fn chain_search(setup: &Setup, d2: &[Vec<Pv>]) -> Result<ChainSearch, SolveError> {
     let counts: Vec<usize> = setup
@@ -313,6 +320,7 @@ fn motion_tests(
     // simulated through the whole motion either way, series included.
     let test_options = MotionTestOptions {
         stop_at_first_violation: true,
+        shape_interval_s: options.shape_interval_s,
         ..MotionTestOptions::for_setup(setup)
     };
     let mut d2 = d2.to_vec();

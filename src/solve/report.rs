@@ -40,8 +40,8 @@ impl Status {
         }
     }
 
-    /// For people.
-    fn describe(self) -> &'static str {
+    /// For people, e.g. `unsolved: no chain of robust PVs`.
+    pub fn describe(self) -> &'static str {
         match self {
             Status::Solved => "solved",
             Status::Untested => "shortest chain found, not motion-tested",

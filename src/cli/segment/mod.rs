@@ -7,10 +7,12 @@ mod shape;
 use super::{Failure, args, emit, print_json};
 use cable_dict::cable::CableSpec;
 use cable_dict::pose::Pose;
-use nalgebra::Vector3;
+use cable_dict::report::scene::{CableLine, GuideMark, PoseScene, SceneSpec};
+use cable_dict::robot::Robot;
+use nalgebra::{Point3, Vector3};
 use report::SegmentReport;
 use serde::Serialize;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -101,21 +103,72 @@ enum Connect {
 }
 
 pub fn run(args: Args) -> Result<(), Failure> {
+    run_with_scene(args, None)
+}
+
+/// `segment`, and with `scene_file` also its scene (`export-scene segment`).
+pub fn run_with_scene(args: Args, scene_file: Option<&Path>) -> Result<(), Failure> {
     let cable = CableSpec::from_file(&args.cable).map_err(Failure::input)?;
     let sub_segments =
         sub_segment_count(args.length_mm, cable.sub_segment_pitch_m).map_err(Failure::input)?;
     let scene = obstacles::Scene::from_args(&args, &cable)?;
     let connected = shape::connected(&cable, &args, sub_segments)?;
     let mut report = SegmentReport::new(&cable, &args, sub_segments, &connected, scene.as_ref())?;
+    let mut nodes = &connected.nodes;
+    let converged;
     if args.stage == Stage::Converged {
-        let converged = shape::converged(&cable, &args, &connected)?;
+        converged = shape::converged(&cable, &args, &connected)?;
         report.add_converged(&cable, &args, &converged, scene.as_ref())?;
+        nodes = &converged.nodes;
+    }
+    if let Some(file) = scene_file {
+        write_scene(file, &args, &cable, nodes, scene.as_ref())?;
     }
     if args.json {
         print_json(&report)
     } else {
         emit(&report.to_string())
     }
+}
+
+/// The segment's scene: its shape, its two guides, and the robot when there is one (the
+/// guide frames are in its base frame, else in a robot-less world).
+fn write_scene(
+    file: &Path,
+    args: &Args,
+    cable: &CableSpec,
+    nodes: &[Point3<f64>],
+    scene: Option<&obstacles::Scene>,
+) -> Result<(), Failure> {
+    let world = Robot::world_only();
+    let (robot, link_poses) = match scene {
+        Some(scene) => (scene.robot(), scene.link_poses().to_vec()),
+        None => (&world, vec![Pose::identity()]),
+    };
+    let base = link_poses[0];
+    let guide = |name: &str, frame: &Pose| GuideMark {
+        name: name.into(),
+        link: 0,
+        pose_in_link: base.inverse() * frame,
+    };
+    let spec = SceneSpec {
+        robot,
+        cable_radius_m: 0.5 * cable.diameter_m,
+        main: PoseScene {
+            link_poses,
+            cable: vec![CableLine {
+                name: "segment".into(),
+                nodes_m: nodes.to_vec(),
+            }],
+        },
+        guides: vec![
+            guide("start guide", &args.start),
+            guide("end guide", &args.end),
+        ],
+        animation: None,
+        snapshots: Vec::new(),
+    };
+    super::scene::write_scene(file, &spec)
 }
 
 /// The number of sub-segments in `length_mm`, refusing lengths that are not a whole number.

@@ -85,6 +85,16 @@ impl Scene {
         }))
     }
 
+    /// The robot.
+    pub fn robot(&self) -> &Robot {
+        &self.robot
+    }
+
+    /// Its links' world poses at --joints-deg.
+    pub fn link_poses(&self) -> &[Pose] {
+        &self.link_poses
+    }
+
     /// The contact metric of `nodes`; `None` if no link has a collider.
     pub fn contact(&self, nodes: &[Point3<f64>]) -> Result<Option<ContactMetric>, Failure> {
         let clearance = min_clearance(

@@ -1,0 +1,291 @@
+//! `cable-dict export-scene`: a glTF scene of one candidate, for looking at what the solver
+//! rejected — a whole cable path at a pose, or one `segment`.
+
+use super::fk::joint_vector_si;
+use super::{Failure, args, emit, segment};
+use cable_dict::atomic_file::write_atomically;
+use cable_dict::attachment::{ConnectMethod, Evaluator};
+use cable_dict::motion::Motion;
+use cable_dict::path::CablePath;
+use cable_dict::report::scene::{SceneSpec, to_glb};
+use cable_dict::report::views::pose_scene;
+use cable_dict::setup::Setup;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    #[command(subcommand)]
+    what: What,
+}
+
+#[derive(Debug, clap::Subcommand)]
+enum What {
+    /// A whole cable path (ECPV) of a setup with the robot at one pose: each segment's
+    /// static equilibrium, and whether it holds the limits there.
+    Path(PathArgs),
+    /// One segment, as `cable-dict segment` computes it (same options).
+    Segment(Box<SegmentSceneArgs>),
+}
+
+#[derive(Debug, clap::Args)]
+struct PathArgs {
+    /// The setup file.
+    #[arg(long, value_name = "SETUP.toml")]
+    setup: PathBuf,
+    /// Take the path from a result JSON (`solve --json` / `-o` / report's result.json).
+    #[arg(long, value_name = "RESULT.json", conflicts_with_all = ["lengths_mm", "configurations"])]
+    result: Option<PathBuf>,
+    /// With --result: the candidate of that rank (1 = shortest tried); default: the one
+    /// that passed, else the last one tried.
+    #[arg(long, value_name = "RANK", requires = "result")]
+    candidate: Option<usize>,
+    /// The path's segment lengths, C1 first (mm).
+    #[arg(long, value_name = "L1,L2,…", requires = "configurations", allow_hyphen_values = true, value_parser = args::number_list_arg)]
+    lengths_mm: Option<args::NumberList>,
+    /// The path's guide configurations by name, G1 first (comma-separated).
+    #[arg(
+        long,
+        value_name = "NAME,NAME,…",
+        requires = "lengths_mm",
+        value_delimiter = ','
+    )]
+    configurations: Option<Vec<String>>,
+    /// The robot pose, one value per joint (deg; mm for prismatic joints).
+    #[arg(long, value_name = "A,B,C,…", allow_hyphen_values = true, value_parser = args::number_list_arg, conflicts_with = "motion")]
+    joints_deg: Option<args::NumberList>,
+    /// Take the pose from this motion CSV at --time-s.
+    #[arg(long, value_name = "MOTION.csv")]
+    motion: Option<PathBuf>,
+    /// Time in the motion (s; between samples the joints are interpolated).
+    #[arg(long, value_name = "T", requires = "motion")]
+    time_s: Option<f64>,
+    /// The scene file to write (replaced atomically).
+    #[arg(short, long, value_name = "SCENE.glb")]
+    output: PathBuf,
+}
+
+#[derive(Debug, clap::Args)]
+struct SegmentSceneArgs {
+    #[command(flatten)]
+    segment: segment::Args,
+    /// The scene file to write (replaced atomically).
+    #[arg(short, long, value_name = "SCENE.glb")]
+    output: PathBuf,
+}
+
+pub fn run(args: Args) -> Result<(), Failure> {
+    match args.what {
+        What::Path(args) => run_path(args),
+        What::Segment(args) => segment::run_with_scene(args.segment, Some(&args.output)),
+    }
+}
+
+fn run_path(args: PathArgs) -> Result<(), Failure> {
+    let setup = Setup::from_file(&args.setup).map_err(Failure::input)?;
+    let path = chosen_path(&args, &setup)?;
+    let joints = chosen_pose(&args, &setup)?;
+    let (spec, _) = pose_scene(&setup, &path, &joints).map_err(Failure::input)?;
+    write_scene(&args.output, &spec)?;
+    emit(&path_checks(&setup, &path, &spec.main.link_poses)?)
+}
+
+/// Writes `spec` as a `.glb` file; an unwritable file is a bad argument.
+pub(super) fn write_scene(output: &Path, spec: &SceneSpec<'_>) -> Result<(), Failure> {
+    let bytes = to_glb(spec).map_err(Failure::unsolved)?;
+    write_atomically(output, &bytes)
+        .map_err(|e| Failure::input(anyhow::anyhow!("cannot write {}: {e}", output.display())))
+}
+
+/// The path of --result or of --lengths-mm / --configurations, checked against the setup.
+fn chosen_path(args: &PathArgs, setup: &Setup) -> Result<CablePath, Failure> {
+    let path = match (&args.result, &args.lengths_mm, &args.configurations) {
+        (Some(file), _, _) => path_from_result(file, args.candidate)?,
+        (None, Some(lengths), Some(names)) => path_from_names(setup, &lengths.0, names)?,
+        _ => {
+            return Err(Failure::input(anyhow::anyhow!(
+                "give --result, or --lengths-mm with --configurations"
+            )));
+        }
+    };
+    check_path(setup, &path)?;
+    Ok(path)
+}
+
+/// Candidate `rank` of a result JSON, or the one it passed (else its last).
+fn path_from_result(file: &Path, rank: Option<usize>) -> Result<CablePath, Failure> {
+    let fail = |what: String| Failure::input(anyhow::anyhow!("{}: {what}", file.display()));
+    let text = std::fs::read_to_string(file).map_err(|e| fail(e.to_string()))?;
+    let json: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| fail(format!("not JSON: {e}")))?;
+    let candidates = json["candidates"]
+        .as_array()
+        .ok_or_else(|| fail("no `candidates` list: not a cable-dict result".into()))?;
+    let chosen = match rank {
+        Some(rank) => candidates
+            .iter()
+            .find(|c| c["rank"].as_u64() == Some(rank as u64)),
+        None => candidates
+            .iter()
+            .find(|c| c["passed"].as_bool() == Some(true))
+            .or(candidates.last()),
+    };
+    let chosen = chosen.ok_or_else(|| match rank {
+        Some(rank) => fail(format!(
+            "no candidate of rank {rank} (it lists {})",
+            candidates.len()
+        )),
+        None => fail("it lists no candidate: the solve found no chain".into()),
+    })?;
+    let indices = |field: &str| -> Result<Vec<usize>, Failure> {
+        chosen["path"][field]
+            .as_array()
+            .and_then(|list| {
+                list.iter()
+                    .map(|v| v.as_u64().map(|v| v as usize))
+                    .collect()
+            })
+            .ok_or_else(|| {
+                fail(format!(
+                    "candidate's `path.{field}` is not a list of indices"
+                ))
+            })
+    };
+    Ok(CablePath {
+        lengths: indices("lengths")?,
+        configurations: indices("configurations")?,
+    })
+}
+
+/// The path of lengths (mm) and configuration names.
+fn path_from_names(
+    setup: &Setup,
+    lengths_mm: &[f64],
+    names: &[String],
+) -> Result<CablePath, Failure> {
+    let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+    let lengths = lengths_mm
+        .iter()
+        .map(|&mm| {
+            let s = (mm / pitch_mm).round();
+            if mm.is_finite() && s >= 0.0 && (s * pitch_mm - mm).abs() < 1e-6 {
+                Ok(s as usize)
+            } else {
+                Err(Failure::input(anyhow::anyhow!(
+                    "--lengths-mm {mm}: not a whole number of {pitch_mm} mm sub-segments"
+                )))
+            }
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let configurations = setup
+        .guides
+        .iter()
+        .zip(names)
+        .map(|(guide, name)| {
+            guide
+                .configurations
+                .iter()
+                .position(|c| &c.name == name)
+                .ok_or_else(|| {
+                    let known: Vec<&str> = guide
+                        .configurations
+                        .iter()
+                        .map(|c| c.name.as_str())
+                        .collect();
+                    Failure::input(anyhow::anyhow!(
+                        "--configurations: {} has no configuration '{name}' (it has {})",
+                        guide.name,
+                        known.join(", ")
+                    ))
+                })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(CablePath {
+        lengths,
+        configurations,
+    })
+}
+
+/// Refuses a path whose counts or indices do not fit the setup.
+fn check_path(setup: &Setup, path: &CablePath) -> Result<(), Failure> {
+    let (segments, guides) = (setup.segment_count(), setup.guides.len());
+    if path.lengths.len() != segments || path.configurations.len() != guides {
+        return Err(Failure::input(anyhow::anyhow!(
+            "the path has {} lengths and {} configurations; {} has {segments} segments and {guides} guides",
+            path.lengths.len(),
+            path.configurations.len(),
+            setup.source.display()
+        )));
+    }
+    for (guide, &c) in setup.guides.iter().zip(&path.configurations) {
+        if c >= guide.configurations.len() {
+            return Err(Failure::input(anyhow::anyhow!(
+                "configuration {c} of {} does not exist (it has {})",
+                guide.name,
+                guide.configurations.len()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The joint vector (rad / m) of --joints-deg or of --motion at --time-s (its first sample
+/// by default).
+fn chosen_pose(args: &PathArgs, setup: &Setup) -> Result<Vec<f64>, Failure> {
+    let robot = &setup.robot;
+    let joints = match (&args.joints_deg, &args.motion) {
+        (Some(values), _) => joint_vector_si(robot, &values.0),
+        (None, Some(file)) => {
+            let motion = Motion::from_csv_file(robot, file).map_err(Failure::input)?;
+            let t = args.time_s.unwrap_or(motion.times_s()[0]);
+            if !t.is_finite() {
+                return Err(Failure::input(anyhow::anyhow!("--time-s {t}: not a time")));
+            }
+            motion.joints_at(t)
+        }
+        (None, None) => {
+            return Err(Failure::input(anyhow::anyhow!(
+                "give the pose: --joints-deg, or --motion (with --time-s)"
+            )));
+        }
+    };
+    robot
+        .check_limits(&joints)
+        .map_err(|e| Failure::input(anyhow::anyhow!("the pose: {e}")))?;
+    Ok(joints)
+}
+
+/// One line per segment: the attachment test's verdict on its PV at this pose.
+fn path_checks(
+    setup: &Setup,
+    path: &CablePath,
+    link_poses: &[cable_dict::pose::Pose],
+) -> Result<String, Failure> {
+    let evaluator = Evaluator::new(setup, ConnectMethod::Hermite).map_err(Failure::input)?;
+    let mut text = String::new();
+    for m in 0..path.segment_count() {
+        let check = evaluator.check_at(m, &path.pv(m), link_poses);
+        let verdict = match (&check.rejection, &check.detail) {
+            (None, _) => "holds the limits".to_string(),
+            (Some(r), Some(detail)) => format!("{}: {detail}", r.name()),
+            (Some(r), None) => r.name().to_string(),
+        };
+        let metrics = check.metrics.map_or(String::new(), |x| {
+            let clearance = x
+                .clearance_m
+                .map_or("-".into(), |c| format!("{:.1} mm", c * 1e3));
+            format!(
+                " (clearance {clearance}, stretch {:.4}, bend radius {:.1} mm)",
+                x.stretch,
+                x.min_bend_radius_m * 1e3
+            )
+        });
+        let _ = writeln!(
+            text,
+            "C{} {:.0} mm: {verdict}{metrics}",
+            m + 1,
+            path.lengths[m] as f64 * setup.cable.sub_segment_pitch_m * 1e3
+        );
+    }
+    Ok(text)
+}

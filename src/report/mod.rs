@@ -1,0 +1,270 @@
+//! The report folder of a solve: what an engineer opens instead of reading JSON.
+//!
+//! [`write_report`] writes, each file atomically:
+//!
+//! - `result.json`: the result JSON, as `solve --json` prints it;
+//! - `summary.md`: the path, set sizes, margins, motion test, timings, inputs and hashes;
+//! - `joints.svg`: the motion's joint angles with the critical poses marked ([`plots`]);
+//! - `stress.svg`: the shown candidate's clearance, stretch and bend radius over its motion
+//!   test against the limits (when a motion test ran);
+//! - `sets.svg`: |D0|, |D'0|, |D1|, |D2| per segment;
+//! - `scene.glb`: robot, cable, guides, critical poses and the motion test's animation
+//!   ([`scene`], assembled by [`views`]);
+//! - `index.html`: the summary and the plots on one page needing nothing but the folder.
+
+mod page;
+pub mod plots;
+pub mod scene;
+mod summary;
+pub mod views;
+
+use crate::atomic_file::write_atomically;
+use crate::motion::Motion;
+use crate::setup::Setup;
+use crate::solve::SolveReport;
+use std::path::{Path, PathBuf};
+
+/// Why the report folder could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum ReportError {
+    /// A file or the folder cannot be written.
+    #[error("cannot write {path}: {source}")]
+    Write {
+        /// The file or folder.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// A plot could not be drawn.
+    #[error("{file}: {source}")]
+    Plot {
+        /// The plot's file name.
+        file: &'static str,
+        /// Why.
+        source: plots::PlotError,
+    },
+    /// The scene could not be assembled or encoded.
+    #[error("scene.glb: {0}")]
+    Scene(String),
+    /// The result could not be encoded as JSON.
+    #[error("result.json: {0}")]
+    Json(#[from] serde_json::Error),
+}
+
+/// An input file of the run, with the xxh3-64 of its bytes, so that a report can be traced to
+/// the exact files that made it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Hashed {
+    /// `setup`, `robot`, `cable`, `motion` or `dictionary`.
+    pub role: &'static str,
+    /// The file as given.
+    pub file: String,
+    /// 16 hexadecimal digits, or why the file could not be read.
+    pub hash: String,
+}
+
+impl Hashed {
+    /// The hash of `bytes`.
+    pub fn of_bytes(role: &'static str, file: impl Into<String>, bytes: &[u8]) -> Hashed {
+        Hashed {
+            role,
+            file: file.into(),
+            hash: format!("{:016x}", xxhash_rust::xxh3::xxh3_64(bytes)),
+        }
+    }
+
+    /// The hash of the file at `path` as it is now.
+    pub fn of_file(role: &'static str, path: &Path) -> Hashed {
+        match std::fs::read(path) {
+            Ok(bytes) => Hashed::of_bytes(role, path.display().to_string(), &bytes),
+            Err(e) => Hashed {
+                role,
+                file: path.display().to_string(),
+                hash: format!("unreadable: {e}"),
+            },
+        }
+    }
+}
+
+/// The hashes of a solve's inputs: the setup, URDF and cable texts as loaded, the motion
+/// and dictionary files as they are now.
+pub fn input_hashes(setup: &Setup, report: &SolveReport) -> Vec<Hashed> {
+    let mut inputs = vec![
+        Hashed::of_bytes(
+            "setup",
+            setup.source.display().to_string(),
+            setup.text.as_bytes(),
+        ),
+        Hashed::of_bytes(
+            "robot",
+            setup.robot_path.display().to_string(),
+            setup.robot_text.as_bytes(),
+        ),
+        Hashed::of_bytes(
+            "cable",
+            setup.cable_path.display().to_string(),
+            setup.cable_text.as_bytes(),
+        ),
+    ];
+    let files = [
+        ("motion", report.inputs.motion_file.as_deref()),
+        (
+            "dictionary",
+            report.inputs.dictionary.as_ref().map(|d| d.file.as_str()),
+        ),
+    ];
+    for (role, file) in files {
+        if let Some(file) = file {
+            inputs.push(Hashed::of_file(role, Path::new(file)));
+        }
+    }
+    inputs
+}
+
+/// Writes the report folder `dir` (created if missing; the report's own files replaced) of
+/// `report`, which solved `motion` with `setup` as solved
+/// ([`SolveOptions::setup_for`](crate::solve::SolveOptions::setup_for)). Returns the files
+/// written, `index.html` last.
+pub fn write_report(
+    dir: &Path,
+    setup: &Setup,
+    motion: &Motion,
+    report: &SolveReport,
+) -> Result<Vec<PathBuf>, ReportError> {
+    std::fs::create_dir_all(dir).map_err(|source| ReportError::Write {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let mut folder = Folder {
+        dir,
+        written: Vec::new(),
+        described: Vec::new(),
+    };
+    let json = serde_json::to_string_pretty(report)? + "\n";
+    folder.put(
+        "result.json",
+        "the result JSON (as `solve --json`)",
+        json.as_bytes(),
+    )?;
+    let figures = write_plots(&mut folder, setup, motion, report)?;
+    let notes = write_scene(&mut folder, setup, motion, report)?;
+    let summary = summary::summary_markdown(
+        report,
+        &setup.thresholds,
+        &input_hashes(setup, report),
+        &folder.described,
+        &notes,
+    );
+    folder.put("summary.md", "this summary as Markdown", summary.as_bytes())?;
+    let title = format!("cable-dict: {}", report.status.describe());
+    let page = page::index_html(&title, &summary, &figures);
+    folder.put("index.html", "this page", page.as_bytes())?;
+    Ok(folder.written)
+}
+
+/// The folder being written, and what is in it so far.
+struct Folder<'a> {
+    dir: &'a Path,
+    written: Vec<PathBuf>,
+    /// `(file, what it shows)` for the summary's list.
+    described: Vec<(&'static str, &'static str)>,
+}
+
+impl Folder<'_> {
+    fn put(
+        &mut self,
+        file: &'static str,
+        what: &'static str,
+        bytes: &[u8],
+    ) -> Result<(), ReportError> {
+        let path = self.dir.join(file);
+        write_atomically(&path, bytes).map_err(|source| ReportError::Write {
+            path: path.clone(),
+            source,
+        })?;
+        self.written.push(path);
+        self.described.push((file, what));
+        Ok(())
+    }
+}
+
+/// The three plots; returns `(file, caption)` of each for the page.
+fn write_plots(
+    folder: &mut Folder<'_>,
+    setup: &Setup,
+    motion: &Motion,
+    report: &SolveReport,
+) -> Result<Vec<(&'static str, &'static str)>, ReportError> {
+    let plot = |file: &'static str| move |source| ReportError::Plot { file, source };
+    let mut figures = Vec::new();
+    let mut add = |folder: &mut Folder<'_>, file, caption, svg: String| {
+        figures.push((file, caption));
+        folder.put(file, caption, svg.as_bytes())
+    };
+    let motion_name = report.inputs.motion_file.as_deref().unwrap_or("the motion");
+    let title = format!("Joint angles of {motion_name} and the critical poses");
+    let svg = plots::joints_svg(motion, &report.segments, &title).map_err(plot("joints.svg"))?;
+    add(
+        folder,
+        "joints.svg",
+        "joint angles over the motion, critical poses marked",
+        svg,
+    )?;
+    if let Some(test) = report.motion_test.as_ref().filter(|t| !t.series.is_empty()) {
+        let title = stress_title(report);
+        let svg = plots::stress_svg(test, &setup.thresholds, &title).map_err(plot("stress.svg"))?;
+        add(
+            folder,
+            "stress.svg",
+            "clearance, stretch and bend radius over the motion test",
+            svg,
+        )?;
+    }
+    if !report.segments.is_empty() {
+        let svg =
+            plots::sets_svg(&report.segments, "Set sizes per segment").map_err(plot("sets.svg"))?;
+        add(
+            folder,
+            "sets.svg",
+            "|D0|, |D'0|, |D1|, |D2| per segment",
+            svg,
+        )?;
+    }
+    Ok(figures)
+}
+
+/// `Motion test of d* (1380 mm)` or `Motion test of candidate 3 (1420 mm), which failed`.
+fn stress_title(report: &SolveReport) -> String {
+    match views::shown_candidate(report) {
+        Some(c) if c.passed == Some(true) => {
+            format!("Motion test of d* ({:.0} mm)", c.total_length_mm)
+        }
+        Some(c) => format!(
+            "Motion test of candidate {} ({:.0} mm), which failed",
+            c.rank, c.total_length_mm
+        ),
+        None => "Motion test".into(),
+    }
+}
+
+/// `scene.glb`; returns the notes for the summary (segments drawn without a cable).
+fn write_scene(
+    folder: &mut Folder<'_>,
+    setup: &Setup,
+    motion: &Motion,
+    report: &SolveReport,
+) -> Result<Vec<String>, ReportError> {
+    let (spec, problems) =
+        views::solve_scene(setup, motion, report).map_err(|e| ReportError::Scene(e.to_string()))?;
+    let bytes = scene::to_glb(&spec).map_err(|e| ReportError::Scene(e.to_string()))?;
+    let what = if spec.animation.is_some() {
+        "3D scene: robot, cable, guides, critical poses, motion-test animation (glTF 2.0)"
+    } else {
+        "3D scene: robot, cable, guides, critical poses (glTF 2.0)"
+    };
+    folder.put("scene.glb", what, &bytes)?;
+    Ok(problems
+        .into_iter()
+        .map(|p| format!("not drawn in the scene (no static equilibrium): {p}"))
+        .collect())
+}

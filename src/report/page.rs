@@ -1,0 +1,51 @@
+//! `index.html`: the summary and the plots on one page that needs nothing but the folder it
+//! is in (no scripts, no fonts, no network).
+
+use pulldown_cmark::{Options, Parser, html};
+
+/// The page: `summary_md` rendered, then each `(file, caption)` figure as an image of the
+/// folder, then links to the other files.
+pub fn index_html(title: &str, summary_md: &str, figures: &[(&str, &str)]) -> String {
+    let mut body = String::new();
+    html::push_html(
+        &mut body,
+        Parser::new_ext(summary_md, Options::ENABLE_TABLES),
+    );
+    let mut page = format!(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <title>{}</title>\n<style>\n{STYLE}</style>\n</head>\n<body>\n<main>\n",
+        escape(title)
+    );
+    page.push_str(&body);
+    if !figures.is_empty() {
+        page.push_str("<h2>Plots</h2>\n");
+    }
+    for (file, caption) in figures {
+        page.push_str(&format!(
+            "<figure>\n<img src=\"{file}\" alt=\"{alt}\">\n<figcaption>{alt}</figcaption>\n</figure>\n",
+            alt = escape(caption)
+        ));
+    }
+    page.push_str("</main>\n</body>\n</html>\n");
+    page
+}
+
+/// `&`, `<`, `>` and `"` as HTML entities.
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Plain, print-friendly styling; system fonts only.
+const STYLE: &str = "body { font-family: sans-serif; margin: 0; background: #fafafa; color: #222; }
+main { max-width: 1100px; margin: 0 auto; padding: 1em 2em; background: white; }
+table { border-collapse: collapse; margin: 0.5em 0; }
+th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; }
+th { background: #eee; }
+figure { margin: 1.5em 0; }
+figure img { max-width: 100%; border: 1px solid #ddd; }
+figcaption { color: #555; font-size: 0.9em; }
+code { background: #f2f2f2; padding: 0 0.2em; }
+";

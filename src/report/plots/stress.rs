@@ -1,0 +1,318 @@
+//! `stress.svg`: the motion test's stress series — clearance, stretch, bend radius — over
+//! time, each against its limit, with the worst instants and the first violation marked.
+
+use super::{
+    LIMIT_RED, PlotError, Root, draw_error, finite_range, font, padded, render, short, text,
+};
+use crate::motion_test::{Constraint, MotionTestReport, Violation, Worst};
+use crate::setup::Thresholds;
+use plotters::coord::types::RangedCoordf64;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, VPos};
+
+/// Size of the plot (px).
+const SIZE: (u32, u32) = (1000, 900);
+/// Height of the title and verdict above the panels (px).
+const HEAD_PX: u32 = 72;
+/// Room right of each plotting area for the limit's label (px).
+const RIGHT_PX: u32 = 125;
+/// Bend radii above this many times the limit are drawn at it (a straight cable's is ∞).
+const BEND_CLIP_FACTOR: f64 = 5.0;
+/// Longest failure reason shown in full (characters).
+const MAX_REASON_CHARS: usize = 110;
+
+/// One stacked panel, values in plot units (mm or dimensionless).
+struct Panel {
+    /// Header, e.g. `min clearance`.
+    name: &'static str,
+    /// Y axis label with unit.
+    y_desc: String,
+    /// (time s, value) per series entry; `None` (nothing to draw) breaks the line.
+    points: Vec<Option<(f64, f64)>>,
+    color: RGBColor,
+    /// The limit and its label.
+    limit: f64,
+    limit_label: String,
+    /// (time s, value, label) of the worst instant.
+    worst: Option<(f64, f64, String)>,
+    /// (time s, label) of the first violation when it belongs to this panel.
+    violation: Option<(f64, String)>,
+}
+
+/// `stress.svg`: three stacked panels over the motion test's time axis — min clearance (mm),
+/// max stretch, min bend radius (mm, clipped at 5× the limit) — each with its limit from
+/// `thresholds` as a red dashed line and its worst instant marked and labelled. A failed
+/// test marks its first violation with a red vertical line in the panel of its constraint
+/// (contact force in the clearance panel) and says FAILED with the reason under the title.
+/// The series of a failed candidate stop early: the curves end there.
+pub fn stress_svg(
+    test: &MotionTestReport,
+    thresholds: &Thresholds,
+    title: &str,
+) -> Result<String, PlotError> {
+    let times = test.series.iter().map(|p| p.time_s);
+    let (t0, t_last) = finite_range(times).ok_or(PlotError::Empty("no stress series"))?;
+    let t1 = t_last.max(t0 + test.motion_duration_s);
+    let (t0, t1) = if t1 > t0 {
+        (t0, t1)
+    } else {
+        padded(t0, t1, 0.0)
+    };
+    let panels = panels(test, thresholds);
+    render(SIZE, |root| {
+        draw_head(root, test, title)?;
+        let (_, body) = root.split_vertically(HEAD_PX);
+        let areas = body.split_evenly((panels.len(), 1));
+        for (i, (panel, area)) in panels.iter().zip(&areas).enumerate() {
+            let last = i + 1 == panels.len();
+            draw_panel(root, area, panel, (t0, t1), last)?;
+        }
+        Ok(())
+    })
+}
+
+/// The three panels.
+fn panels(test: &MotionTestReport, thresholds: &Thresholds) -> [Panel; 3] {
+    let mut panels = [
+        clearance_panel(test, thresholds),
+        stretch_panel(test, thresholds),
+        bend_panel(test, thresholds),
+    ];
+    if let Some(v) = test.first_violation.as_ref().filter(|_| !test.passed) {
+        let i = match v.constraint {
+            Constraint::Contact | Constraint::ContactForce => 0,
+            Constraint::Stretch => 1,
+            Constraint::BendRadius => 2,
+        };
+        panels[i].violation = Some((v.time_s, violation_label(v)));
+    }
+    panels
+}
+
+fn clearance_panel(test: &MotionTestReport, thresholds: &Thresholds) -> Panel {
+    let limit_mm = thresholds.contact_clearance_m * 1e3;
+    Panel {
+        name: "min clearance",
+        y_desc: "clearance (mm)".into(),
+        points: test
+            .series
+            .iter()
+            .map(|p| p.min_clearance_m.map(|c| (p.time_s, c * 1e3)))
+            .collect(),
+        color: RGBColor(31, 119, 180),
+        limit: limit_mm,
+        limit_label: format!("limit {} mm", short(limit_mm, 1)),
+        worst: worst(&test.worst_clearance, 1e3, f64::INFINITY, |v| {
+            format!("{v:.2} mm")
+        }),
+        violation: None,
+    }
+}
+
+fn stretch_panel(test: &MotionTestReport, thresholds: &Thresholds) -> Panel {
+    Panel {
+        name: "max stretch",
+        y_desc: "stretch (length / natural length)".into(),
+        points: test
+            .series
+            .iter()
+            .map(|p| Some((p.time_s, p.max_stretch)))
+            .collect(),
+        color: RGBColor(44, 160, 44),
+        limit: thresholds.stretch,
+        limit_label: format!("limit {}", short(thresholds.stretch, 2)),
+        worst: worst(&test.worst_stretch, 1.0, f64::INFINITY, |v| {
+            format!("{v:.4}")
+        }),
+        violation: None,
+    }
+}
+
+/// Bend radii in mm, clipped at 5× the limit (or at the largest finite radius when the
+/// limit is 0).
+fn bend_panel(test: &MotionTestReport, thresholds: &Thresholds) -> Panel {
+    let limit_mm = thresholds.min_bend_radius_m * 1e3;
+    let radii_mm = test.series.iter().map(|p| p.min_bend_radius_m * 1e3);
+    let cap_mm = if limit_mm > 0.0 {
+        BEND_CLIP_FACTOR * limit_mm
+    } else {
+        finite_range(radii_mm).map_or(1e3, |(_, hi)| hi.max(1.0))
+    };
+    Panel {
+        name: "min bend radius",
+        y_desc: format!("bend radius (mm, clipped at {} mm)", short(cap_mm, 0)),
+        points: test
+            .series
+            .iter()
+            .map(|p| Some((p.time_s, (p.min_bend_radius_m * 1e3).min(cap_mm))))
+            .collect(),
+        color: RGBColor(148, 103, 189),
+        limit: limit_mm,
+        limit_label: format!("limit {} mm", short(limit_mm, 1)),
+        worst: worst(&test.worst_bend, 1e3, cap_mm, |v| format!("{v:.2} mm")),
+        violation: None,
+    }
+}
+
+/// The worst instant in plot units (`scale`, drawn at most at `cap`) with its label
+/// `worst 3.20 mm at 1.234 s (C3)`.
+fn worst(
+    worst: &Option<Worst>,
+    scale: f64,
+    cap: f64,
+    value: impl Fn(f64) -> String,
+) -> Option<(f64, f64, String)> {
+    let w = worst.as_ref()?;
+    let v = w.value * scale;
+    let label = format!(
+        "worst {} at {:.3} s (C{})",
+        value(v),
+        w.time_s,
+        w.segment + 1
+    );
+    Some((w.time_s, v.min(cap), label))
+}
+
+/// `violation: contact -3.20 mm at 1.238 s (C3)`.
+fn violation_label(v: &Violation) -> String {
+    let value = match v.unit {
+        "m" => format!("{:.2} mm", v.value * 1e3),
+        "N" => format!("{:.3} N", v.value),
+        _ => format!("{:.4}", v.value),
+    };
+    format!(
+        "violation: {} {value} at {:.3} s (C{})",
+        v.constraint,
+        v.time_s,
+        v.segment + 1
+    )
+}
+
+/// Title, and the verdict under it: `passed`, or `FAILED: reason` in red.
+fn draw_head(root: &Root<'_>, test: &MotionTestReport, title: &str) -> Result<(), PlotError> {
+    let center = SIZE.0 as i32 / 2;
+    let top = (HPos::Center, VPos::Top);
+    text(root, title, (center, 10), &font(26.0), top)?;
+    let (verdict, color) = match (&test.failure, test.passed) {
+        (_, true) => ("motion test passed".to_string(), RGBColor(0, 120, 0)),
+        (Some(f), false) => (format!("FAILED: {}", clip(&f.reason)), LIMIT_RED),
+        (None, false) => ("FAILED".to_string(), LIMIT_RED),
+    };
+    text(root, &verdict, (center, 42), &font(18.0).color(&color), top)
+}
+
+/// `reason`, cut to [`MAX_REASON_CHARS`] with an ellipsis.
+fn clip(reason: &str) -> String {
+    if reason.chars().count() <= MAX_REASON_CHARS {
+        return reason.to_string();
+    }
+    let cut: String = reason.chars().take(MAX_REASON_CHARS - 1).collect();
+    format!("{cut}…")
+}
+
+/// One panel in `area`: series, limit, worst instant, violation; texts on `root` (absolute
+/// pixels). Only the `last` (bottom) panel names the time axis.
+fn draw_panel(
+    root: &Root<'_>,
+    area: &Root<'_>,
+    panel: &Panel,
+    (t0, t1): (f64, f64),
+    last: bool,
+) -> Result<(), PlotError> {
+    let values = panel.points.iter().flatten().map(|p| p.1);
+    let extra = [Some(panel.limit), panel.worst.as_ref().map(|w| w.1)];
+    let (y0, y1) = finite_range(values.chain(extra.into_iter().flatten()))
+        .map_or((0.0, 1.0), |(lo, hi)| padded(lo, hi, 0.08));
+    let mut chart = ChartBuilder::on(area)
+        .margin_top(30)
+        .margin_left(15)
+        .margin_right(RIGHT_PX)
+        .margin_bottom(if last { 10 } else { 4 })
+        .x_label_area_size(if last { 50 } else { 26 })
+        .y_label_area_size(80)
+        .build_cartesian_2d(t0..t1, y0..y1)
+        .map_err(draw_error)?;
+    chart
+        .configure_mesh()
+        .x_desc(if last { "time (s)" } else { "" })
+        .y_desc(panel.y_desc.as_str())
+        .label_style(font(15.0))
+        .axis_desc_style(font(16.0))
+        .y_labels(6)
+        .y_label_formatter(&|v| short(*v, 0))
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(BLACK.mix(0.12))
+        .draw()
+        .map_err(draw_error)?;
+    draw_runs(&mut chart, panel)?;
+    let limit_style = LIMIT_RED.stroke_width(2);
+    let limit = [(t0, panel.limit), (t1, panel.limit)];
+    chart
+        .draw_series(DashedLineSeries::new(limit, 8, 5, limit_style))
+        .map_err(draw_error)?;
+    if let Some((t, _)) = &panel.violation {
+        let line = LineSeries::new([(*t, y0), (*t, y1)], limit_style);
+        chart.draw_series(line).map_err(draw_error)?;
+    }
+    if let Some((t, v, _)) = &panel.worst {
+        let ring = Circle::new((*t, *v), 6, BLACK.stroke_width(2));
+        chart.draw_series([ring]).map_err(draw_error)?;
+    }
+    let (x_px, _) = chart.plotting_area().get_pixel_range();
+    let limit_px = chart.backend_coord(&(t1, panel.limit));
+    let red = font(15.0).color(&LIMIT_RED);
+    let left = (HPos::Left, VPos::Center);
+    text(
+        root,
+        &panel.limit_label,
+        (x_px.end + 8, limit_px.1),
+        &red,
+        left,
+    )?;
+    draw_header(root, area, panel, (x_px.start, x_px.end))
+}
+
+/// The series as polylines, broken where a value is missing.
+fn draw_runs<DB: DrawingBackend>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    panel: &Panel,
+) -> Result<(), PlotError> {
+    let style = panel.color.stroke_width(2);
+    let finite = |p: &Option<(f64, f64)>| p.filter(|(t, v)| t.is_finite() && v.is_finite());
+    let points: Vec<Option<(f64, f64)>> = panel.points.iter().map(finite).collect();
+    for run in points.split(Option::is_none) {
+        if !run.is_empty() {
+            let line = LineSeries::new(run.iter().flatten().copied(), style);
+            chart.draw_series(line).map_err(draw_error)?;
+        }
+    }
+    Ok(())
+}
+
+/// Above the plotting area (`x_px`: its pixel columns): the panel's name and worst instant
+/// on the left, the violation in red on the right.
+fn draw_header(
+    root: &Root<'_>,
+    area: &Root<'_>,
+    panel: &Panel,
+    x_px: (i32, i32),
+) -> Result<(), PlotError> {
+    let y = area.get_base_pixel().1 + 16;
+    let header = match &panel.worst {
+        Some((_, _, label)) => format!("{} — {label}", panel.name),
+        None => panel.name.to_string(),
+    };
+    let style = font(17.0);
+    text(
+        root,
+        &header,
+        (x_px.0, y),
+        &style,
+        (HPos::Left, VPos::Center),
+    )?;
+    if let Some((_, label)) = &panel.violation {
+        let red = style.color(&LIMIT_RED);
+        text(root, label, (x_px.1, y), &red, (HPos::Right, VPos::Center))?;
+    }
+    Ok(())
+}

@@ -1,0 +1,337 @@
+//! The node tree: the robot copies (links, colliders, guide markers), the main cable as
+//! animatable pieces and the snapshots with their swept tubes.
+
+use super::document::Builder;
+use super::mesh::{TriangleMesh, cable_joint_sphere, collar, shape_mesh, unit_cable_cylinder};
+use super::tube::swept_tube;
+use super::{CableLine, SceneError, SceneSpec, Snapshot};
+use crate::pose::Pose;
+use crate::robot::Shape;
+use gltf_json::scene::UnitQuaternion as GltfQuaternion;
+use gltf_json::{Index, Material, Mesh, Node};
+use nalgebra::{Point3, UnitQuaternion, Vector3};
+
+/// Outer radius of a guide marker, in cable radii.
+const GUIDE_OUTER_RADII: f64 = 2.5;
+/// Length of a guide marker along the guide's z axis (m).
+const GUIDE_LENGTH_M: f64 = 0.012;
+
+/// What a mesh shows, which decides its material.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Paint {
+    /// Light grey.
+    Robot,
+    /// Orange.
+    Cable,
+    /// Blue.
+    Guide,
+}
+
+impl Paint {
+    /// Material name, base colour (linear RGBA) and roughness.
+    fn material(self) -> (&'static str, [f32; 4], f32) {
+        match self {
+            Paint::Robot => ("robot", [0.8, 0.8, 0.8, 1.0], 0.7),
+            Paint::Cable => ("cable", [1.0, 0.45, 0.05, 1.0], 0.5),
+            Paint::Guide => ("guide", [0.1, 0.3, 0.9, 1.0], 0.5),
+        }
+    }
+}
+
+/// The scene's materials, each made when first used (so none is left unused).
+#[derive(Default)]
+pub(super) struct Materials {
+    made: [Option<Index<Material>>; 3],
+}
+
+impl Materials {
+    /// The material of `paint`.
+    pub fn get(&mut self, builder: &mut Builder, paint: Paint) -> Index<Material> {
+        let slot = &mut self.made[paint as usize];
+        *slot.get_or_insert_with(|| {
+            let (name, rgba, roughness) = paint.material();
+            builder.material(name, rgba, roughness)
+        })
+    }
+}
+
+/// Meshes drawn more than once: the colliders and guide markers of every robot copy and the
+/// pieces of the main cable.
+pub(super) struct SharedMeshes {
+    /// Per link, per collider.
+    colliders: Vec<Vec<Index<Mesh>>>,
+    guide: Option<Index<Mesh>>,
+    segment: Option<Index<Mesh>>,
+    joint: Option<Index<Mesh>>,
+}
+
+impl SharedMeshes {
+    /// Tessellates every collider once, the guide marker if there are guides and the cable
+    /// pieces if the main scene has cable lines.
+    pub fn new(
+        builder: &mut Builder,
+        spec: &SceneSpec<'_>,
+        materials: &mut Materials,
+    ) -> Result<SharedMeshes, SceneError> {
+        let mut colliders = Vec::with_capacity(spec.robot.links.len());
+        for link in &spec.robot.links {
+            let mut meshes = Vec::with_capacity(link.colliders.len());
+            for (i, collider) in link.colliders.iter().enumerate() {
+                let name = format!("{} collider {i}: {}", link.name, describe(&collider.shape));
+                let mesh = shape_mesh(&collider.shape);
+                meshes.push(painted_mesh(
+                    builder,
+                    materials,
+                    &name,
+                    &mesh,
+                    Paint::Robot,
+                )?);
+            }
+            colliders.push(meshes);
+        }
+        let r = spec.cable_radius_m;
+        let mut shared = SharedMeshes {
+            colliders,
+            guide: None,
+            segment: None,
+            joint: None,
+        };
+        if !spec.guides.is_empty() {
+            let collar = collar(r, GUIDE_OUTER_RADII * r, GUIDE_LENGTH_M);
+            let mesh = painted_mesh(builder, materials, "guide marker", &collar, Paint::Guide)?;
+            shared.guide = Some(mesh);
+        }
+        if !spec.main.cable.is_empty() {
+            let (name, cylinder) = ("cable sub-segment (unit length)", unit_cable_cylinder(r));
+            shared.segment = Some(painted_mesh(
+                builder,
+                materials,
+                name,
+                &cylinder,
+                Paint::Cable,
+            )?);
+            let sphere = cable_joint_sphere(r);
+            shared.joint = Some(painted_mesh(
+                builder,
+                materials,
+                "cable node",
+                &sphere,
+                Paint::Cable,
+            )?);
+        }
+        Ok(shared)
+    }
+}
+
+/// A mesh in the material of `paint`.
+fn painted_mesh(
+    builder: &mut Builder,
+    materials: &mut Materials,
+    name: &str,
+    mesh: &TriangleMesh,
+    paint: Paint,
+) -> Result<Index<Mesh>, SceneError> {
+    let material = materials.get(builder, paint);
+    builder.mesh(name, mesh, material)
+}
+
+/// A shape's description, with only the file name of a mesh.
+fn describe(shape: &Shape) -> String {
+    match shape {
+        Shape::Mesh(mesh) => {
+            let file = mesh.file.file_name().unwrap_or(mesh.file.as_os_str());
+            format!(
+                "mesh {} ({} triangles)",
+                file.to_string_lossy(),
+                mesh.triangles.len()
+            )
+        }
+        other => other.describe(),
+    }
+}
+
+/// Node translation, rotation and scale.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Trs {
+    pub translation: Vector3<f64>,
+    pub rotation: UnitQuaternion<f64>,
+    pub scale: Vector3<f64>,
+}
+
+impl Trs {
+    /// The transform of a pose (unit scale).
+    pub fn of_pose(pose: &Pose) -> Trs {
+        Trs {
+            translation: pose.translation.vector,
+            rotation: pose.rotation,
+            scale: Vector3::repeat(1.0),
+        }
+    }
+
+    /// A translation only.
+    pub fn at(point: &Point3<f64>) -> Trs {
+        Trs::of_pose(&Pose::translation(point.x, point.y, point.z))
+    }
+
+    /// Maps the unit cylinder (z from 0 to 1) onto the segment from `a` to `b`.
+    pub fn segment(a: &Point3<f64>, b: &Point3<f64>) -> Trs {
+        let delta = b - a;
+        let rotation =
+            UnitQuaternion::rotation_between(&Vector3::z(), &delta).unwrap_or_else(|| {
+                // Zero length (any rotation) or pointing along -z (half a turn about x).
+                let angle = if delta.z < 0.0 {
+                    std::f64::consts::PI
+                } else {
+                    0.0
+                };
+                UnitQuaternion::from_axis_angle(&Vector3::x_axis(), angle)
+            });
+        Trs {
+            translation: a.coords,
+            rotation,
+            scale: Vector3::new(1.0, 1.0, delta.norm()),
+        }
+    }
+
+    /// A node with this transform (identity parts left out).
+    pub fn node(&self, mesh: Option<Index<Mesh>>) -> Node {
+        Node {
+            mesh,
+            translation: (self.translation != Vector3::zeros()).then(|| f32x3(&self.translation)),
+            rotation: (self.rotation != UnitQuaternion::identity())
+                .then(|| gltf_quaternion(&self.rotation)),
+            scale: (self.scale != Vector3::repeat(1.0)).then(|| f32x3(&self.scale)),
+            ..Default::default()
+        }
+    }
+}
+
+/// A vector as `f32` components.
+pub(super) fn f32x3(v: &Vector3<f64>) -> [f32; 3] {
+    [v.x as f32, v.y as f32, v.z as f32]
+}
+
+/// A rotation as glTF's (x, y, z, w) quaternion.
+pub(super) fn quaternion_xyzw(q: &UnitQuaternion<f64>) -> [f32; 4] {
+    let c = q.coords;
+    [c.x as f32, c.y as f32, c.z as f32, c.w as f32]
+}
+
+fn gltf_quaternion(q: &UnitQuaternion<f64>) -> GltfQuaternion {
+    GltfQuaternion(quaternion_xyzw(q))
+}
+
+/// The root node turning the robot's z-up world into glTF's y-up one (−90° about x).
+pub(super) fn world_root(builder: &mut Builder) -> Index<Node> {
+    let h = std::f32::consts::FRAC_1_SQRT_2;
+    let node = Node {
+        rotation: Some(GltfQuaternion([-h, 0.0, 0.0, h])),
+        ..Default::default()
+    };
+    builder.node("robot world (z up)", node)
+}
+
+/// A copy of the robot under `parent`: one node per link at `link_poses`, with its colliders
+/// and guide markers. Returns the link nodes, indexed like the robot's links.
+pub(super) fn robot_copy(
+    builder: &mut Builder,
+    spec: &SceneSpec<'_>,
+    link_poses: &[Pose],
+    meshes: &SharedMeshes,
+    parent: Index<Node>,
+) -> Vec<Index<Node>> {
+    let mut link_nodes = Vec::with_capacity(spec.robot.links.len());
+    for (l, (link, pose)) in spec.robot.links.iter().zip(link_poses).enumerate() {
+        let node = builder.node(link.name.clone(), Trs::of_pose(pose).node(None));
+        builder.add_child(parent, node);
+        let collider_meshes = meshes.colliders.get(l).map_or(&[][..], Vec::as_slice);
+        for (i, (collider, &mesh)) in link.colliders.iter().zip(collider_meshes).enumerate() {
+            let child = builder.node(
+                format!("{} collider {i}", link.name),
+                Trs::of_pose(&collider.origin).node(Some(mesh)),
+            );
+            builder.add_child(node, child);
+        }
+        for guide in spec.guides.iter().filter(|g| g.link == l) {
+            let marker = builder.node(
+                guide.name.clone(),
+                Trs::of_pose(&guide.pose_in_link).node(meshes.guide),
+            );
+            builder.add_child(node, marker);
+        }
+        link_nodes.push(node);
+    }
+    link_nodes
+}
+
+/// The nodes of one main cable line, for the animation.
+pub(super) struct LineNodes {
+    /// One per sub-segment (node k to node k + 1).
+    pub segments: Vec<Index<Node>>,
+    /// One sphere per cable node.
+    pub joints: Vec<Index<Node>>,
+}
+
+/// The main cable under `parent`: per line a node holding its sub-segments (the unit
+/// cylinder scaled onto each) and a sphere at every node.
+pub(super) fn main_cable(
+    builder: &mut Builder,
+    lines: &[CableLine],
+    meshes: &SharedMeshes,
+    parent: Index<Node>,
+) -> Vec<LineNodes> {
+    let mut all = Vec::with_capacity(lines.len());
+    for line in lines {
+        let line_node = builder.node(line.name.clone(), Node::default());
+        builder.add_child(parent, line_node);
+        let nodes = &line.nodes_m;
+        let mut segments = Vec::with_capacity(nodes.len().saturating_sub(1));
+        for (k, pair) in nodes.windows(2).enumerate() {
+            let node = Trs::segment(&pair[0], &pair[1]).node(meshes.segment);
+            let segment = builder.node(format!("{} sub-segment {k}", line.name), node);
+            builder.add_child(line_node, segment);
+            segments.push(segment);
+        }
+        let mut joints = Vec::with_capacity(nodes.len());
+        for (k, point) in nodes.iter().enumerate() {
+            let joint = builder.node(
+                format!("{} node {k}", line.name),
+                Trs::at(point).node(meshes.joint),
+            );
+            builder.add_child(line_node, joint);
+            joints.push(joint);
+        }
+        all.push(LineNodes { segments, joints });
+    }
+    all
+}
+
+/// A snapshot under `parent`: a robot copy and one swept tube per cable line, shifted by
+/// the snapshot's offset.
+pub(super) fn snapshot(
+    builder: &mut Builder,
+    spec: &SceneSpec<'_>,
+    snapshot: &Snapshot,
+    meshes: &SharedMeshes,
+    materials: &mut Materials,
+    parent: Index<Node>,
+) -> Result<Index<Node>, SceneError> {
+    let offset = Trs::at(&Point3::from(snapshot.offset_m));
+    let node = builder.node(snapshot.name.clone(), offset.node(None));
+    builder.add_child(parent, node);
+    robot_copy(builder, spec, &snapshot.scene.link_poses, meshes, node);
+    for line in &snapshot.scene.cable {
+        let tube = swept_tube(&line.nodes_m, spec.cable_radius_m);
+        let name = format!("{}: {}", snapshot.name, line.name);
+        let mesh = painted_mesh(builder, materials, &name, &tube, Paint::Cable)?;
+        let line_node = builder.node(
+            line.name.clone(),
+            Node {
+                mesh: Some(mesh),
+                ..Default::default()
+            },
+        );
+        builder.add_child(node, line_node);
+    }
+    Ok(node)
+}

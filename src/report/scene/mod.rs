@@ -1,0 +1,130 @@
+//! The 3D scene of a cable path as a glTF 2.0 binary (`.glb`): the robot's collision shapes,
+//! the cable as a tube of its diameter, the guides, one node per critical pose and an
+//! animation of robot and cable over the motion test.
+//!
+//! [`SceneSpec`] says what to draw in the robot's world frame (z up, metres); [`to_glb`]
+//! turns it into the bytes of a `.glb` file (y up, as glTF requires: a root node turns
+//! the robot's frame into glTF's).
+
+mod animation;
+mod check;
+mod document;
+mod error;
+mod glb;
+mod graph;
+mod mesh;
+mod tube;
+
+pub use error::SceneError;
+
+use crate::pose::Pose;
+use crate::robot::Robot;
+use nalgebra::{Point3, Vector3};
+
+/// The `.glb` bytes of the scene; the same spec always gives the same bytes.
+///
+/// Layout (node names in quotes): a root `"robot world (z up)"` turning z up into glTF's
+/// y up holds `"robot"` (one node per link at its pose in [`SceneSpec::main`], holding one
+/// node per collider and the guide markers of the link), `"cable"` when the main scene has
+/// cable lines (per line a node holding `"<line> sub-segment <k>"` nodes, a shared unit
+/// cylinder scaled onto nodes k and k + 1, and `"<line> node <k>"` spheres), and one node
+/// per snapshot (a robot copy and one swept tube per cable line, translated by the
+/// snapshot's offset). The animation, if any, moves the main robot's link nodes and the
+/// main cable's pieces. Indices k are 0-based.
+///
+/// Refused (see [`SceneError`]) when link pose counts differ from the robot's links, a cable
+/// line has fewer than two nodes, a value is not finite, a guide's link does not exist, or
+/// the animation's times are not strictly increasing from 0 or its frames differ from
+/// [`SceneSpec::main`] in cable lines or node counts.
+pub fn to_glb(spec: &SceneSpec<'_>) -> Result<Vec<u8>, SceneError> {
+    check::check_spec(spec)?;
+    let mut builder = document::Builder::new();
+    let mut materials = graph::Materials::default();
+    let meshes = graph::SharedMeshes::new(&mut builder, spec, &mut materials)?;
+    let root = graph::world_root(&mut builder);
+    let robot = builder.node("robot", gltf_json::Node::default());
+    builder.add_child(root, robot);
+    let links = graph::robot_copy(&mut builder, spec, &spec.main.link_poses, &meshes, robot);
+    let mut lines = Vec::new();
+    if !spec.main.cable.is_empty() {
+        let cable = builder.node("cable", gltf_json::Node::default());
+        builder.add_child(root, cable);
+        lines = graph::main_cable(&mut builder, &spec.main.cable, &meshes, cable);
+    }
+    for snapshot in &spec.snapshots {
+        graph::snapshot(&mut builder, spec, snapshot, &meshes, &mut materials, root)?;
+    }
+    if let Some(animation) = &spec.animation {
+        animation::add_animation(&mut builder, animation, &links, &lines);
+    }
+    builder.finish(vec![root])
+}
+
+/// What a scene shows, in the robot's world frame (metres, z up).
+#[derive(Debug, Clone)]
+pub struct SceneSpec<'a> {
+    /// The robot: every link's colliders are drawn.
+    pub robot: &'a Robot,
+    /// Cable radius (m): half its diameter.
+    pub cable_radius_m: f64,
+    /// The robot and cable as shown when no animation plays.
+    pub main: PoseScene,
+    /// The guides, each drawn as a marker moving with its link.
+    pub guides: Vec<GuideMark>,
+    /// Robot and cable over time (the motion test); `None` when there is nothing to animate.
+    pub animation: Option<SceneAnimation>,
+    /// Extra static copies of robot and cable, e.g. one per critical pose.
+    pub snapshots: Vec<Snapshot>,
+}
+
+/// The robot and the cable at one instant.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PoseScene {
+    /// World pose of every link (indexed like `robot.links`).
+    pub link_poses: Vec<Pose>,
+    /// Cable centrelines, one polyline per drawn segment (nodes in the world frame, m).
+    pub cable: Vec<CableLine>,
+}
+
+/// One cable segment's centreline.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CableLine {
+    /// Node name prefix, e.g. `C3`.
+    pub name: String,
+    /// Nodes from the start guide to the end guide (world frame, m); at least two.
+    pub nodes_m: Vec<Point3<f64>>,
+}
+
+/// A guide (clamp) on a link.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GuideMark {
+    /// E.g. `G3 (link_3/top_40)`.
+    pub name: String,
+    /// Index into `robot.links` of the link it moves with.
+    pub link: usize,
+    /// The guide's frame in the link frame; its +z axis is the cable direction.
+    pub pose_in_link: Pose,
+}
+
+/// Robot and cable over time: keyframes at `times_s`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneAnimation {
+    /// Animation name, e.g. `motion test`.
+    pub name: String,
+    /// Keyframe times (s, strictly increasing, first at 0).
+    pub times_s: Vec<f64>,
+    /// Per keyframe, the robot and the cable. Every frame has the same cable lines with the
+    /// same node counts as [`SceneSpec::main`].
+    pub frames: Vec<PoseScene>,
+}
+
+/// A static copy of robot and cable, shifted so that it does not overlap the main one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Snapshot {
+    /// Node name, e.g. `critical pose 3: C1 joint_1 max, t = 1.250 s`.
+    pub name: String,
+    /// The robot and the cable.
+    pub scene: PoseScene,
+    /// Shift of the whole copy in the world frame (m).
+    pub offset_m: Vector3<f64>,
+}

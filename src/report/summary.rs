@@ -1,0 +1,360 @@
+//! `summary.md`: the result of a solve for people — the path, the set sizes, the margins,
+//! the motion test, the timings and the inputs with their hashes.
+
+use super::Hashed;
+use crate::motion_test::{MotionTestReport, Worst};
+use crate::setup::Thresholds;
+use crate::solve::{Ecpv, SolveReport};
+use std::fmt::Write as _;
+
+/// The whole `summary.md`; `files` are the report's other files with what each shows, and
+/// `notes` anything the report could not draw.
+pub fn summary_markdown(
+    report: &SolveReport,
+    thresholds: &Thresholds,
+    inputs: &[Hashed],
+    files: &[(&str, &str)],
+    notes: &[String],
+) -> String {
+    let mut md = String::new();
+    heading(&mut md, report);
+    if let (Some(path), Some(total)) = (&report.optimal, report.optimal_length_mm) {
+        path_tables(&mut md, path, total);
+    }
+    sets_table(&mut md, report);
+    margins_table(&mut md, report);
+    if let Some(test) = &report.motion_test {
+        motion_test_table(&mut md, test, thresholds);
+    }
+    candidates_table(&mut md, report);
+    timings_table(&mut md, report);
+    inputs_table(&mut md, inputs, report);
+    section(&mut md, "Files");
+    for (file, what) in files {
+        let _ = writeln!(md, "- [`{file}`]({file}): {what}");
+    }
+    if !notes.is_empty() {
+        section(&mut md, "Notes");
+        for note in notes {
+            let _ = writeln!(md, "- {note}");
+        }
+    }
+    md
+}
+
+fn section(md: &mut String, title: &str) {
+    let _ = write!(md, "\n## {title}\n\n");
+}
+
+/// A Markdown table row.
+fn row(md: &mut String, cells: &[String]) {
+    let _ = writeln!(md, "| {} |", cells.join(" | "));
+}
+
+/// A Markdown table header with its rule.
+fn header(md: &mut String, titles: &[&str]) {
+    row(
+        md,
+        &titles.iter().map(|t| t.to_string()).collect::<Vec<_>>(),
+    );
+    row(md, &vec!["---".to_string(); titles.len()]);
+}
+
+fn heading(md: &mut String, report: &SolveReport) {
+    let verdict = report.status.describe();
+    let _ = writeln!(md, "# Cable path: {verdict}\n");
+    let _ = writeln!(md, "{}.\n", capitalized(&report.explanation));
+    if let Some(total) = report.optimal_length_mm {
+        let _ = writeln!(
+            md,
+            "Total cable length **{total:.0} mm**, {} segments, {}.",
+            report.segments.len(),
+            report.inputs.method
+        );
+    }
+}
+
+fn path_tables(md: &mut String, path: &Ecpv, total_mm: f64) {
+    section(md, &format!("Optimal cable path ({total_mm:.0} mm)"));
+    header(
+        md,
+        &["segment", "from", "to", "links", "kind", "length (mm)"],
+    );
+    for s in &path.segments {
+        row(
+            md,
+            &[
+                s.name.clone(),
+                s.from_guide.clone(),
+                s.to_guide.clone(),
+                format!("{} → {}", s.from_link, s.to_link),
+                s.kind.to_string(),
+                format!("{:.0}", s.length_mm),
+            ],
+        );
+    }
+    let _ = writeln!(md, "\nWhere each clamp goes, in its link's frame:\n");
+    header(
+        md,
+        &[
+            "guide",
+            "link",
+            "configuration",
+            "x, y, z (mm)",
+            "roll, pitch, yaw (deg)",
+        ],
+    );
+    for g in &path.guides {
+        row(
+            md,
+            &[
+                g.name.clone(),
+                g.link.clone(),
+                g.configuration.clone(),
+                triple(&g.xyz_mm),
+                triple(&g.rpy_deg),
+            ],
+        );
+    }
+}
+
+fn triple(v: &[f64; 3]) -> String {
+    format!("{:.1}, {:.1}, {:.1}", v[0], v[1], v[2])
+}
+
+fn sets_table(md: &mut String, report: &SolveReport) {
+    section(md, "Attachment test");
+    // Pipes inside a table cell must be escaped.
+    let sets = [r"\|D0\|", r"\|D'0\|", r"\|D1\|", r"\|D2\|"];
+    header(
+        md,
+        &[&["segment", "guides", "kind", "test poses"][..], &sets].concat(),
+    );
+    for s in &report.segments {
+        row(
+            md,
+            &[
+                s.segment.clone(),
+                format!("{} → {}", s.from_guide, s.to_guide),
+                s.kind.to_string(),
+                s.test_poses.len().to_string(),
+                s.d0.to_string(),
+                s.d0_pruned.to_string(),
+                s.d1.to_string(),
+                s.d2.to_string(),
+            ],
+        );
+    }
+    let _ = writeln!(md, "\n\\|D3\\| (chains of robust PVs): {}.", report.chains);
+    if let Some(d) = &report.inputs.dictionary {
+        let _ = writeln!(
+            md,
+            "\nIntra-link sets from the dictionary `{}` ({} directions, radius {:.1}°).",
+            d.file, d.directions, d.covering_radius_deg
+        );
+    }
+}
+
+fn margins_table(md: &mut String, report: &SolveReport) {
+    if report.margins.is_empty() {
+        return;
+    }
+    section(md, "Static margins at the binding test pose");
+    header(
+        md,
+        &["segment", "limit", "value", "threshold", "margin", "pose"],
+    );
+    for m in &report.margins {
+        let show = |v: f64| match m.constraint {
+            "stretch" => format!("{v:.4}"),
+            _ => format!("{:.1} mm", v * 1e3),
+        };
+        row(
+            md,
+            &[
+                m.segment.clone(),
+                m.constraint.replace('_', " "),
+                show(m.value),
+                show(m.threshold),
+                show(m.margin),
+                format!("t = {:.3} s, {}", m.time_s, m.reason),
+            ],
+        );
+    }
+}
+
+fn motion_test_table(md: &mut String, test: &MotionTestReport, t: &Thresholds) {
+    section(md, "Motion test");
+    let verdict = match &test.failure {
+        None => "passed".to_string(),
+        Some(f) => format!("failed: {}", f.reason),
+    };
+    let _ = writeln!(
+        md,
+        "{verdict} ({:.2} s simulated in {:.1} s).\n",
+        test.simulated_s, test.wall_time_s
+    );
+    header(md, &["metric", "worst", "limit", "margin", "when, where"]);
+    let mm = |v: f64| format!("{:.1} mm", v * 1e3);
+    worst_row(
+        md,
+        "min clearance",
+        test.worst_clearance.as_ref(),
+        t.contact_clearance_m,
+        1.0,
+        mm,
+    );
+    worst_row(
+        md,
+        "max stretch",
+        test.worst_stretch.as_ref(),
+        t.stretch,
+        -1.0,
+        |v| format!("{v:.4}"),
+    );
+    worst_row(
+        md,
+        "min bend radius",
+        test.worst_bend.as_ref(),
+        t.min_bend_radius_m,
+        1.0,
+        mm,
+    );
+    if let Some(w) = &test.worst_contact_force {
+        row(
+            md,
+            &[
+                "max contact force".into(),
+                format!("{:.3} N", w.value),
+                "0 N".into(),
+                "—".into(),
+                place(w),
+            ],
+        );
+    }
+}
+
+/// One metric's worst value; `sign` +1 when the value must stay above the limit.
+fn worst_row(
+    md: &mut String,
+    metric: &str,
+    worst: Option<&Worst>,
+    limit: f64,
+    sign: f64,
+    show: impl Fn(f64) -> String,
+) {
+    let Some(w) = worst else {
+        row(
+            md,
+            &[
+                metric.into(),
+                "—".into(),
+                show(limit),
+                "—".into(),
+                "—".into(),
+            ],
+        );
+        return;
+    };
+    let margin = sign * (w.value - limit);
+    let margin = if margin.is_finite() {
+        show(margin)
+    } else {
+        "∞".into()
+    };
+    let value = if w.value.is_finite() {
+        show(w.value)
+    } else {
+        "∞ (straight)".into()
+    };
+    row(md, &[metric.into(), value, show(limit), margin, place(w)]);
+}
+
+fn place(w: &Worst) -> String {
+    let at = w.place.to_string();
+    let at = if at.is_empty() {
+        String::new()
+    } else {
+        format!(", {at}")
+    };
+    format!("t = {:.3} s, C{}{at}", w.time_s, w.segment + 1)
+}
+
+fn candidates_table(md: &mut String, report: &SolveReport) {
+    if report.candidates.is_empty() {
+        return;
+    }
+    section(md, "Candidates tried");
+    header(md, &["rank", "length (mm)", "outcome"]);
+    for c in &report.candidates {
+        let outcome = match (c.passed, &c.failure) {
+            (Some(true), _) => "passed".to_string(),
+            (Some(false), Some(why)) => format!("failed: {why}"),
+            (Some(false), None) => "failed".to_string(),
+            (None, _) => "not tested".to_string(),
+        };
+        row(
+            md,
+            &[
+                c.rank.to_string(),
+                format!("{:.0}", c.total_length_mm),
+                outcome,
+            ],
+        );
+    }
+    let sweep = &report.static_sweep;
+    if sweep.poses > 0 {
+        let _ = writeln!(
+            md,
+            "\nThe static sweep solved {} PVs at {} motion poses and dropped {}.",
+            sweep.pvs_swept,
+            sweep.poses,
+            sweep.rejected.len()
+        );
+    }
+}
+
+fn timings_table(md: &mut String, report: &SolveReport) {
+    section(md, "Timings");
+    let t = &report.timings;
+    header(md, &["stage", "time (s)"]);
+    for (stage, s) in [
+        ("critical poses", t.critical_poses_s),
+        ("attachment test", t.attachment_s),
+        ("chain search", t.chain_s),
+        ("static sweep", t.static_sweep_s),
+        ("motion test", t.motion_test_s),
+        ("total", t.total_s),
+    ] {
+        row(md, &[stage.into(), format!("{s:.3}")]);
+    }
+}
+
+fn inputs_table(md: &mut String, inputs: &[Hashed], report: &SolveReport) {
+    section(md, "Inputs");
+    header(md, &["input", "file", "xxh3-64"]);
+    for input in inputs {
+        row(
+            md,
+            &[
+                input.role.to_string(),
+                format!("`{}`", input.file),
+                input.hash.clone(),
+            ],
+        );
+    }
+    let i = &report.inputs;
+    let _ = writeln!(
+        md,
+        "\nSetup content hash {} (FNV-1a of the loaded setup), cable {}, motion {:.3} s in {} samples.",
+        i.setup_hash, i.cable, i.motion_duration_s, i.motion_samples
+    );
+}
+
+/// `text` with its first letter in upper case.
+fn capitalized(text: &str) -> String {
+    let mut chars = text.chars();
+    chars.next().map_or(String::new(), |first| {
+        first.to_uppercase().chain(chars).collect()
+    })
+}

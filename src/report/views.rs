@@ -1,0 +1,255 @@
+//! What the scene of a cable path shows: the robot at a pose, the path's static equilibrium
+//! there, its guides, the motion test as an animation, the critical poses as snapshots.
+
+use super::scene::{CableLine, GuideMark, PoseScene, SceneAnimation, SceneSpec, Snapshot};
+use crate::attachment::{ConnectMethod, Evaluator};
+use crate::motion::Motion;
+use crate::motion_test::{MotionTestReport, SegmentNodes, ShapeFrame};
+use crate::path::CablePath;
+use crate::pose::Pose;
+use crate::robot::JointVectorError;
+use crate::setup::Setup;
+use crate::solve::{CandidateOutcome, SolveReport};
+use crate::stress::contact::ContactError;
+use nalgebra::{Point3, Vector3};
+
+/// Snapshots per row of the grid they are laid out on behind the main robot.
+const SNAPSHOTS_PER_ROW: usize = 5;
+
+/// Why a scene could not be assembled.
+#[derive(Debug, thiserror::Error)]
+pub enum ViewError {
+    /// The robot's geometry cannot be used for the equilibria's clearance model.
+    #[error("{0}")]
+    Obstacles(#[from] ContactError),
+    /// A joint vector does not fit the robot.
+    #[error("{0}")]
+    Kinematics(#[from] JointVectorError),
+}
+
+/// The static cable of `path` with the robot at `link_poses`: one centreline per segment
+/// that has a cable, and for each segment without an equilibrium, why.
+pub struct StaticCable {
+    /// Centrelines of the segments that have one.
+    pub lines: Vec<CableLine>,
+    /// `C3: no equilibrium (…)` for the others.
+    pub problems: Vec<String>,
+}
+
+/// The static equilibrium of every segment of `path` with the links at `link_poses`.
+pub fn static_cable(
+    evaluator: &Evaluator<'_>,
+    path: &CablePath,
+    link_poses: &[Pose],
+) -> StaticCable {
+    let mut cable = StaticCable {
+        lines: Vec::new(),
+        problems: Vec::new(),
+    };
+    for m in 0..path.segment_count() {
+        match evaluator.equilibrium_nodes(m, &path.pv(m), link_poses) {
+            Ok(nodes) if nodes.len() >= 2 => cable.lines.push(CableLine {
+                name: segment_name(m),
+                nodes_m: nodes,
+            }),
+            Ok(_) => {}
+            Err(why) => cable.problems.push(format!("{}: {why}", segment_name(m))),
+        }
+    }
+    cable
+}
+
+/// The guides of `path`, each at the configuration the path uses.
+pub fn guide_marks(setup: &Setup, path: &CablePath) -> Vec<GuideMark> {
+    setup
+        .guides
+        .iter()
+        .zip(&path.configurations)
+        .map(|(guide, &c)| {
+            let configuration = &guide.configurations[c];
+            GuideMark {
+                name: format!("{} ({})", guide.name, configuration.name),
+                link: guide.link,
+                pose_in_link: configuration.pose,
+            }
+        })
+        .collect()
+}
+
+/// The scene of `path` with the robot at `joints` (rad / m): its static equilibrium there.
+pub fn pose_scene<'a>(
+    setup: &'a Setup,
+    path: &CablePath,
+    joints: &[f64],
+) -> Result<(SceneSpec<'a>, StaticCable), ViewError> {
+    let evaluator = Evaluator::new(setup, ConnectMethod::Hermite)?;
+    let link_poses = setup.robot.link_poses(joints)?;
+    let cable = static_cable(&evaluator, path, &link_poses);
+    let spec = SceneSpec {
+        robot: &setup.robot,
+        cable_radius_m: 0.5 * setup.cable.diameter_m,
+        main: PoseScene {
+            link_poses,
+            cable: cable.lines.clone(),
+        },
+        guides: guide_marks(setup, path),
+        animation: None,
+        snapshots: Vec::new(),
+    };
+    Ok((spec, cable))
+}
+
+/// The candidate a report shows: d*, the untested d̂, or the last one tried when none passed
+/// (the one whose motion test the report keeps).
+pub fn shown_candidate(report: &SolveReport) -> Option<&CandidateOutcome> {
+    report
+        .candidates
+        .iter()
+        .find(|c| c.passed == Some(true))
+        .or_else(|| report.candidates.last())
+}
+
+/// The scene of a solve: the shown candidate at the motion's first pose, animated over its
+/// motion test when one ran, with one snapshot per critical pose (the robot alone when there
+/// is no candidate). The strings name the segments without a static equilibrium at a pose.
+pub fn solve_scene<'a>(
+    setup: &'a Setup,
+    motion: &Motion,
+    report: &SolveReport,
+) -> Result<(SceneSpec<'a>, Vec<String>), ViewError> {
+    let path = shown_candidate(report).map(|c| &c.path);
+    let evaluator = Evaluator::new(setup, ConnectMethod::Hermite)?;
+    let at = |joints: &[f64]| -> Result<(PoseScene, Vec<String>), ViewError> {
+        let link_poses = setup.robot.link_poses(joints)?;
+        let cable = path.map(|p| static_cable(&evaluator, p, &link_poses));
+        let (lines, problems) = cable.map_or_else(Default::default, |c| (c.lines, c.problems));
+        Ok((
+            PoseScene {
+                link_poses,
+                cable: lines,
+            },
+            problems,
+        ))
+    };
+    let (main, mut problems) = at(&motion.samples()[0])?;
+    let mut spec = SceneSpec {
+        robot: &setup.robot,
+        cable_radius_m: 0.5 * setup.cable.diameter_m,
+        main,
+        guides: path.map(|p| guide_marks(setup, p)).unwrap_or_default(),
+        animation: None,
+        snapshots: Vec::new(),
+    };
+    if let Some(test) = &report.motion_test {
+        spec.animation = motion_test_animation(setup, motion, test)?;
+    }
+    if let Some(animation) = &spec.animation {
+        // The animated cable is the simulated one: it starts from the same equilibrium.
+        spec.main = animation.frames[0].clone();
+    }
+    for (name, sample) in critical_poses(report) {
+        let (scene, missing) = at(&motion.samples()[sample])?;
+        problems.extend(missing.into_iter().map(|p| format!("{name}: {p}")));
+        spec.snapshots.push(Snapshot {
+            name,
+            scene,
+            offset_m: Vector3::zeros(),
+        });
+    }
+    lay_out_snapshots(&mut spec);
+    Ok((spec, problems))
+}
+
+/// The motion test's kept shapes as keyframes (time from the motion's start), with the robot
+/// at each frame's time; `None` with fewer than two frames.
+fn motion_test_animation(
+    setup: &Setup,
+    motion: &Motion,
+    test: &MotionTestReport,
+) -> Result<Option<SceneAnimation>, ViewError> {
+    let Some(start) = test.shapes.first().map(|frame| frame.time_s) else {
+        return Ok(None);
+    };
+    if test.shapes.len() < 2 {
+        return Ok(None);
+    }
+    let frames = test
+        .shapes
+        .iter()
+        .map(|frame| frame_scene(setup, motion, frame))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Some(SceneAnimation {
+        name: "motion test".into(),
+        times_s: test.shapes.iter().map(|f| f.time_s - start).collect(),
+        frames,
+    }))
+}
+
+/// The robot and the simulated cable at one kept instant.
+fn frame_scene(setup: &Setup, motion: &Motion, frame: &ShapeFrame) -> Result<PoseScene, ViewError> {
+    Ok(PoseScene {
+        link_poses: setup.robot.link_poses(&motion.joints_at(frame.time_s))?,
+        cable: frame.segments.iter().map(simulated_line).collect(),
+    })
+}
+
+fn simulated_line(segment: &SegmentNodes) -> CableLine {
+    CableLine {
+        name: segment_name(segment.segment),
+        nodes_m: segment.nodes_m.iter().map(|&p| Point3::from(p)).collect(),
+    }
+}
+
+/// The inter-link segments' critical poses, one per motion sample, named after every segment
+/// and reason that chose it: `critical pose 2: C1 joint_1 max, C3 joint_1 max (t = 1.250 s)`.
+fn critical_poses(report: &SolveReport) -> Vec<(String, usize)> {
+    let mut by_sample: std::collections::BTreeMap<usize, (f64, Vec<String>)> = Default::default();
+    for segment in report.segments.iter().filter(|s| s.kind == "inter-link") {
+        for pose in &segment.test_poses {
+            let entry = by_sample
+                .entry(pose.sample)
+                .or_insert_with(|| (pose.time_s, Vec::new()));
+            entry.1.push(format!("{} {}", segment.segment, pose.reason));
+        }
+    }
+    by_sample
+        .into_iter()
+        .enumerate()
+        .map(|(i, (sample, (time_s, why)))| {
+            let name = format!(
+                "critical pose {}: {} (t = {time_s:.3} s)",
+                i + 1,
+                why.join(", ")
+            );
+            (name, sample)
+        })
+        .collect()
+}
+
+/// Places the snapshots on a grid beside the main robot, far enough apart not to overlap.
+fn lay_out_snapshots(spec: &mut SceneSpec<'_>) {
+    let reach = std::iter::once(&spec.main)
+        .chain(spec.snapshots.iter().map(|s| &s.scene))
+        .flat_map(|scene| {
+            let links = scene.link_poses.iter().map(|p| p.translation.vector);
+            let cable = scene
+                .cable
+                .iter()
+                .flat_map(|l| l.nodes_m.iter().map(|p| p.coords));
+            links.chain(cable)
+        })
+        .map(|p| p.xy().norm())
+        .fold(0.0, f64::max);
+    // Robot colliders reach past the link origins: a margin of a few decimetres.
+    let spacing = 2.0 * reach + 0.6;
+    for (i, snapshot) in spec.snapshots.iter_mut().enumerate() {
+        let (row, column) = (i / SNAPSHOTS_PER_ROW, i % SNAPSHOTS_PER_ROW);
+        let centred = column as f64 - 0.5 * (SNAPSHOTS_PER_ROW - 1) as f64;
+        snapshot.offset_m = Vector3::new(centred * spacing, (row + 1) as f64 * spacing, 0.0);
+    }
+}
+
+/// `C1` for segment 0.
+fn segment_name(m: usize) -> String {
+    format!("C{}", m + 1)
+}

@@ -1,0 +1,298 @@
+//! `solve --report` and `export-scene` end to end: the folder holds every file, the page
+//! needs nothing outside it, the result file is what `--json` prints, the summary's hashes
+//! are the input files' own, the scene has the path's cable, the critical poses and the
+//! motion test's frames.
+
+mod common;
+
+use common::run;
+use serde_json::Value;
+use std::collections::BTreeSet;
+use std::path::Path;
+
+const MOTION: &str = "motions/viper_s850/pick_and_place.csv";
+const SMALL: &str = "tests/data/small_setup.toml";
+
+/// Every attribute value of `name` in `html` (`src="…"` and `href="…"`).
+fn attribute_values<'a>(html: &'a str, name: &str) -> Vec<&'a str> {
+    let marker = format!("{name}=\"");
+    html.match_indices(&marker)
+        .filter_map(|(i, _)| {
+            let rest = &html[i + marker.len()..];
+            rest.find('"').map(|end| &rest[..end])
+        })
+        .collect()
+}
+
+/// The scene's document, parsed and validated by the gltf crate's importer.
+fn scene(path: &Path) -> gltf::Gltf {
+    let bytes = std::fs::read(path).expect("scene file");
+    gltf::Gltf::from_slice(&bytes).expect("a valid glTF binary")
+}
+
+/// Names of the scene's nodes that start with `prefix`.
+fn nodes_named(scene: &gltf::Gltf, prefix: &str) -> Vec<String> {
+    scene
+        .nodes()
+        .filter_map(|n| n.name().map(str::to_string))
+        .filter(|name| name.starts_with(prefix))
+        .collect()
+}
+
+/// Distinct motion samples of the inter-link segments' critical poses in a result JSON.
+fn critical_samples(result: &Value) -> BTreeSet<u64> {
+    result["sets"]
+        .as_array()
+        .expect("sets")
+        .iter()
+        .filter(|s| s["kind"] == "inter-link")
+        .flat_map(|s| s["test_poses"].as_array().expect("poses").iter())
+        .map(|p| p["sample"].as_u64().expect("sample"))
+        .collect()
+}
+
+/// The small setup's solve fails every candidate in the motion test: the report shows the
+/// last one, where it fails.
+#[test]
+fn a_report_folder_holds_every_file_and_the_page_needs_nothing_else() {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let report = dir.path().join("out");
+    let report_arg = report.to_str().expect("utf-8");
+    let output = run(&[
+        "solve", "--setup", SMALL, MOTION, "--json", "--report", report_arg,
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+
+    let files: BTreeSet<String> = std::fs::read_dir(&report)
+        .expect("report folder")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    let expected = [
+        "index.html",
+        "joints.svg",
+        "result.json",
+        "scene.glb",
+        "sets.svg",
+        "stress.svg",
+        "summary.md",
+    ];
+    assert_eq!(files, expected.iter().map(|f| f.to_string()).collect());
+
+    // result.json is what --json printed.
+    let written = std::fs::read(report.join("result.json")).expect("result.json");
+    assert_eq!(written, output.stdout);
+    let result: Value = serde_json::from_slice(&written).expect("JSON");
+    assert_eq!(result["status"], "unsolved");
+
+    // The page refers only to files of the folder, and to each plot.
+    let html = std::fs::read_to_string(report.join("index.html")).expect("index.html");
+    let references: Vec<&str> = ["src", "href"]
+        .iter()
+        .flat_map(|a| attribute_values(&html, a))
+        .collect();
+    assert!(!references.is_empty());
+    for reference in &references {
+        assert!(
+            !reference.contains('/') && !reference.contains(':') && files.contains(*reference),
+            "index.html refers to {reference}, which is not a file of the folder"
+        );
+    }
+    for plot in ["joints.svg", "stress.svg", "sets.svg"] {
+        assert!(
+            references.contains(&plot),
+            "index.html does not show {plot}"
+        );
+    }
+    for outside in ["http", "<script", "@import", "url("] {
+        assert!(!html.contains(outside), "index.html contains {outside}");
+    }
+
+    // The summary names the inputs with the hashes of the files' bytes.
+    let summary = std::fs::read_to_string(report.join("summary.md")).expect("summary.md");
+    for file in [
+        SMALL,
+        "robots/viper_s850/viper_s850.urdf",
+        "cables/smc_le_cp_3.toml",
+        MOTION,
+    ] {
+        let bytes = std::fs::read(file).expect("input file");
+        let hash = format!("{:016x}", xxhash_rust::xxh3::xxh3_64(&bytes));
+        assert!(
+            summary.contains(&hash),
+            "summary.md lacks the hash of {file}"
+        );
+    }
+    assert!(summary.contains("unsolved"));
+
+    // The failed candidate's motion test: where it fails, on the plot.
+    let last = result["candidates"]
+        .as_array()
+        .expect("candidates")
+        .last()
+        .cloned();
+    let failure = last.and_then(|c| c["failure"].as_str().map(str::to_string));
+    let failure = failure.expect("the last candidate failed");
+    let stress = std::fs::read_to_string(report.join("stress.svg")).expect("stress.svg");
+    assert!(
+        stress.contains("FAILED"),
+        "stress.svg does not say it failed"
+    );
+    let t_fail = failure
+        .split("t = ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .expect("failure time");
+    assert!(
+        stress.contains(t_fail),
+        "stress.svg lacks the failure time {t_fail}"
+    );
+
+    // The scene: one snapshot per critical pose, the candidate's cable, an animation of its
+    // motion test up to the failure.
+    let glb = scene(&report.join("scene.glb"));
+    assert_eq!(
+        nodes_named(&glb, "critical pose ").len(),
+        critical_samples(&result).len()
+    );
+    assert!(!nodes_named(&glb, "C1 sub-segment").is_empty());
+    assert_eq!(glb.animations().count(), 1);
+}
+
+/// `export-scene path` draws the candidate of a result file at a pose and says whether each
+/// segment holds the limits there; wrong input is refused with exit code 2.
+#[test]
+fn export_scene_draws_a_candidate_at_a_pose() {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let result = dir.path().join("result.json");
+    let solved = run(&[
+        "solve",
+        "--setup",
+        SMALL,
+        MOTION,
+        "--no-motion-test",
+        "-o",
+        result.to_str().expect("utf-8"),
+    ]);
+    assert!(solved.status.success());
+    let json: Value =
+        serde_json::from_slice(&std::fs::read(&result).expect("result")).expect("JSON");
+    let sub_segments = json["ecpv"]["segments"][0]["sub_segments"]
+        .as_u64()
+        .expect("S");
+
+    let glb = dir.path().join("candidate.glb");
+    let (result_arg, glb_arg) = (
+        result.to_str().expect("utf-8"),
+        glb.to_str().expect("utf-8"),
+    );
+    let exported = run(&[
+        "export-scene",
+        "path",
+        "--setup",
+        SMALL,
+        "--result",
+        result_arg,
+        "--motion",
+        MOTION,
+        "--time-s",
+        "0",
+        "-o",
+        glb_arg,
+    ]);
+    let stdout = String::from_utf8_lossy(&exported.stdout);
+    assert!(
+        exported.status.success(),
+        "{}",
+        String::from_utf8_lossy(&exported.stderr)
+    );
+    // d̂ is robust at the first pose (an intra-link test pose of every segment).
+    assert!(
+        stdout.starts_with("C1 ") && stdout.contains("holds the limits"),
+        "{stdout}"
+    );
+    let scene = scene(&glb);
+    assert_eq!(
+        nodes_named(&scene, "C1 sub-segment").len() as u64,
+        sub_segments
+    );
+    assert_eq!(scene.animations().count(), 0);
+
+    for (args, message) in [
+        (vec!["--candidate", "7"], "no candidate of rank 7"),
+        (vec!["--joints-deg", "0,0"], "joint"),
+    ] {
+        let mut all = vec![
+            "export-scene",
+            "path",
+            "--setup",
+            SMALL,
+            "--result",
+            result_arg,
+        ];
+        all.extend(&args);
+        if !args.contains(&"--joints-deg") {
+            all.extend(["--joints-deg", "0,0,0,0,0,0"]);
+        }
+        all.extend(["-o", glb_arg]);
+        let refused = run(&all);
+        let stderr = String::from_utf8_lossy(&refused.stderr);
+        assert_eq!(refused.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(message), "{args:?}: {stderr}");
+    }
+}
+
+/// `export-scene segment` writes the shape `segment` computes: one tube piece per
+/// sub-segment, the two guides.
+#[test]
+fn export_scene_draws_a_segment() {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let glb = dir.path().join("segment.glb");
+    let output = run(&[
+        "export-scene",
+        "segment",
+        "--cable",
+        "cables/smc_le_cp_3.toml",
+        "--length-mm",
+        "400",
+        "--start",
+        "0,0,0,0,90,0",
+        "--end",
+        "250,0,-150,0,150,0",
+        "-o",
+        glb.to_str().expect("utf-8"),
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let scene = scene(&glb);
+    assert_eq!(nodes_named(&scene, "segment sub-segment").len(), 40);
+    assert_eq!(nodes_named(&scene, "start guide").len(), 1);
+    assert_eq!(nodes_named(&scene, "end guide").len(), 1);
+}
+
+/// A report folder that cannot be made is a bad argument: exit code 2, the path named.
+#[test]
+fn an_unwritable_report_folder_is_refused() {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let blocker = dir.path().join("file");
+    std::fs::write(&blocker, "not a folder").expect("written");
+    let inside = blocker.join("report");
+    let output = run(&[
+        "solve",
+        "--setup",
+        SMALL,
+        MOTION,
+        "--no-motion-test",
+        "--report",
+        inside.to_str().expect("utf-8"),
+    ]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("report"), "{stderr}");
+}
