@@ -85,7 +85,7 @@ fn run_path(args: PathArgs) -> Result<(), Failure> {
     let setup = Setup::from_file(&args.setup).map_err(Failure::input)?;
     let path = chosen_path(&args, &setup)?;
     let joints = chosen_pose(&args, &setup)?;
-    let (spec, _) = pose_scene(&setup, &path, &joints).map_err(Failure::input)?;
+    let spec = pose_scene(&setup, &path, &joints).map_err(Failure::input)?;
     write_scene(&args.output, &spec)?;
     emit(&path_checks(&setup, &path, &spec.main.link_poses)?)
 }

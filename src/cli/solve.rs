@@ -140,12 +140,18 @@ fn write_report_folder(
     options: &SolveOptions,
     report: &SolveReport,
 ) -> Result<(), Failure> {
+    let clock = std::time::Instant::now();
     let solved = options.setup_for(setup).map_err(Failure::input)?;
     let files = write_report(dir, &solved, motion, report).map_err(|e| match e {
         ReportError::Write { .. } => Failure::input(e),
         _ => Failure::unsolved(e),
     })?;
-    log::info!("report: {} files in {}", files.len(), dir.display());
+    log::info!(
+        "report: {} files in {}, {:.2} s",
+        files.len(),
+        dir.display(),
+        clock.elapsed().as_secs_f64()
+    );
     Ok(())
 }
 

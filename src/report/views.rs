@@ -29,19 +29,15 @@ pub enum ViewError {
 
 /// The static cable of `path` with the robot at `link_poses`: one centreline per segment
 /// that has a cable, and for each segment without an equilibrium, why.
-pub struct StaticCable {
+struct StaticCable {
     /// Centrelines of the segments that have one.
-    pub lines: Vec<CableLine>,
+    lines: Vec<CableLine>,
     /// `C3: no equilibrium (…)` for the others.
-    pub problems: Vec<String>,
+    problems: Vec<String>,
 }
 
 /// The static equilibrium of every segment of `path` with the links at `link_poses`.
-pub fn static_cable(
-    evaluator: &Evaluator<'_>,
-    path: &CablePath,
-    link_poses: &[Pose],
-) -> StaticCable {
+fn static_cable(evaluator: &Evaluator<'_>, path: &CablePath, link_poses: &[Pose]) -> StaticCable {
     let mut cable = StaticCable {
         lines: Vec::new(),
         problems: Vec::new(),
@@ -76,27 +72,33 @@ pub fn guide_marks(setup: &Setup, path: &CablePath) -> Vec<GuideMark> {
         .collect()
 }
 
-/// The scene of `path` with the robot at `joints` (rad / m): its static equilibrium there.
+/// The scene of `path` with the robot at `joints` (rad / m): its static equilibrium there
+/// (segments without one are left out; [`Evaluator::check_at`] says why).
 pub fn pose_scene<'a>(
     setup: &'a Setup,
     path: &CablePath,
     joints: &[f64],
-) -> Result<(SceneSpec<'a>, StaticCable), ViewError> {
+) -> Result<SceneSpec<'a>, ViewError> {
     let evaluator = Evaluator::new(setup, ConnectMethod::Hermite)?;
     let link_poses = setup.robot.link_poses(joints)?;
-    let cable = static_cable(&evaluator, path, &link_poses);
-    let spec = SceneSpec {
+    let cable = static_cable(&evaluator, path, &link_poses).lines;
+    Ok(still_scene(
+        setup,
+        Some(path),
+        PoseScene { link_poses, cable },
+    ))
+}
+
+/// A scene of `main` alone, with the guides of `path`.
+fn still_scene<'a>(setup: &'a Setup, path: Option<&CablePath>, main: PoseScene) -> SceneSpec<'a> {
+    SceneSpec {
         robot: &setup.robot,
         cable_radius_m: 0.5 * setup.cable.diameter_m,
-        main: PoseScene {
-            link_poses,
-            cable: cable.lines.clone(),
-        },
-        guides: guide_marks(setup, path),
+        main,
+        guides: path.map(|p| guide_marks(setup, p)).unwrap_or_default(),
         animation: None,
         snapshots: Vec::new(),
-    };
-    Ok((spec, cable))
+    }
 }
 
 /// The candidate a report shows: d*, the untested d̂, or the last one tried when none passed
@@ -132,14 +134,7 @@ pub fn solve_scene<'a>(
         ))
     };
     let (main, mut problems) = at(&motion.samples()[0])?;
-    let mut spec = SceneSpec {
-        robot: &setup.robot,
-        cable_radius_m: 0.5 * setup.cable.diameter_m,
-        main,
-        guides: path.map(|p| guide_marks(setup, p)).unwrap_or_default(),
-        animation: None,
-        snapshots: Vec::new(),
-    };
+    let mut spec = still_scene(setup, path, main);
     if let Some(test) = &report.motion_test {
         spec.animation = motion_test_animation(setup, motion, test)?;
     }
