@@ -669,12 +669,8 @@ fn inconsistent_specs_are_refused_with_the_matching_error() {
     assert!(matches!(to_glb(&spec), Err(SceneError::CableRadius(_))));
 }
 
-const TETRAHEDRON_STL: &str = "solid t
-facet normal 0 0 -1\n outer loop\n vertex 0 0 0\n vertex 10 0 0\n vertex 0 10 0\n endloop\nendfacet
-facet normal 0 -1 0\n outer loop\n vertex 0 0 0\n vertex 0 0 10\n vertex 10 0 0\n endloop\nendfacet
-facet normal -1 0 0\n outer loop\n vertex 0 0 0\n vertex 0 10 0\n vertex 0 0 10\n endloop\nendfacet
-facet normal 1 1 1\n outer loop\n vertex 10 0 0\n vertex 0 0 10\n vertex 0 10 0\n endloop\nendfacet
-endsolid t\n";
+/// A unit right tetrahedron as ASCII STL (vertices in millimetres).
+const TETRAHEDRON_STL: &str = include_str!("data/tetrahedron.stl");
 
 #[test]
 fn spheres_capsules_and_stl_meshes_are_drawn_to_size() {

@@ -209,12 +209,7 @@ fn primitive_shapes_keep_urdf_dimensions_and_bad_ones_are_refused() {
 }
 
 /// A unit right tetrahedron as ASCII STL (vertices in millimetres).
-const TETRAHEDRON_STL: &str = "solid t
-facet normal 0 0 -1\n outer loop\n vertex 0 0 0\n vertex 10 0 0\n vertex 0 10 0\n endloop\nendfacet
-facet normal 0 -1 0\n outer loop\n vertex 0 0 0\n vertex 0 0 10\n vertex 10 0 0\n endloop\nendfacet
-facet normal -1 0 0\n outer loop\n vertex 0 0 0\n vertex 0 10 0\n vertex 0 0 10\n endloop\nendfacet
-facet normal 1 1 1\n outer loop\n vertex 10 0 0\n vertex 0 0 10\n vertex 0 10 0\n endloop\nendfacet
-endsolid t\n";
+const TETRAHEDRON_STL: &str = include_str!("data/tetrahedron.stl");
 
 fn mesh_robot(filename: &str) -> String {
     one_joint(r#"<joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint>"#).replace(

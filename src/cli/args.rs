@@ -29,6 +29,15 @@ pub fn number_list(text: &str) -> Result<Vec<f64>, String> {
         .collect()
 }
 
+/// The number of sub-segments of `pitch_m` in `length_mm`, when it is a finite, whole,
+/// non-negative number of them (within 1e-6 mm).
+pub fn whole_sub_segments(length_mm: f64, pitch_m: f64) -> Option<usize> {
+    let pitch_mm = pitch_m * 1e3;
+    let count = (length_mm / pitch_mm).round();
+    (length_mm.is_finite() && count >= 0.0 && (count * pitch_mm - length_mm).abs() < 1e-6)
+        .then_some(count as usize)
+}
+
 /// Parses a vector `x,y,z`.
 pub fn vector3(text: &str) -> Result<nalgebra::Vector3<f64>, String> {
     let values = number_list(text)?;

@@ -163,18 +163,16 @@ fn path_from_names(
     lengths_mm: &[f64],
     names: &[String],
 ) -> Result<CablePath, Failure> {
-    let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+    let pitch_m = setup.cable.sub_segment_pitch_m;
     let lengths = lengths_mm
         .iter()
         .map(|&mm| {
-            let s = (mm / pitch_mm).round();
-            if mm.is_finite() && s >= 0.0 && (s * pitch_mm - mm).abs() < 1e-6 {
-                Ok(s as usize)
-            } else {
-                Err(Failure::input(anyhow::anyhow!(
-                    "--lengths-mm {mm}: not a whole number of {pitch_mm} mm sub-segments"
-                )))
-            }
+            args::whole_sub_segments(mm, pitch_m).ok_or_else(|| {
+                Failure::input(anyhow::anyhow!(
+                    "--lengths-mm {mm}: not a whole number of {} mm sub-segments",
+                    pitch_m * 1e3
+                ))
+            })
         })
         .collect::<Result<Vec<_>, _>>()?;
     let configurations = setup

@@ -162,12 +162,10 @@ fn motion_test_animation(
     motion: &Motion,
     test: &MotionTestReport,
 ) -> Result<Option<SceneAnimation>, ViewError> {
-    let Some(start) = test.shapes.first().map(|frame| frame.time_s) else {
-        return Ok(None);
-    };
     if test.shapes.len() < 2 {
         return Ok(None);
     }
+    let start = test.shapes[0].time_s;
     let frames = test
         .shapes
         .iter()

@@ -173,12 +173,11 @@ fn write_scene(
 
 /// The number of sub-segments in `length_mm`, refusing lengths that are not a whole number.
 fn sub_segment_count(length_mm: f64, pitch_m: f64) -> anyhow::Result<usize> {
-    let pitch_mm = pitch_m * 1e3;
-    let count = (length_mm / pitch_mm).round();
-    if !(length_mm.is_finite() && count >= 1.0 && (count * pitch_mm - length_mm).abs() < 1e-6) {
-        anyhow::bail!(
-            "--length-mm {length_mm}: must be a positive whole number of {pitch_mm} mm sub-segments (the cable's sub_segment_pitch_mm)"
-        );
+    match args::whole_sub_segments(length_mm, pitch_m) {
+        Some(count) if count >= 1 => Ok(count),
+        _ => anyhow::bail!(
+            "--length-mm {length_mm}: must be a positive whole number of {} mm sub-segments (the cable's sub_segment_pitch_mm)",
+            pitch_m * 1e3
+        ),
     }
-    Ok(count as usize)
 }
