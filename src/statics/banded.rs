@@ -12,7 +12,7 @@ pub(crate) const HALF_BANDWIDTH: usize = 8;
 pub(crate) const NODE_REACH: usize = 2;
 
 /// Lower band of a symmetric `n × n` matrix: `rows[i][k] = A(i, i − k)`.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub(crate) struct SymmetricBand {
     rows: Vec<[f64; HALF_BANDWIDTH + 1]>,
 }
@@ -23,6 +23,7 @@ pub(crate) struct NotPositiveDefinite;
 
 impl SymmetricBand {
     /// The zero matrix of order `n`.
+    #[cfg(test)]
     pub(crate) fn zeros(n: usize) -> Self {
         Self {
             rows: vec![[0.0; HALF_BANDWIDTH + 1]; n],
@@ -34,15 +35,31 @@ impl SymmetricBand {
         self.rows.len()
     }
 
-    /// Sets every entry to zero, keeping the order.
-    pub(crate) fn clear(&mut self) {
-        self.rows.fill([0.0; HALF_BANDWIDTH + 1]);
+    /// The zero matrix of order `n`, reusing the storage.
+    pub(crate) fn reset(&mut self, n: usize) {
+        self.rows.clear();
+        self.rows.resize(n, [0.0; HALF_BANDWIDTH + 1]);
+    }
+
+    /// Adds the node block `(p, q)`, `p ≥ q`, of a symmetric matrix: `A(3p + a, 3q + b) +=
+    /// block(a, b)` (for `p = q` the block must be symmetric; its lower triangle is used).
+    pub(crate) fn add_lower_block(&mut self, p: usize, q: usize, block: &Matrix3<f64>) {
+        debug_assert!(p >= q && p - q <= NODE_REACH);
+        let offset = 3 * (p - q);
+        for a in 0..3 {
+            let row = &mut self.rows[3 * p + a];
+            let columns = if p == q { a + 1 } else { 3 };
+            for b in 0..columns {
+                row[offset + a - b] += block[(a, b)];
+            }
+        }
     }
 
     /// Adds one node block of a Hessian given as the sum of blocks for ordered node pairs:
     /// an off-diagonal block contributes half to `A(p, q)` and half, transposed, to
     /// `A(q, p)`, so it must be added for `(p, q)` and for `(q, p)`; a diagonal block
     /// contributes its symmetric part. Nodes must be at most [`NODE_REACH`] apart.
+    #[cfg(test)]
     pub(crate) fn add_node_block(&mut self, p: usize, q: usize, block: &Matrix3<f64>) {
         debug_assert!(p.abs_diff(q) <= NODE_REACH);
         if p == q {
@@ -67,19 +84,13 @@ impl SymmetricBand {
         }
     }
 
-    /// Adds `shift` to every diagonal entry.
-    pub(crate) fn add_to_diagonal(&mut self, shift: f64) {
-        for row in &mut self.rows {
-            row[0] += shift;
-        }
-    }
-
     /// Largest absolute diagonal entry (0 for an empty matrix).
     pub(crate) fn max_diagonal(&self) -> f64 {
         self.rows.iter().map(|r| r[0].abs()).fold(0.0, f64::max)
     }
 
     /// `y = A x`.
+    #[cfg(test)]
     pub(crate) fn multiply(&self, x: &[f64]) -> Vec<f64> {
         let n = self.order();
         let mut y = vec![0.0; n];
@@ -95,39 +106,75 @@ impl SymmetricBand {
         y
     }
 
-    /// Cholesky factor `L` (`A = L Lᵀ`), stored in the same band layout.
-    pub(crate) fn cholesky(&self) -> Result<BandCholesky, NotPositiveDefinite> {
+    /// `A + shift·I = L D Lᵀ` into `out` (its storage reused), with unit lower-triangular `L`
+    /// in the band layout and diagonal `D`, without pivoting: also for indefinite matrices,
+    /// whose inertia the signs of `D` give (Sylvester's law). `Err` when a pivot is below
+    /// `tiny` in magnitude (relative to the largest diagonal entry), where the factorization
+    /// without pivoting is unreliable.
+    pub(crate) fn ldlt_into(
+        &self,
+        shift: f64,
+        tiny: f64,
+        out: &mut BandLdlt,
+    ) -> Result<(), NotPositiveDefinite> {
         let n = self.order();
-        let mut factor = self.rows.clone();
+        let floor = tiny * (self.max_diagonal() + shift.abs()).max(f64::MIN_POSITIVE);
+        let factor = &mut out.factor;
+        factor.clear();
+        factor.extend_from_slice(&self.rows);
+        out.pivots.clear();
+        out.pivots.resize(n, 0.0);
+        out.negative = 0;
+        let pivots = &mut out.pivots;
         for i in 0..n {
             let first = i.saturating_sub(HALF_BANDWIDTH);
-            for j in first..=i {
+            // w[j − first] = L(i, j) D(j): the products the rest of row i reuses.
+            let mut w = [0.0; HALF_BANDWIDTH];
+            let mut pivot = factor[i][0] + shift;
+            for j in first..i {
+                let row_j = &factor[j];
                 let mut sum = factor[i][i - j];
-                for k in first.max(j.saturating_sub(HALF_BANDWIDTH))..j {
-                    sum -= factor[i][i - k] * factor[j][j - k];
+                for k in first..j {
+                    sum -= w[k - first] * row_j[j - k];
                 }
-                if j == i {
-                    if sum.is_nan() || sum <= 0.0 {
-                        return Err(NotPositiveDefinite);
-                    }
-                    factor[i][0] = sum.sqrt();
-                } else {
-                    factor[i][i - j] = sum / factor[j][0];
-                }
+                w[j - first] = sum;
+                let l = sum / pivots[j];
+                factor[i][i - j] = l;
+                pivot -= l * sum;
             }
+            if pivot.is_nan() || pivot.abs() < floor {
+                return Err(NotPositiveDefinite);
+            }
+            if pivot < 0.0 {
+                out.negative += 1;
+            }
+            pivots[i] = pivot;
+            factor[i][0] = 1.0;
         }
-        Ok(BandCholesky { factor })
+        Ok(())
+    }
+
+    /// [`SymmetricBand::ldlt_into`] a new factorization, without shift.
+    #[cfg(test)]
+    pub(crate) fn ldlt(&self, tiny: f64) -> Result<BandLdlt, NotPositiveDefinite> {
+        let mut out = BandLdlt::default();
+        self.ldlt_into(0.0, tiny, &mut out).map(|()| out)
     }
 }
 
-/// The Cholesky factor of a [`SymmetricBand`].
-#[derive(Debug, Clone)]
-pub(crate) struct BandCholesky {
+/// The `L D Lᵀ` factorization of a [`SymmetricBand`] (see [`SymmetricBand::ldlt_into`]).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct BandLdlt {
+    /// Unit lower-triangular `L`, band layout (`factor[i][0]` = 1).
     factor: Vec<[f64; HALF_BANDWIDTH + 1]>,
+    /// `D`.
+    pivots: Vec<f64>,
+    /// Negative entries of `D`: the number of negative eigenvalues of the factored matrix.
+    pub(crate) negative: usize,
 }
 
-impl BandCholesky {
-    /// Solves `A x = b` in place (`b` becomes `x`).
+impl BandLdlt {
+    /// Solves `L D Lᵀ x = b` in place (`b` becomes `x`).
     pub(crate) fn solve_in_place(&self, b: &mut [f64]) {
         let n = self.factor.len();
         for i in 0..n {
@@ -135,14 +182,17 @@ impl BandCholesky {
             for k in 1..=HALF_BANDWIDTH.min(i) {
                 sum -= self.factor[i][k] * b[i - k];
             }
-            b[i] = sum / self.factor[i][0];
+            b[i] = sum;
+        }
+        for (value, pivot) in b.iter_mut().zip(&self.pivots) {
+            *value /= pivot;
         }
         for i in (0..n).rev() {
             let mut sum = b[i];
             for k in 1..=HALF_BANDWIDTH.min(n - 1 - i) {
                 sum -= self.factor[i + k][k] * b[i + k];
             }
-            b[i] = sum / self.factor[i][0];
+            b[i] = sum;
         }
     }
 }
@@ -184,6 +234,21 @@ mod tests {
         (band, dense)
     }
 
+    /// Lower blocks added directly give the matrix the ordered-pair blocks give.
+    #[test]
+    fn lower_blocks_build_the_same_matrix() {
+        let (band, _) = example(5);
+        let mut lower = SymmetricBand::zeros(15);
+        for p in 0..5_usize {
+            for q in p.saturating_sub(NODE_REACH)..=p {
+                let entry = |i: usize, j: usize| band.rows[i.max(j)][i.max(j) - i.min(j)];
+                let block = Matrix3::from_fn(|a, b| entry(3 * p + a, 3 * q + b));
+                lower.add_lower_block(p, q, &block);
+            }
+        }
+        assert_eq!(lower.rows, band.rows);
+    }
+
     #[test]
     fn band_product_matches_the_dense_matrix() {
         let (band, dense) = example(7);
@@ -195,22 +260,54 @@ mod tests {
     }
 
     #[test]
-    fn cholesky_solves_against_nalgebra_lu() {
+    fn ldlt_solves_against_nalgebra_lu() {
         let (band, dense) = example(9);
         let b: Vec<f64> = (0..27).map(|i| (i as f64 * 1.3).cos()).collect();
         let mut x = b.clone();
-        band.cholesky().unwrap().solve_in_place(&mut x);
+        let factor = band.ldlt(1e-14).unwrap();
+        assert_eq!(factor.negative, 0);
+        factor.solve_in_place(&mut x);
         let reference = dense.lu().solve(&DVector::from_column_slice(&b)).unwrap();
         for (x, r) in x.iter().zip(reference.iter()) {
             assert!((x - r).abs() < 1e-12, "{x} vs {r}");
         }
     }
 
+    /// An indefinite matrix: the factorization solves it and counts its negative eigenvalues
+    /// as nalgebra's symmetric eigen-decomposition does.
     #[test]
-    fn indefinite_matrices_are_refused() {
+    fn ldlt_of_an_indefinite_matrix_gives_its_inertia() {
+        let (mut band, mut dense) = example(9);
+        for (node, shift) in [(2, -14.0), (6, -13.0)] {
+            band.add_node_block(node, node, &Matrix3::from_diagonal_element(shift));
+            for a in 0..3 {
+                dense[(3 * node + a, 3 * node + a)] += shift;
+            }
+        }
+        let negative = dense
+            .clone()
+            .symmetric_eigen()
+            .eigenvalues
+            .iter()
+            .filter(|v| **v < 0.0)
+            .count();
+        let factor = band.ldlt(1e-14).unwrap();
+        assert!(negative > 0);
+        assert_eq!(factor.negative, negative);
+        let b: Vec<f64> = (0..27).map(|i| (i as f64 * 0.7).sin()).collect();
+        let mut x = b.clone();
+        factor.solve_in_place(&mut x);
+        let reference = dense.lu().solve(&DVector::from_column_slice(&b)).unwrap();
+        for (x, r) in x.iter().zip(reference.iter()) {
+            assert!((x - r).abs() < 1e-9, "{x} vs {r}");
+        }
+    }
+
+    #[test]
+    fn a_zero_pivot_is_refused() {
         let mut band = SymmetricBand::zeros(6);
-        band.add_to_diagonal(1.0);
-        band.add_node_block(1, 1, &Matrix3::from_diagonal_element(-3.0));
-        assert_eq!(band.cholesky().err(), Some(NotPositiveDefinite));
+        band.add_node_block(0, 0, &Matrix3::identity());
+        band.add_node_block(1, 1, &Matrix3::zeros());
+        assert_eq!(band.ldlt(1e-12).err(), Some(NotPositiveDefinite));
     }
 }

@@ -53,9 +53,30 @@ impl EdgePairDerivatives {
     }
 }
 
+impl EdgePairDerivatives {
+    /// Value and gradient only (Hessian blocks zero).
+    fn first_order(value: f64, grad_a: Vector3<f64>, grad_b: Vector3<f64>) -> Self {
+        Self {
+            value,
+            grad_a,
+            grad_b,
+            hess_aa: Matrix3::zeros(),
+            hess_ab: Matrix3::zeros(),
+            hess_ba: Matrix3::zeros(),
+            hess_bb: Matrix3::zeros(),
+        }
+    }
+}
+
 /// Bending energy `2c (1 − u)/(1 + u)` of a joint with stiffness `c` (N·m/rad) and its
-/// derivatives with respect to the edge vectors.
-pub(crate) fn bending(a: &Edge, b: &Edge, stiffness: f64) -> EdgePairDerivatives {
+/// derivatives with respect to the edge vectors (the Hessian blocks only `with_hessian`,
+/// else zero).
+pub(crate) fn bending(
+    a: &Edge,
+    b: &Edge,
+    stiffness: f64,
+    with_hessian: bool,
+) -> EdgePairDerivatives {
     let u = a.unit.dot(&b.unit);
     let chi = 1.0 + u;
     let value = 2.0 * stiffness * (1.0 - u) / chi;
@@ -63,6 +84,9 @@ pub(crate) fn bending(a: &Edge, b: &Edge, stiffness: f64) -> EdgePairDerivatives
     let curvature = 8.0 * stiffness / (chi * chi * chi);
     let du_da = (b.unit - u * a.unit) / a.length;
     let du_db = (a.unit - u * b.unit) / b.length;
+    if !with_hessian {
+        return EdgePairDerivatives::first_order(value, slope * du_da, slope * du_db);
+    }
     let cross_term = |x: &Edge, y: &Edge| {
         // ∂²u/∂x² = −(y xᵀ + x yᵀ + u I − 3u x xᵀ)/|x|² in unit directions.
         -(y.unit * x.unit.transpose()
@@ -86,11 +110,14 @@ pub(crate) fn bending(a: &Edge, b: &Edge, stiffness: f64) -> EdgePairDerivatives
     }
 }
 
-/// Gradient and Hessian of the reference twist of the joint (value 0: only its change
-/// matters; the total twist is measured separately by transport).
-pub(crate) fn reference_twist(a: &Edge, b: &Edge) -> EdgePairDerivatives {
+/// Gradient and (`with_hessian`) Hessian of the reference twist of the joint (value 0: only
+/// its change matters; the total twist is measured separately by transport).
+pub(crate) fn reference_twist(a: &Edge, b: &Edge, with_hessian: bool) -> EdgePairDerivatives {
     let chi = 1.0 + a.unit.dot(&b.unit);
     let kb = 2.0 * a.unit.cross(&b.unit) / chi;
+    if !with_hessian {
+        return EdgePairDerivatives::first_order(0.0, 0.5 / a.length * kb, 0.5 / b.length * kb);
+    }
     let tilde = (a.unit + b.unit) / chi;
     // ∂κb/∂a and ∂κb/∂b.
     let dkb_da = -((2.0 / chi) * b.unit.cross_matrix() + kb * tilde.transpose()) / a.length;
@@ -143,7 +170,7 @@ mod tests {
         let (a, b) = edges();
         let (ea, eb) = (Edge::new(a), Edge::new(b));
         let phi = a.angle(&b);
-        let d = bending(&ea, &eb, 0.3);
+        let d = bending(&ea, &eb, 0.3, true);
         assert!((d.value - 0.5 * 0.3 * (2.0 * (phi / 2.0).tan()).powi(2)).abs() < 1e-15);
     }
 
@@ -179,15 +206,38 @@ mod tests {
     }
 
     fn bending_of_stiffness_0_3(a: &Edge, b: &Edge) -> EdgePairDerivatives {
-        bending(a, b, 0.3)
+        bending(a, b, 0.3, true)
+    }
+
+    fn reference_twist_with_hessian(a: &Edge, b: &Edge) -> EdgePairDerivatives {
+        reference_twist(a, b, true)
+    }
+
+    #[test]
+    fn first_order_derivatives_equal_the_full_ones() {
+        let (a, b) = edges();
+        let (a, b) = (Edge::new(a), Edge::new(b));
+        for (full, first) in [
+            (bending(&a, &b, 0.3, true), bending(&a, &b, 0.3, false)),
+            (
+                reference_twist(&a, &b, true),
+                reference_twist(&a, &b, false),
+            ),
+        ] {
+            assert_eq!(
+                (full.value, full.grad_a, full.grad_b),
+                (first.value, first.grad_a, first.grad_b)
+            );
+        }
     }
 
     #[test]
     fn bending_derivatives_match_finite_differences() {
-        let energy =
-            |a: &Vector3<f64>, b: &Vector3<f64>| bending(&Edge::new(*a), &Edge::new(*b), 0.3).value;
+        let energy = |a: &Vector3<f64>, b: &Vector3<f64>| {
+            bending(&Edge::new(*a), &Edge::new(*b), 0.3, true).value
+        };
         let (a, b) = edges();
-        let d = bending(&Edge::new(a), &Edge::new(b), 0.3);
+        let d = bending(&Edge::new(a), &Edge::new(b), 0.3, true);
         let g = numeric_gradient(energy);
         for k in 0..3 {
             assert!((d.grad_a[k] - g[k]).abs() < 1e-6 * d.grad_a.norm());
@@ -198,6 +248,6 @@ mod tests {
 
     #[test]
     fn reference_twist_hessian_is_the_derivative_of_its_gradient() {
-        assert_hessian_is_the_gradient_derivative(reference_twist);
+        assert_hessian_is_the_gradient_derivative(reference_twist_with_hessian);
     }
 }

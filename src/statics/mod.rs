@@ -116,7 +116,7 @@ pub enum StaticsError {
 ///
 /// `initial_twist_rad` picks the branch of the total twist (e.g. the previous pose's
 /// solution when a guide turns by more than half a turn); `None` takes the principal branch
-/// `(−π, π]` of the start shape.
+/// `(−π, π]` of the start shape. A [`StaticSolver`] does the same with reused buffers.
 pub fn solve_segment(
     params: &RodParameters,
     start: &Pose,
@@ -125,41 +125,73 @@ pub fn solve_segment(
     initial_twist_rad: Option<f64>,
     options: &SolverOptions,
 ) -> Result<Equilibrium, StaticsError> {
-    check_input(params, start, far_end, initial_nodes, options)?;
-    let rod = Rod::new(
-        *params,
-        *start,
-        clamped_pose(far_end),
-        initial_nodes.len() - 1,
-    );
-    let x = rod.free_coordinates(initial_nodes);
-    let twist = match initial_twist_rad {
-        Some(twist) => twist,
-        None => rod.evaluate(&x, 0.0, None).twist,
-    };
-    let result = newton::minimize(
-        &rod,
-        x,
-        twist,
-        options.force_tolerance_n,
-        options.max_iterations,
-    );
-    if let Some(reason) = result.failure {
-        return Err(StaticsError::NotConverged {
-            reason,
+    StaticSolver::default().solve(
+        params,
+        start,
+        far_end,
+        initial_nodes,
+        initial_twist_rad,
+        options,
+    )
+}
+
+/// [`solve_segment`] with buffers kept from one solve to the next: for many solves in a
+/// row (an attachment test, a sweep over the poses of a motion), where allocating them anew
+/// would cost a noticeable part of a solve.
+#[derive(Debug, Clone, Default)]
+pub struct StaticSolver {
+    workspace: newton::Workspace,
+}
+
+impl StaticSolver {
+    /// See [`solve_segment`].
+    pub fn solve(
+        &mut self,
+        params: &RodParameters,
+        start: &Pose,
+        far_end: &FarEnd,
+        initial_nodes: &[Point3<f64>],
+        initial_twist_rad: Option<f64>,
+        options: &SolverOptions,
+    ) -> Result<Equilibrium, StaticsError> {
+        check_input(params, start, far_end, initial_nodes, options)?;
+        let rod = Rod::new(
+            *params,
+            *start,
+            clamped_pose(far_end),
+            initial_nodes.len() - 1,
+        );
+        let x = rod.free_coordinates(initial_nodes);
+        let twist = match initial_twist_rad {
+            Some(twist) => twist,
+            None => rod.evaluate(&x, 0.0, None).twist,
+        };
+        let result = newton::minimize(
+            &rod,
+            x,
+            twist,
+            options.force_tolerance_n,
+            options.max_iterations,
+            &mut self.workspace,
+        );
+        if let Some(reason) = result.failure {
+            return Err(StaticsError::NotConverged {
+                reason,
+                iterations: result.iterations,
+                residual_n: result.residual,
+            });
+        }
+        let nodes = rod.nodes(&result.x);
+        let evaluation = &self.workspace.evaluation;
+        Ok(Equilibrium {
+            frames: rod.frames(&nodes, evaluation.twist),
+            nodes,
+            twist_rad: evaluation.twist,
+            energy: evaluation.terms,
             iterations: result.iterations,
             residual_n: result.residual,
-        });
+        })
     }
-    let nodes = rod.nodes(&result.x);
-    Ok(Equilibrium {
-        frames: rod.frames(&nodes, result.evaluation.twist),
-        nodes,
-        twist_rad: result.evaluation.twist,
-        energy: result.evaluation.terms,
-        iterations: result.iterations,
-        residual_n: result.residual,
-    })
 }
 
 /// The potential energy of the shape `nodes` (`S + 1` nodes; the first and, for a clamped

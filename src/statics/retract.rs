@@ -22,15 +22,36 @@ const TOLERANCE: f64 = 1e-14;
 /// Relative diagonal damping: `J Jᵀ` is singular for a straight chain between clamps.
 const DAMPING: f64 = 1e-12;
 
+/// Buffers a retraction reuses.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Retraction {
+    edges: Vec<Vector3<f64>>,
+    lambda: Vec<f64>,
+    ratios: Vec<f64>,
+}
+
 /// Moves the free nodes (`free[k]`) so that edge `i` (node `i` → `i + 1`) gets length
 /// `targets[i]`. Returns false, leaving `nodes` unspecified, if the iteration produced
 /// non-finite values.
-pub(crate) fn restore_lengths(nodes: &mut [Point3<f64>], targets: &[f64], free: &[bool]) -> bool {
+pub(crate) fn restore_lengths(
+    nodes: &mut [Point3<f64>],
+    targets: &[f64],
+    free: &[bool],
+    buffers: &mut Retraction,
+) -> bool {
     let count = targets.len();
-    let mut lambda = vec![0.0; count];
-    let mut scratch = vec![0.0; count];
+    let Retraction {
+        edges,
+        lambda,
+        ratios,
+    } = buffers;
+    lambda.clear();
+    lambda.resize(count, 0.0);
+    ratios.clear();
+    ratios.resize(count, 0.0);
     for _ in 0..ITERATIONS {
-        let edges: Vec<Vector3<f64>> = nodes.windows(2).map(|w| w[1] - w[0]).collect();
+        edges.clear();
+        edges.extend(nodes.windows(2).map(|w| w[1] - w[0]));
         let mut worst: f64 = 0.0;
         for i in 0..count {
             lambda[i] = edges[i].norm_squared() - targets[i] * targets[i];
@@ -50,7 +71,7 @@ pub(crate) fn restore_lengths(nodes: &mut [Point3<f64>], targets: &[f64], free: 
                 0.0
             }
         };
-        solve_tridiagonal(diagonal, off, &mut lambda, &mut scratch);
+        solve_tridiagonal(diagonal, off, lambda, ratios);
         for (k, node) in nodes.iter_mut().enumerate() {
             if !free[k] {
                 continue;
@@ -109,7 +130,12 @@ mod tests {
             let mut free = vec![true; 7];
             free[0] = false;
             free[6] = free_end;
-            assert!(restore_lengths(&mut moved, &targets, &free));
+            assert!(restore_lengths(
+                &mut moved,
+                &targets,
+                &free,
+                &mut Retraction::default()
+            ));
             for (i, w) in moved.windows(2).enumerate() {
                 assert!(((w[1] - w[0]).norm() - targets[i]).abs() < 1e-14);
             }

@@ -21,12 +21,17 @@
 //! The twist couples every node with every other through `Ψ`: its Hessian is the banded
 //! `(kt/S) Ψ ∇²Ψ` plus the rank-one `(kt/S) ∇Ψ ∇Ψᵀ`, which the Newton step handles by
 //! Sherman–Morrison so that the linear algebra stays banded.
+//!
+//! An implicit time step of the dynamics (module [`crate::dynamics`]) minimizes the same
+//! energy plus an **inertial term** `½ Σ w_k |x_k − a_k|²` over the free nodes ([`Inertia`]):
+//! `w_k = m_k / h²` and `a_k` the position the node would reach by inertia alone. It adds
+//! only to the diagonal, so the structure and the Newton solver stay those of the statics.
 
 use nalgebra::{Matrix3, Point3, Rotation3, Unit, Vector3};
 
 use super::banded::SymmetricBand;
 use super::joint::{Edge, EdgePairDerivatives, bending, reference_twist};
-use super::retract::restore_lengths;
+use super::retract::{Retraction, restore_lengths};
 use crate::cable::CableSpec;
 use crate::pose::Pose;
 
@@ -76,10 +81,20 @@ pub(crate) struct Rod {
     /// The end guide; `None` for a free end.
     end: Option<Pose>,
     sub_segments: usize,
+    inertia: Option<Inertia>,
+}
+
+/// The inertial term `½ Σ w_k |x_k − a_k|²` of an implicit time step, over the free nodes.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Inertia {
+    /// `w_k` per free node (N/m): the node's mass over the squared effective step.
+    pub(crate) weights: Vec<f64>,
+    /// `a_k`, three coordinates per free node (m).
+    pub(crate) anchors: Vec<f64>,
 }
 
 /// The potential energy of a shape, term by term (J).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct EnergyTerms {
     /// Axial springs.
     pub stretch_j: f64,
@@ -99,8 +114,9 @@ impl EnergyTerms {
 }
 
 /// Energy, gradient and total twist at one configuration.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub(crate) struct Evaluation {
+    /// The objective: the potential energy plus the inertial term, if any (J).
     pub(crate) energy: f64,
     pub(crate) terms: EnergyTerms,
     /// `∂E/∂x` over the free coordinates (N).
@@ -109,6 +125,17 @@ pub(crate) struct Evaluation {
     pub(crate) twist: f64,
     /// `∂Ψ/∂x` over the free coordinates (1/m); empty for a free end.
     pub(crate) twist_gradient: Vec<f64>,
+}
+
+/// Buffers an evaluation reuses, so that a Newton iteration allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Scratch {
+    nodes: Vec<Point3<f64>>,
+    edges: Vec<Edge>,
+    moves: Vec<Point3<f64>>,
+    targets: Vec<f64>,
+    free: Vec<bool>,
+    retraction: Retraction,
 }
 
 impl Rod {
@@ -123,6 +150,26 @@ impl Rod {
             start,
             end,
             sub_segments,
+            inertia: None,
+        }
+    }
+
+    /// The same rod with the inertial term of a time step (one weight per free node, three
+    /// anchor coordinates per free node).
+    pub(crate) fn with_inertia(mut self, inertia: Inertia) -> Self {
+        debug_assert_eq!(inertia.weights.len(), self.free_nodes());
+        debug_assert_eq!(inertia.anchors.len(), 3 * self.free_nodes());
+        self.inertia = Some(inertia);
+        self
+    }
+
+    /// Lumped mass of node `k` (kg): `ρ l` inside, `ρ l / 2` at a free end.
+    pub(crate) fn node_mass(&self, k: usize) -> f64 {
+        let mass = self.params.mass_per_length_kg_m * self.params.pitch_m;
+        if k == self.sub_segments && self.end.is_none() {
+            0.5 * mass
+        } else {
+            mass
         }
     }
 
@@ -147,12 +194,18 @@ impl Rod {
     /// All `S + 1` nodes: the clamped ones and the free coordinates `x`.
     pub(crate) fn nodes(&self, x: &[f64]) -> Vec<Point3<f64>> {
         let mut nodes = Vec::with_capacity(self.sub_segments + 1);
+        self.fill_nodes(x, &mut nodes);
+        nodes
+    }
+
+    /// [`Rod::nodes`] into `nodes`.
+    fn fill_nodes(&self, x: &[f64], nodes: &mut Vec<Point3<f64>>) {
+        nodes.clear();
         nodes.push(Point3::from(self.start.translation.vector));
         nodes.extend(x.chunks_exact(3).map(|c| Point3::new(c[0], c[1], c[2])));
         if let Some(end) = &self.end {
             nodes.push(Point3::from(end.translation.vector));
         }
-        nodes
     }
 
     /// Free coordinates of a full node list (`S + 1` nodes).
@@ -163,31 +216,49 @@ impl Rod {
             .collect()
     }
 
-    /// `x + step · direction`, moved back onto the edge lengths the linearized step
-    /// predicts (module `retract`); unretracted if that fails.
-    pub(crate) fn retracted_step(&self, x: &[f64], direction: &[f64], step: f64) -> Vec<f64> {
-        let trial: Vec<f64> = x.iter().zip(direction).map(|(x, d)| x + step * d).collect();
-        let nodes = self.nodes(x);
-        let moves = self.nodes(direction);
-        let mut targets = Vec::with_capacity(self.sub_segments);
+    /// `x + step · direction` into `trial`, moved back onto the edge lengths the linearized
+    /// step predicts (module `retract`); unretracted if that fails.
+    pub(crate) fn retracted_step(
+        &self,
+        x: &[f64],
+        direction: &[f64],
+        step: f64,
+        trial: &mut Vec<f64>,
+        scratch: &mut Scratch,
+    ) {
+        trial.clear();
+        trial.extend(x.iter().zip(direction).map(|(x, d)| x + step * d));
+        self.fill_nodes(x, &mut scratch.nodes);
+        self.fill_nodes(direction, &mut scratch.moves);
+        scratch.targets.clear();
         for i in 0..self.sub_segments {
-            let edge = nodes[i + 1] - nodes[i];
+            let edge = scratch.nodes[i + 1] - scratch.nodes[i];
             let mut change = Vector3::zeros();
             for (node, sign) in [(i + 1, 1.0), (i, -1.0)] {
                 if self.free_index(node).is_some() {
-                    change += sign * moves[node].coords;
+                    change += sign * scratch.moves[node].coords;
                 }
             }
-            targets.push(edge.norm() + step * edge.normalize().dot(&change));
+            let length = edge.norm();
+            scratch
+                .targets
+                .push(length + step * edge.dot(&change) / length);
         }
-        let free: Vec<bool> = (0..=self.sub_segments)
-            .map(|k| self.free_index(k).is_some())
-            .collect();
-        let mut trial_nodes = self.nodes(&trial);
-        if restore_lengths(&mut trial_nodes, &targets, &free) {
-            self.free_coordinates(&trial_nodes)
-        } else {
-            trial
+        scratch.free.clear();
+        scratch
+            .free
+            .extend((0..=self.sub_segments).map(|k| self.free_index(k).is_some()));
+        self.fill_nodes(trial, &mut scratch.nodes);
+        if restore_lengths(
+            &mut scratch.nodes,
+            &scratch.targets,
+            &scratch.free,
+            &mut scratch.retraction,
+        ) {
+            trial.clear();
+            for p in &scratch.nodes[1..=self.free_nodes()] {
+                trial.extend_from_slice(&[p.x, p.y, p.z]);
+            }
         }
     }
 
@@ -207,29 +278,64 @@ impl Rod {
         twist_reference: f64,
         hessian: Option<&mut SymmetricBand>,
     ) -> Evaluation {
-        let nodes = self.nodes(x);
-        let edges: Vec<Edge> = nodes.windows(2).map(|w| Edge::new(w[1] - w[0])).collect();
-        let mut assembly = Assembly::new(self, hessian);
+        let mut evaluation = Evaluation::default();
+        self.evaluate_into(
+            x,
+            twist_reference,
+            hessian,
+            &mut evaluation,
+            &mut Scratch::default(),
+        );
+        evaluation
+    }
+
+    /// [`Rod::evaluate`] into `out`, reusing its vectors and `scratch`; `hessian` (if
+    /// given) is overwritten.
+    pub(crate) fn evaluate_into(
+        &self,
+        x: &[f64],
+        twist_reference: f64,
+        hessian: Option<&mut SymmetricBand>,
+        out: &mut Evaluation,
+        scratch: &mut Scratch,
+    ) {
+        self.fill_nodes(x, &mut scratch.nodes);
+        scratch.edges.clear();
+        scratch
+            .edges
+            .extend(scratch.nodes.windows(2).map(|w| Edge::new(w[1] - w[0])));
+        let (nodes, edges) = (&scratch.nodes, &scratch.edges);
+        let coordinates = 3 * self.free_nodes();
+        reset(&mut out.gradient, coordinates);
+        reset(
+            &mut out.twist_gradient,
+            if self.end.is_some() { coordinates } else { 0 },
+        );
         let twist = match &self.end {
-            Some(end) => unwrap_near(self.transported_twist(&edges, end), twist_reference),
+            Some(end) => unwrap_near(self.transported_twist(edges, end), twist_reference),
             None => 0.0,
         };
-        let stretch = self.add_stretch(&edges, &mut assembly);
-        let (bend, twist_gradient) = self.add_joints(&edges, twist, &mut assembly);
-        let gravity = self.add_gravity(&nodes, &mut assembly);
-        let terms = EnergyTerms {
+        let mut assembly = Assembly {
+            rod: self,
+            gradient: &mut out.gradient,
+            twist_gradient: &mut out.twist_gradient,
+            hessian: hessian.map(|h| {
+                h.reset(coordinates);
+                h
+            }),
+        };
+        let stretch = self.add_stretch(edges, &mut assembly);
+        let bend = self.add_joints(edges, twist, &mut assembly);
+        let gravity = self.add_gravity(nodes, &mut assembly);
+        let inertial = self.add_inertia(x, &mut assembly);
+        out.terms = EnergyTerms {
             stretch_j: stretch,
             bending_j: bend,
             twist_j: 0.5 * self.twist_stiffness() * twist * twist,
             gravity_j: gravity,
         };
-        Evaluation {
-            energy: terms.total_j(),
-            terms,
-            gradient: assembly.gradient,
-            twist,
-            twist_gradient,
-        }
+        out.energy = out.terms.total_j() + inertial;
+        out.twist = twist;
     }
 
     fn add_stretch(&self, edges: &[Edge], assembly: &mut Assembly) -> f64 {
@@ -241,67 +347,92 @@ impl Rod {
         for (i, edge) in edges.iter().enumerate() {
             let extension = edge.length - pitch;
             energy += 0.5 * k * extension * extension;
-            assembly.add_edge_gradient(i, &(k * extension * edge.unit));
-            if assembly.wants_hessian() {
+            let force = k * extension * edge.unit;
+            assembly.add_node_gradient(i + 1, &force);
+            assembly.add_node_gradient(i, &-force);
+            if assembly.hessian.is_some() {
                 let along = edge.unit * edge.unit.transpose();
                 let across = Matrix3::identity() - along;
                 let block = k * (along + (extension / edge.length) * across);
-                assembly.add_edge_hessian(i, i, &block);
+                assembly.add_hessian_block(i, i, &block);
+                assembly.add_hessian_block(i + 1, i + 1, &block);
+                assembly.add_hessian_block(i + 1, i, &-block);
             }
         }
         energy
     }
 
-    /// The joints in order: (incoming side, outgoing side, is a guide joint).
-    fn joints(&self, edges: &[Edge]) -> Vec<(Side, Side, bool)> {
-        let count = edges.len();
-        let mut joints = Vec::with_capacity(count + 1);
-        joints.push((Side::Guide(self.start_axis()), Side::Cable(0), true));
-        joints.extend((1..count).map(|j| (Side::Cable(j - 1), Side::Cable(j), false)));
-        if let Some(end) = &self.end {
-            let axis = end.rotation * Vector3::z();
-            joints.push((Side::Cable(count - 1), Side::Guide(axis), true));
-        }
-        joints
-    }
-
     /// Adds every joint's bending and, with a clamped end, twist (`k Ψ ∇Ψ` and the banded
-    /// `k Ψ ∇²Ψ`) in one pass; returns the bending energy and `∂Ψ/∂x`.
-    fn add_joints(&self, edges: &[Edge], twist: f64, assembly: &mut Assembly) -> (f64, Vec<f64>) {
+    /// `k Ψ ∇²Ψ`) in one pass, and `∂Ψ/∂x`; returns the bending energy.
+    fn add_joints(&self, edges: &[Edge], twist: f64, assembly: &mut Assembly) -> f64 {
         let kb = self.params.bending_stiffness_nm_per_rad;
         let twist_scale = self.twist_stiffness() * twist;
-        let mut twist_gradient = Assembly::new(self, None);
+        let count = edges.len();
+        let end_axis = self.end.as_ref().map(|end| end.rotation * Vector3::z());
         let mut energy = 0.0;
-        for (incoming, outgoing, at_guide) in self.joints(edges) {
+        for joint in 0..=count {
+            // Joint j sits at node j, between edge j − 1 (or the start guide's axis) and edge
+            // j (or the end guide's axis); a free end has no joint at node S.
+            let incoming = match joint {
+                0 => Side::Guide(self.start_axis()),
+                j => Side::Cable(j - 1),
+            };
+            let outgoing = match (joint < count, end_axis) {
+                (true, _) => Side::Cable(joint),
+                (false, Some(axis)) => Side::Guide(axis),
+                (false, None) => break,
+            };
+            let at_guide = matches!(incoming, Side::Guide(_)) || matches!(outgoing, Side::Guide(_));
             let stiffness = if at_guide { 2.0 * kb } else { kb };
             let (a, b) = (side_edge(incoming, edges), side_edge(outgoing, edges));
-            let mut derivatives = bending(&a, &b, stiffness);
+            let with_hessian = assembly.hessian.is_some();
+            let mut derivatives = bending(&a, &b, stiffness, with_hessian);
             energy += derivatives.value;
             if self.end.is_some() {
-                let twist_derivatives = reference_twist(&a, &b);
-                twist_gradient.add_pair(incoming, outgoing, &twist_derivatives, 1.0);
+                let twist_derivatives = reference_twist(&a, &b, with_hessian);
+                assembly.add_twist_gradient(incoming, outgoing, &twist_derivatives);
                 derivatives.add_scaled(&twist_derivatives, twist_scale);
             }
-            assembly.add_pair(incoming, outgoing, &derivatives, 1.0);
+            assembly.add_joint(incoming, outgoing, &derivatives);
         }
-        (energy, twist_gradient.gradient)
+        energy
     }
 
     fn add_gravity(&self, nodes: &[Point3<f64>], assembly: &mut Assembly) -> f64 {
-        let node_mass = self.params.mass_per_length_kg_m * self.params.pitch_m;
         let mut energy = 0.0;
         for (k, node) in nodes.iter().enumerate() {
             if self.free_index(k).is_none() {
                 continue;
             }
-            let mass = if k == self.sub_segments {
-                0.5 * node_mass
-            } else {
-                node_mass
-            };
-            let weight = mass * self.params.gravity_m_s2;
+            let weight = self.node_mass(k) * self.params.gravity_m_s2;
             energy -= weight.dot(&node.coords);
             assembly.add_node_gradient(k, &-weight);
+        }
+        energy
+    }
+
+    /// The inertial term of a time step, if any: its value (J).
+    fn add_inertia(&self, x: &[f64], assembly: &mut Assembly) -> f64 {
+        let Some(inertia) = &self.inertia else {
+            return 0.0;
+        };
+        let mut energy = 0.0;
+        for (f, (&weight, (position, anchor))) in inertia
+            .weights
+            .iter()
+            .zip(x.chunks_exact(3).zip(inertia.anchors.chunks_exact(3)))
+            .enumerate()
+        {
+            let offset = Vector3::new(
+                position[0] - anchor[0],
+                position[1] - anchor[1],
+                position[2] - anchor[2],
+            );
+            energy += 0.5 * weight * offset.norm_squared();
+            assembly.add_node_gradient(f + 1, &(weight * offset));
+            if assembly.hessian.is_some() {
+                assembly.add_hessian_block(f + 1, f + 1, &Matrix3::from_diagonal_element(weight));
+            }
         }
         energy
     }
@@ -399,26 +530,74 @@ fn unwrap_near(angle: f64, reference: f64) -> f64 {
     angle + turns * std::f64::consts::TAU
 }
 
-/// Collects gradient entries and Hessian blocks given per edge, mapped onto free nodes.
+/// `v` emptied and refilled with `n` zeros, keeping its allocation.
+fn reset(v: &mut Vec<f64>, n: usize) {
+    v.clear();
+    v.resize(n, 0.0);
+}
+
+/// Collects gradient entries and Hessian blocks, mapped from nodes onto free nodes.
 struct Assembly<'a> {
     rod: &'a Rod,
-    gradient: Vec<f64>,
+    gradient: &'a mut [f64],
+    /// `∂Ψ/∂x`; empty for a free end.
+    twist_gradient: &'a mut [f64],
     hessian: Option<&'a mut SymmetricBand>,
 }
 
-impl<'a> Assembly<'a> {
-    fn new(rod: &'a Rod, hessian: Option<&'a mut SymmetricBand>) -> Self {
+/// A joint's nodes: its node and its two neighbours, local indices 0…2 from `first`, and
+/// each side's contribution to them (`∂/∂e = ∂/∂x_(i+1) = −∂/∂x_i` for edge `i`).
+struct JointNodes {
+    first: usize,
+    /// Per side (incoming, outgoing): the (local node, sign) pairs of a cable edge.
+    terms: [[Option<(usize, f64)>; 2]; 2],
+}
+
+impl JointNodes {
+    fn new(a: Side, b: Side) -> Self {
+        let first = match (a, b) {
+            (Side::Cable(i), _) | (Side::Guide(_), Side::Cable(i)) => i,
+            (Side::Guide(_), Side::Guide(_)) => 0,
+        };
+        let terms = |side: Side| match side {
+            Side::Cable(i) => [Some((i - first, -1.0)), Some((i + 1 - first, 1.0))],
+            Side::Guide(_) => [None, None],
+        };
         Self {
-            rod,
-            gradient: vec![0.0; 3 * rod.free_nodes()],
-            hessian,
+            first,
+            terms: [terms(a), terms(b)],
         }
     }
 
-    fn wants_hessian(&self) -> bool {
-        self.hessian.is_some()
+    /// The gradient on the joint's nodes.
+    fn gradient(&self, d: &EdgePairDerivatives) -> [Vector3<f64>; 3] {
+        let mut nodes = [Vector3::zeros(); 3];
+        for (terms, gradient) in self.terms.iter().zip([d.grad_a, d.grad_b]) {
+            for &(u, sign) in terms.iter().flatten() {
+                nodes[u] += sign * gradient;
+            }
+        }
+        nodes
     }
 
+    /// The Hessian blocks between the joint's nodes.
+    fn hessian(&self, d: &EdgePairDerivatives) -> [[Matrix3<f64>; 3]; 3] {
+        let blocks = [[d.hess_aa, d.hess_ab], [d.hess_ba, d.hess_bb]];
+        let mut nodes = [[Matrix3::zeros(); 3]; 3];
+        for (p, row_terms) in self.terms.iter().enumerate() {
+            for &(u, su) in row_terms.iter().flatten() {
+                for (q, column_terms) in self.terms.iter().enumerate() {
+                    for &(v, sv) in column_terms.iter().flatten() {
+                        nodes[u][v] += (su * sv) * blocks[p][q];
+                    }
+                }
+            }
+        }
+        nodes
+    }
+}
+
+impl Assembly<'_> {
     fn add_node_gradient(&mut self, node: usize, g: &Vector3<f64>) {
         if let Some(i) = self.rod.free_index(node) {
             for (slot, value) in self.gradient[3 * i..3 * i + 3].iter_mut().zip(g.iter()) {
@@ -427,46 +606,46 @@ impl<'a> Assembly<'a> {
         }
     }
 
-    /// `∂/∂e_i` becomes `+` on node `i + 1` and `−` on node `i`.
-    fn add_edge_gradient(&mut self, edge: usize, g: &Vector3<f64>) {
-        self.add_node_gradient(edge + 1, g);
-        self.add_node_gradient(edge, &-g);
-    }
-
-    fn add_edge_hessian(&mut self, p: usize, q: usize, block: &Matrix3<f64>) {
+    /// Adds the node block `(p, q)`, `p ≥ q`, of a symmetric Hessian (both nodes free, else
+    /// nothing: clamped nodes carry no unknowns).
+    fn add_hessian_block(&mut self, p: usize, q: usize, block: &Matrix3<f64>) {
         let (rod, Some(hessian)) = (self.rod, self.hessian.as_deref_mut()) else {
             return;
         };
-        for (row_node, row_sign) in [(p + 1, 1.0), (p, -1.0)] {
-            for (column_node, column_sign) in [(q + 1, 1.0), (q, -1.0)] {
-                if let (Some(r), Some(c)) = (rod.free_index(row_node), rod.free_index(column_node))
-                {
-                    hessian.add_node_block(r, c, &(row_sign * column_sign * block));
-                }
+        if let (Some(r), Some(c)) = (rod.free_index(p), rod.free_index(q)) {
+            hessian.add_lower_block(r, c, block);
+        }
+    }
+
+    /// Adds a joint's gradient and (symmetrized) Hessian; guide sides carry no unknowns.
+    fn add_joint(&mut self, a: Side, b: Side, d: &EdgePairDerivatives) {
+        let nodes = JointNodes::new(a, b);
+        for (u, g) in nodes.gradient(d).iter().enumerate() {
+            self.add_node_gradient(nodes.first + u, g);
+        }
+        if self.hessian.is_none() {
+            return;
+        }
+        // The twist part of a joint's Hessian is not symmetric on its own (the reference
+        // twist is not a function of the joint's edges alone); the whole Hessian is, so its
+        // symmetric part is assembled.
+        let hessian = nodes.hessian(d);
+        for u in 0..3 {
+            for v in 0..=u {
+                let block = 0.5 * (hessian[u][v] + hessian[v][u].transpose());
+                self.add_hessian_block(nodes.first + u, nodes.first + v, &block);
             }
         }
     }
 
-    /// Adds `scale ×` the derivatives of a joint function; guide sides carry no unknowns.
-    fn add_pair(&mut self, a: Side, b: Side, d: &EdgePairDerivatives, scale: f64) {
-        let sides = [(a, d.grad_a), (b, d.grad_b)];
-        for (side, gradient) in sides {
-            if let Side::Cable(i) = side {
-                self.add_edge_gradient(i, &(scale * gradient));
-            }
-        }
-        if !self.wants_hessian() {
-            return;
-        }
-        let blocks = [
-            (a, a, d.hess_aa),
-            (a, b, d.hess_ab),
-            (b, a, d.hess_ba),
-            (b, b, d.hess_bb),
-        ];
-        for (row, column, block) in blocks {
-            if let (Side::Cable(p), Side::Cable(q)) = (row, column) {
-                self.add_edge_hessian(p, q, &(scale * block));
+    /// Adds a joint's reference-twist gradient to `∂Ψ/∂x`.
+    fn add_twist_gradient(&mut self, a: Side, b: Side, d: &EdgePairDerivatives) {
+        let nodes = JointNodes::new(a, b);
+        for (u, g) in nodes.gradient(d).iter().enumerate() {
+            if let Some(i) = self.rod.free_index(nodes.first + u) {
+                for (slot, value) in self.twist_gradient[3 * i..3 * i + 3].iter_mut().zip(g) {
+                    *slot += value;
+                }
             }
         }
     }
