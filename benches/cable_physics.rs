@@ -14,7 +14,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use cable_dict::cable::CableSpec;
-use cable_dict::dynamics::{
+use cable_dict::rigid_chain::{
     ConvergenceWindow, DynamicsSettings, LinearConnect, SegmentShape, connect_linear, relax,
 };
 use cable_dict::geometry::connect;
@@ -28,7 +28,7 @@ use nalgebra::{Isometry3, Rotation3, Translation3, UnitQuaternion, Vector3};
 const GRAVITY: Vector3<f64> = Vector3::new(0.0, 0.0, -9.81);
 
 fn smc() -> CableSpec {
-    match CableSpec::from_file("cables/smc_le_cp_3.toml") {
+    match CableSpec::from_file("cables/smc_le_cp_3_paper.toml") {
         Ok(cable) => cable,
         Err(e) => panic!("{e}"),
     }
@@ -126,7 +126,7 @@ fn rapier_relax(
     }
 }
 
-fn linear(cable: &CableSpec, case: &Case) -> cable_dict::dynamics::Relaxation {
+fn linear(cable: &CableSpec, case: &Case) -> cable_dict::rigid_chain::Relaxation {
     let settings = DynamicsSettings::relaxation(GRAVITY);
     match connect_linear(
         cable,

@@ -1,15 +1,49 @@
 //! The physical specification of a cable, read from a TOML file.
 //!
-//! The discrete cable model is a chain of rigid sub-segments of pitch `l_ss` joined by a
-//! bending spring `kb` and a torsion spring `kt` (N·m/rad per joint), so the continuum
-//! stiffnesses are `EI = kb·l_ss` and `GJ = kt·l_ss`. File keys carry their units
-//! (`diameter_mm`, `bending_stiffness_nm_per_rad`, …); [`CableSpec`] holds SI values.
+//! A cable is described by continuum quantities an engineer can measure or find in a
+//! datasheet: the bending stiffness `EI` and the torsional stiffness `GJ` (N·m²), the mass
+//! per length, the diameter and the minimum bend radius. The cable model (module
+//! [`statics`](crate::statics)) discretizes it into rigid sub-segments of a pitch `l`
+//! (`sub_segment_pitch_mm`, a discretization setting, 10 mm by default) joined by a
+//! bending spring `kb = EI / l` and a torsion spring `kt = GJ / l` per joint.
+//!
+//! The reference paper gives its cables as those per-joint springs
+//! (`bending_stiffness_nm_per_rad`, `torsion_stiffness_nm_per_rad`, N·m/rad at its 10 mm
+//! pitch). Such a file is still read: `EI = kb · l` and `GJ = kt · l` with the file's own
+//! `sub_segment_pitch_mm`, which it must then state. File keys carry their units;
+//! [`CableSpec`] holds SI values.
+//!
+//! [`CableSpec::plausibility_warnings`] says when the numbers describe no real cable (a
+//! density no cable material reaches, a torsion-to-bending ratio far outside measured
+//! cables): the values are still used, but the user is told.
 
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
-/// A cable's datasheet values in SI units.
+/// Sub-segment pitch (m) when the cable file does not set one: the reference paper's.
+pub const DEFAULT_SUB_SEGMENT_PITCH_M: f64 = 0.010;
+
+/// Axial stiffness `EA` (N) of the model when the cable file does not set one. Not a
+/// material value: a real cable's copper makes it 10⁵–10⁶ N. It only has to make the
+/// sub-segments nearly rigid (a hanging metre of a 0.3 kg/m cable strains by < 3e-4) while
+/// keeping the Newton systems well conditioned, so that "stretch" measures the geometry
+/// (guides too far apart), not the material.
+pub const DEFAULT_AXIAL_STIFFNESS_N: f64 = 1.0e4;
+
+/// Bulk densities (kg/m³) a cable can have: from polymer-only cables (about 900, e.g.
+/// all-dielectric fibre cables) to cables that are mostly copper (copper is 8960; a thin-
+/// insulated power conductor reaches about 5000). Outside this range the mass or the
+/// diameter is wrong.
+pub const PLAUSIBLE_DENSITY_KG_M3: (f64, f64) = (700.0, 6000.0);
+
+/// Ratios `GJ / EI` seen in cables: an isotropic rod has `1/(1 + ν)` = 0.67–0.77, stranded
+/// and cabled cores slip in bending more than in torsion and measure 0.8–1.9 (see
+/// cables/README.md); a braided shield may raise it further. Far outside, a value was
+/// probably entered in the wrong unit or convention.
+pub const PLAUSIBLE_TORSION_TO_BENDING: (f64, f64) = (0.3, 5.0);
+
+/// A cable's physical values and its discretization, in SI units.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CableSpec {
     /// Display name.
@@ -18,31 +52,66 @@ pub struct CableSpec {
     pub diameter_m: f64,
     /// Mass per unit length (kg/m).
     pub mass_per_length_kg_m: f64,
-    /// Bending spring per joint of the discrete model, `kb` (N·m/rad).
-    pub bending_stiffness_nm_per_rad: f64,
-    /// Torsion spring per joint of the discrete model, `kt` (N·m/rad).
-    pub torsion_stiffness_nm_per_rad: f64,
+    /// Bending stiffness `EI` (N·m²).
+    pub bending_stiffness_n_m2: f64,
+    /// Torsional stiffness `GJ` (N·m²).
+    pub torsion_stiffness_n_m2: f64,
     /// Smallest allowed bend radius (m).
     pub min_bend_radius_m: f64,
-    /// Length of one rigid sub-segment, `l_ss` (m).
+    /// Length of one rigid sub-segment of the model, `l` (m): a discretization setting.
     pub sub_segment_pitch_m: f64,
-    /// Axial stiffness `EA` (N): the force that would double a sub-segment's length. The
-    /// model's sub-segments are nearly rigid; this finite value makes stretch measurable.
+    /// Axial stiffness `EA` of the model (N); see [`DEFAULT_AXIAL_STIFFNESS_N`].
     pub axial_stiffness_n: f64,
 }
 
 impl CableSpec {
-    /// Continuum bending stiffness `EI = kb · l_ss` (N·m²).
-    pub fn bending_rigidity_nm2(&self) -> f64 {
-        self.bending_stiffness_nm_per_rad * self.sub_segment_pitch_m
+    /// Bending spring per joint of the discrete model, `kb = EI / l` (N·m/rad).
+    pub fn bending_stiffness_nm_per_rad(&self) -> f64 {
+        self.bending_stiffness_n_m2 / self.sub_segment_pitch_m
     }
 
-    /// Continuum torsional stiffness `GJ = kt · l_ss` (N·m²).
-    pub fn torsional_rigidity_nm2(&self) -> f64 {
-        self.torsion_stiffness_nm_per_rad * self.sub_segment_pitch_m
+    /// Torsion spring per joint of the discrete model, `kt = GJ / l` (N·m/rad).
+    pub fn torsion_stiffness_nm_per_rad(&self) -> f64 {
+        self.torsion_stiffness_n_m2 / self.sub_segment_pitch_m
     }
 
-    /// Reads and validates a cable file.
+    /// Bulk density (kg/m³): mass per length over the cross-section's area.
+    pub fn density_kg_m3(&self) -> f64 {
+        self.mass_per_length_kg_m / (0.25 * std::f64::consts::PI * self.diameter_m.powi(2))
+    }
+
+    /// What makes these values implausible for a real cable, one sentence each (empty when
+    /// nothing does): a density outside [`PLAUSIBLE_DENSITY_KG_M3`], a `GJ / EI` outside
+    /// [`PLAUSIBLE_TORSION_TO_BENDING`].
+    pub fn plausibility_warnings(&self) -> Vec<String> {
+        let mut warnings = Vec::new();
+        let density = self.density_kg_m3();
+        let (low, high) = PLAUSIBLE_DENSITY_KG_M3;
+        if !(low..=high).contains(&density) {
+            warnings.push(format!(
+                "{}: a mass of {} kg/m in a {} mm diameter is a density of {density:.0} kg/m³; \
+                 cables lie between {low:.0} and {high:.0} (copper alone is 8960): check the \
+                 mass per length and the diameter",
+                self.name,
+                self.mass_per_length_kg_m,
+                self.diameter_m * 1e3
+            ));
+        }
+        let ratio = self.torsion_stiffness_n_m2 / self.bending_stiffness_n_m2;
+        let (low, high) = PLAUSIBLE_TORSION_TO_BENDING;
+        if !(low..=high).contains(&ratio) {
+            warnings.push(format!(
+                "{}: torsional over bending stiffness GJ/EI = {ratio:.2}; measured cables lie \
+                 between about {low} and {high} (an isotropic rod: 0.67–0.77): check both \
+                 values and their units (N·m², or N·m/rad per joint)",
+                self.name
+            ));
+        }
+        warnings
+    }
+
+    /// Reads and validates a cable file; logs its [plausibility
+    /// warnings](CableSpec::plausibility_warnings), naming the file.
     pub fn from_file(path: impl AsRef<Path>) -> Result<CableSpec, CableError> {
         let path = path.as_ref();
         let text = std::fs::read_to_string(path).map_err(|e| CableError {
@@ -50,49 +119,93 @@ impl CableSpec {
             line: None,
             problem: format!("cannot read the cable file: {e}"),
         })?;
-        Self::from_toml_str(&text, path)
+        let spec = Self::from_toml_str(&text, path)?;
+        for warning in spec.plausibility_warnings() {
+            log::warn!("{}: {warning}", path.display());
+        }
+        Ok(spec)
     }
 
     /// Parses and validates a cable file's text; `source` names it in messages.
     ///
-    /// Every key is required, unknown keys are refused (a typo must not fall back to a
-    /// default), and every number must be finite and positive.
+    /// Unknown keys are refused (a typo must not fall back to a default), every number must
+    /// be finite and positive, and each stiffness must be given exactly once: as `EI`/`GJ`
+    /// (N·m²) or as the paper's per-joint spring (N·m/rad, which needs the file's
+    /// `sub_segment_pitch_mm`).
     pub fn from_toml_str(text: &str, source: &Path) -> Result<CableSpec, CableError> {
         let raw: RawCable = toml::from_str(text).map_err(|e| CableError {
             file: source.to_path_buf(),
             line: e.span().map(|s| line_of(text, s.start)),
             problem: e.message().to_string(),
         })?;
-        let positive = |field: &'static str, value: &Spanned<f64>| -> Result<f64, CableError> {
-            let v = *value.get_ref();
-            if v.is_finite() && v > 0.0 {
-                Ok(v)
-            } else {
-                Err(CableError {
-                    file: source.to_path_buf(),
-                    line: Some(line_of(text, value.span().start)),
-                    problem: format!("`{field}` = {v} must be a finite number > 0"),
-                })
-            }
+        let file = FileValues { text, source };
+        let pitch_m = match &raw.sub_segment_pitch_mm {
+            Some(value) => file.positive("sub_segment_pitch_mm", value)? * 1e-3,
+            None => DEFAULT_SUB_SEGMENT_PITCH_M,
+        };
+        let stiffness = |continuum, per_joint, names| {
+            file.stiffness(continuum, per_joint, raw.sub_segment_pitch_mm.is_some(), pitch_m, names)
         };
         Ok(CableSpec {
-            name: raw.name,
-            diameter_m: positive("diameter_mm", &raw.diameter_mm)? * 1e-3,
-            mass_per_length_kg_m: positive("mass_per_length_kg_m", &raw.mass_per_length_kg_m)?,
-            bending_stiffness_nm_per_rad: positive(
-                "bending_stiffness_nm_per_rad",
+            bending_stiffness_n_m2: stiffness(
+                &raw.bending_stiffness_n_m2,
                 &raw.bending_stiffness_nm_per_rad,
+                ["bending_stiffness_n_m2", "bending_stiffness_nm_per_rad"],
             )?,
-            torsion_stiffness_nm_per_rad: positive(
-                "torsion_stiffness_nm_per_rad",
+            torsion_stiffness_n_m2: stiffness(
+                &raw.torsion_stiffness_n_m2,
                 &raw.torsion_stiffness_nm_per_rad,
+                ["torsion_stiffness_n_m2", "torsion_stiffness_nm_per_rad"],
             )?,
-            min_bend_radius_m: positive("min_bend_radius_mm", &raw.min_bend_radius_mm)? * 1e-3,
-            sub_segment_pitch_m: positive("sub_segment_pitch_mm", &raw.sub_segment_pitch_mm)?
+            diameter_m: file.positive("diameter_mm", &raw.diameter_mm)? * 1e-3,
+            mass_per_length_kg_m: file
+                .positive("mass_per_length_kg_m", &raw.mass_per_length_kg_m)?,
+            min_bend_radius_m: file.positive("min_bend_radius_mm", &raw.min_bend_radius_mm)?
                 * 1e-3,
-            axial_stiffness_n: positive("axial_stiffness_n", &raw.axial_stiffness_n)?,
+            sub_segment_pitch_m: pitch_m,
+            axial_stiffness_n: match &raw.axial_stiffness_n {
+                Some(value) => file.positive("axial_stiffness_n", value)?,
+                None => DEFAULT_AXIAL_STIFFNESS_N,
+            },
+            name: raw.name,
         })
     }
+
+    /// The cable file of these values (continuum keys, SI units with the unit in the key),
+    /// with `header` as its leading comment lines: what `cable-dict calibrate` prints.
+    pub fn to_toml(&self, header: &str) -> String {
+        let mut text = String::new();
+        for line in header.lines() {
+            text.push_str(&format!("# {line}\n").replace("# \n", "#\n"));
+        }
+        let value = |v: f64| format!("{:e}", significant(v));
+        text.push_str(&format!(
+            "name = {}\n\
+             diameter_mm = {}\n\
+             mass_per_length_kg_m = {}\n\
+             bending_stiffness_n_m2 = {}   # EI\n\
+             torsion_stiffness_n_m2 = {}   # GJ\n\
+             min_bend_radius_mm = {}\n\
+             sub_segment_pitch_mm = {}     # discretization of the model\n",
+            toml::Value::String(self.name.clone()),
+            significant(self.diameter_m * 1e3),
+            significant(self.mass_per_length_kg_m),
+            value(self.bending_stiffness_n_m2),
+            value(self.torsion_stiffness_n_m2),
+            significant(self.min_bend_radius_m * 1e3),
+            significant(self.sub_segment_pitch_m * 1e3),
+        ));
+        text
+    }
+}
+
+/// `v` rounded to 6 significant digits, so printed values carry no binary noise.
+fn significant(v: f64) -> f64 {
+    if v == 0.0 || !v.is_finite() {
+        return v;
+    }
+    let scale = 10f64.powi(5 - v.abs().log10().floor() as i32);
+    (v * scale).round() / scale
 }
 
 /// The file's keys, as written (units in the names).
@@ -102,11 +215,75 @@ struct RawCable {
     name: String,
     diameter_mm: Spanned<f64>,
     mass_per_length_kg_m: Spanned<f64>,
-    bending_stiffness_nm_per_rad: Spanned<f64>,
-    torsion_stiffness_nm_per_rad: Spanned<f64>,
+    bending_stiffness_n_m2: Option<Spanned<f64>>,
+    torsion_stiffness_n_m2: Option<Spanned<f64>>,
+    bending_stiffness_nm_per_rad: Option<Spanned<f64>>,
+    torsion_stiffness_nm_per_rad: Option<Spanned<f64>>,
     min_bend_radius_mm: Spanned<f64>,
-    sub_segment_pitch_mm: Spanned<f64>,
-    axial_stiffness_n: Spanned<f64>,
+    sub_segment_pitch_mm: Option<Spanned<f64>>,
+    axial_stiffness_n: Option<Spanned<f64>>,
+}
+
+/// A cable file's text, for messages that name the line of a value.
+struct FileValues<'a> {
+    text: &'a str,
+    source: &'a Path,
+}
+
+impl FileValues<'_> {
+    fn error(&self, line: Option<usize>, problem: String) -> CableError {
+        CableError {
+            file: self.source.to_path_buf(),
+            line,
+            problem,
+        }
+    }
+
+    fn positive(&self, field: &str, value: &Spanned<f64>) -> Result<f64, CableError> {
+        let v = *value.get_ref();
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(self.error(
+                Some(line_of(self.text, value.span().start)),
+                format!("`{field}` = {v} must be a finite number > 0"),
+            ))
+        }
+    }
+
+    /// One stiffness (N·m²) from its continuum key or the paper's per-joint key, exactly one
+    /// of them; the per-joint one needs the file's pitch.
+    fn stiffness(
+        &self,
+        continuum: &Option<Spanned<f64>>,
+        per_joint: &Option<Spanned<f64>>,
+        pitch_written: bool,
+        pitch_m: f64,
+        [continuum_key, per_joint_key]: [&str; 2],
+    ) -> Result<f64, CableError> {
+        match (continuum, per_joint) {
+            (Some(value), None) => self.positive(continuum_key, value),
+            (None, Some(value)) if pitch_written => {
+                Ok(self.positive(per_joint_key, value)? * pitch_m)
+            }
+            (None, Some(value)) => Err(self.error(
+                Some(line_of(self.text, value.span().start)),
+                format!(
+                    "`{per_joint_key}` is a spring per joint of the model and means nothing \
+                     without `sub_segment_pitch_mm`: add the pitch it was given for, or give \
+                     `{continuum_key}` (EI or GJ in N·m²)"
+                ),
+            )),
+            (Some(_), Some(value)) => Err(self.error(
+                Some(line_of(self.text, value.span().start)),
+                format!("give either `{continuum_key}` or `{per_joint_key}`, not both"),
+            )),
+            (None, None) => Err(self.error(
+                None,
+                format!("missing `{continuum_key}` (N·m²; or `{per_joint_key}` with the pitch)"),
+            )),
+        }
+    }
 }
 
 /// 1-based line number of a byte offset.

@@ -15,8 +15,8 @@ fn bundled(name: &str) -> CableSpec {
 fn bundled_cables_carry_the_papers_values() {
     // (file, diameter m, kg/m, kb, kt, min bend radius m)
     let table = [
-        ("smc_le_cp_3.toml", 0.008, 0.260, 5.1e-2, 1.5, 0.048),
-        ("gev_c6hf.toml", 0.006, 0.662, 6.7e-2, 2.1, 0.060),
+        ("smc_le_cp_3_paper.toml", 0.008, 0.260, 5.1e-2, 1.5, 0.048),
+        ("gev_c6hf_paper.toml", 0.006, 0.662, 6.7e-2, 2.1, 0.060),
     ];
     for (file, diameter, mass, kb, kt, radius) in table {
         let cable = bundled(file);

@@ -9,7 +9,7 @@ const URDF: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/robots/viper_s850/viper_s850.urdf"
 );
-const CABLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/cables/smc_le_cp_3.toml");
+const CABLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/cables/smc_le_cp_3_paper.toml");
 
 fn json(args: &[&str]) -> Value {
     let output = run(args);

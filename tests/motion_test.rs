@@ -79,7 +79,7 @@ fn hold(setup: &Setup, joints: &[f64], duration_s: f64) -> Motion {
 fn custom_setup(guides: &str, lengths: &str, min_bend_mm: f64) -> Setup {
     let text = format!(
         r#"robot = "viper_s850.urdf"
-cable = "../../cables/smc_le_cp_3.toml"
+cable = "../../cables/smc_le_cp_3_paper.toml"
 gravity_m_s2 = [0.0, 0.0, -9.81]
 max_guides_per_link = 2
 

@@ -116,7 +116,7 @@ fn a_report_folder_holds_every_file_and_the_page_needs_nothing_else() {
     for file in [
         SMALL,
         "robots/viper_s850/viper_s850.urdf",
-        "cables/smc_le_cp_3.toml",
+        "cables/smc_le_cp_3_paper.toml",
         MOTION,
     ] {
         let bytes = std::fs::read(file).expect("input file");
@@ -255,7 +255,7 @@ fn export_scene_draws_a_segment() {
         "export-scene",
         "segment",
         "--cable",
-        "cables/smc_le_cp_3.toml",
+        "cables/smc_le_cp_3_paper.toml",
         "--length-mm",
         "400",
         "--start",

@@ -317,7 +317,7 @@ to = "G3"
 lengths = {{ min = 3, max = 20, step = 1, allow_zero = true }}
 "#,
         robot = root.join("robots/viper_s850/viper_s850.urdf").display(),
-        cable = root.join("cables/smc_le_cp_3.toml").display(),
+        cable = root.join("cables/smc_le_cp_3_paper.toml").display(),
     )
 }
 
@@ -687,7 +687,7 @@ fn unreadable_robot_and_cable_files_are_refused() {
     assert!(message.starts_with(&format!("{}:{robot_line}: robot:", path.display())));
     assert!(message.contains("missing.urdf"), "{message}");
     let cable_line = line_of(&good, "cable =");
-    let broken = good.replacen("smc_le_cp_3.toml", "viper_s850/viper_s850.urdf", 1);
+    let broken = good.replacen("smc_le_cp_3_paper.toml", "viper_s850/viper_s850.urdf", 1);
     let broken = broken.replacen("cables/viper", "robots/viper", 1);
     let (_dir, path, result) = load_text(&broken);
     let message = result.err().unwrap_or_default();
@@ -715,7 +715,7 @@ fn relative_paths_are_resolved_against_the_setup_file() {
         "robots/viper_s850/viper_s850.urdf",
         &dir.path().join("arm.urdf"),
     );
-    copy("cables/smc_le_cp_3.toml", &sub.join("cable.toml"));
+    copy("cables/smc_le_cp_3_paper.toml", &sub.join("cable.toml"));
     let good = small_setup();
     let text = good
         .replacen(&*line_text(&good, "robot ="), "robot = \"../arm.urdf\"", 1)
@@ -814,7 +814,7 @@ fn content_hash_changes_with_any_one_value() {
             "min = 3, max = 20, step = 1, allow_zero = true",
             "min = 3, max = 20, step = 1, allow_zero = false",
         ),
-        ("smc_le_cp_3.toml", "gev_c6hf.toml"),
+        ("smc_le_cp_3_paper.toml", "gev_c6hf_paper.toml"),
     ];
     for (from, to) in changes {
         assert!(good.contains(from), "`{from}`");
@@ -828,7 +828,7 @@ fn content_hash_changes_with_the_robot_and_the_cable_files() {
     let dir = tempfile::tempdir().unwrap_or_else(|e| panic!("{e}"));
     let urdf = std::fs::read_to_string(root().join("robots/viper_s850/viper_s850.urdf"))
         .unwrap_or_else(|e| panic!("{e}"));
-    let cable = std::fs::read_to_string(root().join("cables/smc_le_cp_3.toml"))
+    let cable = std::fs::read_to_string(root().join("cables/smc_le_cp_3_paper.toml"))
         .unwrap_or_else(|e| panic!("{e}"));
     let good = small_setup();
     let setup_text = good

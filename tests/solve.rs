@@ -355,7 +355,7 @@ fn the_bundled_pick_and_place_is_solved_within_the_datasheet_limits() {
     assert_eq!(report.status, Status::Solved, "{}", report.explanation);
     check_report_folder(&setup, &motion, &report);
 
-    let cable: toml::Table = std::fs::read_to_string(root.join("cables/smc_le_cp_3.toml"))
+    let cable: toml::Table = std::fs::read_to_string(root.join("cables/smc_le_cp_3_paper.toml"))
         .expect("cable file")
         .parse()
         .expect("cable TOML");

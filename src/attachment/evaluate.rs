@@ -2,7 +2,7 @@
 //! equilibrium and the three stress metrics against the setup's limits.
 
 use super::TestPose;
-use crate::dynamics::{
+use crate::rigid_chain::{
     ConvergenceWindow, DynamicsSettings, LinearConnect, SegmentShape, connect_linear, relax,
 };
 use crate::geometry::{ConnectError, connect, sag_direction};
@@ -267,7 +267,7 @@ impl<'a> Evaluator<'a> {
         if let Some(check) = too_short(start, end, sub_segments, cable.sub_segment_pitch_m) {
             return Err(check);
         }
-        let diverged = |e: crate::dynamics::DynamicsError| {
+        let diverged = |e: crate::rigid_chain::DynamicsError| {
             Check::fail(Rejection::Diverged, e.to_string(), None)
         };
         let linear = connect_linear(

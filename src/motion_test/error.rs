@@ -1,7 +1,7 @@
 //! Why a motion test could not be run at all (invalid input), as opposed to a candidate that
 //! failed it (a [`MotionTestReport`](super::MotionTestReport) with `passed == false`).
 
-use crate::dynamics::DynamicsError;
+use crate::rigid_chain::DynamicsError;
 use crate::geometry::ConnectError;
 use crate::robot::JointVectorError;
 use crate::statics::StaticsError;

@@ -15,7 +15,7 @@
 //!    farther apart than a segment's length, no connected geometry or no equilibrium make a
 //!    *failed candidate* (a report with the reason), not an error.
 //! 3. **Stepping** with [`MotionTestOptions::settings`] (default
-//!    [`DynamicsSettings::motion`](crate::dynamics::DynamicsSettings::motion): steps of
+//!    [`DynamicsSettings::motion`](crate::rigid_chain::DynamicsSettings::motion): steps of
 //!    1/240 s with 16 substeps). Step `k` ends at `t0 + k·dt` on the motion's time axis; the
 //!    guides' and links' kinematic targets for it are the poses at that instant, joints
 //!    interpolated linearly between samples ([`Motion::joints_at`]). The motion part takes
@@ -40,7 +40,7 @@
 //! 5. **Report** ([`MotionTestReport`]): pass/fail, the worst value of each metric with its
 //!    time, segment and place, the first violation, optionally the series, the final shape,
 //!    and the cost. A simulation that leaves its sanity bounds
-//!    ([`DynamicsError::BlowUp`](crate::dynamics::DynamicsError::BlowUp)) is a failed
+//!    ([`DynamicsError::BlowUp`](crate::rigid_chain::DynamicsError::BlowUp)) is a failed
 //!    candidate "simulation diverged at t = … (…)". Only input that does not fit the setup
 //!    is an [`Err`]: see [`MotionTestError`].
 //!

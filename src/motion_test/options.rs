@@ -1,7 +1,7 @@
 //! [`MotionTestOptions`]: how a motion test is stepped and what it keeps.
 
 use super::MotionTestError;
-use crate::dynamics::DynamicsSettings;
+use crate::rigid_chain::DynamicsSettings;
 use crate::setup::Setup;
 use nalgebra::Vector3;
 

@@ -7,7 +7,7 @@ use super::plan::Plan;
 use super::report::{Failure, FailureCause};
 use super::tracker::{ForceAt, SegmentMeasure, Tracker};
 use super::{MotionTestError, MotionTestOptions};
-use crate::dynamics::{CableWorld, ContactSummary, DynamicsError, SegmentShape, StepRecord};
+use crate::rigid_chain::{CableWorld, ContactSummary, DynamicsError, SegmentShape, StepRecord};
 use crate::motion::Motion;
 use crate::pose::Pose;
 use crate::progress;

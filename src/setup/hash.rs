@@ -173,8 +173,8 @@ fn cable(out: &mut Canon, cable: &CableSpec) {
     out.floats(&[
         cable.diameter_m,
         cable.mass_per_length_kg_m,
-        cable.bending_stiffness_nm_per_rad,
-        cable.torsion_stiffness_nm_per_rad,
+        cable.bending_stiffness_n_m2,
+        cable.torsion_stiffness_n_m2,
         cable.min_bend_radius_m,
         cable.sub_segment_pitch_m,
         cable.axial_stiffness_n,

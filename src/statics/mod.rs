@@ -17,9 +17,9 @@
 
 mod banded;
 mod joint;
-mod newton;
+pub(crate) mod newton;
 mod retract;
-mod rod;
+pub(crate) mod rod;
 
 pub use rod::{EnergyTerms, RodParameters};
 
@@ -211,7 +211,7 @@ pub fn potential_energy(
     Ok((evaluation.terms, evaluation.twist))
 }
 
-fn clamped_pose(far_end: &FarEnd) -> Option<Pose> {
+pub(crate) fn clamped_pose(far_end: &FarEnd) -> Option<Pose> {
     match far_end {
         FarEnd::Clamped(pose) => Some(*pose),
         FarEnd::Free => None,
@@ -253,7 +253,7 @@ pub fn solve_cable(
         .collect()
 }
 
-fn check_input(
+pub(crate) fn check_input(
     params: &RodParameters,
     start: &Pose,
     far_end: &FarEnd,
@@ -263,8 +263,8 @@ fn check_input(
     let invalid = |what: String| Err(StaticsError::InvalidInput { what });
     let positive = [
         ("pitch", params.pitch_m),
-        ("bending stiffness", params.bending_stiffness_nm_per_rad),
-        ("torsion stiffness", params.torsion_stiffness_nm_per_rad),
+        ("bending stiffness", params.bending_stiffness_n_m2),
+        ("torsion stiffness", params.torsion_stiffness_n_m2),
         ("axial stiffness", params.axial_stiffness_n),
         ("force tolerance", options.force_tolerance_n),
     ];

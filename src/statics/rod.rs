@@ -22,7 +22,7 @@
 //! `(kt/S) Ψ ∇²Ψ` plus the rank-one `(kt/S) ∇Ψ ∇Ψᵀ`, which the Newton step handles by
 //! Sherman–Morrison so that the linear algebra stays banded.
 //!
-//! An implicit time step of the dynamics (module [`crate::dynamics`]) minimizes the same
+//! An implicit time step of the dynamics (module [`crate::rigid_chain`]) minimizes the same
 //! energy plus an **inertial term** `½ Σ w_k |x_k − a_k|²` over the free nodes ([`Inertia`]):
 //! `w_k = m_k / h²` and `a_k` the position the node would reach by inertia alone. It adds
 //! only to the diagonal, so the structure and the Newton solver stay those of the statics.
@@ -40,10 +40,10 @@ use crate::pose::Pose;
 pub struct RodParameters {
     /// Sub-segment pitch `l` (m).
     pub pitch_m: f64,
-    /// Bending spring per joint `kb` (N·m/rad).
-    pub bending_stiffness_nm_per_rad: f64,
-    /// Torsion spring per joint `kt` (N·m/rad).
-    pub torsion_stiffness_nm_per_rad: f64,
+    /// Bending stiffness `EI` (N·m²); the joints' springs are `kb = EI / l`.
+    pub bending_stiffness_n_m2: f64,
+    /// Torsional stiffness `GJ` (N·m²); the joints' springs are `kt = GJ / l`.
+    pub torsion_stiffness_n_m2: f64,
     /// Axial stiffness `EA` (N).
     pub axial_stiffness_n: f64,
     /// Mass per length `ρ` (kg/m).
@@ -57,8 +57,8 @@ impl RodParameters {
     pub fn new(cable: &CableSpec, gravity_m_s2: Vector3<f64>) -> Self {
         Self {
             pitch_m: cable.sub_segment_pitch_m,
-            bending_stiffness_nm_per_rad: cable.bending_stiffness_nm_per_rad,
-            torsion_stiffness_nm_per_rad: cable.torsion_stiffness_nm_per_rad,
+            bending_stiffness_n_m2: cable.bending_stiffness_n_m2,
+            torsion_stiffness_n_m2: cable.torsion_stiffness_n_m2,
             axial_stiffness_n: cable.axial_stiffness_n,
             mass_per_length_kg_m: cable.mass_per_length_kg_m,
             gravity_m_s2,
@@ -85,7 +85,7 @@ pub(crate) struct Rod {
 }
 
 /// The inertial term `½ Σ w_k |x_k − a_k|²` of an implicit time step, over the free nodes.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub(crate) struct Inertia {
     /// `w_k` per free node (N/m): the node's mass over the squared effective step.
     pub(crate) weights: Vec<f64>,
@@ -163,6 +163,11 @@ impl Rod {
         self
     }
 
+    /// The inertial term's buffers back, for the next step.
+    pub(crate) fn into_inertia(self) -> Option<Inertia> {
+        self.inertia
+    }
+
     /// Lumped mass of node `k` (kg): `ρ l` inside, `ρ l / 2` at a free end.
     pub(crate) fn node_mass(&self, k: usize) -> f64 {
         let mass = self.params.mass_per_length_kg_m * self.params.pitch_m;
@@ -181,7 +186,7 @@ impl Rod {
     /// Twist stiffness of the whole segment `kt / S` (N·m/rad); 0 for a free end.
     pub(crate) fn twist_stiffness(&self) -> f64 {
         if self.end.is_some() {
-            self.params.torsion_stiffness_nm_per_rad / self.sub_segments as f64
+            self.params.torsion_stiffness_n_m2 / self.params.pitch_m / self.sub_segments as f64
         } else {
             0.0
         }
@@ -365,7 +370,7 @@ impl Rod {
     /// Adds every joint's bending and, with a clamped end, twist (`k Ψ ∇Ψ` and the banded
     /// `k Ψ ∇²Ψ`) in one pass, and `∂Ψ/∂x`; returns the bending energy.
     fn add_joints(&self, edges: &[Edge], twist: f64, assembly: &mut Assembly) -> f64 {
-        let kb = self.params.bending_stiffness_nm_per_rad;
+        let kb = self.params.bending_stiffness_n_m2 / self.params.pitch_m;
         let twist_scale = self.twist_stiffness() * twist;
         let count = edges.len();
         let end_axis = self.end.as_ref().map(|end| end.rotation * Vector3::z());

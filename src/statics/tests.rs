@@ -8,8 +8,8 @@ use crate::pose::pose_from_xyz_rpy;
 fn params() -> RodParameters {
     RodParameters {
         pitch_m: 0.01,
-        bending_stiffness_nm_per_rad: 0.051,
-        torsion_stiffness_nm_per_rad: 1.5,
+        bending_stiffness_n_m2: 0.051 * 0.01,
+        torsion_stiffness_n_m2: 1.5 * 0.01,
         axial_stiffness_n: 1e3,
         mass_per_length_kg_m: 0.26,
         gravity_m_s2: Vector3::new(0.0, 0.0, -9.81),

@@ -6,3 +6,4 @@
 #![allow(dead_code)]
 
 pub mod elastica;
+pub mod vibration;

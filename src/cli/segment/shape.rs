@@ -3,7 +3,7 @@
 use super::super::Failure;
 use super::{Args, Connect, Solver};
 use cable_dict::cable::CableSpec;
-use cable_dict::dynamics::{
+use cable_dict::rigid_chain::{
     ConvergenceWindow, DynamicsError, DynamicsSettings, LinearConnect, SegmentShape,
     connect_linear, relax,
 };

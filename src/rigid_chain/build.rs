@@ -99,8 +99,8 @@ impl SubSegmentModel {
         let values = [
             ("diameter", cable.diameter_m),
             ("mass per length", cable.mass_per_length_kg_m),
-            ("bending stiffness", cable.bending_stiffness_nm_per_rad),
-            ("torsion stiffness", cable.torsion_stiffness_nm_per_rad),
+            ("bending stiffness", cable.bending_stiffness_nm_per_rad()),
+            ("torsion stiffness", cable.torsion_stiffness_nm_per_rad()),
             ("sub-segment pitch", cable.sub_segment_pitch_m),
         ];
         if let Some((name, value)) = values.iter().find(|(_, v)| !(v.is_finite() && *v > 0.0)) {
@@ -117,8 +117,8 @@ impl SubSegmentModel {
             radius_m: r,
             mass_kg: mass,
             inertia_kg_m2: Vector3::new(across, across, 0.5 * mass * r * r),
-            bending_nm_per_rad: cable.bending_stiffness_nm_per_rad,
-            torsion_nm_per_rad: cable.torsion_stiffness_nm_per_rad,
+            bending_nm_per_rad: cable.bending_stiffness_nm_per_rad(),
+            torsion_nm_per_rad: cable.torsion_stiffness_nm_per_rad(),
         })
     }
 }

@@ -1,0 +1,46 @@
+//! Dynamics of the discrete cable in rapier3d: the whole cable simulated in time while the
+//! guides (and the robot's links) move kinematically — the *motion test* — and the static
+//! relaxation used by the paper's baseline.
+//!
+//! The model is the crate's discrete cable (module [`cable`](crate::cable)): rigid
+//! sub-segments of pitch `l` joined at the nodes by bending springs `kb` and torsion springs
+//! `kt`, clamped in position and orientation at every guide. See [`CableWorld`] for how it
+//! maps onto rapier bodies and joints, and [`DynamicsSettings`] for the stepping that makes
+//! it accurate (DESIGN §4: solver substep ≤ 1/3840 s).
+//!
+//! - [`CableWorld`]: build, move guides and robot, step, read nodes and per-step
+//!   [`StepRecord`]s (contact force, stretch, bend radius per segment).
+//! - [`relax`] / [`settle`]: static relaxation under gravity with a geometric convergence
+//!   window ([`ConvergenceWindow`]).
+//! - [`connect_linear`]: the paper's previous connected-geometry method (straight cable
+//!   dragged into the end guide), the baseline for [`connect`](crate::geometry::connect).
+//!
+//! Rapier notes (0.36.1, default `f32` build):
+//!
+//! - Its public math types are glam (`rapier3d::math::{Vector, Rotation, Pose}` = `Vec3`,
+//!   `Quat`, `Pose3`); the conversion happens inside this module, every public item is
+//!   nalgebra `f64` in SI units.
+//! - A joint's `local_frame1/2` are poses in each body's frame; with identity rotations the
+//!   rest state is "both bodies' frames aligned". Angular motors act about the axes of the
+//!   *first* body's joint frame and measure the angle as `2·asin(q_axis)` of the relative
+//!   rotation `frame1⁻¹·frame2`. `MotorModel::ForceBased` makes the stiffness a true N·m/rad.
+//! - `num_solver_iterations` is the number of *substeps* (the TGS solver divides `dt` by
+//!   it); `num_internal_pgs_iterations` the sweeps per substep.
+//! - Bodies whose state turns non-finite are quarantined (disabled) by rapier instead of
+//!   poisoning the world; [`CableWorld::step`] reports them as a blow-up.
+
+mod build;
+mod convert;
+mod error;
+mod record;
+mod relax;
+mod robot;
+mod settings;
+mod world;
+
+pub use build::SegmentShape;
+pub use error::{BlowUpQuantity, DynamicsError};
+pub use record::{ContactSummary, SegmentRecord, StepRecord, SubSegmentContact};
+pub use relax::{LinearConnect, Relaxation, Settled, connect_linear, interpolate, relax, settle};
+pub use settings::{BlowUpBounds, ConvergenceWindow, DynamicsSettings};
+pub use world::CableWorld;
