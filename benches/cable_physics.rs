@@ -14,11 +14,11 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use cable_dict::cable::CableSpec;
+use cable_dict::geometry::connect;
+use cable_dict::pose::{Pose, pose_from_xyz_rpy};
 use cable_dict::rigid_chain::{
     ConvergenceWindow, DynamicsSettings, LinearConnect, SegmentShape, connect_linear, relax,
 };
-use cable_dict::geometry::connect;
-use cable_dict::pose::{Pose, pose_from_xyz_rpy};
 use cable_dict::statics::{FarEnd, RodParameters, SolverOptions, solve_segment};
 use criterion::{
     BenchmarkGroup, Criterion, criterion_group, criterion_main, measurement::WallTime,

@@ -144,7 +144,13 @@ impl CableSpec {
             None => DEFAULT_SUB_SEGMENT_PITCH_M,
         };
         let stiffness = |continuum, per_joint, names| {
-            file.stiffness(continuum, per_joint, raw.sub_segment_pitch_mm.is_some(), pitch_m, names)
+            file.stiffness(
+                continuum,
+                per_joint,
+                raw.sub_segment_pitch_mm.is_some(),
+                pitch_m,
+                names,
+            )
         };
         Ok(CableSpec {
             bending_stiffness_n_m2: stiffness(
@@ -160,8 +166,7 @@ impl CableSpec {
             diameter_m: file.positive("diameter_mm", &raw.diameter_mm)? * 1e-3,
             mass_per_length_kg_m: file
                 .positive("mass_per_length_kg_m", &raw.mass_per_length_kg_m)?,
-            min_bend_radius_m: file.positive("min_bend_radius_mm", &raw.min_bend_radius_mm)?
-                * 1e-3,
+            min_bend_radius_m: file.positive("min_bend_radius_mm", &raw.min_bend_radius_mm)? * 1e-3,
             sub_segment_pitch_m: pitch_m,
             axial_stiffness_n: match &raw.axial_stiffness_n {
                 Some(value) => file.positive("axial_stiffness_n", value)?,

@@ -105,7 +105,9 @@ fn first_mode_cantilever(length: f64, tip_m: f64) -> Vec<Point3<f64>> {
                 - vibration::cantilever_mode(1, length, x - h))
             / (2.0 * h)
     };
-    polyline(sub_segments, Vector3::x(), Vector3::z(), |s| slope(s).atan())
+    polyline(sub_segments, Vector3::x(), Vector3::z(), |s| {
+        slope(s).atan()
+    })
 }
 
 /// A cantilever released from its first mode's shape (1 mm tip deflection, no gravity)
@@ -153,7 +155,9 @@ fn a_hanging_limp_cable_swings_at_the_hanging_chain_frequency() {
         let u = |a: f64| amplitude * vibration::hanging_chain_mode(1, length, length - a);
         (u(a + h) - u(a - h)) / (2.0 * h)
     };
-    let nodes = polyline(sub_segments, -Vector3::z(), Vector3::x(), |a| slope(a).atan());
+    let nodes = polyline(sub_segments, -Vector3::z(), Vector3::x(), |a| {
+        slope(a).atan()
+    });
     let mut cable = SegmentDynamics::at_rest(&params, hanging(), FarEnd::Free, &nodes, 0.0)
         .unwrap_or_else(|e| panic!("{e}"));
     let omega = vibration::hanging_chain_omega(1, length, g);

@@ -6,12 +6,12 @@
 //! substeps of 1/3840 s.
 
 use cable_dict::cable::CableSpec;
+use cable_dict::geometry::connect;
+use cable_dict::pose::{Pose, pose_from_xyz_rpy};
 use cable_dict::rigid_chain::{
     BlowUpQuantity, CableWorld, ConvergenceWindow, DynamicsError, DynamicsSettings, LinearConnect,
     SegmentShape, connect_linear, interpolate, relax, settle,
 };
-use cable_dict::geometry::connect;
-use cable_dict::pose::{Pose, pose_from_xyz_rpy};
 use cable_dict::robot::Robot;
 use cable_dict::stress::{Obstacles, min_clearance, stretch};
 use nalgebra::{DMatrix, DVector, Point3, Translation3, UnitQuaternion, Vector3};

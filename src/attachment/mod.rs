@@ -72,12 +72,25 @@ pub fn attachment_test_with(
 ) -> Vec<SegmentSets> {
     let setup = evaluator.setup();
     let count = setup.segment_count();
-    let at_poses = |m: usize, pv: &Pv| first_rejection(evaluator, m, pv, &poses.poses[m]);
-    let intra_link = intra_link.unwrap_or(&at_poses);
+    let at_poses = |m: usize, guides: (usize, usize), lengths: &[usize]| {
+        evaluator.first_rejections(m, guides, lengths, &poses.poses[m])
+    };
     let mut sets: Vec<Option<SegmentSets>> = vec![None; count];
     for m in (0..count).filter(|&m| setup.is_intra_link(m)) {
         let candidates = admissible_pvs(setup, m);
-        sets[m] = Some(test_segment(setup, m, candidates, |pv| intra_link(m, pv)));
+        sets[m] = Some(match intra_link {
+            Some(lookup) => test_segment(setup, m, candidates, |(start, end), lengths| {
+                let pv = |sub_segments| Pv {
+                    sub_segments,
+                    start,
+                    end,
+                };
+                lengths.iter().map(|&s| lookup(m, &pv(s))).collect()
+            }),
+            None => test_segment(setup, m, candidates, |guides, lengths| {
+                at_poses(m, guides, lengths)
+            }),
+        });
     }
     for m in (0..count).filter(|&m| !setup.is_intra_link(m)) {
         let allowed_start = neighbour_configurations(&sets, m.checked_sub(1), |pv| pv.end);
@@ -89,7 +102,9 @@ pub fn attachment_test_with(
             .filter(|pv| allowed_start.as_ref().is_none_or(|a| a.contains(&pv.start)))
             .filter(|pv| allowed_end.as_ref().is_none_or(|a| a.contains(&pv.end)))
             .collect();
-        let mut tested = test_segment(setup, m, candidates, |pv| at_poses(m, pv));
+        let mut tested = test_segment(setup, m, candidates, |guides, lengths| {
+            at_poses(m, guides, lengths)
+        });
         tested.d0 = d0_count;
         sets[m] = Some(tested);
     }
@@ -135,27 +150,52 @@ pub fn admissible_pvs(setup: &Setup, m: usize) -> Vec<Pv> {
     pvs
 }
 
-/// D1 and D2 of segment `m` from its candidates (D'0), given the verdict of one PV.
+/// D1 and D2 of segment `m` from its candidates (D'0), given the verdicts of the lengths
+/// (sorted, > 0) of one pair of guide configurations: the pairs are evaluated in parallel,
+/// each pair's lengths together (so that they can share their solves' start shapes).
 fn test_segment(
     setup: &Setup,
     m: usize,
     candidates: Vec<Pv>,
-    verdict: impl Fn(&Pv) -> Option<Rejection> + Sync,
+    verdicts_of: impl Fn((usize, usize), &[usize]) -> Vec<Option<Rejection>> + Sync,
 ) -> SegmentSets {
     let timer = Instant::now();
     let robustness = &setup.robustness;
     let needed = needed_pvs(&candidates, robustness.delta_s, robustness.range);
+    let mut pairs: BTreeMap<(usize, usize), Vec<usize>> = BTreeMap::new();
+    for pv in needed.iter().filter(|pv| pv.sub_segments > 0) {
+        pairs
+            .entry((pv.start, pv.end))
+            .or_default()
+            .push(pv.sub_segments);
+    }
+    let pairs: Vec<((usize, usize), Vec<usize>)> = pairs.into_iter().collect();
     progress::begin(&format!("attachment C{}", m + 1), needed.len() as u64);
-    let results: Vec<Option<Rejection>> = needed
+    let results: Vec<Vec<Option<Rejection>>> = pairs
         .par_iter()
-        .map(|pv| {
-            let result = verdict(pv);
-            progress::advance(1);
+        .map(|(guides, lengths)| {
+            let result = verdicts_of(*guides, lengths);
+            progress::advance(lengths.len() as u64);
             result
         })
         .collect();
     progress::end();
-    let verdicts: BTreeMap<Pv, Option<Rejection>> = needed.into_iter().zip(results).collect();
+    // Zero-length PVs (one clamp) have no cable and pass.
+    let mut verdicts: BTreeMap<Pv, Option<Rejection>> = needed
+        .iter()
+        .filter(|pv| pv.sub_segments == 0)
+        .map(|pv| (*pv, None))
+        .collect();
+    for (((start, end), lengths), result) in pairs.iter().zip(results) {
+        for (&sub_segments, verdict) in lengths.iter().zip(result) {
+            let pv = Pv {
+                sub_segments,
+                start: *start,
+                end: *end,
+            };
+            verdicts.insert(pv, verdict);
+        }
+    }
     let passes = |pv: &Pv| matches!(verdicts.get(pv), Some(None));
     let mut rejections = BTreeMap::new();
     for pv in &candidates {
@@ -182,18 +222,6 @@ fn test_segment(
         evaluations: verdicts.len(),
         time_s: timer.elapsed().as_secs_f64(),
     }
-}
-
-/// The first limit `pv` violates over `poses` (stopping there), `None` if it passes them all.
-fn first_rejection(
-    evaluator: &Evaluator<'_>,
-    m: usize,
-    pv: &Pv,
-    poses: &[TestPose],
-) -> Option<Rejection> {
-    poses
-        .iter()
-        .find_map(|pose| evaluator.check(m, pv, pose).rejection)
 }
 
 /// The PVs `S ± k·ΔS`, `k = 1…R`, with the same guides; `None` when one of them would be

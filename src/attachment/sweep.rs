@@ -4,9 +4,14 @@
 //! extremes of the joints it traverses. The rest of the arm still turns gravity in the
 //! segment's frame and moves other links past it between them. Measured on the bundled
 //! pick-and-place: a C1 PV that passes at both J4 extremes bends to 47.9 mm (limit 48) at
-//! C3's J5 maximum. Before a chain goes to the dynamic motion test (seconds per chain), each
-//! of its PVs is solved statically at every motion sample (about 0.4 ms per pose); a PV that
-//! fails anywhere can only fail the motion test too and is dropped without one.
+//! C3's J5 maximum. Before a chain goes to the dynamic motion test, each of its PVs is
+//! solved statically at every motion sample; a PV that fails anywhere fails the motion test
+//! too when the motion is slow, and is dropped without one.
+//!
+//! The poses are solved in the motion's order, each from the previous pose's equilibrium
+//! carried along by the guides ([`Evaluator::sweep`]): a few Newton steps per pose instead
+//! of a solve from the connected geometry, and the branch of equilibria a cable moved slowly
+//! through the motion follows — the quasi-static limit of the motion test.
 
 use super::{Evaluator, Rejection, TestPose, poses::sample_pose};
 use crate::motion::{Motion, MotionError};
@@ -62,28 +67,41 @@ impl<'e, 'a> MotionSweep<'e, 'a> {
     }
 
     /// The first pose (in time) where PV `pv` of segment `m` violates a limit; `None` when it
-    /// holds all three everywhere. Poses are solved in parallel; the verdict does not depend
-    /// on the thread count.
+    /// holds all three everywhere.
     pub fn check(&mut self, m: usize, pv: &Pv) -> Option<SweepFailure> {
+        self.check_all(&[(m, *pv)]).pop().flatten()
+    }
+
+    /// [`MotionSweep::check`] of several PVs (segment, PV), swept in parallel; one result
+    /// each, in order, independent of the thread count.
+    pub fn check_all(&mut self, pvs: &[(usize, Pv)]) -> Vec<Option<SweepFailure>> {
         let evaluator = self.evaluator;
         let poses = &self.poses;
-        self.verdicts
-            .entry((m, *pv))
-            .or_insert_with(|| {
-                progress::begin(&format!("static sweep C{}", m + 1), poses.len() as u64);
-                let failure = poses.par_iter().find_map_first(|pose| {
-                    let check = evaluator.check(m, pv, pose);
-                    progress::advance(1);
-                    Some(SweepFailure {
-                        rejection: check.rejection?,
+        let new: Vec<(usize, Pv)> = pvs
+            .iter()
+            .filter(|key| !self.verdicts.contains_key(key))
+            .copied()
+            .collect();
+        progress::begin("static sweep", (new.len() * poses.len()) as u64);
+        let swept: Vec<Option<SweepFailure>> = new
+            .par_iter()
+            .map(|(m, pv)| {
+                let failure = evaluator
+                    .sweep(*m, pv, poses)
+                    .map(|(pose, check)| SweepFailure {
+                        rejection: check.rejection.unwrap_or(Rejection::Diverged),
                         sample: pose.sample,
                         time_s: pose.time_s,
                         detail: check.detail.unwrap_or_default(),
-                    })
-                });
-                progress::end();
+                    });
+                progress::advance(poses.len() as u64);
                 failure
             })
-            .clone()
+            .collect();
+        progress::end();
+        self.verdicts.extend(new.into_iter().zip(swept));
+        pvs.iter()
+            .map(|key| self.verdicts.get(key).cloned().flatten())
+            .collect()
     }
 }

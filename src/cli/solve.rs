@@ -6,6 +6,7 @@ use cable_dict::atomic_file::write_atomically;
 use cable_dict::attachment::{ConnectMethod, SegmentPoses};
 use cable_dict::dictionary::Dictionary;
 use cable_dict::motion::Motion;
+use cable_dict::motion_test::EngineKind;
 use cable_dict::report::{ReportError, write_report};
 use cable_dict::setup::Setup;
 use cable_dict::solve::{
@@ -56,6 +57,20 @@ pub struct Args {
     /// dynamic motion test (the paper's pipeline: critical poses, then dynamics only).
     #[arg(long)]
     no_static_sweep: bool,
+    /// What simulates the cable in the motion test: `implicit` (the statics' cable model
+    /// integrated in time; at rest it is the static equilibrium) or `rigid-chain` (rapier3d
+    /// rigid bodies, the paper's baseline; slower, and it drifts from the static shape for
+    /// stiff cables).
+    #[arg(long, value_enum, default_value_t = MotionEngine::Implicit)]
+    motion_engine: MotionEngine,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, clap::ValueEnum)]
+enum MotionEngine {
+    /// BDF2 on the energy of the static solver.
+    Implicit,
+    /// rapier3d rigid sub-segments and joint springs.
+    RigidChain,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, clap::ValueEnum)]
@@ -97,6 +112,10 @@ pub fn run(args: Args) -> Result<(), Failure> {
         motion_test: !args.no_motion_test,
         static_sweep: !args.no_static_sweep,
         shape_interval_s: args.report.is_some().then_some(SCENE_FRAME_INTERVAL_S),
+        engine: match args.motion_engine {
+            MotionEngine::Implicit => EngineKind::Implicit,
+            MotionEngine::RigidChain => EngineKind::RigidChain,
+        },
     };
     let report = match &dictionary {
         Some(dictionary) => solve_with_dictionary(dictionary, &setup, &motion, &options),

@@ -153,7 +153,13 @@ impl SegmentDynamics {
         nodes: &[Point3<f64>],
         twist_rad: f64,
     ) -> Result<Self, DynamicsError> {
-        check_input(params, &start, &far_end, nodes, &SolverOptions::STRESS_CHECK)?;
+        check_input(
+            params,
+            &start,
+            &far_end,
+            nodes,
+            &SolverOptions::STRESS_CHECK,
+        )?;
         if !twist_rad.is_finite() {
             return Err(DynamicsError::Invalid {
                 what: format!("twist {twist_rad} rad is not finite"),
@@ -310,7 +316,12 @@ impl SegmentDynamics {
                 .map(|i| (3.0 * result.x[i] - 4.0 * self.x[i] + self.x_before[i]) / (2.0 * h))
                 .collect()
         } else {
-            result.x.iter().zip(&self.x).map(|(a, b)| (a - b) / h).collect()
+            result
+                .x
+                .iter()
+                .zip(&self.x)
+                .map(|(a, b)| (a - b) / h)
+                .collect()
         };
         if let Some((node, speed_m_s)) = fastest_node(&velocity)
             && speed_m_s > MAX_NODE_SPEED_M_S

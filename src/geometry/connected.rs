@@ -126,6 +126,26 @@ pub enum ConnectError {
     },
 }
 
+/// [`ConnectError::TooShort`] when the guides are farther apart than `S·l` (beyond the
+/// arc-length tolerance of [`connect`], which makes the same check).
+pub fn reaches(
+    start: &Pose,
+    end: &Pose,
+    sub_segments: usize,
+    pitch_m: f64,
+) -> Result<(), ConnectError> {
+    let natural = sub_segments as f64 * pitch_m;
+    let distance = (end.translation.vector - start.translation.vector).norm();
+    if distance > natural + arc_length_tolerance(natural) {
+        return Err(ConnectError::TooShort {
+            distance_m: distance,
+            natural_length_m: natural,
+            required_stretch: distance / natural,
+        });
+    }
+    Ok(())
+}
+
 /// Connects the `start` guide to the `end` guide with `sub_segments` rigid sub-segments of
 /// `pitch_m` metres; `sag_direction` is where a slack cable should bow to (gravity, usually).
 /// See the module documentation for the algorithm.
@@ -149,16 +169,10 @@ pub fn connect(
     check_cable(sub_segments, pitch_m)?;
     let guides = GuidePair::from_poses(start, end)?;
     let sag = check_sag(sag_direction)?;
+    reaches(start, end, sub_segments, pitch_m)?;
     let natural = sub_segments as f64 * pitch_m;
     let distance = (guides.end_point - guides.start_point).norm();
     let tolerance = arc_length_tolerance(natural);
-    if distance > natural + tolerance {
-        return Err(ConnectError::TooShort {
-            distance_m: distance,
-            natural_length_m: natural,
-            required_stretch: distance / natural,
-        });
-    }
     let base = HermiteCurve::new(
         guides.start_point,
         guides.start_tangent,

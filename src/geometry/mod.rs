@@ -19,6 +19,8 @@ mod guides;
 pub mod hermite;
 pub mod rmf;
 
-pub use connected::{ConnectError, ConnectedGeometry, CurveFamily, connect, sag_direction};
+pub use connected::{
+    ConnectError, ConnectedGeometry, CurveFamily, connect, reaches, sag_direction,
+};
 pub use hermite::{CurveParameter, HermiteCurve};
 pub use rmf::double_reflection;

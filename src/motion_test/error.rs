@@ -1,8 +1,8 @@
 //! Why a motion test could not be run at all (invalid input), as opposed to a candidate that
 //! failed it (a [`MotionTestReport`](super::MotionTestReport) with `passed == false`).
 
-use crate::rigid_chain::DynamicsError;
 use crate::geometry::ConnectError;
+use crate::rigid_chain::DynamicsError;
 use crate::robot::JointVectorError;
 use crate::statics::StaticsError;
 use crate::stress::ContactError;

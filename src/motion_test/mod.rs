@@ -1,7 +1,7 @@
 //! The *motion test* (DESIGN §3.6): the whole cable of a candidate path — every segment,
-//! clamped at every guide — simulated dynamically in rapier3d while the guides and the
-//! robot's links follow the motion at its real timing; the worst contact, stretch and bend
-//! radius over time decide whether the candidate passes.
+//! clamped at every guide — simulated dynamically while the guides and the robot's links
+//! follow the motion at its real timing; the worst contact, stretch and bend radius over
+//! time decide whether the candidate passes.
 //!
 //! What [`run`] does:
 //!
@@ -10,48 +10,49 @@
 //!    own sub-segments; results always name the setup's segment index (C1 = 0).
 //! 2. **Initial shape** at the motion's first sample: the guides' world poses, per segment
 //!    the connected geometry (bowing towards gravity) and then the quasi-static equilibrium
-//!    ([`solve_cable`](crate::statics::solve_cable), Newton stopped at 1e-6 N like the
-//!    attachment test), so the cable starts at rest. Guides
-//!    farther apart than a segment's length, no connected geometry or no equilibrium make a
-//!    *failed candidate* (a report with the reason), not an error.
-//! 3. **Stepping** with [`MotionTestOptions::settings`] (default
-//!    [`DynamicsSettings::motion`](crate::rigid_chain::DynamicsSettings::motion): steps of
-//!    1/240 s with 16 substeps). Step `k` ends at `t0 + k·dt` on the motion's time axis; the
-//!    guides' and links' kinematic targets for it are the poses at that instant, joints
+//!    (Newton stopped at 1e-6 N like the attachment test), so the cable starts at rest in
+//!    the shape the attachment test judged. Guides farther apart than a segment's length,
+//!    no connected geometry or no equilibrium make a *failed candidate* (a report with the
+//!    reason), not an error.
+//! 3. **Stepping** with [`MotionTestOptions::engine`]: by default [`Engine::Implicit`], the
+//!    statics' cable model integrated by BDF2 ([`crate::dynamics`]) in steps of 1/240 s, so
+//!    that a cable at rest stays at its static equilibrium and a slow motion gives the
+//!    static sweep's values; [`Engine::RigidChain`] is the paper's kind of rapier3d
+//!    simulation, kept as its baseline. Step `k` ends at `t0 + k·dt` on the motion's time
+//!    axis; the guides' and links' poses for it are those at that instant, joints
 //!    interpolated linearly between samples ([`Motion::joints_at`]). The motion part takes
 //!    `⌈duration / dt⌉` steps; then [`MotionTestOptions::settle_tail_s`] (default
 //!    [`DEFAULT_SETTLE_TAIL_S`] = 0.5 s) holds the last pose so that the cable's overshoot
 //!    after the final stop is seen.
-//! 4. **Metrics**, for the initial equilibrium and after every step, per segment:
+//! 4. **Metrics**, for the initial equilibrium and after every step, per segment, from its
+//!    nodes exactly as the attachment test measures a static shape:
 //!    - *contact*: the exact signed clearance to every link collider
 //!      ([`min_clearance`](crate::stress::min_clearance), f64, capsules of the cable radius),
 //!      excluding `thresholds.clamp_zone_m` of cable at each guide against the guide's own
 //!      link (and the link that one is fixed to); violated when below
-//!      `thresholds.contact_clearance_m`. Exact and cheap enough for every step: ≈ 25 µs for
-//!      a 145-sub-segment cable against the Viper's 12 colliders, about 1 % of a step (the
-//!      query culls distant colliders itself);
-//!    - *contact force*: rapier's contact force on each sub-segment outside the clamp zones
-//!      (the largest per step is reported); by default
-//!      ([`MotionTestOptions::contact_force_is_violation`]) any such force is a contact
-//!      violation too, since rapier holds a pressed cable at about zero clearance;
+//!      `thresholds.contact_clearance_m` (≥ 0: the first touch already fails, so the
+//!      implicit engine needs no contact forces); with the rigid chain also rapier's contact
+//!      force outside the clamp zones ([`MotionTestOptions::contact_force_is_violation`]);
 //!    - *stretch*: centreline length / natural length; violated above `thresholds.stretch`;
 //!    - *bend radius*: the smallest over the joints, guide axes included; violated below
 //!      `thresholds.min_bend_radius_m`.
 //! 5. **Report** ([`MotionTestReport`]): pass/fail, the worst value of each metric with its
 //!    time, segment and place, the first violation, optionally the series, the final shape,
-//!    and the cost. A simulation that leaves its sanity bounds
-//!    ([`DynamicsError::BlowUp`](crate::rigid_chain::DynamicsError::BlowUp)) is a failed
-//!    candidate "simulation diverged at t = … (…)". Only input that does not fit the setup
-//!    is an [`Err`]: see [`MotionTestError`].
+//!    and the cost. A step the engine cannot take (no converged implicit step even on short
+//!    substeps, a rigid chain leaving its sanity bounds) is a failed candidate "simulation
+//!    diverged at t = … (…)". Only input that does not fit the setup is an [`Err`]: see
+//!    [`MotionTestError`].
 //!
-//! The run is deterministic: single-threaded rapier, a fixed order of every operation, so
-//! the same inputs give the same report bits (except `wall_time_s`).
+//! The run is deterministic: every segment's computation is fixed whatever the thread
+//! count (the implicit engine steps the independent segments in parallel; rapier runs
+//! single-threaded), so the same inputs give the same report bits (except `wall_time_s`).
 //!
 //! With [`MotionTestOptions::stop_at_first_violation`] the run ends at the first step with a
 //! violation — enough to reject a candidate while trying the next-shortest ones; the winner
 //! is worth a full run for its report.
 
 mod clearance;
+mod engine;
 mod error;
 mod initial;
 mod options;
@@ -61,7 +62,7 @@ mod simulate;
 mod tracker;
 
 pub use error::MotionTestError;
-pub use options::{DEFAULT_SETTLE_TAIL_S, MotionTestOptions};
+pub use options::{DEFAULT_SETTLE_TAIL_S, Engine, EngineKind, MotionTestOptions};
 pub use report::{
     Constraint, Failure, FailureCause, MotionTestReport, Place, SegmentNodes, SeriesPoint,
     ShapeFrame, Violation, Worst,
@@ -104,8 +105,7 @@ pub fn run(
         plan,
         motion,
         options,
-        clearance: ClearanceQuery::new(obstacles, 0.5 * setup.cable.diameter_m, zones.clone()),
-        clamp_zones: zones,
+        clearance: ClearanceQuery::new(obstacles, 0.5 * setup.cable.diameter_m, zones),
     };
     let mut tracker = Tracker::new(
         setup,
@@ -114,7 +114,7 @@ pub fn run(
     )
     .keeping_shapes(options.shape_interval_s);
     let ended = context.simulate(&mut tracker)?;
-    let dt = options.settings.time_step_s;
+    let dt = options.time_step_s();
     let facts = RunFacts {
         motion_duration_s: motion.duration_s(),
         steps: ended.steps,

@@ -1,20 +1,19 @@
-//! The stepping loop: the robot and the guides follow the motion, the cable follows the
-//! guides, every step is measured.
+//! The motion test as one loop: the robot and the guides follow the motion, the cable
+//! follows the guides, and every instant is measured and kept by the tracker.
 
 use super::clearance::ClearanceQuery;
+use super::engine::{Cable, SegmentState};
 use super::initial::equilibria;
 use super::plan::Plan;
 use super::report::{Failure, FailureCause};
-use super::tracker::{ForceAt, SegmentMeasure, Tracker};
+use super::tracker::{SegmentMeasure, Tracker};
 use super::{MotionTestError, MotionTestOptions};
-use crate::rigid_chain::{CableWorld, ContactSummary, DynamicsError, SegmentShape, StepRecord};
 use crate::motion::Motion;
 use crate::pose::Pose;
 use crate::progress;
 use crate::setup::Setup;
-use crate::statics::Equilibrium;
-use crate::stress::{ClampZone, GuideEnd, min_bend_radius, stretch, zone_sub_segments};
-use nalgebra::{Point3, Vector3};
+use crate::stress::{min_bend_radius, stretch};
+use nalgebra::Vector3;
 
 /// Slack (in steps) when rounding a duration to whole steps, so that a duration of exactly
 /// `n` steps is not rounded up to `n + 1` by floating-point noise.
@@ -27,9 +26,6 @@ pub(super) struct Context<'a> {
     pub motion: &'a Motion,
     pub options: &'a MotionTestOptions,
     pub clearance: ClearanceQuery,
-    /// Per simulated segment, the clamp zones: checked by neither the clearance nor the
-    /// simulation's contacts.
-    pub clamp_zones: Vec<Vec<ClampZone>>,
 }
 
 /// How a simulation ended: a failure of the candidate (not a limit violation, which the
@@ -40,79 +36,73 @@ pub(super) struct Ended {
 }
 
 impl Context<'_> {
-    /// Builds the initial shape, then steps through the motion and the settle tail.
+    /// The initial equilibrium, then the motion and the settle tail step by step: each
+    /// instant measured and recorded, until the end or (when asked) the first violation.
     pub fn simulate(&self, tracker: &mut Tracker) -> Result<Ended, MotionTestError> {
         let t0 = self.motion.times_s()[0];
+        let dt = self.options.time_step_s();
         let links = self.link_poses(t0)?;
         let guides = self.plan.guide_poses(self.setup, &links);
-        let shapes = match equilibria(self.setup, &self.plan, &guides, t0, tracker)? {
+        let shapes = match equilibria(self.setup, &self.plan, &guides, t0)? {
             Ok(shapes) => shapes,
+            Err(no_start) => {
+                if let Some((segment, required)) = no_start.too_short {
+                    tracker.record_too_short(t0, segment, required);
+                }
+                return Ok(ended(Some(no_start.failure), 0));
+            }
+        };
+        let mut states: Vec<SegmentState> = shapes
+            .iter()
+            .map(|shape| SegmentState {
+                nodes: shape.nodes.clone(),
+                contact: None,
+                max_joint_gap_m: 0.0,
+            })
+            .collect();
+        let start = Cable::start(
+            &self.options.engine,
+            self.setup,
+            &self.plan,
+            &guides,
+            &links,
+            &shapes,
+        )?;
+        let mut cable = match start {
+            Ok(cable) => cable,
             Err(failure) => return Ok(ended(Some(failure), 0)),
         };
-        tracker.record(t0, &self.measure_initial(&links, &guides, &shapes, t0)?);
-        if self.options.stop_at_first_violation && tracker.violated() {
-            return Ok(ended(None, 0));
-        }
-        let mut world = match self.world(&guides, &shapes) {
-            Ok(world) => world,
-            Err(failure) => return Ok(ended(Some(failure), 0)),
-        };
-        world
-            .add_robot(&self.setup.robot, &links)
-            .map_err(MotionTestError::Dynamics)?;
-        self.step_through(&mut world, tracker)
-    }
-
-    /// Steps `world` to the motion's end plus the settle tail.
-    fn step_through(
-        &self,
-        world: &mut CableWorld,
-        tracker: &mut Tracker,
-    ) -> Result<Ended, MotionTestError> {
-        let t0 = self.motion.times_s()[0];
-        let dt = self.options.settings.time_step_s;
         let total = self.step_count();
         progress::begin("motion test", total as u64);
-        let ended = self.steps(world, tracker, t0, dt, total);
-        progress::end();
-        ended
-    }
-
-    /// Steps 1 … `total` of [`Self::step_through`], reporting each to [`progress`].
-    fn steps(
-        &self,
-        world: &mut CableWorld,
-        tracker: &mut Tracker,
-        t0: f64,
-        dt: f64,
-        total: usize,
-    ) -> Result<Ended, MotionTestError> {
-        for k in 1..=total {
-            progress::advance(1);
+        let (mut links, mut guides) = (links, guides);
+        let mut result = Ok(ended(None, total));
+        for k in 0..=total {
             let t = t0 + k as f64 * dt;
-            let links = self.link_poses(t)?;
-            world
-                .move_guides(&self.plan.guide_poses(self.setup, &links))
-                .and_then(|()| world.move_robot(&links))
-                .map_err(MotionTestError::Dynamics)?;
-            let record = match world.step() {
-                Ok(record) => record,
-                Err(e @ DynamicsError::BlowUp { .. }) => {
-                    return Ok(ended(Some(self.diverged(&e, t)), k));
-                }
-                Err(e) => return Err(MotionTestError::Dynamics(e)),
-            };
-            tracker.record(t, &self.measure_step(world, &links, &record, t)?);
+            if k > 0 {
+                progress::advance(1);
+                links = self.link_poses(t)?;
+                guides = self.plan.guide_poses(self.setup, &links);
+                states = match cable.advance(&guides, &links)? {
+                    Ok(states) => states,
+                    Err((j, detail)) => {
+                        result = Ok(ended(Some(self.diverged(j, &detail, t)), k));
+                        break;
+                    }
+                };
+            }
+            tracker.record(t, &self.measure(&links, &guides, &mut states, t)?);
             if self.options.stop_at_first_violation && tracker.violated() {
-                return Ok(ended(None, k));
+                result = Ok(ended(None, k));
+                break;
             }
         }
-        Ok(ended(None, total))
+        progress::end();
+        result
     }
 
     /// Steps for the motion (its last step reaches or passes the last sample) plus the tail.
     pub fn step_count(&self) -> usize {
-        let dt = self.options.settings.time_step_s;
+        let dt = self.options.time_step_s();
         let steps = |duration: f64| (duration / dt - STEP_ROUNDING).ceil().max(0.0) as usize;
         steps(self.motion.duration_s()) + steps(self.options.settle_tail_s)
     }
@@ -125,164 +115,47 @@ impl Context<'_> {
             .map_err(|source| MotionTestError::Kinematics { time_s, source })
     }
 
-    /// The simulation, from the equilibria; a shape it refuses is a failed candidate.
-    fn world(&self, guides: &[Pose], shapes: &[Equilibrium]) -> Result<CableWorld, Failure> {
-        let segment_shapes: Vec<SegmentShape> = shapes
-            .iter()
-            .enumerate()
-            .map(|(j, eq)| SegmentShape {
-                start_guide: guides[j],
-                end_guide: guides[j + 1],
-                nodes: &eq.nodes,
-                frames: &eq.frames,
-            })
-            .collect();
-        let refused = |e: DynamicsError| Failure {
-            cause: FailureCause::NoInitialShape,
-            reason: format!("the simulation refused the initial shape: {e}"),
-            segment: None,
-        };
-        let mut world = CableWorld::new(&self.setup.cable, &segment_shapes, &self.options.settings)
-            .map_err(refused)?;
-        for (j, (zones, eq)) in self.clamp_zones.iter().zip(shapes).enumerate() {
-            let sub_segments = eq.nodes.len() - 1;
-            for zone in zones {
-                let n = zone_sub_segments(&eq.nodes, zone.end, zone.length_m);
-                let range = match zone.end {
-                    GuideEnd::Start => 0..n,
-                    GuideEnd::End => sub_segments - n..sub_segments,
-                };
-                world
-                    .ignore_contacts(j, range, zone.link)
-                    .map_err(refused)?;
-            }
-        }
-        Ok(world)
-    }
-
-    /// The metrics of the equilibria (no contact force: nothing is simulated yet).
-    fn measure_initial(
+    /// The three metrics of every segment, from its nodes alone, as the attachment test
+    /// judges a static shape (the nodes move into the measure).
+    fn measure(
         &self,
         links: &[Pose],
         guides: &[Pose],
-        shapes: &[Equilibrium],
+        states: &mut [SegmentState],
         time_s: f64,
     ) -> Result<Vec<SegmentMeasure>, MotionTestError> {
         let pitch = self.setup.cable.sub_segment_pitch_m;
         let axis = |pose: &Pose| pose.rotation * Vector3::z();
-        let mut measures = Vec::with_capacity(shapes.len());
-        for (j, (planned, eq)) in self.plan.segments.iter().zip(shapes).enumerate() {
+        let mut measures = Vec::with_capacity(states.len());
+        for (j, (planned, state)) in self.plan.segments.iter().zip(states).enumerate() {
             let segment = planned.setup_index;
+            let nodes = std::mem::take(&mut state.nodes);
             let natural = planned.sub_segments as f64 * pitch;
             measures.push(SegmentMeasure {
                 segment,
                 clearance: self
                     .clearance
-                    .segment(links, j, &eq.nodes, (segment, time_s))?,
-                stretch: stretch(&eq.nodes, natural),
-                bend: min_bend_radius(&eq.nodes, &axis(&guides[j]), &axis(&guides[j + 1]), pitch),
-                contact: None,
-                max_joint_gap_m: 0.0,
-                nodes: eq.nodes.clone(),
-            });
-        }
-        Ok(measures)
-    }
-
-    /// The metrics of the simulated cable after a step.
-    fn measure_step(
-        &self,
-        world: &CableWorld,
-        links: &[Pose],
-        record: &StepRecord,
-        time_s: f64,
-    ) -> Result<Vec<SegmentMeasure>, MotionTestError> {
-        let zone_m = self.setup.thresholds.clamp_zone_m;
-        let mut measures = Vec::with_capacity(record.segments.len());
-        for (j, (planned, rec)) in self.plan.segments.iter().zip(&record.segments).enumerate() {
-            let segment = planned.setup_index;
-            let nodes = world.segment_nodes(j).unwrap_or_default();
-            measures.push(SegmentMeasure {
-                segment,
-                clearance: self
-                    .clearance
                     .segment(links, j, &nodes, (segment, time_s))?,
-                stretch: rec.stretch,
-                bend: rec.min_bend,
-                contact: force_outside_zones(&rec.contact, &nodes, zone_m),
-                max_joint_gap_m: rec.max_joint_gap_m,
+                stretch: stretch(&nodes, natural),
+                bend: min_bend_radius(&nodes, &axis(&guides[j]), &axis(&guides[j + 1]), pitch),
+                contact: state.contact,
+                max_joint_gap_m: state.max_joint_gap_m,
                 nodes,
             });
         }
         Ok(measures)
     }
 
-    /// The failure of a blow-up at `time_s`, naming the setup's segment.
-    fn diverged(&self, error: &DynamicsError, time_s: f64) -> Failure {
-        let (detail, segment) = match error {
-            DynamicsError::BlowUp {
-                segment,
-                sub_segment,
-                quantity,
-                value,
-                bound,
-                ..
-            } => {
-                let setup_segment = self
-                    .plan
-                    .segments
-                    .get(*segment)
-                    .map_or(*segment, |s| s.setup_index);
-                let place = sub_segment.map_or(String::new(), |s| format!(", sub-segment {s}"));
-                let detail = format!(
-                    "segment C{}{place}: {quantity} = {value:.4e} exceeds the sanity bound {bound:.4e}",
-                    setup_segment + 1
-                );
-                (detail, Some(setup_segment))
-            }
-            other => (other.to_string(), None),
-        };
+    /// The failure of a diverging simulation at `time_s`, naming the setup's segment.
+    fn diverged(&self, simulated: Option<usize>, detail: &str, time_s: f64) -> Failure {
+        let segment = simulated.and_then(|j| self.plan.segments.get(j).map(|s| s.setup_index));
+        let place = segment.map_or(String::new(), |m| format!("segment C{}: ", m + 1));
         Failure {
             cause: FailureCause::Diverged,
-            reason: format!("simulation diverged at t = {time_s:.4} s ({detail})"),
+            reason: format!("simulation diverged at t = {time_s:.4} s ({place}{detail})"),
             segment,
         }
     }
-}
-
-/// The sub-segment with the largest contact force among those outside `zone_m` of cable
-/// (arc length along `nodes`) from either guide; `None` without any force there. Inside a
-/// zone the cable legitimately touches its guide's link, and the summary does not say which
-/// link a force comes from (only for the most loaded sub-segment), so zones are left out
-/// whole; the clearance still checks them against the other links.
-fn force_outside_zones(
-    contact: &ContactSummary,
-    nodes: &[Point3<f64>],
-    zone_m: f64,
-) -> Option<ForceAt> {
-    let forces = &contact.per_sub_segment_n;
-    let (first, last) = (
-        zone_sub_segments(nodes, GuideEnd::Start, zone_m),
-        forces
-            .len()
-            .saturating_sub(zone_sub_segments(nodes, GuideEnd::End, zone_m)),
-    );
-    let (sub_segment, force_n) = (first..last)
-        .filter_map(|k| forces.get(k).map(|&f| (k, f)))
-        .filter(|&(_, f)| f > 0.0)
-        .fold(None, |best: Option<(usize, f64)>, (k, f)| match best {
-            Some((_, largest)) if largest >= f => best,
-            _ => Some((k, f)),
-        })?;
-    let link = contact
-        .max
-        .filter(|m| m.sub_segment == sub_segment)
-        .map(|m| m.link);
-    Some(ForceAt {
-        sub_segment,
-        force_n,
-        link,
-    })
 }
 
 fn ended(failure: Option<Failure>, steps: usize) -> Ended {

@@ -1,5 +1,6 @@
 //! Worst values, first violation and series, updated one measured instant at a time.
 
+use super::engine::ForceAt;
 use super::report::{
     Constraint, Failure, FailureCause, MotionTestReport, Place, SegmentNodes, SeriesPoint,
     ShapeFrame, Violation, Worst,
@@ -24,17 +25,6 @@ pub(super) struct SegmentMeasure {
     pub contact: Option<ForceAt>,
     /// Largest joint gap (m); 0 for a shape that was not simulated.
     pub max_joint_gap_m: f64,
-}
-
-/// The contact force on one sub-segment.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct ForceAt {
-    /// Sub-segment index.
-    pub sub_segment: usize,
-    /// Force summed over the robot's colliders (N).
-    pub force_n: f64,
-    /// Index into `robot.links` of the link pushing hardest, when known.
-    pub link: Option<usize>,
 }
 
 /// Everything the report keeps, accumulated over the run.

@@ -28,7 +28,7 @@ use crate::attachment::{
 use crate::chain::{ChainError, ChainSearch};
 use crate::dictionary::{Dictionary, LookupError, MotionLookup};
 use crate::motion::{Motion, MotionError};
-use crate::motion_test::{self, MotionTestError, MotionTestOptions, MotionTestReport};
+use crate::motion_test::{self, EngineKind, MotionTestError, MotionTestOptions, MotionTestReport};
 use crate::path::{CablePath, Pv};
 use crate::setup::{Setup, SetupError};
 use crate::stress::contact::ContactError;
@@ -53,6 +53,8 @@ pub struct SolveOptions {
     /// Keep the cable's shape every this many seconds in each motion test's report
     /// ([`MotionTestOptions::shape_interval_s`]), e.g. for the report's animation.
     pub shape_interval_s: Option<f64>,
+    /// What simulates the cable in the motion test, at its default settings.
+    pub engine: EngineKind,
 }
 
 impl Default for SolveOptions {
@@ -64,6 +66,7 @@ impl Default for SolveOptions {
             motion_test: true,
             static_sweep: true,
             shape_interval_s: None,
+            engine: EngineKind::Implicit,
         }
     }
 }
@@ -321,7 +324,7 @@ fn motion_tests(
     let test_options = MotionTestOptions {
         stop_at_first_violation: true,
         shape_interval_s: options.shape_interval_s,
-        ..MotionTestOptions::for_setup(setup)
+        ..MotionTestOptions::new(options.engine.with_defaults(setup.gravity_m_s2))
     };
     let mut d2 = d2.to_vec();
     while outcome.tried.len() < options.k_best {
@@ -373,10 +376,9 @@ fn motion_tests(
 
 /// The PVs of `path` that fail the static sweep, segment by segment.
 fn sweep_chain(sweep: &mut MotionSweep<'_, '_>, path: &CablePath) -> Vec<Dropped> {
-    (0..path.segment_count())
-        .filter_map(|m| {
-            let pv = path.pv(m);
-            sweep.check(m, &pv).map(|failure| (m, pv, failure))
-        })
+    let pvs: Vec<(usize, Pv)> = (0..path.segment_count()).map(|m| (m, path.pv(m))).collect();
+    pvs.iter()
+        .zip(sweep.check_all(&pvs))
+        .filter_map(|(&(m, pv), failure)| Some((m, pv, failure?)))
         .collect()
 }

@@ -43,6 +43,7 @@ impl SymmetricBand {
 
     /// Adds the node block `(p, q)`, `p ≥ q`, of a symmetric matrix: `A(3p + a, 3q + b) +=
     /// block(a, b)` (for `p = q` the block must be symmetric; its lower triangle is used).
+    #[inline]
     pub(crate) fn add_lower_block(&mut self, p: usize, q: usize, block: &Matrix3<f64>) {
         debug_assert!(p >= q && p - q <= NODE_REACH);
         let offset = 3 * (p - q);
@@ -122,10 +123,11 @@ impl SymmetricBand {
         let factor = &mut out.factor;
         factor.clear();
         factor.extend_from_slice(&self.rows);
-        out.pivots.clear();
-        out.pivots.resize(n, 0.0);
+        out.inverse_pivots.clear();
+        out.inverse_pivots.resize(n, 0.0);
         out.negative = 0;
-        let pivots = &mut out.pivots;
+        // 1 / D(j) of the last rows: a row divides by the same pivots eight times.
+        let mut inverse = [0.0; HALF_BANDWIDTH];
         for i in 0..n {
             let first = i.saturating_sub(HALF_BANDWIDTH);
             // w[j − first] = L(i, j) D(j): the products the rest of row i reuses.
@@ -138,7 +140,7 @@ impl SymmetricBand {
                     sum -= w[k - first] * row_j[j - k];
                 }
                 w[j - first] = sum;
-                let l = sum / pivots[j];
+                let l = sum * inverse[j % HALF_BANDWIDTH];
                 factor[i][i - j] = l;
                 pivot -= l * sum;
             }
@@ -148,7 +150,8 @@ impl SymmetricBand {
             if pivot < 0.0 {
                 out.negative += 1;
             }
-            pivots[i] = pivot;
+            inverse[i % HALF_BANDWIDTH] = 1.0 / pivot;
+            out.inverse_pivots[i] = inverse[i % HALF_BANDWIDTH];
             factor[i][0] = 1.0;
         }
         Ok(())
@@ -167,8 +170,8 @@ impl SymmetricBand {
 pub(crate) struct BandLdlt {
     /// Unit lower-triangular `L`, band layout (`factor[i][0]` = 1).
     factor: Vec<[f64; HALF_BANDWIDTH + 1]>,
-    /// `D`.
-    pivots: Vec<f64>,
+    /// `D⁻¹`.
+    inverse_pivots: Vec<f64>,
     /// Negative entries of `D`: the number of negative eigenvalues of the factored matrix.
     pub(crate) negative: usize,
 }
@@ -176,23 +179,43 @@ pub(crate) struct BandLdlt {
 impl BandLdlt {
     /// Solves `L D Lᵀ x = b` in place (`b` becomes `x`).
     pub(crate) fn solve_in_place(&self, b: &mut [f64]) {
+        self.solve_many_in_place(&mut [b]);
+    }
+
+    /// Solves `L D Lᵀ x = b` for several right-hand sides at once, in place: one pass over
+    /// the factor, the substitutions' dependency chains of the systems interleaved.
+    pub(crate) fn solve_many_in_place(&self, systems: &mut [&mut [f64]]) {
         let n = self.factor.len();
         for i in 0..n {
-            let mut sum = b[i];
-            for k in 1..=HALF_BANDWIDTH.min(i) {
-                sum -= self.factor[i][k] * b[i - k];
+            let reach = HALF_BANDWIDTH.min(i);
+            let row = &self.factor[i][1..=reach];
+            for b in systems.iter_mut() {
+                let (before, rest) = b.split_at_mut(i);
+                let sum: f64 = row
+                    .iter()
+                    .zip(before[i - reach..].iter().rev())
+                    .map(|(l, x)| l * x)
+                    .sum();
+                rest[0] -= sum;
             }
-            b[i] = sum;
         }
-        for (value, pivot) in b.iter_mut().zip(&self.pivots) {
-            *value /= pivot;
+        for b in systems.iter_mut() {
+            for (value, inverse) in b.iter_mut().zip(&self.inverse_pivots) {
+                *value *= inverse;
+            }
         }
+        // Lᵀ by columns of L (rows of the band): each solved value is taken out of the ones
+        // before it, reading the band row by row.
         for i in (0..n).rev() {
-            let mut sum = b[i];
-            for k in 1..=HALF_BANDWIDTH.min(n - 1 - i) {
-                sum -= self.factor[i + k][k] * b[i + k];
+            let reach = HALF_BANDWIDTH.min(i);
+            let row = &self.factor[i][1..=reach];
+            for b in systems.iter_mut() {
+                let (before, rest) = b.split_at_mut(i);
+                let value = rest[0];
+                for (l, x) in row.iter().zip(before[i - reach..].iter_mut().rev()) {
+                    *x -= l * value;
+                }
             }
-            b[i] = sum;
         }
     }
 }

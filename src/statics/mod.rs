@@ -16,6 +16,7 @@
 //! static problems: [`solve_cable`] solves them one after another.
 
 mod banded;
+pub mod continuation;
 mod joint;
 pub(crate) mod newton;
 mod retract;

@@ -44,6 +44,11 @@ pub(crate) struct NewtonResult {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Workspace {
     hessian: SymmetricBand,
+    /// The Hessian at the first trial point of a line search: the full step is usually
+    /// taken, and then it is the next iteration's Hessian.
+    trial_hessian: SymmetricBand,
+    /// Whether `trial_hessian` belongs to the accepted trial point.
+    trial_has_hessian: bool,
     factor: BandLdlt,
     /// The evaluation at the current iterate (after a solve: at its result).
     pub(crate) evaluation: Evaluation,
@@ -96,14 +101,19 @@ pub(crate) fn minimize(
         }
         std::mem::swap(&mut x, &mut ws.trial);
         iterations += 1;
-        let twist = ws.trial_evaluation.twist;
-        rod.evaluate_into(
-            &x,
-            twist,
-            Some(&mut ws.hessian),
-            &mut ws.evaluation,
-            &mut ws.scratch,
-        );
+        if ws.trial_has_hessian {
+            std::mem::swap(&mut ws.evaluation, &mut ws.trial_evaluation);
+            std::mem::swap(&mut ws.hessian, &mut ws.trial_hessian);
+        } else {
+            let twist = ws.trial_evaluation.twist;
+            rod.evaluate_into(
+                &x,
+                twist,
+                Some(&mut ws.hessian),
+                &mut ws.evaluation,
+                &mut ws.scratch,
+            );
+        }
     };
     NewtonResult {
         residual: max_abs(&ws.evaluation.gradient),
@@ -159,10 +169,16 @@ impl Workspace {
         }
         let update = &self.evaluation.twist_gradient;
         let has_update = twist != 0.0 && !update.is_empty();
+        self.direction.clear();
+        self.direction
+            .extend(self.evaluation.gradient.iter().map(|g| -g));
         self.solved_update.clear();
         if has_update {
             self.solved_update.extend_from_slice(update);
-            self.factor.solve_in_place(&mut self.solved_update);
+            self.factor
+                .solve_many_in_place(&mut [&mut self.direction, &mut self.solved_update]);
+        } else {
+            self.factor.solve_in_place(&mut self.direction);
         }
         let denominator = 1.0 + twist * dot(update, &self.solved_update);
         let positive_definite = match self.factor.negative {
@@ -174,10 +190,6 @@ impl Workspace {
             return false;
         }
         // (B + k g gᵀ)⁻¹ r = B⁻¹r − k (gᵀB⁻¹r) / (1 + k gᵀB⁻¹g) · B⁻¹g (Sherman–Morrison).
-        self.direction.clear();
-        self.direction
-            .extend(self.evaluation.gradient.iter().map(|g| -g));
-        self.factor.solve_in_place(&mut self.direction);
         if has_update {
             let coefficient = twist * dot(update, &self.direction) / denominator;
             for (d, z) in self.direction.iter_mut().zip(&self.solved_update) {
@@ -202,7 +214,7 @@ impl Workspace {
         };
         let energy = self.evaluation.energy;
         let roundoff = 1e-12 * energy.abs();
-        for _ in 0..MAX_HALVINGS {
+        for halving in 0..MAX_HALVINGS {
             // The retracted point first; the plain one where the retraction is ill-posed (a
             // straight chain between clamps cannot change its chord lengths to first order).
             for retract in [true, false] {
@@ -219,10 +231,12 @@ impl Workspace {
                     self.trial
                         .extend(x.iter().zip(&self.direction).map(|(x, d)| x + step * d));
                 }
+                // The first trial point gets its Hessian too: it is usually the next iterate.
+                self.trial_has_hessian = halving == 0 && retract;
                 rod.evaluate_into(
                     &self.trial,
                     self.evaluation.twist,
-                    None,
+                    self.trial_has_hessian.then_some(&mut self.trial_hessian),
                     &mut self.trial_evaluation,
                     &mut self.scratch,
                 );

@@ -550,59 +550,13 @@ struct Assembly<'a> {
     hessian: Option<&'a mut SymmetricBand>,
 }
 
-/// A joint's nodes: its node and its two neighbours, local indices 0…2 from `first`, and
-/// each side's contribution to them (`∂/∂e = ∂/∂x_(i+1) = −∂/∂x_i` for edge `i`).
-struct JointNodes {
-    first: usize,
-    /// Per side (incoming, outgoing): the (local node, sign) pairs of a cable edge.
-    terms: [[Option<(usize, f64)>; 2]; 2],
-}
-
-impl JointNodes {
-    fn new(a: Side, b: Side) -> Self {
-        let first = match (a, b) {
-            (Side::Cable(i), _) | (Side::Guide(_), Side::Cable(i)) => i,
-            (Side::Guide(_), Side::Guide(_)) => 0,
-        };
-        let terms = |side: Side| match side {
-            Side::Cable(i) => [Some((i - first, -1.0)), Some((i + 1 - first, 1.0))],
-            Side::Guide(_) => [None, None],
-        };
-        Self {
-            first,
-            terms: [terms(a), terms(b)],
-        }
-    }
-
-    /// The gradient on the joint's nodes.
-    fn gradient(&self, d: &EdgePairDerivatives) -> [Vector3<f64>; 3] {
-        let mut nodes = [Vector3::zeros(); 3];
-        for (terms, gradient) in self.terms.iter().zip([d.grad_a, d.grad_b]) {
-            for &(u, sign) in terms.iter().flatten() {
-                nodes[u] += sign * gradient;
-            }
-        }
-        nodes
-    }
-
-    /// The Hessian blocks between the joint's nodes.
-    fn hessian(&self, d: &EdgePairDerivatives) -> [[Matrix3<f64>; 3]; 3] {
-        let blocks = [[d.hess_aa, d.hess_ab], [d.hess_ba, d.hess_bb]];
-        let mut nodes = [[Matrix3::zeros(); 3]; 3];
-        for (p, row_terms) in self.terms.iter().enumerate() {
-            for &(u, su) in row_terms.iter().flatten() {
-                for (q, column_terms) in self.terms.iter().enumerate() {
-                    for &(v, sv) in column_terms.iter().flatten() {
-                        nodes[u][v] += (su * sv) * blocks[p][q];
-                    }
-                }
-            }
-        }
-        nodes
-    }
+/// The symmetric part of a block.
+fn symmetric(block: &Matrix3<f64>) -> Matrix3<f64> {
+    0.5 * (block + block.transpose())
 }
 
 impl Assembly<'_> {
+    #[inline]
     fn add_node_gradient(&mut self, node: usize, g: &Vector3<f64>) {
         if let Some(i) = self.rod.free_index(node) {
             for (slot, value) in self.gradient[3 * i..3 * i + 3].iter_mut().zip(g.iter()) {
@@ -613,6 +567,7 @@ impl Assembly<'_> {
 
     /// Adds the node block `(p, q)`, `p ≥ q`, of a symmetric Hessian (both nodes free, else
     /// nothing: clamped nodes carry no unknowns).
+    #[inline]
     fn add_hessian_block(&mut self, p: usize, q: usize, block: &Matrix3<f64>) {
         let (rod, Some(hessian)) = (self.rod, self.hessian.as_deref_mut()) else {
             return;
@@ -622,35 +577,65 @@ impl Assembly<'_> {
         }
     }
 
-    /// Adds a joint's gradient and (symmetrized) Hessian; guide sides carry no unknowns.
+    /// Adds a joint's gradient and (symmetrized) Hessian. A cable edge `i` is
+    /// `x_(i+1) − x_i`, so `∂/∂x_i = −∂/∂e`, `∂/∂x_(i+1) = +∂/∂e`; a guide side carries no
+    /// unknowns. The twist part of a joint's Hessian is not symmetric on its own (the
+    /// reference twist is not a function of the joint's edges alone); the whole Hessian is,
+    /// so its symmetric part is assembled.
     fn add_joint(&mut self, a: Side, b: Side, d: &EdgePairDerivatives) {
-        let nodes = JointNodes::new(a, b);
-        for (u, g) in nodes.gradient(d).iter().enumerate() {
-            self.add_node_gradient(nodes.first + u, g);
-        }
-        if self.hessian.is_none() {
-            return;
-        }
-        // The twist part of a joint's Hessian is not symmetric on its own (the reference
-        // twist is not a function of the joint's edges alone); the whole Hessian is, so its
-        // symmetric part is assembled.
-        let hessian = nodes.hessian(d);
-        for u in 0..3 {
-            for v in 0..=u {
-                let block = 0.5 * (hessian[u][v] + hessian[v][u].transpose());
-                self.add_hessian_block(nodes.first + u, nodes.first + v, &block);
+        match (a, b) {
+            (Side::Cable(p), Side::Cable(_)) => {
+                self.add_node_gradient(p, &-d.grad_a);
+                self.add_node_gradient(p + 1, &(d.grad_a - d.grad_b));
+                self.add_node_gradient(p + 2, &d.grad_b);
+                if self.hessian.is_none() {
+                    return;
+                }
+                let (aa, ab, ba, bb) = (d.hess_aa, d.hess_ab, d.hess_ba, d.hess_bb);
+                // Node blocks H_uv of nodes p, p + 1, p + 2 (u, v = 0, 1, 2).
+                let (h01, h10) = (ab - aa, ba - aa);
+                let (h12, h21) = (ab - bb, ba - bb);
+                self.add_hessian_block(p, p, &symmetric(&aa));
+                self.add_hessian_block(p + 1, p, &(0.5 * (h10 + h01.transpose())));
+                self.add_hessian_block(p + 2, p, &(-0.5 * (ba + ab.transpose())));
+                self.add_hessian_block(p + 1, p + 1, &symmetric(&(aa - ab - ba + bb)));
+                self.add_hessian_block(p + 2, p + 1, &(0.5 * (h21 + h12.transpose())));
+                self.add_hessian_block(p + 2, p + 2, &symmetric(&bb));
             }
+            (Side::Cable(i), Side::Guide(_)) => self.add_edge_terms(i, &d.grad_a, &d.hess_aa),
+            (Side::Guide(_), Side::Cable(i)) => self.add_edge_terms(i, &d.grad_b, &d.hess_bb),
+            (Side::Guide(_), Side::Guide(_)) => {}
+        }
+    }
+
+    /// Gradient `g` and Hessian block `h` with respect to edge `i` onto its two nodes.
+    fn add_edge_terms(&mut self, i: usize, g: &Vector3<f64>, h: &Matrix3<f64>) {
+        self.add_node_gradient(i, &-g);
+        self.add_node_gradient(i + 1, g);
+        if self.hessian.is_some() {
+            let block = symmetric(h);
+            self.add_hessian_block(i, i, &block);
+            self.add_hessian_block(i + 1, i, &-block);
+            self.add_hessian_block(i + 1, i + 1, &block);
         }
     }
 
     /// Adds a joint's reference-twist gradient to `∂Ψ/∂x`.
     fn add_twist_gradient(&mut self, a: Side, b: Side, d: &EdgePairDerivatives) {
-        let nodes = JointNodes::new(a, b);
-        for (u, g) in nodes.gradient(d).iter().enumerate() {
-            if let Some(i) = self.rod.free_index(nodes.first + u) {
-                for (slot, value) in self.twist_gradient[3 * i..3 * i + 3].iter_mut().zip(g) {
+        let mut add = |node: usize, g: Vector3<f64>| {
+            if let Some(i) = self.rod.free_index(node) {
+                for (slot, value) in self.twist_gradient[3 * i..3 * i + 3]
+                    .iter_mut()
+                    .zip(g.iter())
+                {
                     *slot += value;
                 }
+            }
+        };
+        for (side, g) in [(a, d.grad_a), (b, d.grad_b)] {
+            if let Side::Cable(i) = side {
+                add(i, -g);
+                add(i + 1, g);
             }
         }
     }

@@ -3,11 +3,11 @@
 use super::super::Failure;
 use super::{Args, Connect, Solver};
 use cable_dict::cable::CableSpec;
+use cable_dict::geometry::{ConnectError, CurveFamily, connect, sag_direction};
 use cable_dict::rigid_chain::{
     ConvergenceWindow, DynamicsError, DynamicsSettings, LinearConnect, SegmentShape,
     connect_linear, relax,
 };
-use cable_dict::geometry::{ConnectError, CurveFamily, connect, sag_direction};
 use cable_dict::statics::{FarEnd, RodParameters, SolverOptions, StaticsError, solve_segment};
 use nalgebra::{Point3, Rotation3};
 use std::time::Instant;

@@ -1,0 +1,242 @@
+//! The simulated cable behind one interface, whichever [`Engine`] moves it: started at rest
+//! in the initial equilibria, advanced one step at a time to the guides' and links' poses,
+//! read back as nodes (and, for the rigid chain, contact forces).
+
+use super::options::Engine;
+use super::report::{Failure, FailureCause};
+use super::{MotionTestError, plan::Plan};
+use crate::dynamics::{IntegratorSettings, SegmentDynamics};
+use crate::pose::Pose;
+use crate::rigid_chain::{CableWorld, ContactSummary, DynamicsError, SegmentShape};
+use crate::setup::Setup;
+use crate::statics::{Equilibrium, FarEnd, RodParameters};
+use crate::stress::{ClampZone, GuideEnd, zone_sub_segments};
+use nalgebra::Point3;
+use rayon::prelude::*;
+
+/// One simulated segment after a step.
+pub(super) struct SegmentState {
+    /// `S + 1` nodes, world frame (m).
+    pub nodes: Vec<Point3<f64>>,
+    /// The most loaded sub-segment outside the clamp zones (rigid chain only).
+    pub contact: Option<ForceAt>,
+    /// Largest joint gap (m): the rigid chain's constraint error; 0 for the implicit engine,
+    /// whose sub-segments are one energy, not jointed bodies.
+    pub max_joint_gap_m: f64,
+}
+
+/// The contact force on one sub-segment (rigid chain).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct ForceAt {
+    /// Sub-segment index.
+    pub sub_segment: usize,
+    /// Force summed over the robot's colliders (N).
+    pub force_n: f64,
+    /// Index into `robot.links` of the link pushing hardest, when known.
+    pub link: Option<usize>,
+}
+
+/// The cable in one of the engines.
+pub(super) enum Cable {
+    Implicit {
+        segments: Vec<SegmentDynamics>,
+        settings: IntegratorSettings,
+    },
+    RigidChain {
+        world: Box<CableWorld>,
+        zone_m: f64,
+    },
+}
+
+impl Cable {
+    /// The cable at rest in `shapes` (one per simulated segment, between `guides`), the
+    /// robot's links at `links`; a shape the engine refuses is a failed candidate.
+    pub fn start(
+        engine: &Engine,
+        setup: &Setup,
+        plan: &Plan,
+        guides: &[Pose],
+        links: &[Pose],
+        shapes: &[Equilibrium],
+    ) -> Result<Result<Cable, Failure>, MotionTestError> {
+        let refused = |what: String| Failure {
+            cause: FailureCause::NoInitialShape,
+            reason: format!("the simulation refused the initial shape: {what}"),
+            segment: None,
+        };
+        match engine {
+            Engine::Implicit(settings) => {
+                let params = RodParameters::new(&setup.cable, setup.gravity_m_s2);
+                let mut segments = Vec::with_capacity(shapes.len());
+                for (j, shape) in shapes.iter().enumerate() {
+                    match SegmentDynamics::at_rest(
+                        &params,
+                        guides[j],
+                        FarEnd::Clamped(guides[j + 1]),
+                        &shape.nodes,
+                        shape.twist_rad,
+                    ) {
+                        Ok(segment) => segments.push(segment),
+                        Err(e) => return Ok(Err(refused(e.to_string()))),
+                    }
+                }
+                Ok(Ok(Cable::Implicit {
+                    segments,
+                    settings: *settings,
+                }))
+            }
+            Engine::RigidChain(settings) => {
+                let zones = plan.clamp_zones(setup, setup.thresholds.clamp_zone_m);
+                let world = match rigid_world(setup, settings, guides, shapes, &zones) {
+                    Ok(world) => world,
+                    Err(e) => return Ok(Err(refused(e.to_string()))),
+                };
+                let mut world = Box::new(world);
+                world
+                    .add_robot(&setup.robot, links)
+                    .map_err(MotionTestError::Dynamics)?;
+                Ok(Ok(Cable::RigidChain {
+                    world,
+                    zone_m: setup.thresholds.clamp_zone_m,
+                }))
+            }
+        }
+    }
+
+    /// One step to the guides at `guides` and the links at `links`: every segment's state,
+    /// or the failure of a diverging simulation (`Ok(Err)`, naming the simulated segment
+    /// when it belongs to one).
+    pub fn advance(
+        &mut self,
+        guides: &[Pose],
+        links: &[Pose],
+    ) -> Result<Result<Vec<SegmentState>, (Option<usize>, String)>, MotionTestError> {
+        match self {
+            Cable::Implicit { segments, settings } => {
+                // Segments are independent between clamps: stepped in parallel, each the same
+                // computation whatever the thread count.
+                let stepped: Vec<Result<(), String>> = segments
+                    .par_iter_mut()
+                    .enumerate()
+                    .map(|(j, segment)| {
+                        let end = FarEnd::Clamped(guides[j + 1]);
+                        segment
+                            .step(guides[j], end, settings.time_step_s, settings)
+                            .map(|_| ())
+                            .map_err(|e| e.to_string())
+                    })
+                    .collect();
+                if let Some((j, Err(detail))) = stepped
+                    .into_iter()
+                    .enumerate()
+                    .find(|(_, result)| result.is_err())
+                {
+                    return Ok(Err((Some(j), detail)));
+                }
+                Ok(Ok(segments
+                    .iter()
+                    .map(|segment| SegmentState {
+                        nodes: segment.nodes(),
+                        contact: None,
+                        max_joint_gap_m: 0.0,
+                    })
+                    .collect()))
+            }
+            Cable::RigidChain { world, zone_m } => {
+                world
+                    .move_guides(guides)
+                    .and_then(|()| world.move_robot(links))
+                    .map_err(MotionTestError::Dynamics)?;
+                let record = match world.step() {
+                    Ok(record) => record,
+                    Err(e @ DynamicsError::BlowUp { segment, .. }) => {
+                        return Ok(Err((Some(segment), e.to_string())));
+                    }
+                    Err(e) => return Err(MotionTestError::Dynamics(e)),
+                };
+                Ok(Ok(record
+                    .segments
+                    .iter()
+                    .enumerate()
+                    .map(|(j, rec)| {
+                        let nodes = world.segment_nodes(j).unwrap_or_default();
+                        SegmentState {
+                            contact: force_outside_zones(&rec.contact, &nodes, *zone_m),
+                            max_joint_gap_m: rec.max_joint_gap_m,
+                            nodes,
+                        }
+                    })
+                    .collect()))
+            }
+        }
+    }
+}
+
+/// The rapier world of the initial shapes, with each segment's clamp zones exempt from
+/// contact with the links their guides sit on.
+fn rigid_world(
+    setup: &Setup,
+    settings: &crate::rigid_chain::DynamicsSettings,
+    guides: &[Pose],
+    shapes: &[Equilibrium],
+    zones: &[Vec<ClampZone>],
+) -> Result<CableWorld, DynamicsError> {
+    let segment_shapes: Vec<SegmentShape> = shapes
+        .iter()
+        .enumerate()
+        .map(|(j, eq)| SegmentShape {
+            start_guide: guides[j],
+            end_guide: guides[j + 1],
+            nodes: &eq.nodes,
+            frames: &eq.frames,
+        })
+        .collect();
+    let mut world = CableWorld::new(&setup.cable, &segment_shapes, settings)?;
+    for (j, (zones, eq)) in zones.iter().zip(shapes).enumerate() {
+        let sub_segments = eq.nodes.len() - 1;
+        for zone in zones {
+            let n = zone_sub_segments(&eq.nodes, zone.end, zone.length_m);
+            let range = match zone.end {
+                GuideEnd::Start => 0..n,
+                GuideEnd::End => sub_segments - n..sub_segments,
+            };
+            world.ignore_contacts(j, range, zone.link)?;
+        }
+    }
+    Ok(world)
+}
+
+/// The sub-segment with the largest contact force among those outside `zone_m` of cable
+/// (arc length along `nodes`) from either guide; `None` without any force there. Inside a
+/// zone the cable legitimately touches its guide's link, and the summary does not say which
+/// link a force comes from (only for the most loaded sub-segment), so zones are left out
+/// whole; the clearance still checks them against the other links.
+fn force_outside_zones(
+    contact: &ContactSummary,
+    nodes: &[Point3<f64>],
+    zone_m: f64,
+) -> Option<ForceAt> {
+    let forces = &contact.per_sub_segment_n;
+    let (first, last) = (
+        zone_sub_segments(nodes, GuideEnd::Start, zone_m),
+        forces
+            .len()
+            .saturating_sub(zone_sub_segments(nodes, GuideEnd::End, zone_m)),
+    );
+    let (sub_segment, force_n) = (first..last)
+        .filter_map(|k| forces.get(k).map(|&f| (k, f)))
+        .filter(|&(_, f)| f > 0.0)
+        .fold(None, |best: Option<(usize, f64)>, (k, f)| match best {
+            Some((_, largest)) if largest >= f => best,
+            _ => Some((k, f)),
+        })?;
+    let link = contact
+        .max
+        .filter(|m| m.sub_segment == sub_segment)
+        .map(|m| m.link);
+    Some(ForceAt {
+        sub_segment,
+        force_n,
+        link,
+    })
+}
