@@ -1,7 +1,9 @@
-//! Cable files: the bundled specs carry the paper's values (Table 3, restated in DESIGN §3.3)
-//! and every bad value is refused naming the file, the line and the field.
+//! Cable files: the paper presets carry the paper's values (Table 3, restated in DESIGN §3.3)
+//! converted from per-joint springs to EI and GJ; the realistic presets load without a
+//! plausibility warning while the paper's camera cable (23 400 kg/m³) and both paper cables'
+//! GJ/EI ≈ 30 warn; every bad value is refused naming the file, the line and the field.
 
-use cable_dict::cable::CableSpec;
+use cable_dict::cable::{CableSpec, DEFAULT_AXIAL_STIFFNESS_N, DEFAULT_SUB_SEGMENT_PITCH_M};
 use std::path::Path;
 
 fn bundled(name: &str) -> CableSpec {
@@ -11,42 +13,100 @@ fn bundled(name: &str) -> CableSpec {
     CableSpec::from_file(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-12 * b.abs()
+}
+
 #[test]
-fn bundled_cables_carry_the_papers_values() {
-    // (file, diameter m, kg/m, kb, kt, min bend radius m)
+fn paper_presets_carry_the_papers_values_as_ei_and_gj() {
+    // (file, diameter m, kg/m, kb, kt, min bend radius m); EI = kb · 10 mm, GJ = kt · 10 mm.
     let table = [
         ("smc_le_cp_3_paper.toml", 0.008, 0.260, 5.1e-2, 1.5, 0.048),
         ("gev_c6hf_paper.toml", 0.006, 0.662, 6.7e-2, 2.1, 0.060),
     ];
     for (file, diameter, mass, kb, kt, radius) in table {
         let cable = bundled(file);
-        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
         assert!(close(cable.diameter_m, diameter), "{file}");
         assert!(close(cable.mass_per_length_kg_m, mass), "{file}");
-        assert!(close(cable.bending_stiffness_nm_per_rad, kb), "{file}");
-        assert!(close(cable.torsion_stiffness_nm_per_rad, kt), "{file}");
+        assert!(close(cable.bending_stiffness_n_m2, kb * 0.010), "{file}");
+        assert!(close(cable.torsion_stiffness_n_m2, kt * 0.010), "{file}");
+        assert!(close(cable.bending_stiffness_nm_per_rad(), kb), "{file}");
+        assert!(close(cable.torsion_stiffness_nm_per_rad(), kt), "{file}");
         assert!(close(cable.min_bend_radius_m, radius), "{file}");
         assert!(close(cable.sub_segment_pitch_m, 0.010), "{file}");
-        // Continuum stiffness of the discrete model: EI = kb · l_ss.
-        assert!(close(cable.bending_rigidity_nm2(), kb * 0.010), "{file}");
-        assert!(close(cable.torsional_rigidity_nm2(), kt * 0.010), "{file}");
+    }
+}
+
+/// Density by hand (m / (π d²/4)) and GJ/EI decide the warnings: the paper's values warn
+/// (camera cable: both; SMC: the ratio only), the realistic presets do not.
+#[test]
+fn implausible_cables_warn_and_the_realistic_presets_do_not() {
+    let density = |c: &CableSpec| {
+        c.mass_per_length_kg_m / (std::f64::consts::PI * c.diameter_m.powi(2) / 4.0)
+    };
+    let camera = bundled("gev_c6hf_paper.toml");
+    assert!(
+        (density(&camera) - 23_413.0).abs() < 1.0,
+        "{}",
+        density(&camera)
+    );
+    let warnings = camera.plausibility_warnings();
+    assert_eq!(warnings.len(), 2, "{warnings:?}");
+    assert!(warnings[0].contains("23413 kg/m³"), "{warnings:?}");
+    assert!(warnings[1].contains("GJ/EI = 31.34"), "{warnings:?}");
+    let smc = bundled("smc_le_cp_3_paper.toml");
+    let warnings = smc.plausibility_warnings();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(warnings[0].contains("GJ/EI = 29.41"), "{warnings:?}");
+    for file in ["smc_le_cp_3.toml", "gev_c6hf.toml"] {
+        let cable = bundled(file);
+        assert!(cable.plausibility_warnings().is_empty(), "{file}");
+        let ratio = cable.torsion_stiffness_n_m2 / cable.bending_stiffness_n_m2;
+        assert!((0.67..2.0).contains(&ratio), "{file}: GJ/EI {ratio}");
+        assert!((900.0..6000.0).contains(&density(&cable)), "{file}");
     }
 }
 
 const GOOD: &str = r#"name = "test cable"
 diameter_mm = 8.0
 mass_per_length_kg_m = 0.26
-bending_stiffness_nm_per_rad = 0.051
-torsion_stiffness_nm_per_rad = 1.5
+bending_stiffness_n_m2 = 6e-3
+torsion_stiffness_n_m2 = 7.8e-3
 min_bend_radius_mm = 48.0
 sub_segment_pitch_mm = 10.0
 axial_stiffness_n = 1.0e4
 "#;
 
+fn parse(text: &str) -> Result<CableSpec, String> {
+    CableSpec::from_toml_str(text, Path::new("c.toml")).map_err(|e| e.to_string())
+}
+
 fn refusal(text: &str) -> String {
-    CableSpec::from_toml_str(text, Path::new("c.toml"))
-        .expect_err("must be refused")
-        .to_string()
+    parse(text).expect_err("must be refused")
+}
+
+/// The paper's per-joint springs are read with the file's pitch; the pitch and EA default
+/// when left out; a file written by `to_toml` reads back to the same values.
+#[test]
+fn per_joint_springs_convert_and_defaults_apply() {
+    let legacy = GOOD
+        .replace(
+            "bending_stiffness_n_m2 = 6e-3",
+            "bending_stiffness_nm_per_rad = 0.3",
+        )
+        .replace("sub_segment_pitch_mm = 10.0", "sub_segment_pitch_mm = 20.0");
+    let cable = parse(&legacy).unwrap();
+    assert!(close(cable.bending_stiffness_n_m2, 0.3 * 0.020));
+    assert!(close(cable.bending_stiffness_nm_per_rad(), 0.3));
+    assert!(close(cable.torsion_stiffness_nm_per_rad(), 7.8e-3 / 0.020));
+    let minimal = GOOD
+        .replace("sub_segment_pitch_mm = 10.0\n", "")
+        .replace("axial_stiffness_n = 1.0e4\n", "");
+    let cable = parse(&minimal).unwrap();
+    assert_eq!(cable.sub_segment_pitch_m, DEFAULT_SUB_SEGMENT_PITCH_M);
+    assert_eq!(cable.axial_stiffness_n, DEFAULT_AXIAL_STIFFNESS_N);
+    let round_trip = parse(&cable.to_toml("written by a test\n\nsecond line")).unwrap();
+    assert_eq!(round_trip, cable);
 }
 
 #[test]
@@ -60,16 +120,16 @@ fn non_positive_and_non_finite_values_are_refused_with_field_and_line() {
             "mass_per_length_kg_m",
         ),
         (
-            "bending_stiffness_nm_per_rad = 0.051",
-            "bending_stiffness_nm_per_rad = nan",
+            "bending_stiffness_n_m2 = 6e-3",
+            "bending_stiffness_n_m2 = nan",
             4,
-            "bending_stiffness_nm_per_rad",
+            "bending_stiffness_n_m2",
         ),
         (
-            "torsion_stiffness_nm_per_rad = 1.5",
-            "torsion_stiffness_nm_per_rad = inf",
+            "torsion_stiffness_n_m2 = 7.8e-3",
+            "torsion_stiffness_n_m2 = inf",
             5,
-            "torsion_stiffness_nm_per_rad",
+            "torsion_stiffness_n_m2",
         ),
         (
             "min_bend_radius_mm = 48.0",
@@ -103,8 +163,38 @@ fn non_positive_and_non_finite_values_are_refused_with_field_and_line() {
     }
 }
 
+/// Each stiffness exactly once; a per-joint spring only with its pitch.
 #[test]
-fn missing_unknown_and_mistyped_keys_are_refused() {
+fn stiffness_given_twice_missing_or_without_its_pitch_is_refused() {
+    let twice = refusal(&GOOD.replace(
+        "bending_stiffness_n_m2 = 6e-3",
+        "bending_stiffness_n_m2 = 6e-3\nbending_stiffness_nm_per_rad = 0.6",
+    ));
+    assert!(
+        twice.contains("c.toml:5") && twice.contains("not both"),
+        "«{twice}»"
+    );
+    let missing = refusal(&GOOD.replace("torsion_stiffness_n_m2 = 7.8e-3\n", ""));
+    assert!(
+        missing.contains("missing `torsion_stiffness_n_m2`"),
+        "«{missing}»"
+    );
+    let no_pitch = refusal(
+        &GOOD
+            .replace(
+                "bending_stiffness_n_m2 = 6e-3",
+                "bending_stiffness_nm_per_rad = 0.6",
+            )
+            .replace("sub_segment_pitch_mm = 10.0\n", ""),
+    );
+    assert!(
+        no_pitch.contains("c.toml:4") && no_pitch.contains("sub_segment_pitch_mm"),
+        "«{no_pitch}»"
+    );
+}
+
+#[test]
+fn unknown_and_mistyped_keys_and_missing_files_are_refused() {
     let missing = refusal(&GOOD.replace("min_bend_radius_mm = 48.0\n", ""));
     assert!(
         missing.contains("c.toml") && missing.contains("min_bend_radius_mm"),

@@ -1,8 +1,8 @@
-//! The rapier cable (`cable_dict::dynamics`) against references computed here: the catenary,
+//! The rapier rigid-body cable (`cable_dict::rigid_chain`) against references computed here: the catenary,
 //! the exact equilibrium of the planar discrete cable, rigid-motion invariance, the weight a
 //! support carries, and the consistency of the paper's baseline connection with a relaxation.
 //!
-//! Run in release (`cargo test --release --test dynamics`): the physics is stepped with
+//! Run in release (`cargo test --release --test rigid_chain`): the physics is stepped with
 //! substeps of 1/3840 s.
 
 use cable_dict::cable::CableSpec;
@@ -87,7 +87,7 @@ fn catenary_parameter(span: f64, length: f64) -> f64 {
 #[test]
 fn a_cable_without_bending_stiffness_hangs_as_a_catenary() {
     let mut cable = smc();
-    cable.bending_stiffness_nm_per_rad /= 1000.0;
+    cable.bending_stiffness_n_m2 /= 1000.0;
     let (span, sub_segments) = (0.4, 50);
     let length = sub_segments as f64 * cable.sub_segment_pitch_m;
     let a = catenary_parameter(span, length);
@@ -186,7 +186,7 @@ fn a_relaxed_span_is_the_exact_discrete_equilibrium() {
     let angles = planar_equilibrium(
         s,
         pitch,
-        cable.bending_stiffness_nm_per_rad,
+        cable.bending_stiffness_nm_per_rad(),
         weight,
         span,
         &initial,

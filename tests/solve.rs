@@ -340,7 +340,7 @@ fn the_result_does_not_depend_on_the_thread_count() {
 
 /// The README's main job: the bundled pick-and-place is solved, and d* keeps the cable
 /// datasheet's limits (read from the cable file here, not through the setup) over the whole
-/// dynamic run; every chain tried before it failed. About 30 s in release.
+/// dynamic run; every chain tried before it failed. About 4 s in release.
 #[test]
 fn the_bundled_pick_and_place_is_solved_within_the_datasheet_limits() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -355,7 +355,7 @@ fn the_bundled_pick_and_place_is_solved_within_the_datasheet_limits() {
     assert_eq!(report.status, Status::Solved, "{}", report.explanation);
     check_report_folder(&setup, &motion, &report);
 
-    let cable: toml::Table = std::fs::read_to_string(root.join("cables/smc_le_cp_3_paper.toml"))
+    let cable: toml::Table = std::fs::read_to_string(root.join("cables/smc_le_cp_3.toml"))
         .expect("cable file")
         .parse()
         .expect("cable TOML");

@@ -286,7 +286,8 @@ impl<'a> Evaluator<'a> {
         }
         let (a, b) = self.setup.segment_guides(m);
         let mut solver = StaticSolver::default();
-        let mut last: Option<(Solved, (Pose, Pose))> = None;
+        // The last two poses' solutions and guides, the last first.
+        let mut earlier: Vec<(Solved, (Pose, Pose))> = Vec::with_capacity(3);
         for pose in poses {
             let scene = Scene {
                 link_poses: &pose.link_poses,
@@ -297,7 +298,7 @@ impl<'a> Evaluator<'a> {
                 self.setup.guide_world_pose(&pose.link_poses, a, pv.start),
                 self.setup.guide_world_pose(&pose.link_poses, b, pv.end),
             );
-            let warm = Warm::Poses(last.as_ref().map(|(solved, at)| (solved, at)));
+            let warm = Warm::Poses(&earlier);
             let check = match self.solve_warm(&mut solver, &guides, pv.sub_segments, &scene, warm) {
                 Ok(solved) => {
                     let check = self.judge(
@@ -308,11 +309,12 @@ impl<'a> Evaluator<'a> {
                         pv.sub_segments,
                         &scene,
                     );
-                    last = Some((solved, guides));
+                    earlier.insert(0, (solved, guides));
+                    earlier.truncate(2);
                     check
                 }
                 Err(check) => {
-                    last = None;
+                    earlier.clear();
                     check
                 }
             };
@@ -344,10 +346,19 @@ impl<'a> Evaluator<'a> {
         }
         let pitch = self.setup.cable.sub_segment_pitch_m;
         let (start_nodes, connected, twist) = match warm {
-            Warm::Poses(Some((last, (old_start, old_end)))) => {
+            Warm::Poses([(last, at), (second, second_at), ..]) => {
+                let nodes = continuation::follow_guides_extrapolated(
+                    (&last.nodes, (&at.0, &at.1)),
+                    (&second.nodes, (&second_at.0, &second_at.1)),
+                    (&guides.0, &guides.1),
+                    pitch,
+                );
+                (nodes, Vec::new(), last.twist_rad)
+            }
+            Warm::Poses([(last, at)]) => {
                 let nodes = continuation::follow_guides(
                     &last.nodes,
-                    (old_start, old_end),
+                    (&at.0, &at.1),
                     (&guides.0, &guides.1),
                     pitch,
                 );
@@ -386,7 +397,7 @@ impl<'a> Evaluator<'a> {
                     ),
                 }
             }
-            Warm::Poses(None) => {
+            Warm::Poses([]) => {
                 let sag = sag_direction(&scene.gravity_m_s2);
                 let connected = connect(&guides.0, &guides.1, sub_segments, pitch, &sag)
                     .map_err(connect_failure)?;
@@ -541,8 +552,9 @@ struct Solved {
 enum Warm<'a> {
     /// The same pose, shorter lengths, the nearest first (none: the connected geometry).
     Length(&'a [Solved]),
-    /// The previous pose of a sweep and its guides (`None`: the connected geometry).
-    Poses(Option<(&'a Solved, &'a (Pose, Pose))>),
+    /// The previous poses of a sweep and their guides, the last first (none: the connected
+    /// geometry).
+    Poses(&'a [(Solved, (Pose, Pose))]),
 }
 
 /// Where a PV is checked: the links' poses, gravity in the same frame, and which links count

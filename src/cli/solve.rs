@@ -48,7 +48,7 @@ pub struct Args {
     #[arg(long, value_enum, default_value_t = Connect::Hermite)]
     connect: Connect,
     /// Chains tried in the motion test, shortest first, before giving up.
-    #[arg(long, value_name = "N", default_value_t = 10)]
+    #[arg(long, value_name = "N", default_value_t = 50)]
     k_best: usize,
     /// Skip the motion test: report the shortest chain of robust PVs (d̂).
     #[arg(long)]

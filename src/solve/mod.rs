@@ -62,7 +62,7 @@ impl Default for SolveOptions {
         Self {
             method: ConnectMethod::Hermite,
             max_guides_per_link: None,
-            k_best: 10,
+            k_best: 50,
             motion_test: true,
             static_sweep: true,
             shape_interval_s: None,

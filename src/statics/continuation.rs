@@ -25,6 +25,32 @@ pub fn follow_guides(
     to: (&Pose, &Pose),
     pitch_m: f64,
 ) -> Vec<Point3<f64>> {
+    let mut moved = carried(nodes, from, to);
+    restore_pitch(&mut moved, pitch_m);
+    moved
+}
+
+/// Two earlier solutions of a sequence of poses (`nearest` the last one), each with its
+/// guides, carried to the guides `to` and extrapolated linearly: the shape keeps changing
+/// as it did between them (for poses at equal steps, such as a motion's samples).
+pub fn follow_guides_extrapolated(
+    nearest: (&[Point3<f64>], (&Pose, &Pose)),
+    second: (&[Point3<f64>], (&Pose, &Pose)),
+    to: (&Pose, &Pose),
+    pitch_m: f64,
+) -> Vec<Point3<f64>> {
+    let near = carried(nearest.0, nearest.1, to);
+    if second.0.len() != near.len() {
+        return follow_guides(nearest.0, nearest.1, to, pitch_m);
+    }
+    let far = carried(second.0, second.1, to);
+    let mut nodes: Vec<Point3<f64>> = near.iter().zip(&far).map(|(n, f)| n + (n - f)).collect();
+    restore_pitch(&mut nodes, pitch_m);
+    nodes
+}
+
+/// [`follow_guides`] before the pitch is restored.
+fn carried(nodes: &[Point3<f64>], from: (&Pose, &Pose), to: (&Pose, &Pose)) -> Vec<Point3<f64>> {
     let start_motion = to.0 * from.0.inverse();
     let end_motion = to.1 * from.1.inverse();
     let last = nodes.len().saturating_sub(1).max(1) as f64;
@@ -44,7 +70,6 @@ pub fn follow_guides(
     if let Some(end) = moved.last_mut() {
         *end = Point3::from(to.1.translation.vector);
     }
-    restore_pitch(&mut moved, pitch_m);
     moved
 }
 
