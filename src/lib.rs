@@ -11,10 +11,13 @@
 //! - [`progress`]: progress of long stages, reported to a sink a front end draws.
 //! - [`robot`]: URDF loading, forward kinematics and collision geometry of the arm.
 //! - [`cable`]: the physical specification of a cable (stiffness, mass, bend radius).
+//! - [`calibrate`]: a cable's bending and torsional stiffness from bench measurements.
 //! - [`geometry`]: the *connected geometry* of a segment — a cubic Hermite curve carrying the
 //!   discrete cable, with rotation-minimizing frames.
 //! - [`statics`]: the quasi-static equilibrium of a cable clamped at its guides.
-//! - [`dynamics`]: the cable in rapier3d, for the motion test and the paper's baseline.
+//! - [`dynamics`]: the same cable model in motion, integrated implicitly: the motion test's
+//!   engine.
+//! - [`rigid_chain`]: the cable as rigid bodies in rapier3d, the paper's baseline.
 //! - [`stress`]: the stress metrics evaluated on a cable shape (contact, stretch, bend radius).
 //! - [`setup`]: the setup file — robot, cable, guide catalogue, length candidates, limits.
 //! - [`motion`]: sampled robot motions, their generation from waypoints, critical poses.
@@ -55,6 +58,7 @@
 pub mod atomic_file;
 pub mod attachment;
 pub mod cable;
+pub mod calibrate;
 pub mod chain;
 pub mod dictionary;
 pub mod dynamics;

@@ -1,6 +1,7 @@
 //! Command-line interface: argument definitions and dispatch to one module per subcommand.
 
 mod args;
+mod calibrate;
 mod dictionary;
 mod fk;
 mod motion;
@@ -54,6 +55,9 @@ enum Command {
     Verify(dictionary::VerifyArgs),
     /// Merge the shards of a sharded build into one dictionary.
     Merge(dictionary::MergeArgs),
+    /// A cable file (EI, GJ) from bench measurements: the droop of a horizontal cantilever,
+    /// a twist test or a stated GJ/EI.
+    Calibrate(Box<calibrate::Args>),
 }
 
 /// Why a command failed, and the exit code that says so.
@@ -98,6 +102,7 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Info(args) => dictionary::run_info(args),
         Command::Verify(args) => dictionary::run_verify(args),
         Command::Merge(args) => dictionary::run_merge(args),
+        Command::Calibrate(args) => calibrate::run(*args),
     }
 }
 
