@@ -1,18 +1,24 @@
-//! The static motion sweep (`attachment::MotionSweep`) against a brute-force scan: every
-//! sample of the motion checked one after the other with the attachment test's evaluator.
+//! The static motion sweep (`attachment::MotionSweep`, each pose started from the last
+//! one's equilibrium) against a brute-force scan: every sample of the motion checked one
+//! after the other with the attachment test's evaluator from the connected geometry.
 //!
-//! Run in release (`cargo test --release --test sweep`): a few PVs × 1120 poses of static
+//! Run in release (`cargo test --release --test sweep`): a few PVs × 814 poses of static
 //! solves.
 
 use cable_dict::attachment::{ConnectMethod, Evaluator, MotionSweep, SegmentPoses, TestPose};
+use cable_dict::cable::CableSpec;
 use cable_dict::motion::Motion;
 use cable_dict::path::Pv;
 use cable_dict::setup::Setup;
 use std::path::Path;
 
+/// The bundled pick-and-place setup with the paper's floppy SMC cable, whose U-loop across
+/// joint 4 bends below its limit between the critical poses (with the realistic preset,
+/// only two C1 PVs of the whole catalogue do, by less than 0.05 mm of clearance).
 fn bundled() -> (Setup, Motion) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let setup = Setup::from_file(root.join("robots/viper_s850/pick_and_place.toml")).unwrap();
+    let mut setup = Setup::from_file(root.join("robots/viper_s850/pick_and_place.toml")).unwrap();
+    setup.cable = CableSpec::from_file(root.join("cables/smc_le_cp_3_paper.toml")).unwrap();
     let motion = Motion::from_csv_file(
         &setup.robot,
         root.join("motions/viper_s850/pick_and_place.csv"),
@@ -58,12 +64,12 @@ fn the_sweep_agrees_with_a_scan_of_every_sample_and_catches_what_critical_poses_
     assert!(distinct < motion.len(), "the motion has dwells");
 
     let cases = [
-        (0, Pv::new(55, 0, 0)),
-        (0, Pv::new(56, 0, 0)),
-        (0, Pv::new(60, 3, 3)),
+        (0, Pv::new(55, 1, 1)),
+        (0, Pv::new(56, 4, 0)),
+        (0, Pv::new(57, 3, 3)),
         (0, Pv::new(70, 1, 2)),
         (1, Pv::new(20, 0, 0)),
-        (1, Pv::new(21, 3, 1)),
+        (1, Pv::new(23, 0, 2)),
         (2, Pv::new(42, 1, 0)),
         (3, Pv::new(20, 0, 0)),
     ];
