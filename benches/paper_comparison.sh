@@ -3,6 +3,8 @@
 # method (straight cable dragged into place and relaxed in rapier3d, one guide per link),
 # method 1 (Hermite + quasi-static solver, one guide per link) and method 2 (intra-link
 # segments too); prints a Markdown table of set sizes, results and stage times.
+# The cables are the paper's Table 3 values (cables/*_paper.toml): the bundled setups are
+# copied with their cable swapped and their paths made absolute.
 #
 # Usage: bash benches/paper_comparison.sh [OUT_DIR] [METHOD...]
 #   OUT_DIR  where the result JSON files go (default target/paper_comparison)
@@ -18,6 +20,12 @@ methods=("$@")
 mkdir -p "$out"
 cargo build --release --quiet
 bin=target/release/cable-dict
+root=$PWD
+for motion in pick_and_place inspection; do
+  sed -e "s|^robot = \"|robot = \"$root/robots/viper_s850/|" \
+      -e "s|^cable = \"../../cables/\(.*\)\.toml\"|cable = \"$root/cables/\1_paper.toml\"|" \
+      "robots/viper_s850/$motion.toml" > "$out/$motion-paper-cable.toml"
+done
 
 for motion in pick_and_place inspection; do
   for method in "${methods[@]}"; do
@@ -28,7 +36,7 @@ for motion in pick_and_place inspection; do
       *) echo "unknown method $method (previous, 1 or 2)" >&2; exit 2 ;;
     esac
     echo "solving $motion with method $method …" >&2
-    "$bin" solve --setup "robots/viper_s850/$motion.toml" "motions/viper_s850/$motion.csv" \
+    "$bin" -q solve --setup "$out/$motion-paper-cable.toml" "motions/viper_s850/$motion.csv" \
       "${args[@]}" --json -o "$out/$motion-$method.json" > /dev/null
   done
 done

@@ -36,6 +36,12 @@ pub(super) struct ForceAt {
     pub link: Option<usize>,
 }
 
+/// A step the engine could not take: the simulated segment it belongs to, if one, and why.
+pub(super) struct Diverged {
+    pub segment: Option<usize>,
+    pub detail: String,
+}
+
 /// The cable in one of the engines.
 pub(super) enum Cable {
     Implicit {
@@ -110,7 +116,7 @@ impl Cable {
         &mut self,
         guides: &[Pose],
         links: &[Pose],
-    ) -> Result<Result<Vec<SegmentState>, (Option<usize>, String)>, MotionTestError> {
+    ) -> Result<Result<Vec<SegmentState>, Diverged>, MotionTestError> {
         match self {
             Cable::Implicit { segments, settings } => {
                 // Segments are independent between clamps: stepped in parallel, each the same
@@ -131,7 +137,10 @@ impl Cable {
                     .enumerate()
                     .find(|(_, result)| result.is_err())
                 {
-                    return Ok(Err((Some(j), detail)));
+                    return Ok(Err(Diverged {
+                        segment: Some(j),
+                        detail,
+                    }));
                 }
                 Ok(Ok(segments
                     .iter()
@@ -150,7 +159,10 @@ impl Cable {
                 let record = match world.step() {
                     Ok(record) => record,
                     Err(e @ DynamicsError::BlowUp { segment, .. }) => {
-                        return Ok(Err((Some(segment), e.to_string())));
+                        return Ok(Err(Diverged {
+                            segment: Some(segment),
+                            detail: e.to_string(),
+                        }));
                     }
                     Err(e) => return Err(MotionTestError::Dynamics(e)),
                 };

@@ -37,6 +37,15 @@ pub enum EngineKind {
     RigidChain,
 }
 
+impl std::fmt::Display for EngineKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            EngineKind::Implicit => "implicit",
+            EngineKind::RigidChain => "rigid-chain",
+        })
+    }
+}
+
 impl EngineKind {
     /// The engine with its default settings under `gravity_m_s2`.
     pub fn with_defaults(self, gravity_m_s2: Vector3<f64>) -> Engine {

@@ -284,7 +284,7 @@ impl MotionTestReport {
             worst("min bend radius", &self.worst_bend, 1e3, "mm"),
             worst("max contact force", &self.worst_contact_force, 1.0, "N"),
             format!(
-                "{} steps, {:.3} s simulated in {:.3} s wall{}, max joint gap {:.3} mm",
+                "{} steps, {:.3} s simulated in {:.3} s wall{}{}",
                 self.steps,
                 self.simulated_s,
                 self.wall_time_s,
@@ -296,7 +296,11 @@ impl MotionTestReport {
                 } else {
                     String::new()
                 },
-                self.max_joint_gap_m * 1e3
+                if self.max_joint_gap_m > 0.0 {
+                    format!(", max joint gap {:.3} mm", self.max_joint_gap_m * 1e3)
+                } else {
+                    String::new()
+                }
             ),
         ]
         .join("\n")

@@ -84,8 +84,9 @@ impl Context<'_> {
                 guides = self.plan.guide_poses(self.setup, &links);
                 states = match cable.advance(&guides, &links)? {
                     Ok(states) => states,
-                    Err((j, detail)) => {
-                        result = Ok(ended(Some(self.diverged(j, &detail, t)), k));
+                    Err(diverged) => {
+                        let failure = self.diverged(diverged.segment, &diverged.detail, t);
+                        result = Ok(ended(Some(failure), k));
                         break;
                     }
                 };

@@ -7,7 +7,7 @@ use crate::attachment::{
 };
 use crate::chain::ChainSearch;
 use crate::motion::Motion;
-use crate::motion_test::{MotionTestReport, Worst};
+use crate::motion_test::{EngineKind, MotionTestReport, Worst};
 use crate::path::CablePath;
 use crate::setup::Setup;
 use serde::Serialize;
@@ -301,6 +301,8 @@ pub struct SolveReport {
     pub motion_test: Option<MotionTestReport>,
     /// The motion test was asked for.
     pub motion_test_requested: bool,
+    /// What simulated the cable in the motion tests.
+    pub motion_engine: EngineKind,
     /// Stage timings (s).
     pub timings: Timings,
 }
@@ -355,6 +357,7 @@ impl SolveReport {
             static_sweep,
             motion_test,
             motion_test_requested: options.motion_test,
+            motion_engine: options.engine,
             timings,
         }
     }
@@ -363,6 +366,7 @@ impl SolveReport {
 /// The result JSON's `motion_test`: the run of d* (or of the last candidate tried).
 #[derive(Serialize)]
 struct MotionTestJson<'a> {
+    engine: EngineKind,
     candidates_tried: usize,
     passed: Option<bool>,
     failure: Option<&'a str>,
@@ -380,9 +384,14 @@ struct MotionTestJson<'a> {
 }
 
 impl<'a> MotionTestJson<'a> {
-    fn new(candidates_tried: usize, report: Option<&'a MotionTestReport>) -> Self {
+    fn new(
+        engine: EngineKind,
+        candidates_tried: usize,
+        report: Option<&'a MotionTestReport>,
+    ) -> Self {
         let mm = |w: &Option<Worst>| w.as_ref().map(|w| w.value * 1e3);
         Self {
+            engine,
             candidates_tried,
             passed: report.map(|r| r.passed),
             failure: report
@@ -433,9 +442,13 @@ impl Serialize for SolveReport {
             ecpv: self.optimal.as_ref(),
             sets: &self.segments,
             chains: &self.chains,
-            motion_test: self
-                .motion_test_requested
-                .then(|| MotionTestJson::new(self.candidates.len(), self.motion_test.as_ref())),
+            motion_test: self.motion_test_requested.then(|| {
+                MotionTestJson::new(
+                    self.motion_engine,
+                    self.candidates.len(),
+                    self.motion_test.as_ref(),
+                )
+            }),
             candidates: &self.candidates,
             static_sweep: &self.static_sweep,
             margins: &self.margins,
@@ -816,17 +829,27 @@ impl fmt::Display for SolveReport {
         write_margins(f, &self.margins)?;
         let sweep = &self.static_sweep;
         if sweep.poses > 0 {
+            let per_segment = dropped_per_segment(sweep);
+            let per_segment = if per_segment.is_empty() {
+                per_segment
+            } else {
+                format!(" ({per_segment})")
+            };
             writeln!(
                 f,
-                "\nstatic sweep: {} PVs solved at {} motion poses, {} dropped ({})",
+                "\nstatic sweep: {} PVs solved at {} motion poses, {} dropped{per_segment}",
                 sweep.pvs_swept,
                 sweep.poses,
                 sweep.rejected.len(),
-                dropped_per_segment(sweep)
             )?;
         }
         if let Some(report) = &self.motion_test {
-            writeln!(f, "\nmotion test: {}", report.summary())?;
+            writeln!(
+                f,
+                "\nmotion test ({} engine): {}",
+                self.motion_engine,
+                report.summary()
+            )?;
         }
         let t = &self.timings;
         writeln!(

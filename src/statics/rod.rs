@@ -300,7 +300,7 @@ impl Rod {
         &self,
         x: &[f64],
         twist_reference: f64,
-        hessian: Option<&mut SymmetricBand>,
+        mut hessian: Option<&mut SymmetricBand>,
         out: &mut Evaluation,
         scratch: &mut Scratch,
     ) {
@@ -320,14 +320,14 @@ impl Rod {
             Some(end) => unwrap_near(self.transported_twist(edges, end), twist_reference),
             None => 0.0,
         };
+        if let Some(h) = hessian.as_deref_mut() {
+            h.reset(coordinates);
+        }
         let mut assembly = Assembly {
             rod: self,
             gradient: &mut out.gradient,
             twist_gradient: &mut out.twist_gradient,
-            hessian: hessian.map(|h| {
-                h.reset(coordinates);
-                h
-            }),
+            hessian,
         };
         let stretch = self.add_stretch(edges, &mut assembly);
         let bend = self.add_joints(edges, twist, &mut assembly);
