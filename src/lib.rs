@@ -43,7 +43,7 @@
 //! let flange = poses[robot.link_index("tool0").ok_or("no tool0")?];
 //! assert!((flange.translation.vector - Vector3::new(0.35, 0.0, 0.82)).norm() < 1e-12);
 //!
-//! let cable = CableSpec::from_file("cables/smc_le_cp_3_paper.toml")?;
+//! let cable = CableSpec::from_file("cables/smc_le_cp_3.toml")?;
 //! let start = pose_from_mm_deg([0.0, 0.0, 0.0], [0.0, 90.0, 0.0]);
 //! let end = pose_from_mm_deg([250.0, 0.0, -150.0], [0.0, 150.0, 0.0]);
 //! let segment = connect(&start, &end, 40, cable.sub_segment_pitch_m, &-Vector3::z_axis())?;

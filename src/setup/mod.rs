@@ -7,7 +7,7 @@
 //!
 //! ```toml
 //! robot = "viper_s850.urdf"                # URDF, relative to this file
-//! cable = "../../cables/smc_le_cp_3_paper.toml"  # cable spec, relative to this file
+//! cable = "../../cables/smc_le_cp_3.toml"  # cable spec, relative to this file
 //! gravity_m_s2 = [0.0, 0.0, -9.81]         # in the robot's base frame
 //! max_guides_per_link = 2                  # most guides declared on one link
 //!

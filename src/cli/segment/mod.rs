@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Cable specification file (e.g. cables/smc_le_cp_3_paper.toml).
+    /// Cable specification file (e.g. cables/smc_le_cp_3.toml).
     #[arg(long, value_name = "CABLE.toml")]
     cable: PathBuf,
     /// Natural cable length between the two guides (mm); a whole number of sub-segments.
