@@ -107,6 +107,21 @@ fn a_twist_test_gives_torque_times_length_over_angle() {
     assert!(torsion_stiffness(0.5, 0.0, 1.0).is_err());
 }
 
+/// The command line of a bench cable, the measurements left out.
+const CABLE_ARGS: [&str; 11] = [
+    "calibrate",
+    "--name",
+    "bench cable",
+    "--diameter-mm",
+    "8",
+    "--mass-per-length-kg-m",
+    "0.26",
+    "--min-bend-radius-mm",
+    "48",
+    "--length-mm",
+    "300",
+];
+
 /// The command prints a cable file that loads to the calibrated values (EI from the
 /// reference's droop, GJ from the twist test) and writes the same text with `-o`.
 #[test]
@@ -117,30 +132,23 @@ fn the_command_prints_a_cable_file_that_loads() {
     let droop_mm = format!("{}", droop * 1e3);
     let out_arg = out.to_str().expect("utf-8");
     let output = run(&[
-        "calibrate",
-        "--name",
-        "bench cable",
-        "--diameter-mm",
-        "8",
-        "--mass-per-length-kg-m",
-        "0.26",
-        "--min-bend-radius-mm",
-        "48",
-        "--length-mm",
-        "300",
-        "--droop-mm",
-        &droop_mm,
-        "--gravity-m-s2",
-        "9.81",
-        "--twist-angle-deg",
-        "90",
-        "--twist-length-mm",
-        "500",
-        "--twist-torque-nm",
-        "0.02",
-        "-o",
-        out_arg,
-    ]);
+        &CABLE_ARGS[..],
+        &[
+            "--droop-mm",
+            &droop_mm,
+            "--gravity-m-s2",
+            "9.81",
+            "--twist-angle-deg",
+            "90",
+            "--twist-length-mm",
+            "500",
+            "--twist-torque-nm",
+            "0.02",
+            "-o",
+            out_arg,
+        ],
+    ]
+    .concat());
     assert!(
         output.status.success(),
         "{}",
@@ -150,6 +158,7 @@ fn the_command_prints_a_cable_file_that_loads() {
     assert_eq!(std::fs::read_to_string(&out).expect("written"), text);
     let cable = CableSpec::from_toml_str(&text, Path::new("printed")).expect("loads");
     assert_eq!(cable.name, "bench cable");
+    assert!((cable.diameter_m - 0.008).abs() < 1e-12);
     // Six significant digits are printed.
     assert!(
         (cable.bending_stiffness_n_m2 / 6e-3 - 1.0).abs() < 1e-5,
@@ -162,19 +171,7 @@ fn the_command_prints_a_cable_file_that_loads() {
 /// Impossible measurements and missing ones exit with 2 and say what is wrong.
 #[test]
 fn bad_measurements_are_refused_by_name() {
-    let base = [
-        "calibrate",
-        "--name",
-        "x",
-        "--diameter-mm",
-        "8",
-        "--mass-per-length-kg-m",
-        "0.26",
-        "--min-bend-radius-mm",
-        "48",
-        "--length-mm",
-        "300",
-    ];
+    let base = CABLE_ARGS;
     let refused = |extra: &[&str], expected: &str| {
         let output = run(&[&base[..], extra].concat());
         let stderr = String::from_utf8_lossy(&output.stderr);

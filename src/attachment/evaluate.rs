@@ -230,18 +230,9 @@ impl<'a> Evaluator<'a> {
         poses: &[TestPose],
     ) -> Vec<Option<Rejection>> {
         let mut verdicts: Vec<Option<Rejection>> = vec![None; lengths.len()];
-        let (a, b) = self.setup.segment_guides(m);
         let mut solver = StaticSolver::default();
         for pose in poses {
-            let scene = Scene {
-                link_poses: &pose.link_poses,
-                gravity_m_s2: self.rod.gravity_m_s2,
-                links: None,
-            };
-            let guides = (
-                self.setup.guide_world_pose(&pose.link_poses, a, start),
-                self.setup.guide_world_pose(&pose.link_poses, b, end),
-            );
+            let (scene, guides) = self.at_pose(m, (start, end), pose);
             // The last two solutions at this pose, the nearest first.
             let mut earlier: Vec<Solved> = Vec::with_capacity(3);
             for (verdict, &length) in verdicts.iter_mut().zip(lengths) {
@@ -284,20 +275,11 @@ impl<'a> Evaluator<'a> {
         if pv.sub_segments == 0 {
             return None;
         }
-        let (a, b) = self.setup.segment_guides(m);
         let mut solver = StaticSolver::default();
         // The last two poses' solutions and guides, the last first.
         let mut earlier: Vec<(Solved, (Pose, Pose))> = Vec::with_capacity(3);
         for pose in poses {
-            let scene = Scene {
-                link_poses: &pose.link_poses,
-                gravity_m_s2: self.rod.gravity_m_s2,
-                links: None,
-            };
-            let guides = (
-                self.setup.guide_world_pose(&pose.link_poses, a, pv.start),
-                self.setup.guide_world_pose(&pose.link_poses, b, pv.end),
-            );
+            let (scene, guides) = self.at_pose(m, (pv.start, pv.end), pose);
             let warm = Warm::Poses(&earlier);
             let check = match self.solve_warm(&mut solver, &guides, pv.sub_segments, &scene, warm) {
                 Ok(solved) => {
@@ -323,6 +305,27 @@ impl<'a> Evaluator<'a> {
             }
         }
         None
+    }
+
+    /// The scene of `pose` (all links, the setup's gravity) and the world poses of segment
+    /// `m`'s guides in the configurations `(start, end)`.
+    fn at_pose<'p>(
+        &self,
+        m: usize,
+        (start, end): (usize, usize),
+        pose: &'p TestPose,
+    ) -> (Scene<'p>, (Pose, Pose)) {
+        let (a, b) = self.setup.segment_guides(m);
+        let scene = Scene {
+            link_poses: &pose.link_poses,
+            gravity_m_s2: self.rod.gravity_m_s2,
+            links: None,
+        };
+        let guides = (
+            self.setup.guide_world_pose(&pose.link_poses, a, start),
+            self.setup.guide_world_pose(&pose.link_poses, b, end),
+        );
+        (scene, guides)
     }
 
     /// The equilibrium between `guides` with `sub_segments`, started from a neighbouring

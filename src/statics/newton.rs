@@ -76,13 +76,7 @@ pub(crate) fn minimize(
 ) -> NewtonResult {
     let ws = workspace;
     ws.last_shift = 0.0;
-    rod.evaluate_into(
-        &x,
-        twist,
-        Some(&mut ws.hessian),
-        &mut ws.evaluation,
-        &mut ws.scratch,
-    );
+    ws.evaluate_with_hessian(rod, &x, twist);
     let mut iterations = 0;
     let failure = loop {
         let residual = max_abs(&ws.evaluation.gradient);
@@ -105,14 +99,7 @@ pub(crate) fn minimize(
             std::mem::swap(&mut ws.evaluation, &mut ws.trial_evaluation);
             std::mem::swap(&mut ws.hessian, &mut ws.trial_hessian);
         } else {
-            let twist = ws.trial_evaluation.twist;
-            rod.evaluate_into(
-                &x,
-                twist,
-                Some(&mut ws.hessian),
-                &mut ws.evaluation,
-                &mut ws.scratch,
-            );
+            ws.evaluate_with_hessian(rod, &x, ws.trial_evaluation.twist);
         }
     };
     NewtonResult {
@@ -124,6 +111,17 @@ pub(crate) fn minimize(
 }
 
 impl Workspace {
+    /// The evaluation and Hessian at `x` (twist on the branch nearest `twist`).
+    fn evaluate_with_hessian(&mut self, rod: &Rod, x: &[f64], twist: f64) {
+        rod.evaluate_into(
+            x,
+            twist,
+            Some(&mut self.hessian),
+            &mut self.evaluation,
+            &mut self.scratch,
+        );
+    }
+
     /// The Newton direction of `H + μI + k g gᵀ` (banded part `H`, twist term `k g gᵀ`) into
     /// `direction`, with the smallest shift `μ` of a series (0, then from near the last
     /// step's shift or `1e-8 · max |H_ii|`, ×10) that makes the matrix positive definite: a
