@@ -219,9 +219,10 @@ impl<'a> Evaluator<'a> {
     /// configurations `(start, end)` of segment `m`, over `poses` (stopping at a length's
     /// first failing pose): the verdicts of the PVs `(S, start, end)` that
     /// [`Evaluator::check`] gives pose by pose, solved with continuation — at each pose the
-    /// lengths in increasing order, each started from the last solution at that pose
-    /// ([`continuation::change_length`]). Falls back to one solve per PV for the linear
-    /// method.
+    /// lengths in increasing order, the first from the connected geometry, the second from
+    /// the first's deviation from its connected geometry ([`continuation::change_length`]),
+    /// the others extrapolated from the last two ([`continuation::extrapolate_length`]). The
+    /// linear method relaxes every PV from scratch.
     pub fn first_rejections(
         &self,
         m: usize,
@@ -263,9 +264,9 @@ impl<'a> Evaluator<'a> {
 
     /// The first pose of `poses` (in their order) where PV `pv` of segment `m` violates a
     /// limit, with its check; `None` when it holds them all. Each pose's equilibrium starts
-    /// from the previous pose's, carried along by the guides' motion
-    /// ([`continuation::follow_guides`]): the quasi-static cable moved slowly through the
-    /// poses, on the branch it started on.
+    /// from the previous poses', carried along by the guides' motion and extrapolated
+    /// ([`continuation::follow_guides_extrapolated`]): the quasi-static cable moved slowly
+    /// through the poses, on the branch it started on.
     pub fn sweep<'p>(
         &self,
         m: usize,

@@ -1,7 +1,7 @@
 //! [`SegmentDynamics`]: one cable segment stepped in time by BDF2 (see the module
 //! documentation of [`dynamics`](super)).
 
-use nalgebra::{Point3, Vector3};
+use nalgebra::Point3;
 
 use crate::pose::Pose;
 use crate::statics::newton::{Workspace, minimize};
@@ -275,12 +275,7 @@ impl SegmentDynamics {
         settings: &IntegratorSettings,
     ) -> Result<usize, DynamicsError> {
         let beta = if bdf2 { 2.0 * h / 3.0 } else { h };
-        let rod = Rod::new(
-            self.params,
-            start,
-            clamped_pose(&far_end),
-            self.sub_segments,
-        );
+        let rod = self.rod(start, far_end);
         for (f, weight) in self.inertia.weights.iter_mut().enumerate() {
             *weight = rod.node_mass(f + 1) / (beta * beta);
         }
@@ -338,42 +333,17 @@ impl SegmentDynamics {
 
     /// All `S + 1` nodes now (m).
     pub fn nodes(&self) -> Vec<Point3<f64>> {
-        let rod = Rod::new(
-            self.params,
-            self.start,
-            clamped_pose(&self.far_end),
-            self.sub_segments,
-        );
-        rod.nodes(&self.x)
+        self.rod(self.start, self.far_end).nodes(&self.x)
     }
 
-    /// Velocities of all `S + 1` nodes now (m/s); a clamped node's is not tracked (zero).
-    pub fn node_velocities(&self) -> Vec<Vector3<f64>> {
-        let mut velocities = vec![Vector3::zeros()];
-        velocities.extend(
-            self.v
-                .chunks_exact(3)
-                .map(|v| Vector3::new(v[0], v[1], v[2])),
-        );
-        if matches!(self.far_end, FarEnd::Clamped(_)) {
-            velocities.push(Vector3::zeros());
-        }
-        velocities
-    }
-
-    /// Kinetic energy of the free nodes (J).
-    pub fn kinetic_energy_j(&self) -> f64 {
-        let rod = Rod::new(
+    /// The segment's energy between the guides `start` and `far_end`.
+    fn rod(&self, start: Pose, far_end: FarEnd) -> Rod {
+        Rod::new(
             self.params,
-            self.start,
-            clamped_pose(&self.far_end),
+            start,
+            clamped_pose(&far_end),
             self.sub_segments,
-        );
-        self.v
-            .chunks_exact(3)
-            .enumerate()
-            .map(|(f, v)| 0.5 * rod.node_mass(f + 1) * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))
-            .sum()
+        )
     }
 
     /// Total twist Ψ between the guides (rad).

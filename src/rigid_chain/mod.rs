@@ -1,6 +1,8 @@
-//! Dynamics of the discrete cable in rapier3d: the whole cable simulated in time while the
-//! guides (and the robot's links) move kinematically — the *motion test* — and the static
-//! relaxation used by the paper's baseline.
+//! The discrete cable as a chain of rigid bodies in rapier3d — the reference paper's kind of
+//! simulation, kept as its baseline: the whole cable simulated in time while the guides (and
+//! the robot's links) move kinematically (the motion test's `rigid-chain` engine; the
+//! default engine is [`crate::dynamics`]), and the static relaxation and the previous
+//! connected-geometry method of the paper's pipelines.
 //!
 //! The model is the crate's discrete cable (module [`cable`](crate::cable)): rigid
 //! sub-segments of pitch `l` joined at the nodes by bending springs `kb` and torsion springs
