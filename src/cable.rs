@@ -120,10 +120,16 @@ impl CableSpec {
             problem: format!("cannot read the cable file: {e}"),
         })?;
         let spec = Self::from_toml_str(&text, path)?;
-        for warning in spec.plausibility_warnings() {
-            log::warn!("{}: {warning}", path.display());
-        }
+        spec.log_plausibility_warnings(path);
         Ok(spec)
+    }
+
+    /// Logs each of [`CableSpec::plausibility_warnings`] as a warning naming `source`: for
+    /// the places that load a cable to use it (a cable file, a setup's cable).
+    pub fn log_plausibility_warnings(&self, source: &Path) {
+        for warning in self.plausibility_warnings() {
+            log::warn!("{}: {warning}", source.display());
+        }
     }
 
     /// Parses and validates a cable file's text; `source` names it in messages.

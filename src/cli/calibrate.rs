@@ -126,9 +126,7 @@ pub fn run(args: Args) -> Result<(), Failure> {
     let text = cable.to_toml(&header);
     let written = CableSpec::from_toml_str(&text, std::path::Path::new("(calibrated cable)"))
         .map_err(Failure::input)?;
-    for warning in written.plausibility_warnings() {
-        log::warn!("{warning}");
-    }
+    written.log_plausibility_warnings(std::path::Path::new("the calibrated cable"));
     if let Some(path) = &args.output {
         write_atomically(path, text.as_bytes())
             .map_err(|e| Failure::input(anyhow::anyhow!("cannot write {}: {e}", path.display())))?;

@@ -95,6 +95,7 @@ fn load_cable(
     })?;
     let spec = CableSpec::from_toml_str(&text, &path)
         .map_err(|e| fail(format!("cannot load the cable: {e}")))?;
+    spec.log_plausibility_warnings(&path);
     Ok((path, text, spec))
 }
 
