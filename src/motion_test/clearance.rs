@@ -23,6 +23,11 @@ impl ClearanceQuery {
         }
     }
 
+    /// Per simulated segment, the clamp zones the query leaves out.
+    pub fn zones(&self) -> &[Vec<ClampZone>] {
+        &self.zones
+    }
+
     /// Lowest clearance of simulated segment `j` (setup index `segment`, for messages) with
     /// `nodes` at `time_s`, the links at `link_poses`.
     pub fn segment(

@@ -2,9 +2,9 @@
 //! in the initial equilibria, advanced one step at a time to the guides' and links' poses,
 //! read back as nodes (and, for the rigid chain, contact forces).
 
+use super::MotionTestError;
 use super::options::Engine;
 use super::report::{Failure, FailureCause};
-use super::{MotionTestError, plan::Plan};
 use crate::dynamics::{IntegratorSettings, SegmentDynamics};
 use crate::pose::Pose;
 use crate::rigid_chain::{CableWorld, ContactSummary, DynamicsError, SegmentShape};
@@ -55,12 +55,13 @@ pub(super) enum Cable {
 }
 
 impl Cable {
-    /// The cable at rest in `shapes` (one per simulated segment, between `guides`), the
-    /// robot's links at `links`; a shape the engine refuses is a failed candidate.
+    /// The cable at rest in `shapes` (one per simulated segment, between `guides`, with
+    /// its clamp zones `zones`), the robot's links at `links`; a shape the engine refuses is
+    /// a failed candidate.
     pub fn start(
         engine: &Engine,
         setup: &Setup,
-        plan: &Plan,
+        zones: &[Vec<ClampZone>],
         guides: &[Pose],
         links: &[Pose],
         shapes: &[Equilibrium],
@@ -92,8 +93,7 @@ impl Cable {
                 }))
             }
             Engine::RigidChain(settings) => {
-                let zones = plan.clamp_zones(setup, setup.thresholds.clamp_zone_m);
-                let world = match rigid_world(setup, settings, guides, shapes, &zones) {
+                let world = match rigid_world(setup, settings, guides, shapes, zones) {
                     Ok(world) => world,
                     Err(e) => return Ok(Err(refused(e.to_string()))),
                 };

@@ -41,8 +41,8 @@ impl Context<'_> {
     pub fn simulate(&self, tracker: &mut Tracker) -> Result<Ended, MotionTestError> {
         let t0 = self.motion.times_s()[0];
         let dt = self.options.time_step_s();
-        let links = self.link_poses(t0)?;
-        let guides = self.plan.guide_poses(self.setup, &links);
+        let mut links = self.link_poses(t0)?;
+        let mut guides = self.plan.guide_poses(self.setup, &links);
         let shapes = match equilibria(self.setup, &self.plan, &guides, t0)? {
             Ok(shapes) => shapes,
             Err(no_start) => {
@@ -63,7 +63,7 @@ impl Context<'_> {
         let start = Cable::start(
             &self.options.engine,
             self.setup,
-            &self.plan,
+            self.clearance.zones(),
             &guides,
             &links,
             &shapes,
@@ -74,7 +74,6 @@ impl Context<'_> {
         };
         let total = self.step_count();
         progress::begin("motion test", total as u64);
-        let (mut links, mut guides) = (links, guides);
         let mut result = Ok(ended(None, total));
         for k in 0..=total {
             let t = t0 + k as f64 * dt;

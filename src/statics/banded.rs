@@ -123,11 +123,11 @@ impl SymmetricBand {
         let factor = &mut out.factor;
         factor.clear();
         factor.extend_from_slice(&self.rows);
-        out.inverse_pivots.clear();
-        out.inverse_pivots.resize(n, 0.0);
+        // D⁻¹: a row divides by the same pivots eight times.
+        let inverse = &mut out.inverse_pivots;
+        inverse.clear();
+        inverse.resize(n, 0.0);
         out.negative = 0;
-        // 1 / D(j) of the last rows: a row divides by the same pivots eight times.
-        let mut inverse = [0.0; HALF_BANDWIDTH];
         for i in 0..n {
             let first = i.saturating_sub(HALF_BANDWIDTH);
             // w[j − first] = L(i, j) D(j): the products the rest of row i reuses.
@@ -140,7 +140,7 @@ impl SymmetricBand {
                     sum -= w[k - first] * row_j[j - k];
                 }
                 w[j - first] = sum;
-                let l = sum * inverse[j % HALF_BANDWIDTH];
+                let l = sum * inverse[j];
                 factor[i][i - j] = l;
                 pivot -= l * sum;
             }
@@ -150,8 +150,7 @@ impl SymmetricBand {
             if pivot < 0.0 {
                 out.negative += 1;
             }
-            inverse[i % HALF_BANDWIDTH] = 1.0 / pivot;
-            out.inverse_pivots[i] = inverse[i % HALF_BANDWIDTH];
+            inverse[i] = 1.0 / pivot;
             factor[i][0] = 1.0;
         }
         Ok(())

@@ -39,12 +39,13 @@ pub fn follow_guides_extrapolated(
     to: (&Pose, &Pose),
     pitch_m: f64,
 ) -> Vec<Point3<f64>> {
-    let near = carried(nearest.0, nearest.1, to);
-    if second.0.len() != near.len() {
-        return follow_guides(nearest.0, nearest.1, to, pitch_m);
+    let mut nodes = carried(nearest.0, nearest.1, to);
+    if second.0.len() == nodes.len() {
+        let far = carried(second.0, second.1, to);
+        for (node, far) in nodes.iter_mut().zip(&far) {
+            *node += *node - far;
+        }
     }
-    let far = carried(second.0, second.1, to);
-    let mut nodes: Vec<Point3<f64>> = near.iter().zip(&far).map(|(n, f)| n + (n - f)).collect();
     restore_pitch(&mut nodes, pitch_m);
     nodes
 }

@@ -22,7 +22,7 @@
 //! `(kt/S) Ψ ∇²Ψ` plus the rank-one `(kt/S) ∇Ψ ∇Ψᵀ`, which the Newton step handles by
 //! Sherman–Morrison so that the linear algebra stays banded.
 //!
-//! An implicit time step of the dynamics (module [`crate::rigid_chain`]) minimizes the same
+//! An implicit time step of the dynamics (module [`crate::dynamics`]) minimizes the same
 //! energy plus an **inertial term** `½ Σ w_k |x_k − a_k|²` over the free nodes ([`Inertia`]):
 //! `w_k = m_k / h²` and `a_k` the position the node would reach by inertia alone. It adds
 //! only to the diagonal, so the structure and the Newton solver stay those of the statics.
@@ -550,6 +550,17 @@ struct Assembly<'a> {
     hessian: Option<&'a mut SymmetricBand>,
 }
 
+/// Adds `g` to node `node`'s three coordinates of `target` (a vector over the free
+/// coordinates), if the node is free.
+#[inline]
+fn add_at_node(rod: &Rod, target: &mut [f64], node: usize, g: &Vector3<f64>) {
+    if let Some(i) = rod.free_index(node) {
+        for (slot, value) in target[3 * i..3 * i + 3].iter_mut().zip(g.iter()) {
+            *slot += value;
+        }
+    }
+}
+
 /// The symmetric part of a block.
 fn symmetric(block: &Matrix3<f64>) -> Matrix3<f64> {
     0.5 * (block + block.transpose())
@@ -558,11 +569,7 @@ fn symmetric(block: &Matrix3<f64>) -> Matrix3<f64> {
 impl Assembly<'_> {
     #[inline]
     fn add_node_gradient(&mut self, node: usize, g: &Vector3<f64>) {
-        if let Some(i) = self.rod.free_index(node) {
-            for (slot, value) in self.gradient[3 * i..3 * i + 3].iter_mut().zip(g.iter()) {
-                *slot += value;
-            }
-        }
+        add_at_node(self.rod, self.gradient, node, g);
     }
 
     /// Adds the node block `(p, q)`, `p ≥ q`, of a symmetric Hessian (both nodes free, else
@@ -622,20 +629,10 @@ impl Assembly<'_> {
 
     /// Adds a joint's reference-twist gradient to `∂Ψ/∂x`.
     fn add_twist_gradient(&mut self, a: Side, b: Side, d: &EdgePairDerivatives) {
-        let mut add = |node: usize, g: Vector3<f64>| {
-            if let Some(i) = self.rod.free_index(node) {
-                for (slot, value) in self.twist_gradient[3 * i..3 * i + 3]
-                    .iter_mut()
-                    .zip(g.iter())
-                {
-                    *slot += value;
-                }
-            }
-        };
         for (side, g) in [(a, d.grad_a), (b, d.grad_b)] {
             if let Side::Cable(i) = side {
-                add(i, -g);
-                add(i + 1, g);
+                add_at_node(self.rod, self.twist_gradient, i, &-g);
+                add_at_node(self.rod, self.twist_gradient, i + 1, &g);
             }
         }
     }
