@@ -138,9 +138,14 @@ fn malformed_xml_and_xacro_are_refused_with_the_file_name() {
         bad_number.starts_with("test.urdf:6: <origin xyz=\"1 0\">: expected 3 numbers"),
         "{bad_number}"
     );
-    let xacro =
-        r#"<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"/></robot>"#;
-    assert!(refusal(xacro).contains("xacro"));
+    let xacro = r#"<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+        <xacro:property name="l" value="1"/><link name="a"/></robot>"#;
+    let message = refusal(xacro);
+    assert!(
+        message.starts_with("test.urdf:2: <xacro:property> is a xacro element")
+            && message.contains("xacro robot.urdf.xacro"),
+        "{message}"
+    );
     let dir = tempfile::tempdir().expect("temp dir");
     let path = dir.path().join("arm.urdf.xacro");
     std::fs::write(&path, MIXED).expect("write");

@@ -1,7 +1,7 @@
 //! Turning a URDF document into a validated [`Robot`].
 
 use super::collision::colliders_of_link;
-use super::locate::first_problem;
+use super::locate::{first_problem, first_xacro_use};
 use super::{Joint, JointDrive, JointKind, JointLimits, Link, Robot, RobotError};
 use crate::pose::pose_from_xyz_rpy;
 use nalgebra::{Unit, Vector3};
@@ -18,8 +18,12 @@ pub(super) fn from_file(path: &Path) -> Result<Robot, RobotError> {
 }
 
 pub(super) fn from_str(text: &str, source: &Path) -> Result<Robot, RobotError> {
-    if text.contains("xmlns:xacro") || text.contains("<xacro:") {
-        return Err(xacro_refusal(source));
+    if let Some((line, use_of_xacro)) = first_xacro_use(text) {
+        return Err(RobotError::at_line(
+            source,
+            line,
+            format!("{use_of_xacro}; {XACRO_ADVICE}"),
+        ));
     }
     let urdf = urdf_rs::read_from_string(text).map_err(|e| match first_problem(text) {
         Some((line, problem)) => RobotError::at_line(source, line, problem),
@@ -28,17 +32,26 @@ pub(super) fn from_str(text: &str, source: &Path) -> Result<Robot, RobotError> {
     Builder { text, source }.build(&urdf)
 }
 
+/// The folder `path` is in: "." for a bare file name (whose parent is the empty path, which
+/// cannot be canonicalized to find the folders above it).
+fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(folder) if !folder.as_os_str().is_empty() => folder,
+        _ => Path::new("."),
+    }
+}
+
 fn has_extension(path: &Path, ext: &str) -> bool {
     path.extension()
         .is_some_and(|e| e.eq_ignore_ascii_case(ext))
 }
 
+/// What to do with a xacro file.
+const XACRO_ADVICE: &str = "this is a xacro file, not a URDF; expand it first \
+     (`xacro robot.urdf.xacro > robot.urdf`) and pass the result";
+
 fn xacro_refusal(path: &Path) -> RobotError {
-    RobotError::file(
-        path,
-        "this is a xacro file, not a URDF; expand it first \
-         (`xacro robot.urdf.xacro > robot.urdf`) and pass the result",
-    )
+    RobotError::file(path, XACRO_ADVICE)
 }
 
 /// 1-based line of the first `<tag … name="name"` in `text`, for error locations.
@@ -339,7 +352,7 @@ impl Builder<'_> {
         link_order: &[usize],
         joints: &[Joint],
     ) -> Result<Vec<Link>, RobotError> {
-        let base_dir = self.source.parent().unwrap_or(Path::new("."));
+        let base_dir = folder_of(self.source);
         link_order
             .iter()
             .enumerate()

@@ -2,10 +2,12 @@
 //!
 //! urdf-rs re-serialises a document before deserialising it, so its error messages carry no
 //! position in the user's file. When it refuses a document, this module reads the original text
-//! once more and points at the first XML syntax error or malformed number.
+//! once more and points at the first XML syntax error or malformed number. It also finds the
+//! first use of xacro, which a URDF must not contain.
 
 use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
+use quick_xml::name::QName;
 
 /// URDF attributes that hold numbers, with how many each must hold.
 const NUMERIC_ATTRIBUTES: [(&str, usize); 16] = [
@@ -64,6 +66,61 @@ pub(super) fn first_problem(text: &str) -> Option<(usize, String)> {
     }
 }
 
+/// The 1-based line and description of the first use of xacro in `text`: an element or
+/// attribute with the `xacro:` prefix (`<xacro:macro>`, `<xacro:include>`, …) or a `${…}` /
+/// `$(…)` substitution in an attribute value or in text. Comments do not count, and neither
+/// does the `xmlns:xacro` declaration alone: URDFs expanded by xacro (ROS-Industrial
+/// descriptions among them) keep it on `<robot>`. `None` also when the XML is malformed before
+/// any xacro use; the URDF parser then reports the syntax error.
+pub(super) fn first_xacro_use(text: &str) -> Option<(usize, String)> {
+    let mut reader = Reader::from_str(text);
+    loop {
+        let start = reader.buffer_position() as usize;
+        let found = match reader.read_event() {
+            Ok(Event::Start(element) | Event::Empty(element)) => {
+                xacro_in_element(&element).map(|problem| (start, problem))
+            }
+            Ok(Event::Text(content)) => substitution_at(&content).map(|offset| {
+                let problem = "a xacro substitution (${…} or $(…)) in the text";
+                (start + offset, problem.to_string())
+            }),
+            Ok(Event::Eof) | Err(_) => return None,
+            Ok(_) => None,
+        };
+        if let Some((offset, problem)) = found {
+            return Some((line_of(text, offset), problem));
+        }
+    }
+}
+
+/// Describes how `element` uses xacro, if it does.
+fn xacro_in_element(element: &BytesStart<'_>) -> Option<String> {
+    let is_xacro = |name: QName<'_>| name.prefix().is_some_and(|p| p.as_ref() == b"xacro");
+    let tag = String::from_utf8_lossy(element.name().as_ref()).into_owned();
+    if is_xacro(element.name()) {
+        return Some(format!("<{tag}> is a xacro element"));
+    }
+    for attribute in element.attributes().flatten() {
+        let key = String::from_utf8_lossy(attribute.key.as_ref()).into_owned();
+        if is_xacro(attribute.key) {
+            return Some(format!("<{tag}>: {key} is a xacro attribute"));
+        }
+        if substitution_at(&attribute.value).is_some() {
+            let value = String::from_utf8_lossy(&attribute.value).into_owned();
+            return Some(format!("<{tag} {key}=\"{value}\">: a xacro substitution"));
+        }
+    }
+    None
+}
+
+/// Where `bytes` hold a xacro substitution: `${` (property or expression) or `$(` (`$(arg …)`,
+/// `$(find …)`).
+fn substitution_at(bytes: &[u8]) -> Option<usize> {
+    bytes
+        .windows(2)
+        .position(|pair| pair == b"${" || pair == b"$(")
+}
+
 /// Describes the first numeric attribute of `element` that does not hold its count of numbers.
 fn malformed_number(element: &BytesStart<'_>) -> Option<String> {
     let tag = String::from_utf8_lossy(element.name().as_ref()).into_owned();
@@ -101,7 +158,7 @@ fn line_of(text: &str, offset: usize) -> usize {
 
 #[cfg(test)]
 mod tests {
-    use super::first_problem;
+    use super::{first_problem, first_xacro_use};
 
     #[test]
     fn points_at_the_line_of_the_problem() {
@@ -128,5 +185,50 @@ mod tests {
         assert!(problem.contains("XML syntax error"), "{problem}");
 
         assert_eq!(first_problem("<robot><link name=\"a\"/></robot>"), None);
+    }
+
+    #[test]
+    fn finds_xacro_elements_attributes_and_substitutions_but_not_the_namespace_alone() {
+        let ns = r#"<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">"#;
+        let plain = format!(
+            "{ns}\n<!-- <xacro:include filename=\"${{x}}\"/> -->\n<link name=\"a\"/></robot>"
+        );
+        assert_eq!(first_xacro_use(&plain), None);
+
+        let cases = [
+            (
+                "<xacro:macro name=\"m\" params=\"p\">\n</xacro:macro>",
+                3,
+                "<xacro:macro> is a xacro element",
+            ),
+            (
+                "<xacro:include filename=\"x.xacro\"/>",
+                3,
+                "<xacro:include> is a xacro element",
+            ),
+            (
+                "<link name=\"${prefix}a\"/>",
+                3,
+                "<link name=\"${prefix}a\">: a xacro substitution",
+            ),
+            (
+                "<link name=\"a\" xacro:if=\"1\"/>",
+                3,
+                "xacro:if is a xacro attribute",
+            ),
+            (
+                "<link name=\"a\">\n<x>\n$(arg y)</x></link>",
+                5,
+                "substitution (${…} or $(…)) in the text",
+            ),
+        ];
+        for (body, line, expected) in cases {
+            let text = format!("{ns}\n\n{body}\n</robot>");
+            let (found_line, problem) = first_xacro_use(&text).expect(body);
+            assert_eq!(found_line, line, "{body}");
+            assert!(problem.contains(expected), "{body}: {problem}");
+        }
+        // Malformed XML is the URDF parser's to report.
+        assert_eq!(first_xacro_use("<robot><link></robot>"), None);
     }
 }

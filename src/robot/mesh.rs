@@ -66,11 +66,16 @@ pub(super) fn load_mesh(
 fn resolve_mesh_uri(uri: &str, base_dir: &Path) -> Result<PathBuf, String> {
     let path = if let Some(rest) = uri.strip_prefix("package://") {
         let (package, relative) = rest.split_once('/').unwrap_or((rest, ""));
-        find_package(package, base_dir)
+        // Walking up needs the absolute folder: the parent of `robot.urdf` is "" and that of
+        // `./robot.urdf` is ".", neither of which has the folders above it.
+        let start = base_dir
+            .canonicalize()
+            .unwrap_or_else(|_| base_dir.to_path_buf());
+        find_package(package, &start)
             .ok_or_else(|| {
                 format!(
                     "mesh '{uri}': no folder named '{package}' found in {} or any folder above it",
-                    base_dir.display()
+                    start.display()
                 )
             })?
             .join(relative)
@@ -89,10 +94,9 @@ fn resolve_mesh_uri(uri: &str, base_dir: &Path) -> Result<PathBuf, String> {
     }
 }
 
-fn find_package(package: &str, base_dir: &Path) -> Option<PathBuf> {
-    let start = base_dir
-        .canonicalize()
-        .unwrap_or_else(|_| base_dir.to_path_buf());
+/// The package folder nearest to `start`: going up from `start`, the first folder that is
+/// called `package` or holds a folder `package` (that one, then).
+fn find_package(package: &str, start: &Path) -> Option<PathBuf> {
     start.ancestors().find_map(|dir| {
         if dir.file_name().is_some_and(|n| n == package) {
             Some(dir.to_path_buf())

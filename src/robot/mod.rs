@@ -149,11 +149,13 @@ impl Robot {
 
     /// Loads a URDF document; `source` names it in messages and anchors relative mesh paths.
     ///
-    /// Refused with a located message: XML or URDF syntax errors, duplicate names, joints that
-    /// reference unknown links, links with two parents, several roots or cycles, zero axes,
-    /// unsupported joint types (floating, planar, spherical), inverted or empty limits, mimic
-    /// joints that follow a non-actuated joint, non-positive shape dimensions, mesh files that
-    /// are missing or not STL, and robots with no movable joint.
+    /// Refused with a located message: XML or URDF syntax errors, xacro (`<xacro:…>` elements
+    /// or attributes, `${…}` or `$(…)` substitutions; the `xmlns:xacro` declaration alone is
+    /// accepted), duplicate names, joints that reference unknown links, links with two
+    /// parents, several roots or cycles, zero axes, unsupported joint types (floating, planar,
+    /// spherical), inverted or empty limits, mimic joints that follow a non-actuated joint,
+    /// non-positive shape dimensions, mesh files that are missing or not STL, and robots with
+    /// no movable joint.
     pub fn from_urdf_str(text: &str, source: &std::path::Path) -> Result<Robot, RobotError> {
         load::from_str(text, source)
     }
