@@ -1,0 +1,302 @@
+//! Robot descriptions as ROS-Industrial ships them: a URDF that keeps the xacro namespace on
+//! `<robot>` but uses no xacro, collision meshes named `package://…` (ASCII and binary STL,
+//! scaled and not), loaded also when the URDF, the setup or the waypoint file is named by a
+//! bare file name in its own folder. Files that do use xacro are still refused.
+//!
+//! The package is tests/data/urdf_real/my_robot_description; its meshes are written by
+//! tests/data/urdf_real/make_meshes.py, whose parameters the tests restate as their reference.
+
+use cable_dict::robot::{Robot, Shape, TriMesh};
+use nalgebra::Vector3;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The package folder in the repository.
+fn package() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/urdf_real/my_robot_description")
+}
+
+/// Runs the binary with `args` in the folder `dir`.
+fn run_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_cable-dict"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the binary runs")
+}
+
+/// What make_meshes.py wrote for a link: triangles, distinct vertices, the bounding box
+/// (metres, after the URDF's scale) and the range of the distance from the z axis.
+struct Expected {
+    link: &'static str,
+    file: &'static str,
+    triangles: usize,
+    vertices: usize,
+    min: [f64; 3],
+    max: [f64; 3],
+    radial: Option<(f64, f64)>,
+}
+
+const EXPECTED: [Expected; 3] = [
+    // A box in millimetres, x ∈ [-100, 100], y ∈ [-80, 80], z ∈ [0, 100]; the URDF scales it
+    // by 0.001.
+    Expected {
+        link: "base_link",
+        file: "meshes/collision/base_link.stl",
+        triangles: 12,
+        vertices: 8,
+        min: [-0.1, -0.08, 0.0],
+        max: [0.1, 0.08, 0.1],
+        radial: None,
+    },
+    // A 12-sided tube around z, corners at radii 0.05 and 0.04, z ∈ [0, 0.3]: 8 triangles a
+    // side (outer and inner wall, top and bottom annulus).
+    Expected {
+        link: "link_1",
+        file: "meshes/collision/link_1.stl",
+        triangles: 96,
+        vertices: 48,
+        min: [-0.05, -0.05, 0.0],
+        max: [0.05, 0.05, 0.3],
+        radial: Some((0.04, 0.05)),
+    },
+    // A prism along y, y ∈ [-0.06, 0.06], over the triangle (0, 0), (0.08, 0), (0, 0.2) in
+    // (x, z): two end triangles and three rectangles.
+    Expected {
+        link: "link_2",
+        file: "meshes/collision/link_2.STL",
+        triangles: 8,
+        vertices: 6,
+        min: [0.0, -0.06, 0.0],
+        max: [0.08, 0.06, 0.2],
+        radial: None,
+    },
+];
+
+/// The STL files store single-precision floats.
+const F32_TOLERANCE_M: f64 = 1e-6;
+
+fn check_mesh(mesh: &TriMesh, expected: &Expected) {
+    let link = expected.link;
+    assert_eq!(mesh.triangles.len(), expected.triangles, "{link}");
+    assert_eq!(mesh.vertices.len(), expected.vertices, "{link}");
+    let resolved = mesh.file.canonicalize().expect("the resolved mesh exists");
+    let reference = package()
+        .join(expected.file)
+        .canonicalize()
+        .expect("the package's mesh exists");
+    assert_eq!(resolved, reference, "{link}");
+    let (min, max) = mesh.vertices.iter().fold(
+        (
+            Vector3::repeat(f64::INFINITY),
+            Vector3::repeat(f64::NEG_INFINITY),
+        ),
+        |(lo, hi), p| (lo.inf(&p.coords), hi.sup(&p.coords)),
+    );
+    for (found, wanted) in [(min, expected.min), (max, expected.max)] {
+        assert!(
+            (found - Vector3::from(wanted)).amax() < F32_TOLERANCE_M,
+            "{link}: bounds {min:?} … {max:?}, expected {:?} … {:?}",
+            expected.min,
+            expected.max
+        );
+    }
+    if let Some((inner, outer)) = expected.radial {
+        let radii: Vec<f64> = mesh.vertices.iter().map(|p| p.x.hypot(p.y)).collect();
+        let count = |r: f64| {
+            radii
+                .iter()
+                .filter(|&&x| (x - r).abs() < F32_TOLERANCE_M)
+                .count()
+        };
+        assert_eq!(
+            (count(inner), count(outer)),
+            (24, 24),
+            "{link}: 12 corners at each radius, top and bottom"
+        );
+    }
+}
+
+#[test]
+fn a_urdf_with_the_xacro_namespace_but_no_xacro_loads_with_its_package_meshes() {
+    let robot =
+        Robot::from_urdf_file(package().join("urdf/robot.urdf")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(robot.name, "my_robot");
+    assert_eq!(robot.dof(), 2);
+    let names: Vec<&str> = robot.links.iter().map(|l| l.name.as_str()).collect();
+    assert_eq!(names, ["base_link", "link_1", "link_2", "tool0"]);
+    for expected in &EXPECTED {
+        let link = &robot.links[robot.link_index(expected.link).expect("link")];
+        assert_eq!(link.colliders.len(), 1, "{}", expected.link);
+        let Shape::Mesh(mesh) = &link.colliders[0].shape else {
+            panic!("{}: not a mesh collider", expected.link)
+        };
+        check_mesh(mesh, expected);
+    }
+    let link_2 = &robot.links[robot.link_index("link_2").expect("link_2")];
+    assert!((link_2.colliders[0].origin.translation.vector.z - 0.02).abs() < 1e-15);
+    let poses = robot.link_poses(&[0.0, 0.0]).expect("two joint values");
+    let tool0 = poses[robot.link_index("tool0").expect("tool0")];
+    assert!((tool0.translation.vector - Vector3::new(0.0, 0.0, 0.62)).norm() < 1e-12);
+}
+
+#[test]
+fn robot_info_finds_package_meshes_from_a_bare_file_name() {
+    let output = run_in(
+        &package().join("urdf"),
+        &["robot-info", "robot.urdf", "--json"],
+    );
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(0), "{stderr}");
+    let report: Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    assert_eq!(report["source"], "robot.urdf");
+    let links = report["links"].as_array().expect("links");
+    for expected in &EXPECTED {
+        let link = links
+            .iter()
+            .find(|l| l["name"] == expected.link)
+            .unwrap_or_else(|| panic!("{} listed", expected.link));
+        let description = link["colliders"][0]["description"]
+            .as_str()
+            .expect("a description");
+        assert!(
+            description.contains(expected.file)
+                && description.ends_with(&format!("({} triangles)", expected.triangles)),
+            "{}: {description}",
+            expected.link
+        );
+    }
+}
+
+/// Copies the folder `from` into `to`, recursively.
+fn copy_folder(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).expect("folder created");
+    for entry in std::fs::read_dir(from).expect("folder readable") {
+        let entry = entry.expect("entry");
+        let target = to.join(entry.file_name());
+        if entry.file_type().expect("file type").is_dir() {
+            copy_folder(&entry.path(), &target);
+        } else {
+            std::fs::copy(entry.path(), &target).expect("file copied");
+        }
+    }
+}
+
+#[test]
+fn a_setup_and_a_waypoint_file_beside_the_urdf_work_from_bare_file_names() {
+    let root = tempfile::tempdir().expect("temp dir");
+    copy_folder(&package(), &root.path().join("my_robot_description"));
+    let urdf = root.path().join("my_robot_description/urdf");
+    let cable = Path::new(env!("CARGO_MANIFEST_DIR")).join("cables/smc_le_cp_3_paper.toml");
+    let setup = format!(
+        r#"robot = "robot.urdf"
+cable = '{}'
+gravity_m_s2 = [0.0, 0.0, -9.81]
+max_guides_per_link = 1
+
+[thresholds]
+contact_clearance_mm = 0.0
+stretch = 1.02
+min_bend_radius_mm = 25.0
+clamp_zone_mm = 20.0
+
+[robustness]
+delta_s = 1
+range = 2
+
+[[guides]]
+name = "G1"
+link = "link_1"
+configurations = [{{ name = "side", position_mm = [70.0, 0.0, 200.0], rpy_deg = [0.0, 0.0, 0.0] }}]
+
+[[guides]]
+name = "G2"
+link = "link_2"
+configurations = [{{ name = "front", position_mm = [120.0, 0.0, 100.0], rpy_deg = [0.0, 0.0, 0.0] }}]
+
+[[segments]]
+from = "G1"
+to = "G2"
+lengths = {{ min = 25, max = 30, step = 1, allow_zero = false }}
+"#,
+        cable.display()
+    );
+    std::fs::write(urdf.join("setup.toml"), setup).expect("setup written");
+    let waypoints = r#"robot = "robot.urdf"
+sample_rate_hz = 10.0
+speed_scale = 0.5
+profile = "trapezoidal"
+time_to_full_speed_s = 0.25
+
+[[waypoint]]
+joints_deg = [0.0, 0.0]
+
+[[waypoint]]
+joints_deg = [30.0, 45.0]
+"#;
+    std::fs::write(urdf.join("waypoints.toml"), waypoints).expect("waypoints written");
+
+    let motion = run_in(&urdf, &["motion", "waypoints.toml", "-o", "motion.csv"]);
+    let stderr = String::from_utf8_lossy(&motion.stderr);
+    assert_eq!(motion.status.code(), Some(0), "motion: {stderr}");
+
+    let output = run_in(
+        &urdf,
+        &["critical-poses", "setup.toml", "motion.csv", "--json"],
+    );
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(0), "critical-poses: {stderr}");
+    let segments: Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    assert_eq!(segments[0]["links"][0], "link_1");
+    assert_eq!(segments[0]["links"][1], "link_2");
+    assert_eq!(segments[0]["traversed_joints"][0], "joint_2");
+}
+
+/// A xacro file under a URDF's name: the namespace, a macro and its use.
+const REAL_XACRO: &str = r#"<?xml version="1.0"?>
+<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <!-- a comment does not count: <xacro:property/> -->
+  <xacro:macro name="arm" params="prefix">
+    <link name="${prefix}base_link"/>
+  </xacro:macro>
+  <xacro:arm prefix=""/>
+</robot>
+"#;
+
+#[test]
+fn a_urdf_that_uses_xacro_is_still_refused_naming_the_file_and_the_element() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("robot.urdf");
+    std::fs::write(&path, REAL_XACRO).expect("written");
+    let message = Robot::from_urdf_file(&path)
+        .expect_err("xacro elements are refused")
+        .to_string();
+    let expected = format!(
+        "{}:4: <xacro:macro> is a xacro element; this is a xacro file, not a URDF; expand it \
+         first (`xacro robot.urdf.xacro > robot.urdf`)",
+        path.display()
+    );
+    assert!(message.starts_with(&expected), "{message}");
+
+    let output = run_in(dir.path(), &["robot-info", "robot.urdf"]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("robot.urdf:4: <xacro:macro> is a xacro element"),
+        "{stderr}"
+    );
+
+    // A substitution alone is xacro too.
+    let substituted = REAL_XACRO
+        .replace(r#"<xacro:arm prefix=""/>"#, "")
+        .replace("<xacro:macro name=\"arm\" params=\"prefix\">", "")
+        .replace("</xacro:macro>", "");
+    let message = Robot::from_urdf_str(&substituted, Path::new("sub.urdf"))
+        .expect_err("substitutions are refused")
+        .to_string();
+    assert!(
+        message.starts_with("sub.urdf:5: <link name=\"${prefix}base_link\">: a xacro substitution"),
+        "{message}"
+    );
+}
