@@ -24,7 +24,8 @@ use cable_dict::setup::Setup;
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn bench_attachment(c: &mut Criterion) {
-    let setup = Setup::from_file("robots/viper_s850/pick_and_place.toml").expect("setup");
+    let setup =
+        Setup::from_file("robots/viper_s850/hand_written/pick_and_place.toml").expect("setup");
     let motion = Motion::from_csv_file(&setup.robot, "motions/viper_s850/pick_and_place.csv")
         .expect("motion");
     let poses = SegmentPoses::new(&setup, &motion).expect("poses");

@@ -15,7 +15,7 @@ field() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(d$2
 
 printf '%-16s %-8s %10s %12s %10s\n' motion mode "total s" "attachment s" status
 for name in pick_and_place inspection; do
-  setup="robots/viper_s850/$name.toml"
+  setup="robots/viper_s850/hand_written/$name.toml"
   motion="motions/viper_s850/$name.csv"
   dict="dictionaries/viper_s850_$name.cdict"
   "$bin" solve --setup "$setup" "$motion" -o "$out/$name.setup.json" > /dev/null

@@ -1,6 +1,6 @@
 //! Motion-test benchmark, both engines in one run: the whole cable of the bundled
 //! pick-and-place solution (C1 54, C2 20, C3 40, C4 20 sub-segments; guide configurations
-//! 5, 1, 1, 2, 0 of robots/viper_s850/pick_and_place.toml, realistic SMC cable) simulated
+//! 5, 1, 1, 2, 0 of robots/viper_s850/hand_written/pick_and_place.toml, realistic SMC cable) simulated
 //! through the first 2 s of the bundled pick-and-place motion (joint 1 starts its
 //! acceleration), clearance, stretch and bend radius measured every step, no settle tail:
 //!
@@ -24,7 +24,8 @@ use criterion::{Criterion, criterion_group, criterion_main};
 const SIMULATED_S: f64 = 2.0;
 
 fn bench_motion_test(c: &mut Criterion) {
-    let setup = Setup::from_file("robots/viper_s850/pick_and_place.toml").expect("setup");
+    let setup =
+        Setup::from_file("robots/viper_s850/hand_written/pick_and_place.toml").expect("setup");
     let full = Motion::from_csv_file(&setup.robot, "motions/viper_s850/pick_and_place.csv")
         .expect("motion");
     let keep = full.times_s().iter().filter(|&&t| t <= SIMULATED_S).count();

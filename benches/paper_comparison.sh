@@ -1,16 +1,21 @@
 #!/usr/bin/env bash
-# The paper comparison (its Tables 7–10): both bundled motions solved with the previous
+# The paper comparison (its Tables 7–10): every bundled motion solved with the previous
 # method (straight cable dragged into place and relaxed in rapier3d, one guide per link),
 # method 1 (Hermite + quasi-static solver, one guide per link) and method 2 (intra-link
 # segments too); prints a Markdown table of set sizes, results and stage times.
-# Each motion is solved with the paper's Table 3 cables (cables/*_paper.toml: the bundled
-# setups copied with their cable swapped and their paths made absolute) and with the
-# realistic presets the bundled setups use.
+# The gripper motions (pick_and_place, palletizing, machine_tending, screw_driving) use the
+# robot-level setup robots/viper_s850/pick_and_place.toml, the inspection motion
+# robots/viper_s850/inspection.toml; each is solved with the paper's Table 3 cables
+# (cables/*_paper.toml: the setups copied with their cable swapped and their paths made
+# absolute) and with the realistic presets the setups use.
 #
 # Usage: bash benches/paper_comparison.sh [OUT_DIR] [METHOD...]
 #   OUT_DIR  where the result JSON files go (default target/paper_comparison)
 #   METHOD   any of previous, 1, 2 (default: all three). The previous method takes about
-#            0.3 s per static solve: tens of minutes per motion on two cores.
+#            0.3 s per static solve, days for a generated catalogue: `previous` runs its
+#            attachment test on a sample (benches/previous_method_sample.toml, 176 pieces of
+#            C1) with both connect methods and extrapolates each motion's method-1 run from
+#            the sample's time per evaluated piece (needs method 1 in the same run).
 # Needs jq. Times are wall-clock on this machine; run nothing else meanwhile.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,6 +27,8 @@ mkdir -p "$out"
 cargo build --release --quiet
 bin=target/release/cable-dict
 root=$PWD
+setup_of() { case $1 in inspection) echo inspection ;; *) echo pick_and_place ;; esac; }
+motions=(pick_and_place palletizing machine_tending screw_driving inspection)
 for motion in pick_and_place inspection; do
   sed -e "s|^robot = \"|robot = \"$root/robots/viper_s850/|" \
       -e "s|^cable = \"../../cables/\(.*\)\.toml\"|cable = \"$root/cables/\1_paper.toml\"|" \
@@ -32,17 +39,17 @@ for motion in pick_and_place inspection; do
 done
 cables=(paper realistic)
 
-for motion in pick_and_place inspection; do
+for motion in "${motions[@]}"; do
   for cable in "${cables[@]}"; do
   for method in "${methods[@]}"; do
     case $method in
-      previous) args=(--connect linear --max-guides-per-link 1) ;;
+      previous) continue ;;
       1) args=(--max-guides-per-link 1) ;;
       2) args=(--max-guides-per-link 2) ;;
       *) echo "unknown method $method (previous, 1 or 2)" >&2; exit 2 ;;
     esac
     echo "solving $motion ($cable cable) with method $method …" >&2
-    "$bin" -q solve --setup "$out/$motion-$cable.toml" "motions/viper_s850/$motion.csv" \
+    "$bin" -q solve --setup "$out/$(setup_of "$motion")-$cable.toml" "motions/viper_s850/$motion.csv" \
       "${args[@]}" --json -o "$out/$motion-$cable-$method.json" > /dev/null
   done
   done
@@ -50,7 +57,7 @@ done
 
 echo "| motion | cable | method | \|D1\| C1 / C2 / C3 / C4 | \|D2\| C1 / C2 / C3 / C4 | \|D3\| | result | length (mm) | motion tests | attachment (s) | static sweep (s) | motion test (s) | total (s) |"
 echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
-for motion in pick_and_place inspection; do
+for motion in "${motions[@]}"; do
   for cable in "${cables[@]}"; do
   for method in "${methods[@]}"; do
     jq -r --arg motion "$motion" --arg cable "$cable" '
@@ -65,3 +72,33 @@ for motion in pick_and_place inspection; do
   done
   done
 done
+
+# The previous method on a sample, extrapolated: seconds per evaluated piece × evaluations.
+if printf '%s\n' "${methods[@]}" | grep -qx previous; then
+  for connect in linear hermite; do
+    echo "previous-method sample with --connect $connect …" >&2
+    "$bin" -q solve --setup benches/previous_method_sample.toml motions/viper_s850/pick_and_place.csv \
+      --connect "$connect" --max-guides-per-link 1 --no-motion-test --json \
+      -o "$out/previous-sample-$connect.json" > /dev/null
+  done
+  per_piece() { jq '.timings_s.attachment / ([.sets[].evaluations] | add)' "$out/previous-sample-$1.json"; }
+  linear=$(per_piece linear)
+  hermite=$(per_piece hermite)
+  echo
+  echo "previous method, sample of 176 pieces of C1: $(jq '.timings_s.attachment' "$out/previous-sample-linear.json") s" \
+       "($linear s per evaluated piece) against $(jq '.timings_s.attachment' "$out/previous-sample-hermite.json") s" \
+       "with method 1's solver ($hermite s per piece)"
+  echo
+  echo "| motion | cable | evaluated pieces (method 1) | method 1 attachment (s) | previous method, extrapolated (h) |"
+  echo "| --- | --- | --- | --- | --- |"
+  for motion in "${motions[@]}"; do
+    for cable in "${cables[@]}"; do
+      json="$out/$motion-$cable-1.json"
+      [ -f "$json" ] || continue
+      jq -r --arg motion "$motion" --arg cable "$cable" --argjson per "$linear" '
+        ([.sets[].evaluations] | add) as $n |
+        "| \($motion) | \($cable) | \($n) | \((.timings_s.attachment * 100 | round) / 100) | \(($n * $per / 3600 * 10 | round) / 10) |"
+      ' "$json"
+    done
+  done
+fi

@@ -72,6 +72,7 @@ pub mod report;
 pub mod rigid_chain;
 pub mod robot;
 pub mod setup;
+pub mod sites;
 pub mod solve;
 pub mod statics;
 pub mod stress;

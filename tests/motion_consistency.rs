@@ -23,7 +23,8 @@ use std::path::Path;
 
 fn bundled(name: &str) -> Setup {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    Setup::from_file(root.join("robots/viper_s850").join(name)).unwrap_or_else(|e| panic!("{e}"))
+    Setup::from_file(root.join("robots/viper_s850/hand_written").join(name))
+        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn motion(setup: &Setup, name: &str) -> Motion {

@@ -145,9 +145,7 @@ configurations = [{ name = "forearm right z120", position_mm = [0.0, -72.0, 120.
 /// Index of the configuration of guide `g` named `name`.
 fn configuration(setup: &Setup, g: usize, name: &str) -> usize {
     setup.guides[g]
-        .configurations
-        .iter()
-        .position(|c| c.name == name)
+        .configuration_index(name)
         .unwrap_or_else(|| panic!("{} has no configuration {name}", setup.guides[g].name))
 }
 

@@ -12,7 +12,7 @@ fn rebuilds_to_the_same_bytes(name: &str) {
     let dictionary = Dictionary::open(&shipped).expect("the shipped dictionary opens");
     dictionary.verify().expect("and verifies");
     let header = dictionary.header();
-    let setup_path = format!("robots/viper_s850/{}", header.setup.file_name);
+    let setup_path = format!("robots/viper_s850/hand_written/{}", header.setup.file_name);
     let setup = Setup::from_file(&setup_path).expect("bundled setup");
     assert_eq!(
         header.setup_hash, setup.content_hash,

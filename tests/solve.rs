@@ -344,8 +344,8 @@ fn the_result_does_not_depend_on_the_thread_count() {
 #[test]
 fn the_bundled_pick_and_place_is_solved_within_the_datasheet_limits() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let setup =
-        Setup::from_file(root.join("robots/viper_s850/pick_and_place.toml")).expect("setup");
+    let setup = Setup::from_file(root.join("robots/viper_s850/hand_written/pick_and_place.toml"))
+        .expect("setup");
     let motion = Motion::from_csv_file(&setup.robot, root.join(MOTION)).expect("motion");
     let options = SolveOptions {
         shape_interval_s: Some(FRAME_S),

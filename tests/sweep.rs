@@ -17,7 +17,8 @@ use std::path::Path;
 /// only two C1 PVs of the whole catalogue do, by less than 0.05 mm of clearance).
 fn bundled() -> (Setup, Motion) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut setup = Setup::from_file(root.join("robots/viper_s850/pick_and_place.toml")).unwrap();
+    let mut setup =
+        Setup::from_file(root.join("robots/viper_s850/hand_written/pick_and_place.toml")).unwrap();
     setup.cable = CableSpec::from_file(root.join("cables/smc_le_cp_3_paper.toml")).unwrap();
     let motion = Motion::from_csv_file(
         &setup.robot,

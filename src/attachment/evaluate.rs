@@ -8,7 +8,7 @@ use crate::pose::Pose;
 use crate::rigid_chain::{
     ConvergenceWindow, DynamicsSettings, LinearConnect, SegmentShape, connect_linear, relax,
 };
-use crate::setup::{Setup, Thresholds};
+use crate::setup::{Setup, Thresholds, turn_about_axis};
 use crate::statics::{FarEnd, RodParameters, SolverOptions, StaticSolver, continuation};
 use crate::stress::contact::{
     ClampZone, ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
@@ -64,6 +64,89 @@ impl Rejection {
             Rejection::Stretch => "stretch",
             Rejection::Bend => "bend radius",
         }
+    }
+}
+
+/// How a PV failed the attachment test: which limit, how far past it, where on the cable and
+/// at which test pose — what a diagnosis of "no path" ranks its nearest misses by.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Miss {
+    /// The first limit violated.
+    pub rejection: Rejection,
+    /// How far past the limit, relative to it: contact, the clearance deficit over the
+    /// cable's diameter; stretch (and a cable too short for its clamps), the excess stretch
+    /// over the allowed excess; bend, the radius deficit over the minimum radius. Infinite
+    /// when nothing was measured (a failed solve, a verdict read from a dictionary).
+    pub severity: f64,
+    /// The measured value: clearance (m), stretch ratio, or bend radius (m); NaN when not
+    /// measured.
+    pub value: f64,
+    /// Index of the test pose where it failed first.
+    pub pose: usize,
+    /// Where along the piece (m of cable from its start clamp); NaN for the whole piece.
+    pub at_m: f64,
+}
+
+impl Miss {
+    /// A verdict without measurements (e.g. from a dictionary).
+    pub fn unmeasured(rejection: Rejection) -> Miss {
+        Miss {
+            rejection,
+            severity: f64::INFINITY,
+            value: f64::NAN,
+            pose: 0,
+            at_m: f64::NAN,
+        }
+    }
+
+    /// The miss of a failed `check` at test pose `pose`; `None` when it passed.
+    fn of(
+        check: &Check,
+        setup: &Setup,
+        pose: usize,
+        guides: &(Pose, Pose),
+        sub_segments: usize,
+    ) -> Option<Miss> {
+        let rejection = check.rejection?;
+        let limits = &setup.thresholds;
+        let pitch = setup.cable.sub_segment_pitch_m;
+        let excess = |stretch: f64| (stretch - 1.0) / (limits.stretch - 1.0).max(1e-12) - 1.0;
+        let measured = |severity: f64, value: f64, at_m: f64| Miss {
+            rejection,
+            severity: severity.max(0.0),
+            value,
+            pose,
+            at_m,
+        };
+        Some(match (rejection, check.metrics) {
+            (Rejection::TooShort, _) => {
+                let distance = (guides.1.translation.vector - guides.0.translation.vector).norm();
+                let stretch = distance / (sub_segments as f64 * pitch);
+                measured(excess(stretch), stretch, f64::NAN)
+            }
+            (Rejection::Contact, Some(m)) => {
+                let clearance = m.clearance_m.unwrap_or(f64::NAN);
+                let deficit = limits.contact_clearance_m - clearance;
+                let at = m
+                    .clearance_sub_segment
+                    .map_or(f64::NAN, |k| (k as f64 + 0.5) * pitch);
+                measured(deficit / setup.cable.diameter_m, clearance, at)
+            }
+            (Rejection::Stretch, Some(m)) => measured(excess(m.stretch), m.stretch, f64::NAN),
+            (Rejection::Bend, Some(m)) => {
+                let limit = limits.static_min_bend_radius_m();
+                let at = m.min_bend_node as f64 * pitch;
+                measured(
+                    (limit - m.min_bend_radius_m) / limit,
+                    m.min_bend_radius_m,
+                    at,
+                )
+            }
+            _ => Miss {
+                pose,
+                ..Miss::unmeasured(rejection)
+            },
+        })
     }
 }
 
@@ -194,9 +277,9 @@ impl<'a> Evaluator<'a> {
         if pv.sub_segments == 0 {
             return Ok(Vec::new());
         }
-        let (a, b) = self.setup.segment_guides(m);
-        let start = self.setup.guide_world_pose(link_poses, a, pv.start);
-        let end = self.setup.guide_world_pose(link_poses, b, pv.end);
+        let (start, end) =
+            self.setup
+                .clamp_poses(link_poses, m, pv.sub_segments, (pv.start, pv.end));
         self.equilibrium(&start, &end, pv.sub_segments, self.rod.gravity_m_s2)
             .map_err(|check| check.detail.unwrap_or_else(|| "no equilibrium".into()))
     }
@@ -205,9 +288,9 @@ impl<'a> Evaluator<'a> {
         if pv.sub_segments == 0 {
             return Check::pass(None);
         }
-        let (a, b) = self.setup.segment_guides(m);
-        let start = self.setup.guide_world_pose(scene.link_poses, a, pv.start);
-        let end = self.setup.guide_world_pose(scene.link_poses, b, pv.end);
+        let (start, end) =
+            self.setup
+                .clamp_poses(scene.link_poses, m, pv.sub_segments, (pv.start, pv.end));
         let nodes = match self.equilibrium(&start, &end, pv.sub_segments, scene.gravity_m_s2) {
             Ok(nodes) => nodes,
             Err(check) => return check,
@@ -215,7 +298,7 @@ impl<'a> Evaluator<'a> {
         self.judge(m, &start, &end, &nodes, pv.sub_segments, scene)
     }
 
-    /// The first limit each length of `lengths` (sorted, > 0) violates at the guide
+    /// How each length of `lengths` (sorted, > 0) fails (its [`Miss`]; `None`: it holds) at the guide
     /// configurations `(start, end)` of segment `m`, over `poses` (stopping at a length's
     /// first failing pose): the verdicts of the PVs `(S, start, end)` that
     /// [`Evaluator::check`] gives pose by pose, solved with continuation — at each pose the
@@ -229,17 +312,22 @@ impl<'a> Evaluator<'a> {
         (start, end): (usize, usize),
         lengths: &[usize],
         poses: &[TestPose],
-    ) -> Vec<Option<Rejection>> {
-        let mut verdicts: Vec<Option<Rejection>> = vec![None; lengths.len()];
+    ) -> Vec<Option<Miss>> {
+        let mut verdicts: Vec<Option<Miss>> = vec![None; lengths.len()];
         let mut solver = StaticSolver::default();
-        for pose in poses {
-            let (scene, guides) = self.at_pose(m, (start, end), pose);
+        let turns: Vec<Pose> = lengths
+            .iter()
+            .map(|&s| turn_about_axis(-self.setup.installed_twist_rad(m, s, (start, end))))
+            .collect();
+        for (p, pose) in poses.iter().enumerate() {
+            let (scene, declared) = self.at_pose(m, (start, end), pose);
             // The last two solutions at this pose, the nearest first.
             let mut earlier: Vec<Solved> = Vec::with_capacity(3);
-            for (verdict, &length) in verdicts.iter_mut().zip(lengths) {
+            for ((verdict, &length), turn) in verdicts.iter_mut().zip(lengths).zip(&turns) {
                 if verdict.is_some() {
                     continue;
                 }
+                let guides = (declared.0, declared.1 * turn);
                 let check = match self.solve_warm(
                     &mut solver,
                     &guides,
@@ -256,7 +344,7 @@ impl<'a> Evaluator<'a> {
                     }
                     Err(check) => check,
                 };
-                *verdict = check.rejection;
+                *verdict = Miss::of(&check, self.setup, p, &guides, length);
             }
         }
         verdicts
@@ -279,8 +367,14 @@ impl<'a> Evaluator<'a> {
         let mut solver = StaticSolver::default();
         // The last two poses' solutions and guides, the last first.
         let mut earlier: Vec<(Solved, (Pose, Pose))> = Vec::with_capacity(3);
+        let turn = turn_about_axis(-self.setup.installed_twist_rad(
+            m,
+            pv.sub_segments,
+            (pv.start, pv.end),
+        ));
         for pose in poses {
-            let (scene, guides) = self.at_pose(m, (pv.start, pv.end), pose);
+            let (scene, declared) = self.at_pose(m, (pv.start, pv.end), pose);
+            let guides = (declared.0, declared.1 * turn);
             let warm = Warm::Poses(&earlier);
             let check = match self.solve_warm(&mut solver, &guides, pv.sub_segments, &scene, warm) {
                 Ok(solved) => {
@@ -309,7 +403,8 @@ impl<'a> Evaluator<'a> {
     }
 
     /// The scene of `pose` (all links, the setup's gravity) and the world poses of segment
-    /// `m`'s guides in the configurations `(start, end)`.
+    /// `m`'s guides in the configurations `(start, end)` as declared (the end clamp's twist
+    /// reference not yet turned: it depends on the length, see [`Setup::clamp_poses`]).
     fn at_pose<'p>(
         &self,
         m: usize,

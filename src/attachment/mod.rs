@@ -25,7 +25,7 @@ mod evaluate;
 mod poses;
 mod sweep;
 
-pub use evaluate::{Check, ConnectMethod, Evaluator, Metrics, Rejection};
+pub use evaluate::{Check, ConnectMethod, Evaluator, Metrics, Miss, Rejection};
 pub use poses::{SegmentPoses, TestPose};
 pub use sweep::{MotionSweep, SweepFailure};
 
@@ -50,11 +50,18 @@ pub struct SegmentSets {
     pub d2: Vec<Pv>,
     /// PVs of D'0 rejected, by the first limit they violated (at the first pose that failed).
     pub rejections: BTreeMap<Rejection, usize>,
+    /// The rejected PVs of D'0 that came closest to holding every limit, least severe first:
+    /// the closest of each limit that rejected any, then the next closest, at most
+    /// [`NEAREST_MISSES`], measured ones only — what a diagnosis shows.
+    pub nearest_misses: Vec<(Pv, Miss)>,
     /// (guides, length) combinations evaluated, robustness lengths included.
     pub evaluations: usize,
     /// Wall time of this segment's test (s).
     pub time_s: f64,
 }
+
+/// Nearest misses kept per segment.
+pub const NEAREST_MISSES: usize = 3;
 
 /// Runs the attachment test on every segment: intra-link segments first, then the inter-link
 /// ones pruned by their intra-link neighbours' D2.
@@ -85,7 +92,10 @@ pub fn attachment_test_with(
                     start,
                     end,
                 };
-                lengths.iter().map(|&s| lookup(m, &pv(s))).collect()
+                lengths
+                    .iter()
+                    .map(|&s| lookup(m, &pv(s)).map(Miss::unmeasured))
+                    .collect()
             }),
             None => test_segment(setup, m, candidates, |guides, lengths| {
                 at_poses(m, guides, lengths)
@@ -157,7 +167,7 @@ fn test_segment(
     setup: &Setup,
     m: usize,
     candidates: Vec<Pv>,
-    verdicts_of: impl Fn((usize, usize), &[usize]) -> Vec<Option<Rejection>> + Sync,
+    verdicts_of: impl Fn((usize, usize), &[usize]) -> Vec<Option<Miss>> + Sync,
 ) -> SegmentSets {
     let timer = Instant::now();
     let robustness = &setup.robustness;
@@ -171,7 +181,7 @@ fn test_segment(
     }
     let pairs: Vec<((usize, usize), Vec<usize>)> = pairs.into_iter().collect();
     progress::begin(&format!("attachment C{}", m + 1), needed.len() as u64);
-    let results: Vec<Vec<Option<Rejection>>> = pairs
+    let results: Vec<Vec<Option<Miss>>> = pairs
         .par_iter()
         .map(|(guides, lengths)| {
             let result = verdicts_of(*guides, lengths);
@@ -181,7 +191,7 @@ fn test_segment(
         .collect();
     progress::end();
     // Zero-length PVs (one clamp) have no cable and pass.
-    let mut verdicts: BTreeMap<Pv, Option<Rejection>> = needed
+    let mut verdicts: BTreeMap<Pv, Option<Miss>> = needed
         .iter()
         .filter(|pv| pv.sub_segments == 0)
         .map(|pv| (*pv, None))
@@ -198,11 +208,16 @@ fn test_segment(
     }
     let passes = |pv: &Pv| matches!(verdicts.get(pv), Some(None));
     let mut rejections = BTreeMap::new();
+    let mut misses: Vec<(Pv, Miss)> = Vec::new();
     for pv in &candidates {
-        if let Some(Some(rejection)) = verdicts.get(pv) {
-            *rejections.entry(*rejection).or_insert(0) += 1;
+        if let Some(Some(miss)) = verdicts.get(pv) {
+            *rejections.entry(miss.rejection).or_insert(0) += 1;
+            if miss.severity.is_finite() {
+                misses.push((*pv, *miss));
+            }
         }
     }
+    let misses = nearest_misses(misses);
     let d1: Vec<&Pv> = candidates.iter().filter(|pv| passes(pv)).collect();
     let mut d2: Vec<Pv> = d1
         .iter()
@@ -219,9 +234,32 @@ fn test_segment(
         d1: d1.len(),
         d2,
         rejections,
+        nearest_misses: misses,
         evaluations: verdicts.len(),
         time_s: timer.elapsed().as_secs_f64(),
     }
+}
+
+/// The least severe miss of every limit that rejected something, then the next least severe
+/// ones, up to [`NEAREST_MISSES`], least severe first; ties in PV order (the sorts are
+/// stable), so the choice is deterministic.
+fn nearest_misses(mut misses: Vec<(Pv, Miss)>) -> Vec<(Pv, Miss)> {
+    misses.sort_by(|a, b| a.1.severity.total_cmp(&b.1.severity));
+    let mut chosen: Vec<(Pv, Miss)> = Vec::with_capacity(NEAREST_MISSES);
+    for miss in &misses {
+        if chosen.len() < NEAREST_MISSES
+            && !chosen.iter().any(|c| c.1.rejection == miss.1.rejection)
+        {
+            chosen.push(*miss);
+        }
+    }
+    for miss in &misses {
+        if chosen.len() < NEAREST_MISSES && !chosen.contains(miss) {
+            chosen.push(*miss);
+        }
+    }
+    chosen.sort_by(|a, b| a.1.severity.total_cmp(&b.1.severity));
+    chosen
 }
 
 /// The PVs `S ± k·ΔS`, `k = 1…R`, with the same guides; `None` when one of them would be

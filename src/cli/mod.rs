@@ -9,6 +9,7 @@ mod progress_bars;
 mod robot_info;
 mod scene;
 mod segment;
+mod sites;
 mod solve;
 
 use clap::{Parser, Subcommand};
@@ -47,6 +48,8 @@ enum Command {
     Solve(Box<solve::Args>),
     /// Write a 3D scene (glTF .glb) of a cable path at a pose, or of one segment.
     ExportScene(scene::Args),
+    /// List (or draw, glTF) the clamp sites and cable directions a setup's search will try.
+    Sites(sites::Args),
     /// Precompute a setup's intra-link segments into a dictionary (or one shard of it).
     Build(dictionary::BuildArgs),
     /// Describe a dictionary: build parameters, setup, set sizes.
@@ -98,6 +101,7 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::CriticalPoses(args) => solve::run_critical(args),
         Command::Solve(args) => solve::run(*args),
         Command::ExportScene(args) => scene::run(args),
+        Command::Sites(args) => sites::run(args),
         Command::Build(args) => dictionary::run_build(args),
         Command::Info(args) => dictionary::run_info(args),
         Command::Verify(args) => dictionary::run_verify(args),

@@ -180,22 +180,18 @@ fn path_from_names(
         .iter()
         .zip(names)
         .map(|(guide, name)| {
-            guide
-                .configurations
-                .iter()
-                .position(|c| &c.name == name)
-                .ok_or_else(|| {
-                    let known: Vec<&str> = guide
-                        .configurations
-                        .iter()
-                        .map(|c| c.name.as_str())
-                        .collect();
-                    Failure::input(anyhow::anyhow!(
-                        "--configurations: {} has no configuration '{name}' (it has {})",
-                        guide.name,
-                        known.join(", ")
-                    ))
-                })
+            guide.configuration_index(name).ok_or_else(|| {
+                let known: Vec<&str> = guide
+                    .configurations
+                    .iter()
+                    .map(|c| c.name.as_str())
+                    .collect();
+                Failure::input(anyhow::anyhow!(
+                    "--configurations: {} has no configuration '{name}' (it has {})",
+                    guide.name,
+                    known.join(", ")
+                ))
+            })
         })
         .collect::<Result<Vec<_>, _>>()?;
     Ok(CablePath {

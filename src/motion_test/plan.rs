@@ -5,7 +5,7 @@ use super::MotionTestError;
 use crate::motion::Motion;
 use crate::path::CablePath;
 use crate::pose::Pose;
-use crate::setup::Setup;
+use crate::setup::{Setup, turn_about_axis};
 use crate::stress::{ClampZone, GuideEnd};
 
 /// One simulated segment: a segment of the setup with S > 0.
@@ -25,6 +25,10 @@ pub(super) struct PlannedSegment {
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Plan {
     pub segments: Vec<PlannedSegment>,
+    /// Per simulated clamp, its turn about the cable axis from the declared configuration
+    /// (rad): the installed cable's twist references carried from the first clamp along the
+    /// whole cable (see [`Setup::clamp_poses`]), so every piece is untwisted at installation.
+    pub clamp_turns_rad: Vec<f64>,
 }
 
 impl Plan {
@@ -48,7 +52,18 @@ impl Plan {
         if segments.is_empty() {
             return Err(MotionTestError::NoCable);
         }
-        Ok(Plan { segments })
+        // A start clamp turned by β turns the untwisted cable's arrival by β too.
+        let mut clamp_turns_rad = vec![0.0];
+        for s in &segments {
+            let installed =
+                setup.installed_twist_rad(s.setup_index, s.sub_segments, (s.start.1, s.end.1));
+            let previous = clamp_turns_rad.last().copied().unwrap_or(0.0);
+            clamp_turns_rad.push(previous - installed);
+        }
+        Ok(Plan {
+            segments,
+            clamp_turns_rad,
+        })
     }
 
     /// World poses of the simulated guides (segments + 1), from the link poses. A shared
@@ -59,6 +74,8 @@ impl Plan {
         let first = pose(self.segments[0].start);
         std::iter::once(first)
             .chain(self.segments.iter().map(|s| pose(s.end)))
+            .zip(&self.clamp_turns_rad)
+            .map(|(declared, &turn)| declared * turn_about_axis(turn))
             .collect()
     }
 

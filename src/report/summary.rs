@@ -64,6 +64,9 @@ fn heading(md: &mut String, report: &SolveReport) {
     let verdict = report.status.describe();
     let _ = writeln!(md, "# Cable path: {verdict}\n");
     let _ = writeln!(md, "{}.\n", capitalized(&report.explanation));
+    if let Some(diagnosis) = &report.diagnosis {
+        let _ = writeln!(md, "## Why there is no path\n\n```text\n{diagnosis}```\n");
+    }
     if let Some(total) = report.optimal_length_mm {
         let _ = writeln!(
             md,

@@ -5,7 +5,7 @@ use super::scene::{CableLine, GuideMark, PoseScene, SceneAnimation, SceneSpec, S
 use crate::attachment::{ConnectMethod, Evaluator};
 use crate::motion::Motion;
 use crate::motion_test::{MotionTestReport, SegmentNodes, ShapeFrame};
-use crate::path::CablePath;
+use crate::path::{CablePath, Pv};
 use crate::pose::Pose;
 use crate::robot::JointVectorError;
 use crate::setup::Setup;
@@ -133,7 +133,10 @@ pub fn solve_scene<'a>(
             problems,
         ))
     };
-    let (main, mut problems) = at(&motion.samples()[0])?;
+    let (main, mut problems) = match (path, nearest_miss_scene(&evaluator, motion, report)) {
+        (None, Some(miss)) => (miss?, Vec::new()),
+        _ => at(&motion.samples()[0])?,
+    };
     let mut spec = still_scene(setup, path, main);
     if let Some(test) = &report.motion_test {
         spec.animation = motion_test_animation(setup, motion, test)?;
@@ -153,6 +156,58 @@ pub fn solve_scene<'a>(
     }
     lay_out_snapshots(&mut spec);
     Ok((spec, problems))
+}
+
+/// Without a candidate: the robot where the diagnosis's first nearest miss failed, with that
+/// piece's static equilibrium (named `C1 nearest miss`); `None` without a nearest miss.
+fn nearest_miss_scene(
+    evaluator: &Evaluator<'_>,
+    motion: &Motion,
+    report: &SolveReport,
+) -> Option<Result<PoseScene, ViewError>> {
+    let setup = evaluator.setup();
+    let (m, miss) = report.diagnosis.as_ref()?.segments.iter().find_map(|d| {
+        let m = report
+            .segments
+            .iter()
+            .position(|s| s.segment == d.segment)?;
+        Some((m, d.nearest_misses.first()?))
+    })?;
+    let (a, b) = setup.segment_guides(m);
+    let index = |g: usize, name: &str| setup.guides[g].configuration_index(name);
+    let pv = Pv {
+        sub_segments: (miss.length_mm / (setup.cable.sub_segment_pitch_m * 1e3)).round() as usize,
+        start: index(a, &miss.from_configuration)?,
+        end: index(b, &miss.to_configuration)?,
+    };
+    Some(piece_scene(evaluator, motion, m, &pv, miss.time_s))
+}
+
+/// The robot at `time_s` of the motion with the static equilibrium of PV `pv` of segment `m`
+/// (no cable when it has none), named `C1 nearest miss`.
+fn piece_scene(
+    evaluator: &Evaluator<'_>,
+    motion: &Motion,
+    m: usize,
+    pv: &Pv,
+    time_s: f64,
+) -> Result<PoseScene, ViewError> {
+    let link_poses = evaluator
+        .setup()
+        .robot
+        .link_poses(&motion.joints_at(time_s))?;
+    let cable = evaluator
+        .equilibrium_nodes(m, pv, &link_poses)
+        .ok()
+        .filter(|nodes| nodes.len() >= 2)
+        .map(|nodes| CableLine {
+            name: format!("{} nearest miss", segment_name(m)),
+            nodes_m: nodes,
+        });
+    Ok(PoseScene {
+        link_poses,
+        cable: cable.into_iter().collect(),
+    })
 }
 
 /// The motion test's kept shapes as keyframes (time from the motion's start), with the robot

@@ -191,6 +191,21 @@ impl Robot {
         self.links.iter().position(|l| l.name == name)
     }
 
+    /// The link `link` moves with — its nearest ancestor reached through fixed joints only —
+    /// and the pose of `link`'s frame in that link's frame (identity for `link` itself).
+    pub fn moving_body(&self, mut link: usize) -> (usize, Pose) {
+        let mut link_in_body = Pose::identity();
+        while let Some(j) = self.links[link].parent_joint {
+            let joint = &self.joints[j];
+            if joint.kind != JointKind::Fixed {
+                break;
+            }
+            link_in_body = joint.origin * link_in_body;
+            link = joint.parent_link;
+        }
+        (link, link_in_body)
+    }
+
     /// Index into the joint vector of the actuated joint called `name`.
     pub fn actuated_index(&self, name: &str) -> Option<usize> {
         self.actuated

@@ -54,10 +54,11 @@ fn copy(guides: &mut [Guide], from: usize, to: usize, only_from_fixed: bool) {
     guides[to].configurations.extend(copies);
 }
 
-/// The declared configuration a configuration stems from: (guide, configuration).
+/// The declared or generated configuration a configuration stems from: (guide,
+/// configuration).
 fn root_of(g: usize, c: usize, configuration: &GuideConfiguration) -> (usize, usize) {
     match configuration.origin {
-        ConfigurationOrigin::Declared { .. } => (g, c),
+        ConfigurationOrigin::Declared { .. } | ConfigurationOrigin::Generated { .. } => (g, c),
         ConfigurationOrigin::Coincident {
             guide,
             configuration,

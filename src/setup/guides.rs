@@ -3,9 +3,10 @@
 use super::error::Source;
 use super::load::finite3;
 use super::raw::{RawConfiguration, RawGuide};
+use super::sites::SiteContext;
 use super::{ConfigurationOrigin, Guide, GuideConfiguration, SetupError};
 use crate::pose::{Pose, pose_from_mm_deg};
-use crate::robot::{JointKind, Robot};
+use crate::robot::Robot;
 use toml::Spanned;
 
 type RawGuides = Spanned<Vec<Spanned<RawGuide>>>;
@@ -17,6 +18,7 @@ pub(super) fn build(
     robot: &Robot,
     raw: &RawGuides,
     max_per_link: usize,
+    sites: &SiteContext,
 ) -> Result<Vec<Guide>, SetupError> {
     if raw.get_ref().len() < 2 {
         return Err(src.error(
@@ -27,7 +29,7 @@ pub(super) fn build(
     }
     let mut guides: Vec<Guide> = Vec::new();
     for (g, entry) in raw.get_ref().iter().enumerate() {
-        let guide = guide(src, robot, g, entry.get_ref())?;
+        let guide = guide(src, robot, g, entry.get_ref(), sites)?;
         if let Some(same) = guides.iter().find(|other| other.name == guide.name) {
             let name = &entry.get_ref().name;
             return Err(src.error(
@@ -43,7 +45,13 @@ pub(super) fn build(
     Ok(guides)
 }
 
-fn guide(src: Source, robot: &Robot, g: usize, raw: &RawGuide) -> Result<Guide, SetupError> {
+fn guide(
+    src: Source,
+    robot: &Robot,
+    g: usize,
+    raw: &RawGuide,
+    sites: &SiteContext,
+) -> Result<Guide, SetupError> {
     let name = checked_name(src, &raw.name, &format!("guides[{g}].name"))?;
     let link = robot.link_index(raw.link.get_ref()).ok_or_else(|| {
         let known: Vec<&str> = robot.links.iter().map(|l| l.name.as_str()).collect();
@@ -58,10 +66,14 @@ fn guide(src: Source, robot: &Robot, g: usize, raw: &RawGuide) -> Result<Guide, 
             ),
         )
     })?;
-    let (body, link_in_body) = body_of(robot, link);
-    let entries = configuration_entries(src, g, raw)?;
+    let (body, link_in_body) = robot.moving_body(link);
     let fixed = raw.fixed.is_some();
-    let configurations = configurations(src, &entries)?;
+    let configurations = match &raw.sites {
+        Some(generator) if raw.configurations.is_none() && !fixed => {
+            sites.configurations(src, robot, link, &format!("guides[{g}].sites"), generator)?
+        }
+        _ => configurations(src, &configuration_entries(src, g, raw)?)?,
+    };
     Ok(Guide {
         name,
         link,
@@ -79,6 +91,13 @@ fn configuration_entries<'r>(
     g: usize,
     raw: &'r RawGuide,
 ) -> Result<Vec<(String, &'r Spanned<RawConfiguration>)>, SetupError> {
+    if let Some(generator) = &raw.sites {
+        return Err(src.error(
+            generator.span(),
+            format!("guides[{g}]"),
+            "give one of `configurations = [...]`, `fixed = {...}` and `sites = {...}`",
+        ));
+    }
     match (&raw.configurations, &raw.fixed) {
         (Some(list), None) if list.get_ref().is_empty() => Err(src.error(
             list.span(),
@@ -95,12 +114,13 @@ fn configuration_entries<'r>(
         (Some(list), Some(_)) => Err(src.error(
             list.span(),
             format!("guides[{g}]"),
-            "give either `configurations = [...]` (candidates) or `fixed = {...}`, not both",
+            "give one of `configurations = [...]`, `fixed = {...}` and `sites = {...}`",
         )),
         (None, None) => Err(src.error(
             raw.name.span(),
             format!("guides[{g}]"),
-            "missing `configurations = [...]` (candidates) or `fixed = {...}` (one given pose)",
+            "missing `configurations = [...]` (candidates), `fixed = {...}` (one given pose) \
+             or `sites = {...}` (sites generated on the link's surfaces)",
         )),
     }
 }
@@ -189,21 +209,6 @@ fn checked_name(src: Source, name: &Spanned<String>, key: &str) -> Result<String
         ));
     }
     Ok(text.to_string())
-}
-
-/// The link `link` moves with (its nearest ancestor through fixed joints only) and the pose of
-/// `link`'s frame in that link's frame.
-fn body_of(robot: &Robot, mut link: usize) -> (usize, Pose) {
-    let mut link_in_body = Pose::identity();
-    while let Some(j) = robot.links[link].parent_joint {
-        let joint = &robot.joints[j];
-        if joint.kind != JointKind::Fixed {
-            break;
-        }
-        link_in_body = joint.origin * link_in_body;
-        link = joint.parent_link;
-    }
-    (link, link_in_body)
 }
 
 /// True when `ancestor` is `link` or on the path from `link` to the root.

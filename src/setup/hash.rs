@@ -9,7 +9,7 @@
 //! vertices and triangles, joints with kinds, origins, axes, limits and drives), the cable
 //! spec, gravity, `max_guides_per_link`, thresholds, robustness, guides (name, links, fixed,
 //! every configuration: name, position mm, rpy deg, pose, origin) and segments (range and
-//! candidate list). Integers are u64 little-endian; floats are their IEEE-754 bit patterns,
+//! candidate list), then the installation pose when there is one. Integers are u64 little-endian; floats are their IEEE-754 bit patterns,
 //! little-endian, with −0.0 written as +0.0; strings and lists are prefixed by their length.
 //! Paths, comments, whitespace and key order never enter it.
 
@@ -47,6 +47,11 @@ pub(super) fn canonical_bytes(setup: &Setup) -> Vec<u8> {
     out.usize(setup.robustness.range);
     guides(&mut out, setup);
     segments(&mut out, setup);
+    // Written only when given, so that setups without it keep their hash.
+    if let Some(installation) = &setup.installation {
+        out.str("installation");
+        out.floats(&installation.joints);
+    }
     out.0
 }
 
@@ -204,6 +209,10 @@ fn guides(out: &mut Canon, setup: &Setup) {
                     out.str("coincident");
                     out.usize(guide);
                     out.usize(configuration);
+                }
+                ConfigurationOrigin::Generated { site, .. } => {
+                    out.str("generated");
+                    out.usize(site);
                 }
             }
         }

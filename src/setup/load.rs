@@ -2,8 +2,10 @@
 
 use super::error::Source;
 use super::raw::{BendRadiusSetting, RawRobustness, RawSetup, RawThresholds};
+use super::sites::SiteContext;
 use super::{
-    BendRadiusSource, Robustness, Setup, SetupError, Thresholds, coincide, guides, hash, segments,
+    BendRadiusSource, Installation, Robustness, Setup, SetupError, Thresholds, coincide, guides,
+    hash, segments,
 };
 use crate::cable::CableSpec;
 use crate::robot::Robot;
@@ -37,7 +39,12 @@ pub(super) fn from_str(
     let max_guides_per_link = at_least_one(src, &raw.max_guides_per_link, "max_guides_per_link")?;
     let thresholds = thresholds(src, &raw.thresholds, &cable)?;
     let robustness = robustness(src, &raw.robustness)?;
-    let mut guides = guides::build(src, &robot, &raw.guides, max_guides_per_link)?;
+    let installation = match &raw.install_joints_deg {
+        Some(joints) => Some(installation(src, &robot, joints)?),
+        None => None,
+    };
+    let sites = SiteContext::new(0.5 * cable.diameter_m, installation.as_ref());
+    let mut guides = guides::build(src, &robot, &raw.guides, max_guides_per_link, &sites)?;
     let segments = segments::build(src, &guides, &raw.segments, robustness.delta_s)?;
     coincide::add_copies(&mut guides, &segments);
     let mut setup = Setup {
@@ -55,6 +62,7 @@ pub(super) fn from_str(
         segments,
         thresholds,
         robustness,
+        installation,
         content_hash: 0,
     };
     setup.content_hash = hash::fnv1a64(&hash::canonical_bytes(&setup));
@@ -122,6 +130,34 @@ pub(super) fn finite3(
             format!("{v:?} must be three finite numbers"),
         ))
     }
+}
+
+/// `install_joints_deg`: a joint vector in degrees (millimetres for prismatic joints) within
+/// the limits, and the link poses there.
+fn installation(
+    src: Source,
+    robot: &Robot,
+    value: &Spanned<Vec<f64>>,
+) -> Result<Installation, SetupError> {
+    let fail = |problem: String| src.error(value.span(), "install_joints_deg", problem);
+    let written = value.get_ref();
+    if written.len() != robot.dof() {
+        return Err(fail(format!(
+            "{} values, but the robot has {} actuated joints",
+            written.len(),
+            robot.dof()
+        )));
+    }
+    let joints: Vec<f64> = written
+        .iter()
+        .enumerate()
+        .map(|(i, v)| v / robot.actuated_joint(i).kind.display_unit().0)
+        .collect();
+    robot
+        .check_limits(&joints)
+        .map_err(|e| fail(e.to_string()))?;
+    let link_poses = robot.link_poses(&joints).map_err(|e| fail(e.to_string()))?;
+    Ok(Installation { joints, link_poses })
 }
 
 fn gravity(src: Source, value: &Spanned<[f64; 3]>) -> Result<Vector3<f64>, SetupError> {

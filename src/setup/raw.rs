@@ -13,6 +13,8 @@ pub(super) struct RawSetup {
     pub cable: Spanned<String>,
     pub gravity_m_s2: Spanned<[f64; 3]>,
     pub max_guides_per_link: Spanned<usize>,
+    #[serde(default)]
+    pub install_joints_deg: Option<Spanned<Vec<f64>>>,
     pub thresholds: RawThresholds,
     pub robustness: RawRobustness,
     pub guides: Spanned<Vec<Spanned<RawGuide>>>,
@@ -39,7 +41,7 @@ pub(super) struct RawRobustness {
     pub range: Spanned<usize>,
 }
 
-/// One `[[guides]]` entry: exactly one of `configurations` and `fixed`.
+/// One `[[guides]]` entry: exactly one of `configurations`, `fixed` and `sites`.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawGuide {
@@ -47,6 +49,30 @@ pub(super) struct RawGuide {
     pub link: Spanned<String>,
     pub configurations: Option<Spanned<Vec<Spanned<RawConfiguration>>>>,
     pub fixed: Option<Spanned<RawConfiguration>>,
+    pub sites: Option<Spanned<RawSites>>,
+}
+
+/// `sites = { spacing_mm, clamp_height_mm, directions_deg, region }`: a site generator.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawSites {
+    pub spacing_mm: Spanned<f64>,
+    pub clamp_height_mm: Spanned<f64>,
+    pub directions_deg: Spanned<Vec<f64>>,
+    #[serde(default)]
+    pub region: Option<Spanned<RawRegion>>,
+}
+
+/// `region = { min_mm, max_mm }` (a box) or `region = { z_mm = [low, high] }` (link frame).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawRegion {
+    #[serde(default)]
+    pub min_mm: Option<[f64; 3]>,
+    #[serde(default)]
+    pub max_mm: Option<[f64; 3]>,
+    #[serde(default)]
+    pub z_mm: Option<[f64; 2]>,
 }
 
 /// One guide configuration: a pose in the guide's link frame.

@@ -13,7 +13,10 @@
 //!    clamps). When none passes within `k` dynamic tries, or there is no chain, the result
 //!    says so and why.
 
+mod diagnosis;
 mod report;
+
+pub use diagnosis::{Diagnosis, NearestMiss, SegmentDiagnosis};
 
 pub use report::{
     CandidateOutcome, DictionaryUse, Ecpv, Inputs, Margin, PathGuide, PathSegment, PoseSummary,

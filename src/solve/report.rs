@@ -1,6 +1,7 @@
 //! The result of [`solve`](super::solve): serializable (the result JSON) and printable (the
 //! human summary).
 
+use super::diagnosis::{Diagnosis, diagnose};
 use super::{MotionSearch, SolveOptions, Tried};
 use crate::attachment::{
     ConnectMethod, Evaluator, Metrics, Rejection, SegmentPoses, SegmentSets, TestPose,
@@ -305,6 +306,8 @@ pub struct SolveReport {
     pub motion_engine: EngineKind,
     /// Stage timings (s).
     pub timings: Timings,
+    /// Why there is no path, and what would help; `None` when solved.
+    pub diagnosis: Option<Diagnosis>,
 }
 
 impl SolveReport {
@@ -332,6 +335,8 @@ impl SolveReport {
             Some(w) => tried[w].1.clone(),
             None => tried.last().and_then(|(_, report)| report.clone()),
         };
+        let diagnosis = matches!(status, Status::NoChain | Status::NonePassedMotionTest)
+            .then(|| diagnose(setup, motion, poses, sets, &outcome));
         SolveReport {
             status,
             explanation: explanation(
@@ -359,6 +364,7 @@ impl SolveReport {
             motion_test_requested: options.motion_test,
             motion_engine: options.engine,
             timings,
+            diagnosis,
         }
     }
 }
@@ -428,6 +434,7 @@ struct ResultJson<'a> {
     static_sweep: &'a SweepSummary,
     margins: &'a [Margin],
     reason: Option<&'a str>,
+    diagnosis: Option<&'a Diagnosis>,
     inputs: &'a Inputs,
     timings_s: &'a Timings,
 }
@@ -453,6 +460,7 @@ impl Serialize for SolveReport {
             static_sweep: &self.static_sweep,
             margins: &self.margins,
             reason: (self.status != Status::Solved).then_some(self.explanation.as_str()),
+            diagnosis: self.diagnosis.as_ref(),
             inputs: &self.inputs,
             timings_s: &self.timings,
         }
@@ -487,6 +495,11 @@ fn explanation(
             ),
         },
         Status::Untested => "the shortest chain of robust PVs; the motion test was not run".into(),
+        Status::NonePassedMotionTest if candidates.is_empty() => format!(
+            "every chain of robust candidate pieces has a piece that fails the static sweep \
+             over the motion{}",
+            sweep_note(sweep)
+        ),
         Status::NonePassedMotionTest => {
             let reasons: Vec<String> = candidates
                 .iter()
@@ -850,6 +863,12 @@ impl fmt::Display for SolveReport {
                 self.motion_engine,
                 report.summary()
             )?;
+        }
+        if let Some(diagnosis) = &self.diagnosis {
+            writeln!(f, "\nwhy there is no path")?;
+            for line in diagnosis.to_string().lines() {
+                writeln!(f, "  {line}")?;
+            }
         }
         let t = &self.timings;
         writeln!(

@@ -1,0 +1,181 @@
+//! `sites = {…}`: a guide whose candidate configurations are generated on its link's
+//! collision surfaces (see [`crate::sites`]).
+
+use super::error::Source;
+use super::raw::{RawRegion, RawSites};
+use super::{ConfigurationOrigin, GuideConfiguration, Installation, SetupError};
+use crate::robot::Robot;
+use crate::sites::{MIN_SPACING_M, Region, SiteSpec, generate, site_frame};
+use crate::stress::contact::Obstacles;
+use nalgebra::Point3;
+use std::cell::OnceCell;
+use toml::Spanned;
+
+/// Most cable directions per site.
+const MAX_DIRECTIONS: usize = 36;
+
+/// What generating sites needs besides the generator itself: the cable radius, the
+/// installation pose and, built on first use, the robot's collision geometry.
+pub(super) struct SiteContext<'a> {
+    pub cable_radius_m: f64,
+    pub installation: Option<&'a Installation>,
+    obstacles: OnceCell<Result<Obstacles, String>>,
+}
+
+impl<'a> SiteContext<'a> {
+    pub fn new(cable_radius_m: f64, installation: Option<&'a Installation>) -> Self {
+        Self {
+            cable_radius_m,
+            installation,
+            obstacles: OnceCell::new(),
+        }
+    }
+
+    /// The configurations of a generator: every site in every direction, in site order.
+    pub fn configurations(
+        &self,
+        src: Source,
+        robot: &Robot,
+        link: usize,
+        key: &str,
+        raw: &Spanned<RawSites>,
+    ) -> Result<Vec<GuideConfiguration>, SetupError> {
+        let fail = |problem: String| src.error(raw.span(), key, problem);
+        let installation = self.installation.ok_or_else(|| {
+            fail(
+                "generated sites need `install_joints_deg = [...]` at the top of the setup: \
+                 the robot pose at which the cable is installed untwisted, from which the \
+                 clamps' twist references are derived"
+                    .into(),
+            )
+        })?;
+        let spec = spec(src, key, raw.get_ref())?;
+        let obstacles = self
+            .obstacles
+            .get_or_init(|| Obstacles::from_robot(robot).map_err(|e| e.to_string()))
+            .as_ref()
+            .map_err(|e| fail(e.clone()))?;
+        let sites = generate(
+            robot,
+            obstacles,
+            link,
+            &spec,
+            self.cable_radius_m,
+            &installation.link_poses,
+        )
+        .map_err(|e| fail(e.to_string()))?;
+        let line = src.line_of(raw.span().start);
+        let mut list = Vec::with_capacity(sites.len() * spec.directions_rad.len());
+        for (k, site) in sites.iter().enumerate() {
+            for &angle in &spec.directions_rad {
+                let pose = site_frame(site, angle);
+                // + 0.0 turns a rounded −0 into 0 in the name.
+                let position_mm =
+                    [site.position.x, site.position.y, site.position.z].map(|v| v * 1e3 + 0.0);
+                let (r, p, y) = pose.rotation.euler_angles();
+                list.push(GuideConfiguration {
+                    name: format!(
+                        "site {} [{} {} {}] {}°",
+                        k + 1,
+                        position_mm[0].round() + 0.0,
+                        position_mm[1].round() + 0.0,
+                        position_mm[2].round() + 0.0,
+                        angle.to_degrees().round() + 0.0
+                    ),
+                    pose,
+                    position_mm,
+                    rpy_deg: [r, p, y].map(f64::to_degrees),
+                    origin: ConfigurationOrigin::Generated { line, site: k },
+                });
+            }
+        }
+        Ok(list)
+    }
+}
+
+fn spec(src: Source, key: &str, raw: &RawSites) -> Result<SiteSpec, SetupError> {
+    let spacing = *raw.spacing_mm.get_ref();
+    if !(spacing.is_finite() && spacing * 1e-3 >= MIN_SPACING_M) {
+        return Err(src.error(
+            raw.spacing_mm.span(),
+            format!("{key}.spacing_mm"),
+            format!(
+                "{spacing} must be a finite number ≥ {} mm",
+                MIN_SPACING_M * 1e3
+            ),
+        ));
+    }
+    let height = *raw.clamp_height_mm.get_ref();
+    if !(height.is_finite() && height >= 0.0) {
+        return Err(src.error(
+            raw.clamp_height_mm.span(),
+            format!("{key}.clamp_height_mm"),
+            format!("{height} must be a finite number ≥ 0"),
+        ));
+    }
+    Ok(SiteSpec {
+        spacing_m: spacing * 1e-3,
+        clamp_height_m: height * 1e-3,
+        directions_rad: directions(src, key, &raw.directions_deg)?,
+        region: match &raw.region {
+            Some(region) => self::region(src, key, region)?,
+            None => Region::Everywhere,
+        },
+    })
+}
+
+fn directions(src: Source, key: &str, raw: &Spanned<Vec<f64>>) -> Result<Vec<f64>, SetupError> {
+    let fail = |problem: String| src.error(raw.span(), format!("{key}.directions_deg"), problem);
+    let list = raw.get_ref();
+    if list.is_empty() || list.len() > MAX_DIRECTIONS {
+        return Err(fail(format!(
+            "{} directions: give 1 to {MAX_DIRECTIONS} angles about the surface normal (deg)",
+            list.len()
+        )));
+    }
+    let mut seen: Vec<f64> = Vec::with_capacity(list.len());
+    for &angle in list {
+        if !angle.is_finite() {
+            return Err(fail(format!("{angle} is not a finite angle")));
+        }
+        let wrapped = angle.rem_euclid(360.0);
+        if seen.iter().any(|s| (s - wrapped).abs() < 1e-9) {
+            return Err(fail(format!(
+                "{angle}° is given twice (angles are modulo 360°)"
+            )));
+        }
+        seen.push(wrapped);
+    }
+    Ok(list.iter().map(|a| a.to_radians()).collect())
+}
+
+fn region(src: Source, key: &str, raw: &Spanned<RawRegion>) -> Result<Region, SetupError> {
+    let key = format!("{key}.region");
+    let fail = |problem: &str| src.error(raw.span(), key.clone(), problem.to_string());
+    let r = raw.get_ref();
+    let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+    match (r.min_mm, r.max_mm, r.z_mm) {
+        (Some(min), Some(max), None) => {
+            if !(finite(&min) && finite(&max) && (0..3).all(|k| min[k] < max[k])) {
+                return Err(fail("min_mm must be finite and below max_mm on every axis"));
+            }
+            Ok(Region::Box {
+                min_m: Point3::from(min.map(|v| v * 1e-3)),
+                max_m: Point3::from(max.map(|v| v * 1e-3)),
+            })
+        }
+        (None, None, Some([low, high])) => {
+            if !(finite(&[low, high]) && low < high) {
+                return Err(fail("z_mm = [low, high] must be finite with low < high"));
+            }
+            Ok(Region::AlongZ {
+                min_m: low * 1e-3,
+                max_m: high * 1e-3,
+            })
+        }
+        _ => Err(fail(
+            "give either `min_mm = [x, y, z], max_mm = [x, y, z]` (a box) or \
+             `z_mm = [low, high]` (a range along the link's z axis), link frame",
+        )),
+    }
+}

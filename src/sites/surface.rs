@@ -1,0 +1,307 @@
+//! Points spread evenly over a collision shape's surface, with the outward normal at each.
+//!
+//! Analytic shapes are sampled on regular grids (faces, rings, a Fibonacci lattice on spheres)
+//! at about one point per `spacing²` of area; meshes per triangle on a barycentric grid, then
+//! thinned so that no two kept points facing the same way are closer than the spacing.
+
+use crate::robot::{Shape, TriMesh};
+use nalgebra::{Point3, Unit, Vector3};
+use std::collections::HashMap;
+use std::f64::consts::PI;
+
+/// A point on a surface and its outward unit normal, in the shape's frame (m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfacePoint {
+    /// The point on the surface.
+    pub point: Point3<f64>,
+    /// The outward unit normal there.
+    pub normal: Unit<Vector3<f64>>,
+}
+
+/// About how many points [`sample`] returns for `shape` at `spacing_m`: the surface area over
+/// `spacing²`, known before anything is allocated.
+pub fn estimated_count(shape: &Shape, spacing_m: f64) -> f64 {
+    area(shape) / (spacing_m * spacing_m)
+}
+
+/// Surface area of a shape (m²).
+fn area(shape: &Shape) -> f64 {
+    match shape {
+        Shape::Box { half_extents_m: h } => 8.0 * (h.x * h.y + h.y * h.z + h.z * h.x),
+        Shape::Cylinder { radius_m, length_m } => 2.0 * PI * radius_m * (length_m + radius_m),
+        Shape::Sphere { radius_m } => 4.0 * PI * radius_m * radius_m,
+        Shape::Capsule { radius_m, length_m } => {
+            2.0 * PI * radius_m * length_m + 4.0 * PI * radius_m * radius_m
+        }
+        Shape::Mesh(mesh) => mesh_triangles(mesh)
+            .map(|[a, b, c]| triangle_area(&a, &b, &c))
+            .sum(),
+    }
+}
+
+/// Points about `spacing_m` apart over the whole surface of `shape`, in a fixed order.
+pub fn sample(shape: &Shape, spacing_m: f64) -> Vec<SurfacePoint> {
+    match shape {
+        Shape::Box { half_extents_m } => box_faces(half_extents_m, spacing_m),
+        Shape::Cylinder { radius_m, length_m } => {
+            let mut points = cylinder_side(*radius_m, 0.5 * length_m, spacing_m);
+            for side in [1.0, -1.0] {
+                points.extend(disc(*radius_m, side * 0.5 * length_m, side, spacing_m));
+            }
+            points
+        }
+        Shape::Sphere { radius_m } => sphere_cap(*radius_m, 0.0, None, spacing_m),
+        Shape::Capsule { radius_m, length_m } => {
+            let half = 0.5 * length_m;
+            let mut points = cylinder_side(*radius_m, half, spacing_m);
+            points.extend(sphere_cap(*radius_m, half, Some(1.0), spacing_m));
+            points.extend(sphere_cap(*radius_m, -half, Some(-1.0), spacing_m));
+            points
+        }
+        Shape::Mesh(mesh) => mesh_surface(mesh, spacing_m),
+    }
+}
+
+/// Cells of `extent` split into pieces about `spacing` long: their centres' offsets from the
+/// start, at least one.
+fn cell_centres(extent: f64, spacing: f64) -> impl Iterator<Item = f64> {
+    let count = (extent / spacing).round().max(1.0) as usize;
+    let cell = extent / count as f64;
+    (0..count).map(move |k| (k as f64 + 0.5) * cell)
+}
+
+fn box_faces(half: &Vector3<f64>, spacing: f64) -> Vec<SurfacePoint> {
+    let mut points = Vec::new();
+    for axis in 0..3 {
+        let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+        for sign in [1.0, -1.0] {
+            let mut normal = Vector3::zeros();
+            normal[axis] = sign;
+            for a in cell_centres(2.0 * half[u], spacing) {
+                for b in cell_centres(2.0 * half[v], spacing) {
+                    let mut point = Point3::origin();
+                    point[axis] = sign * half[axis];
+                    point[u] = a - half[u];
+                    point[v] = b - half[v];
+                    points.push(SurfacePoint {
+                        point,
+                        normal: Unit::new_unchecked(normal),
+                    });
+                }
+            }
+        }
+    }
+    points
+}
+
+/// The lateral surface of a cylinder about z from `−half` to `half`.
+fn cylinder_side(radius: f64, half: f64, spacing: f64) -> Vec<SurfacePoint> {
+    let around = ((2.0 * PI * radius / spacing).round() as usize).max(4);
+    let mut points = Vec::new();
+    for z in cell_centres(2.0 * half, spacing) {
+        for k in 0..around {
+            let angle = 2.0 * PI * k as f64 / around as f64;
+            let normal = Vector3::new(angle.cos(), angle.sin(), 0.0);
+            points.push(SurfacePoint {
+                point: Point3::from(radius * normal + Vector3::new(0.0, 0.0, z - half)),
+                normal: Unit::new_unchecked(normal),
+            });
+        }
+    }
+    points
+}
+
+/// A disc of `radius` at height `z` facing `side` (±1 along z): its centre and rings.
+fn disc(radius: f64, z: f64, side: f64, spacing: f64) -> Vec<SurfacePoint> {
+    let normal = Unit::new_unchecked(Vector3::new(0.0, 0.0, side));
+    let mut points = vec![SurfacePoint {
+        point: Point3::new(0.0, 0.0, z),
+        normal,
+    }];
+    let rings = (radius / spacing).round() as usize;
+    for ring in 1..=rings {
+        let rho = radius * ring as f64 / (rings as f64 + 0.5);
+        let around = ((2.0 * PI * rho / spacing).round() as usize).max(3);
+        for k in 0..around {
+            let angle = 2.0 * PI * k as f64 / around as f64;
+            points.push(SurfacePoint {
+                point: Point3::new(rho * angle.cos(), rho * angle.sin(), z),
+                normal,
+            });
+        }
+    }
+    points
+}
+
+/// A Fibonacci lattice on the sphere of `radius` centred at height `z`; with `half = Some(±1)`
+/// only the hemisphere on that side of the centre (a capsule's end cap).
+fn sphere_cap(radius: f64, z: f64, half: Option<f64>, spacing: f64) -> Vec<SurfacePoint> {
+    let count = ((4.0 * PI * radius * radius / (spacing * spacing)).round() as usize).max(4);
+    let golden = PI * (3.0 - 5f64.sqrt());
+    (0..count)
+        .filter_map(|k| {
+            let height = 1.0 - (2.0 * k as f64 + 1.0) / count as f64;
+            let ring = (1.0 - height * height).sqrt();
+            let angle = golden * k as f64;
+            let normal = Vector3::new(ring * angle.cos(), ring * angle.sin(), height);
+            if half.is_some_and(|side| side * height < 0.0) {
+                return None;
+            }
+            Some(SurfacePoint {
+                point: Point3::from(radius * normal + Vector3::new(0.0, 0.0, z)),
+                normal: Unit::new_unchecked(normal),
+            })
+        })
+        .collect()
+}
+
+fn mesh_triangles(mesh: &TriMesh) -> impl Iterator<Item = [Point3<f64>; 3]> + '_ {
+    mesh.triangles.iter().filter_map(|t| {
+        let corner = |i: u32| mesh.vertices.get(i as usize).copied();
+        Some([corner(t[0])?, corner(t[1])?, corner(t[2])?])
+    })
+}
+
+fn triangle_area(a: &Point3<f64>, b: &Point3<f64>, c: &Point3<f64>) -> f64 {
+    0.5 * (b - a).cross(&(c - a)).norm()
+}
+
+/// Points on a barycentric grid of every triangle (normal from its winding, counter-clockwise
+/// seen from outside as STL files have it), thinned on a grid of `spacing` cells: the first
+/// point of each cell and normal octant is kept.
+fn mesh_surface(mesh: &TriMesh, spacing: f64) -> Vec<SurfacePoint> {
+    let mut kept: HashMap<([i64; 3], u8), SurfacePoint> = HashMap::new();
+    let mut order = Vec::new();
+    for [a, b, c] in mesh_triangles(mesh) {
+        let Some(normal) = Unit::try_new((b - a).cross(&(c - a)), 1e-18) else {
+            continue;
+        };
+        let longest = [(b - a).norm(), (c - b).norm(), (a - c).norm()]
+            .into_iter()
+            .fold(0.0, f64::max);
+        let steps = (longest / spacing).ceil().max(1.0) as usize;
+        for i in 0..steps {
+            for j in 0..steps - i {
+                let (u, v) = (
+                    (i as f64 + 1.0 / 3.0) / steps as f64,
+                    (j as f64 + 1.0 / 3.0) / steps as f64,
+                );
+                let point = a + u * (b - a) + v * (c - a);
+                let cell = [point.x, point.y, point.z].map(|x| (x / spacing).floor() as i64);
+                let octant = normal
+                    .iter()
+                    .enumerate()
+                    .fold(0u8, |o, (k, n)| o | (u8::from(*n >= 0.0) << k));
+                kept.entry((cell, octant)).or_insert_with(|| {
+                    order.push((cell, octant));
+                    SurfacePoint { point, normal }
+                });
+            }
+        }
+    }
+    order
+        .iter()
+        .filter_map(|key| kept.get(key).copied())
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn on_surface_box(p: &SurfacePoint, half: &Vector3<f64>) -> bool {
+        let axis = (0..3).find(|&k| p.normal[k].abs() == 1.0);
+        axis.is_some_and(|k| (p.point[k].abs() - half[k]).abs() < 1e-12)
+            && (0..3).all(|k| p.point[k].abs() <= half[k] + 1e-12)
+    }
+
+    #[test]
+    fn box_points_lie_on_their_faces_at_the_spacing_density() {
+        let half = Vector3::new(0.05, 0.075, 0.0575);
+        let shape = Shape::Box {
+            half_extents_m: half,
+        };
+        let points = sample(&shape, 0.02);
+        assert!(points.iter().all(|p| on_surface_box(p, &half)));
+        let expected = estimated_count(&shape, 0.02);
+        let ratio = points.len() as f64 / expected;
+        assert!(
+            (0.6..1.6).contains(&ratio),
+            "{} points for {expected:.1}",
+            points.len()
+        );
+    }
+
+    #[test]
+    fn cylinder_and_sphere_points_have_radial_normals() {
+        let cylinder = Shape::Cylinder {
+            radius_m: 0.07,
+            length_m: 0.175,
+        };
+        for p in sample(&cylinder, 0.025) {
+            let radial = Vector3::new(p.point.x, p.point.y, 0.0);
+            if p.normal.z == 0.0 {
+                assert!((radial.norm() - 0.07).abs() < 1e-12);
+                assert!((radial.normalize() - p.normal.into_inner()).norm() < 1e-12);
+            } else {
+                assert!((p.point.z.abs() - 0.0875).abs() < 1e-12);
+                assert!(radial.norm() < 0.07);
+            }
+        }
+        for p in sample(&Shape::Sphere { radius_m: 0.05 }, 0.02) {
+            assert!((p.point.coords.norm() - 0.05).abs() < 1e-12);
+            assert!((p.point.coords / 0.05 - p.normal.into_inner()).norm() < 1e-12);
+        }
+    }
+
+    /// A unit cube as 12 outward-wound triangles: the mesh sampler must put its points on
+    /// the faces with the same outward normals as the analytic box.
+    #[test]
+    fn mesh_cube_matches_the_box() {
+        let v = |x: f64, y: f64, z: f64| Point3::new(x, y, z) * 0.1;
+        let vertices = vec![
+            v(0., 0., 0.),
+            v(1., 0., 0.),
+            v(1., 1., 0.),
+            v(0., 1., 0.),
+            v(0., 0., 1.),
+            v(1., 0., 1.),
+            v(1., 1., 1.),
+            v(0., 1., 1.),
+        ];
+        let triangles = vec![
+            [0, 2, 1],
+            [0, 3, 2],
+            [4, 5, 6],
+            [4, 6, 7],
+            [0, 1, 5],
+            [0, 5, 4],
+            [1, 2, 6],
+            [1, 6, 5],
+            [2, 3, 7],
+            [2, 7, 6],
+            [3, 0, 4],
+            [3, 4, 7],
+        ];
+        let mesh = TriMesh {
+            file: "cube.stl".into(),
+            vertices,
+            triangles,
+        };
+        let shape = Shape::Mesh(mesh);
+        let points = sample(&shape, 0.025);
+        let centre = Vector3::new(0.05, 0.05, 0.05);
+        let half = Vector3::new(0.05, 0.05, 0.05);
+        for p in &points {
+            let local = SurfacePoint {
+                point: p.point - centre,
+                normal: p.normal,
+            };
+            assert!(on_surface_box(&local, &half), "{p:?}");
+            let outward = (p.point - Point3::from(centre)).dot(&p.normal);
+            assert!(outward > 0.0);
+        }
+        let ratio = points.len() as f64 / estimated_count(&shape, 0.025);
+        assert!((0.5..2.0).contains(&ratio), "{} points", points.len());
+    }
+}

@@ -1,0 +1,392 @@
+//! "No path" as a diagnosis: for each segment that blocks the search, the candidate pieces
+//! that came closest (which limit, by how much, at which pose, where on the cable) and what
+//! would help — a longer or shorter length window, other clamp sites or cable directions, a
+//! smaller joint range, or a slower joint between two times of the motion.
+
+use super::MotionSearch;
+use crate::attachment::{Miss, Rejection, SegmentPoses, SegmentSets};
+use crate::motion::Motion;
+use crate::setup::Setup;
+use serde::Serialize;
+
+/// Why no path was found, segment by segment.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Diagnosis {
+    /// The segments that block the search, base end first.
+    pub segments: Vec<SegmentDiagnosis>,
+}
+
+/// One blocking segment.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SegmentDiagnosis {
+    /// `C3`.
+    pub segment: String,
+    /// Its start guide, `G3`: where the places on the cable are measured from.
+    pub from_guide: String,
+    /// What blocks, for people.
+    pub problem: String,
+    /// The candidate pieces that came closest, least severe first (attachment test).
+    pub nearest_misses: Vec<NearestMiss>,
+    /// How the chains tried failed in this segment, first ones first (motion test and its
+    /// static sweep).
+    pub failures: Vec<String>,
+    /// What would help, most specific first.
+    pub suggestions: Vec<String>,
+}
+
+/// A candidate piece that failed one limit, and how.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct NearestMiss {
+    /// Start clamp configuration.
+    pub from_configuration: String,
+    /// End clamp configuration.
+    pub to_configuration: String,
+    /// Cable length (mm).
+    pub length_mm: f64,
+    /// The limit it violated.
+    pub limit: Rejection,
+    /// What was measured: clearance or bend radius (mm), or the stretch ratio.
+    pub value: f64,
+    /// The limit's value, in the same unit.
+    pub limit_value: f64,
+    /// Time in the motion (s).
+    pub time_s: f64,
+    /// Why that pose was tested (e.g. `joint_5 max`).
+    pub pose: String,
+    /// Where on the piece: cable length from its start clamp (mm); `None` for the whole
+    /// piece.
+    pub from_start_clamp_mm: Option<f64>,
+}
+
+impl NearestMiss {
+    /// One line for people: `G3 "…" → G4 "…", 420 mm: bend radius 46.2 mm < 48.0 mm at
+    /// t = 4.15 s (joint_5 max), 320 mm from G3`.
+    pub fn describe(&self, from_guide: &str) -> String {
+        let (value, limit, unit) = match self.limit {
+            Rejection::Stretch | Rejection::TooShort => (
+                format!("{:.3}", self.value),
+                format!("{:.3}", self.limit_value),
+                "",
+            ),
+            _ => (
+                format!("{:.1}", self.value),
+                format!("{:.1}", self.limit_value),
+                " mm",
+            ),
+        };
+        let relation = match self.limit {
+            Rejection::Stretch | Rejection::TooShort => ">",
+            _ => "<",
+        };
+        let place = self
+            .from_start_clamp_mm
+            .map(|mm| format!(", {mm:.0} mm of cable from {from_guide}"))
+            .unwrap_or_default();
+        format!(
+            "\"{}\" → \"{}\", {:.0} mm: {} {value}{unit} {relation} {limit}{unit} at t = {:.2} s ({}){place}",
+            self.from_configuration,
+            self.to_configuration,
+            self.length_mm,
+            quantity(self.limit),
+            self.time_s,
+            self.pose,
+        )
+    }
+}
+
+impl std::fmt::Display for Diagnosis {
+    /// One line per blocking segment, then its nearest misses, failures and suggestions,
+    /// indented.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        for d in &self.segments {
+            writeln!(f, "{}: {}", d.segment, d.problem)?;
+            for miss in &d.nearest_misses {
+                writeln!(f, "  nearest miss: {}", miss.describe(&d.from_guide))?;
+            }
+            for failure in &d.failures {
+                writeln!(f, "  failed: {failure}")?;
+            }
+            for suggestion in &d.suggestions {
+                writeln!(f, "  would help: {suggestion}")?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The measured quantity of a limit, for people.
+fn quantity(limit: Rejection) -> &'static str {
+    match limit {
+        Rejection::TooShort => "stretch needed",
+        Rejection::Diverged => "no equilibrium",
+        Rejection::Contact => "clearance",
+        Rejection::Stretch => "stretch",
+        Rejection::Bend => "bend radius",
+    }
+}
+
+/// The diagnosis of an unsolved search: the segments without a robust candidate piece, or,
+/// when chains were found but failed the motion test, the segments they failed in.
+pub(super) fn diagnose(
+    setup: &Setup,
+    motion: &Motion,
+    poses: &SegmentPoses,
+    sets: &[SegmentSets],
+    outcome: &MotionSearch,
+) -> Diagnosis {
+    let blocking: Vec<usize> = (0..sets.len()).filter(|&m| sets[m].d2.is_empty()).collect();
+    let segments = if !blocking.is_empty() {
+        blocking
+            .into_iter()
+            .map(|m| attachment_diagnosis(setup, poses, &sets[m], m))
+            .collect()
+    } else {
+        motion_diagnosis(setup, motion, outcome)
+    };
+    Diagnosis { segments }
+}
+
+/// A segment none of whose candidate pieces is robust.
+fn attachment_diagnosis(
+    setup: &Setup,
+    poses: &SegmentPoses,
+    sets: &SegmentSets,
+    m: usize,
+) -> SegmentDiagnosis {
+    let (a, b) = setup.segment_guides(m);
+    let problem = if sets.d1 == 0 {
+        format!(
+            "none of its {} candidate pieces holds every limit at its test poses",
+            sets.d0_pruned
+        )
+    } else {
+        let r = setup.robustness;
+        format!(
+            "{} candidate pieces hold every limit, but none keeps them when its length is off \
+             by up to ±{:.0} mm (the robust length window)",
+            sets.d1,
+            (r.delta_s * r.range) as f64 * setup.cable.sub_segment_pitch_m * 1e3
+        )
+    };
+    let nearest_misses: Vec<NearestMiss> = sets
+        .nearest_misses
+        .iter()
+        .map(|(pv, miss)| {
+            let pose = &poses.poses[m][miss.pose];
+            nearest_miss(
+                setup,
+                (a, pv.start),
+                (b, pv.end),
+                pv.sub_segments,
+                miss,
+                pose,
+            )
+        })
+        .collect();
+    let suggestions = attachment_suggestions(setup, m, sets, &nearest_misses);
+    SegmentDiagnosis {
+        segment: format!("C{}", m + 1),
+        from_guide: setup.guides[a].name.clone(),
+        problem,
+        nearest_misses,
+        failures: Vec::new(),
+        suggestions,
+    }
+}
+
+fn nearest_miss(
+    setup: &Setup,
+    (a, ca): (usize, usize),
+    (b, cb): (usize, usize),
+    sub_segments: usize,
+    miss: &Miss,
+    pose: &crate::attachment::TestPose,
+) -> NearestMiss {
+    let limits = &setup.thresholds;
+    let (value, limit_value) = match miss.rejection {
+        Rejection::Contact => (miss.value * 1e3, limits.contact_clearance_m * 1e3),
+        Rejection::Bend => (miss.value * 1e3, limits.static_min_bend_radius_m() * 1e3),
+        _ => (miss.value, limits.stretch),
+    };
+    NearestMiss {
+        from_configuration: setup.guides[a].configurations[ca].name.clone(),
+        to_configuration: setup.guides[b].configurations[cb].name.clone(),
+        length_mm: sub_segments as f64 * setup.cable.sub_segment_pitch_m * 1e3,
+        limit: miss.rejection,
+        value,
+        limit_value,
+        time_s: pose.time_s,
+        pose: pose.reason.clone(),
+        from_start_clamp_mm: miss.at_m.is_finite().then_some(miss.at_m * 1e3),
+    }
+}
+
+fn attachment_suggestions(
+    setup: &Setup,
+    m: usize,
+    sets: &SegmentSets,
+    misses: &[NearestMiss],
+) -> Vec<String> {
+    let mut out = Vec::new();
+    let Some(nearest) = misses.first() else {
+        out.push(
+            "no candidate piece could be measured: check that its clamps' configurations can \
+             be reached by a cable of the segment's lengths"
+                .into(),
+        );
+        return out;
+    };
+    let range = setup.segments[m].range;
+    let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+    let (min_mm, max_mm) = (range.min as f64 * pitch_mm, range.max as f64 * pitch_mm);
+    let too_tight = matches!(nearest.limit, Rejection::Stretch | Rejection::TooShort);
+    if too_tight && nearest.length_mm >= max_mm {
+        out.push(format!(
+            "a longer length window: the nearest miss is {max_mm:.0} mm long, the window's \
+             maximum, and needs about {:.0} mm (segments[{m}].lengths.max)",
+            max_mm * nearest.value / nearest.limit_value
+        ));
+    }
+    let slack = matches!(nearest.limit, Rejection::Bend | Rejection::Contact);
+    if slack && nearest.length_mm <= min_mm && range.min > 1 {
+        out.push(format!(
+            "a shorter length window: the nearest miss is {min_mm:.0} mm long, the window's \
+             minimum (segments[{m}].lengths.min)"
+        ));
+    }
+    if sets.d1 > 0 {
+        out.push(format!(
+            "a smaller robust length window ([robustness] range = {}, ΔS = {})",
+            setup.robustness.range, setup.robustness.delta_s
+        ));
+    }
+    if slack && !nearest.pose.is_empty() {
+        out.push(format!(
+            "it fails at t = {:.2} s ({}): a smaller range of that joint in the motion, or \
+             clamps that keep the cable clear there",
+            nearest.time_s, nearest.pose
+        ));
+    }
+    let (a, b) = setup.segment_guides(m);
+    out.push(format!(
+        "other clamp sites or cable directions for {} or {} (near \"{}\" and \"{}\"): more \
+         directions_deg, a finer spacing_mm, or a bracket (a larger clamp_height_mm)",
+        setup.guides[a].name,
+        setup.guides[b].name,
+        nearest.from_configuration,
+        nearest.to_configuration
+    ));
+    out
+}
+
+/// Chains were found, but every one tried failed the motion test (or its static sweep):
+/// the segments they failed in, how, and — for a failure in the dynamic test — the joint that
+/// moved fastest then, and between which times.
+fn motion_diagnosis(
+    setup: &Setup,
+    motion: &Motion,
+    outcome: &MotionSearch,
+) -> Vec<SegmentDiagnosis> {
+    let count = setup.segment_count();
+    let mut dynamic: Vec<Vec<(String, f64)>> = vec![Vec::new(); count];
+    let mut swept: Vec<Vec<(String, f64)>> = vec![Vec::new(); count];
+    for (_, report) in &outcome.tried {
+        let Some(report) = report else { continue };
+        let (Some(failure), Some(violation)) = (&report.failure, &report.first_violation) else {
+            continue;
+        };
+        if let Some(m) = failure.segment {
+            dynamic[m].push((failure.reason.clone(), violation.time_s));
+        }
+    }
+    for (m, _, failure) in &outcome.dropped {
+        swept[*m].push((failure.detail.clone(), failure.time_s));
+    }
+    (0..count)
+        .filter(|&m| !dynamic[m].is_empty() || !swept[m].is_empty())
+        .map(|m| {
+            let (a, b) = setup.segment_guides(m);
+            let mut suggestions: Vec<String> = dynamic[m]
+                .first()
+                .and_then(|&(_, t)| slower_joint(motion, t))
+                .into_iter()
+                .collect();
+            suggestions.push(format!(
+                "other clamp sites or cable directions for {} or {} (more directions_deg, a \
+                 finer spacing_mm, or a bracket: a larger clamp_height_mm)",
+                setup.guides[a].name, setup.guides[b].name
+            ));
+            let described = |list: &[(String, f64)], test: &str| -> Vec<String> {
+                list.iter()
+                    .take(3)
+                    .map(|(why, t)| format!("{test} at t = {t:.2} s: {why}"))
+                    .collect()
+            };
+            SegmentDiagnosis {
+                segment: format!("C{}", m + 1),
+                from_guide: setup.guides[a].name.clone(),
+                problem: match (dynamic[m].len(), swept[m].len()) {
+                    (0, n) => format!(
+                        "the static sweep over the motion dropped {n} of its candidate pieces"
+                    ),
+                    (k, 0) => format!("{k} chains failed here in the motion test"),
+                    (k, n) => format!(
+                        "{k} chains failed here in the motion test, and the static sweep over \
+                         the motion dropped {n} of its candidate pieces"
+                    ),
+                },
+                nearest_misses: Vec::new(),
+                failures: [
+                    described(&dynamic[m], "motion test"),
+                    described(&swept[m], "static sweep"),
+                ]
+                .concat(),
+                suggestions,
+            }
+        })
+        .collect()
+}
+
+/// "a slower joint_6 between …" when some rotary joint moves at `t_s`.
+fn slower_joint(motion: &Motion, t_s: f64) -> Option<String> {
+    let (joint, from, to, speed) = fastest_joint_move(motion, t_s)?;
+    (speed >= 1.0).then(|| {
+        format!(
+            "a slower {joint} between t = {from:.2} s and {to:.2} s: it moves at {speed:.0}°/s \
+             when the cable fails at t = {t_s:.2} s"
+        )
+    })
+}
+
+/// The rotary joint moving fastest at `t_s`, and the move it is in: from the last time
+/// before `t_s` to the first after it at which that joint is at rest (below 1 % of its
+/// peak speed). `(name, from, to, speed deg/s)`.
+fn fastest_joint_move(motion: &Motion, t_s: f64) -> Option<(String, f64, f64, f64)> {
+    let times = motion.times_s();
+    let k = times.iter().position(|&t| t >= t_s)?.max(1);
+    let speed = |j: usize, i: usize| {
+        let s = motion.samples();
+        let dt = times[i] - times[i - 1];
+        ((s[i][j] - s[i - 1][j]) / dt).abs()
+    };
+    let joint = (0..motion.dof())
+        .filter(|&j| motion.rotary()[j])
+        .max_by(|&x, &y| speed(x, k).total_cmp(&speed(y, k)))?;
+    let peak = (1..times.len())
+        .map(|i| speed(joint, i))
+        .fold(0.0, f64::max);
+    let at_rest = |i: usize| speed(joint, i) <= 0.01 * peak;
+    let from = (1..k)
+        .rev()
+        .find(|&i| at_rest(i))
+        .map_or(times[0], |i| times[i]);
+    let to = (k..times.len())
+        .find(|&i| at_rest(i))
+        .map_or(times[times.len() - 1], |i| times[i]);
+    Some((
+        motion.joint_names()[joint].clone(),
+        from,
+        to,
+        speed(joint, k).to_degrees(),
+    ))
+}
