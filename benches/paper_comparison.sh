@@ -17,6 +17,7 @@
 #            C1) with both connect methods and extrapolates each motion's method-1 run from
 #            the sample's time per evaluated piece (needs method 1 in the same run).
 # Needs jq. Times are wall-clock on this machine; run nothing else meanwhile.
+# REUSE=1 keeps the result JSONs already in OUT_DIR (to reprint the table).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-target/paper_comparison}
@@ -25,7 +26,9 @@ methods=("$@")
 [ ${#methods[@]} -eq 0 ] && methods=(previous 1 2)
 mkdir -p "$out"
 cargo build --release --quiet
-bin=target/release/cable-dict
+# A copy: a build started meanwhile must not swap the binary under the runs.
+bin="$out/cable-dict"
+cp target/release/cable-dict "$bin"
 root=$PWD
 setup_of() { case $1 in inspection) echo inspection ;; *) echo pick_and_place ;; esac; }
 motions=(pick_and_place palletizing machine_tending screw_driving inspection)
@@ -48,9 +51,11 @@ for motion in "${motions[@]}"; do
       2) args=(--max-guides-per-link 2) ;;
       *) echo "unknown method $method (previous, 1 or 2)" >&2; exit 2 ;;
     esac
+    json="$out/$motion-$cable-$method.json"
+    [ -n "${REUSE:-}" ] && [ -f "$json" ] && continue
     echo "solving $motion ($cable cable) with method $method …" >&2
     "$bin" -q solve --setup "$out/$(setup_of "$motion")-$cable.toml" "motions/viper_s850/$motion.csv" \
-      "${args[@]}" --json -o "$out/$motion-$cable-$method.json" > /dev/null
+      "${args[@]}" --json -o "$json" > /dev/null
   done
   done
 done
@@ -60,6 +65,7 @@ echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | 
 for motion in "${motions[@]}"; do
   for cable in "${cables[@]}"; do
   for method in "${methods[@]}"; do
+    [ "$method" = previous ] && continue
     jq -r --arg motion "$motion" --arg cable "$cable" '
       def sizes(k): [.sets[] | .[k] | tostring] | join(" / ");
       def result: if .outcome == "solved" then "solved"
@@ -76,6 +82,7 @@ done
 # The previous method on a sample, extrapolated: seconds per evaluated piece × evaluations.
 if printf '%s\n' "${methods[@]}" | grep -qx previous; then
   for connect in linear hermite; do
+    [ -n "${REUSE:-}" ] && [ -f "$out/previous-sample-$connect.json" ] && continue
     echo "previous-method sample with --connect $connect …" >&2
     "$bin" -q solve --setup benches/previous_method_sample.toml motions/viper_s850/pick_and_place.csv \
       --connect "$connect" --max-guides-per-link 1 --no-motion-test --json \

@@ -45,7 +45,7 @@ fn with_paper_stiffness(setup: &Setup, cable_file: &str, scale: f64) -> Setup {
 }
 
 /// Segment `m`'s equilibrium at `link_poses`, solved directly (tight tolerance) from its
-/// connected geometry, with its guides.
+/// connected geometry, with its clamps as the attachment test turns them, piece by piece.
 fn equilibrium(
     setup: &Setup,
     link_poses: &[Pose],
@@ -53,9 +53,7 @@ fn equilibrium(
     m: usize,
 ) -> (Vec<Point3<f64>>, Pose, Pose) {
     let pv = path.pv(m);
-    let (a, b) = setup.segment_guides(m);
-    let start = setup.guide_world_pose(link_poses, a, pv.start);
-    let end = setup.guide_world_pose(link_poses, b, pv.end);
+    let (start, end) = setup.clamp_poses(link_poses, m, pv.sub_segments, (pv.start, pv.end));
     let pitch = setup.cable.sub_segment_pitch_m;
     let connected = connect(
         &start,
@@ -150,6 +148,65 @@ fn a_still_robot_keeps_the_static_equilibrium_for_any_real_stiffness() {
             assert!(bend < 0.01, "{setup_file} ×{scale}: {bend}");
         }
     }
+}
+
+/// With derived twist references (the robot-level pick-and-place setup), the whole cable the
+/// motion test clamps — its clamps turned one after another from the first — rests in the
+/// static equilibria of its pieces between the clamps as the attachment test turns them, each
+/// piece on its own: a mistake in carrying the turns along the cable would twist the second
+/// piece. The path is the setup's answer on pick and place (C2 and C4 at S = 0).
+#[test]
+fn a_still_robot_keeps_the_installed_cables_equilibrium() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let setup = Setup::from_file(root.join("robots/viper_s850/pick_and_place.toml"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let index = |g: usize, name: &str| {
+        setup.guides[g]
+            .configuration_index(name)
+            .unwrap_or_else(|| panic!("no {name}"))
+    };
+    let path = CablePath {
+        lengths: vec![30, 0, 32, 0],
+        configurations: vec![
+            index(0, "site 15 [-156 48 71] 0°"),
+            index(1, "site 12 [22 68 192] 90°"),
+            index(2, "site 12 [22 68 192] 90°"),
+            index(3, "G5/gripper connector"),
+            0,
+        ],
+    };
+    let still = at_rest(&setup, &motion(&setup, "pick_and_place.csv"), 0.3);
+    let options = MotionTestOptions {
+        settle_tail_s: 0.0,
+        shape_interval_s: Some(1e-6),
+        ..MotionTestOptions::default()
+    };
+    let report = run(&setup, &path, &still, &options).unwrap_or_else(|e| panic!("{e}"));
+    assert!(report.passed, "{}", report.summary());
+    let links = setup.robot.link_poses(&still.samples()[0]).unwrap();
+    let turned: Vec<f64> = [0, 2]
+        .iter()
+        .map(|&m| {
+            setup.installed_twist_rad(
+                m,
+                path.lengths[m],
+                (path.configurations[m], path.configurations[m + 1]),
+            )
+        })
+        .collect();
+    assert!(
+        turned.iter().all(|t| t.abs() > 1e-3),
+        "{turned:?}: nothing turned"
+    );
+    let references: Vec<_> = (0..setup.segment_count())
+        .map(|m| match path.lengths[m] {
+            0 => (Vec::new(), Pose::identity(), Pose::identity()),
+            _ => equilibrium(&setup, &links, &path, m),
+        })
+        .collect();
+    let (offset, bend) = worst_deviation(&setup, &report, &references);
+    assert!(offset < 1e-6, "{offset} m");
+    assert!(bend < 1e-6, "{bend}");
 }
 
 /// The largest node distance (m) and relative bend-radius difference between every kept

@@ -5,6 +5,7 @@ use cable_dict::motion::Motion;
 use cable_dict::robot::Shape;
 use cable_dict::setup::{ConfigurationOrigin, Setup};
 use nalgebra::{Point3, Vector3};
+use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
 fn root() -> &'static Path {
@@ -283,4 +284,124 @@ fn a_region_keeps_only_its_part_of_the_link() {
     // The fork box spans z 230-345 mm; the sites stand 12 mm off its faces.
     assert!(fork.iter().all(|p| p.z > 0.230 - 0.012 - 1e-9));
     assert!(fork.iter().all(|p| all.contains(p)));
+}
+
+/// Sites on an STL mesh: the base of the test robot of `tests/data/urdf_real` is a box mesh
+/// in millimetres (x ±100, y ±80, z 0–100 mm, `make_meshes.py`). Every site generated on it
+/// stands the standoff off that box (the closed form of the box, not the mesh), with the
+/// frame's x axis along the face's outward normal; sites on the top face too close to the
+/// wall of link_1's tube standing on it are dropped.
+#[test]
+fn sites_on_an_stl_mesh_stand_off_its_faces() {
+    let package = root().join("tests/data/urdf_real/my_robot_description/urdf");
+    let cable = root().join("cables/smc_le_cp_3.toml");
+    let text = format!(
+        r#"robot = "robot.urdf"
+cable = '{}'
+gravity_m_s2 = [0.0, 0.0, -9.81]
+max_guides_per_link = 1
+install_joints_deg = [0.0, 0.0]
+
+[thresholds]
+contact_clearance_mm = 0.0
+stretch = 1.02
+min_bend_radius_mm = "cable"
+clamp_zone_mm = 20.0
+
+[robustness]
+delta_s = 1
+range = 2
+
+[[guides]]
+name = "G1"
+link = "base_link"
+sites = {{ spacing_mm = 40.0, clamp_height_mm = 8.0, directions_deg = [0.0, 90.0] }}
+
+[[guides]]
+name = "G2"
+link = "link_2"
+fixed = {{ name = "front", position_mm = [120.0, 0.0, 100.0], rpy_deg = [0.0, 0.0, 0.0] }}
+
+[[segments]]
+from = "G1"
+to = "G2"
+lengths = {{ min = 40, max = 60, step = 1, allow_zero = false }}
+"#,
+        cable.display()
+    );
+    let setup =
+        Setup::from_toml_str(&text, &package.join("setup.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let standoff = 0.004 + 0.008;
+    let block = Shape::Box {
+        half_extents_m: Vector3::new(0.1, 0.08, 0.05),
+    };
+    let configurations = &setup.guides[0].configurations;
+    assert!(configurations.len() >= 2 * 30, "{}", configurations.len());
+    for c in configurations {
+        let p = Point3::from(c.pose.translation.vector - Vector3::new(0.0, 0.0, 0.05));
+        let distance = distance_to_shape(&block, &p);
+        assert!((distance - standoff).abs() < 1e-9, "{}: {distance}", c.name);
+        let x = c.pose.rotation * Vector3::x();
+        let on_face = (0..3).any(|k| (x[k].abs() - 1.0).abs() < 1e-12);
+        assert!(on_face, "{}: normal {x}", c.name);
+        // Not on the top face within the standoff of the wall of link_1's tube (radii 40
+        // and 50 mm at its corners; inside its bore there is room).
+        let radial = p.x.hypot(p.y);
+        let near_wall = radial > 0.04 * (PI / 12.0).cos() - standoff && radial < 0.05 + standoff;
+        assert!(!(x.z > 0.5 && near_wall), "{}", c.name);
+    }
+}
+
+/// `cable-dict sites` lists every guide with the number of configurations the loaded setup
+/// has and the candidate pieces per segment, and draws one marker per configuration.
+#[test]
+fn the_sites_command_lists_and_draws_what_is_searched() {
+    let file = root().join("robots/viper_s850/inspection.toml");
+    let setup = Setup::from_file(&file).unwrap_or_else(|e| panic!("{e}"));
+    let dir = tempfile::tempdir().unwrap_or_else(|e| panic!("{e}"));
+    let glb = dir.path().join("sites.glb");
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_cable-dict"))
+        .args([
+            "sites",
+            &file.display().to_string(),
+            "--gltf",
+            &glb.display().to_string(),
+        ])
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let text = String::from_utf8_lossy(&output.stdout);
+    for guide in &setup.guides {
+        let n = guide.configurations.len();
+        let head = format!(
+            "{} on {}: {n} configuration",
+            guide.name, setup.robot.links[guide.link].name
+        );
+        assert!(text.contains(&head), "{head} in\n{text}");
+    }
+    for m in 0..setup.segment_count() {
+        assert!(
+            text.contains(&format!("= {} (", setup.pv_count(m))),
+            "C{}",
+            m + 1
+        );
+    }
+    let scene = std::fs::read(&glb).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(&scene[..4], b"glTF");
+    let markers = |name: &str| {
+        scene
+            .windows(name.len())
+            .filter(|w| *w == name.as_bytes())
+            .count()
+    };
+    let g1 = setup.guides[0].configurations.len();
+    assert!(
+        markers("\"G1 (site ") >= g1,
+        "{} markers for {g1}",
+        markers("\"G1 (site ")
+    );
 }

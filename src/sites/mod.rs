@@ -18,8 +18,11 @@ use crate::robot::Robot;
 use crate::stress::contact::{Obstacles, min_clearance};
 use nalgebra::{Isometry3, Point3, Rotation3, Unit, UnitQuaternion, Vector3};
 
-/// Most surface points one generator may sample, counted before any is allocated.
+/// Most surface points one generator may keep, estimated from the surface area before any
+/// is allocated.
 pub const MAX_SURFACE_POINTS: usize = 100_000;
+/// Most points one generator may visit before thinning (a mesh's triangles on their grids).
+pub const MAX_SAMPLING_WORK: usize = 20_000_000;
 /// Smallest spacing accepted (m).
 pub const MIN_SPACING_M: f64 = 1e-3;
 /// A site may come this much closer to another collider than its standoff (m): rounding, and
@@ -95,11 +98,21 @@ pub enum SiteError {
     /// The spacing would give more surface points than [`MAX_SURFACE_POINTS`].
     #[error(
         "about {estimated:.0} surface points at this spacing (at most {MAX_SURFACE_POINTS}): \
-         raise spacing_mm or give a region"
+         raise spacing_mm"
     )]
     TooMany {
         /// The estimated count.
         estimated: f64,
+    },
+    /// The link's meshes would need more than [`MAX_SAMPLING_WORK`] grid points at this
+    /// spacing (long thin triangles).
+    #[error(
+        "sampling the meshes at this spacing visits about {work:.0} points (at most \
+         {MAX_SAMPLING_WORK}): raise spacing_mm"
+    )]
+    TooMuchWork {
+        /// The grid points counted.
+        work: f64,
     },
     /// No collider of the link, or none inside the region, or every site too close to the
     /// robot.
@@ -122,13 +135,17 @@ pub fn generate(
     link_poses: &[Pose],
 ) -> Result<Vec<Site>, SiteError> {
     let rigid = rigidly_attached(robot, link);
-    let estimated: f64 = rigid
-        .iter()
-        .flat_map(|&l| &robot.links[l].colliders)
-        .map(|c| surface::estimated_count(&c.shape, spec.spacing_m))
-        .sum();
+    let colliders = || rigid.iter().flat_map(|&l| &robot.links[l].colliders);
+    let total = |measure: fn(&crate::robot::Shape, f64) -> f64| -> f64 {
+        colliders().map(|c| measure(&c.shape, spec.spacing_m)).sum()
+    };
+    let estimated = total(surface::estimated_count);
     if estimated > MAX_SURFACE_POINTS as f64 {
         return Err(SiteError::TooMany { estimated });
+    }
+    let work = total(surface::sampling_work);
+    if work > MAX_SAMPLING_WORK as f64 {
+        return Err(SiteError::TooMuchWork { work });
     }
     let standoff = cable_radius_m + spec.clamp_height_m;
     let link_in_world = link_poses[link];

@@ -24,6 +24,30 @@ pub fn estimated_count(shape: &Shape, spacing_m: f64) -> f64 {
     area(shape) / (spacing_m * spacing_m)
 }
 
+/// How many points [`sample`] visits for `shape` at `spacing_m` before thinning: the
+/// estimated count for analytic shapes, the barycentric grid points of every triangle for a
+/// mesh (a long thin triangle costs its longest edge's steps squared). Known before anything
+/// is allocated.
+pub fn sampling_work(shape: &Shape, spacing_m: f64) -> f64 {
+    match shape {
+        Shape::Mesh(mesh) => mesh_triangles(mesh)
+            .map(|[a, b, c]| {
+                let steps = grid_steps(&a, &b, &c, spacing_m) as f64;
+                0.5 * steps * (steps + 1.0)
+            })
+            .sum(),
+        other => estimated_count(other, spacing_m),
+    }
+}
+
+/// Grid steps along a triangle's longest edge at `spacing`, at least one.
+fn grid_steps(a: &Point3<f64>, b: &Point3<f64>, c: &Point3<f64>, spacing: f64) -> usize {
+    let longest = [(b - a).norm(), (c - b).norm(), (a - c).norm()]
+        .into_iter()
+        .fold(0.0, f64::max);
+    (longest / spacing).ceil().clamp(1.0, 1e9) as usize
+}
+
 /// Surface area of a shape (m²).
 fn area(shape: &Shape) -> f64 {
     match shape {
@@ -176,10 +200,7 @@ fn mesh_surface(mesh: &TriMesh, spacing: f64) -> Vec<SurfacePoint> {
         let Some(normal) = Unit::try_new((b - a).cross(&(c - a)), 1e-18) else {
             continue;
         };
-        let longest = [(b - a).norm(), (c - b).norm(), (a - c).norm()]
-            .into_iter()
-            .fold(0.0, f64::max);
-        let steps = (longest / spacing).ceil().max(1.0) as usize;
+        let steps = grid_steps(&a, &b, &c, spacing);
         for i in 0..steps {
             for j in 0..steps - i {
                 let (u, v) = (
@@ -303,5 +324,29 @@ mod tests {
         }
         let ratio = points.len() as f64 / estimated_count(&shape, 0.025);
         assert!((0.5..2.0).contains(&ratio), "{} points", points.len());
+    }
+
+    /// A sliver 10 m long and 1 mm wide has the area of 5000 points at 1 mm spacing but a
+    /// barycentric grid of 10⁴ steps along its long edge: 5·10⁷ points to visit, which the
+    /// generator refuses before sampling.
+    #[test]
+    fn a_sliver_triangle_counts_its_grid_not_its_area() {
+        let vertices = vec![
+            Point3::new(0.0, 0.0, 0.0),
+            Point3::new(10.0, 0.0, 0.0),
+            Point3::new(0.0, 0.001, 0.0),
+        ];
+        let mesh = TriMesh {
+            file: "sliver.stl".into(),
+            vertices,
+            triangles: vec![[0, 1, 2]],
+        };
+        let shape = Shape::Mesh(mesh);
+        let area_points = estimated_count(&shape, 0.001);
+        assert!((area_points - 5000.0).abs() < 1e-6, "{area_points}");
+        let work = sampling_work(&shape, 0.001);
+        // 10⁴ steps, give or take the rounding of 10 / 0.001.
+        assert!((work - 0.5e8).abs() < 2.1e4, "{work}");
+        assert!(work > crate::sites::MAX_SAMPLING_WORK as f64);
     }
 }

@@ -45,7 +45,8 @@ pub struct NearestMiss {
     pub length_mm: f64,
     /// The limit it violated.
     pub limit: Rejection,
-    /// What was measured: clearance or bend radius (mm), or the stretch ratio.
+    /// What was measured: clearance or bend radius (mm), or the stretch ratio (for a piece
+    /// too short, the stretch it would need: the clamps' distance over its length).
     pub value: f64,
     /// The limit's value, in the same unit.
     pub limit_value: f64,
@@ -59,37 +60,32 @@ pub struct NearestMiss {
 }
 
 impl NearestMiss {
-    /// One line for people: `G3 "…" → G4 "…", 420 mm: bend radius 46.2 mm < 48.0 mm at
-    /// t = 4.15 s (joint_5 max), 320 mm from G3`.
+    /// One line for people: `"…" → "…", 420 mm: bend radius 46.2 mm < 48.0 mm at t =
+    /// 4.15 s (joint_5 max), 320 mm of cable from G3`.
     pub fn describe(&self, from_guide: &str) -> String {
-        let (value, limit, unit) = match self.limit {
-            Rejection::Stretch | Rejection::TooShort => (
-                format!("{:.3}", self.value),
-                format!("{:.3}", self.limit_value),
-                "",
+        let what = match self.limit {
+            Rejection::TooShort => format!(
+                "too short: its clamps are {:.0} mm apart",
+                self.length_mm * self.value
             ),
-            _ => (
-                format!("{:.1}", self.value),
-                format!("{:.1}", self.limit_value),
-                " mm",
+            Rejection::Stretch => format!("stretch {:.3} > {:.3}", self.value, self.limit_value),
+            limit => format!(
+                "{} {:.1} mm < {:.1} mm",
+                match limit {
+                    Rejection::Contact => "clearance",
+                    _ => "bend radius",
+                },
+                self.value,
+                self.limit_value
             ),
-        };
-        let relation = match self.limit {
-            Rejection::Stretch | Rejection::TooShort => ">",
-            _ => "<",
         };
         let place = self
             .from_start_clamp_mm
             .map(|mm| format!(", {mm:.0} mm of cable from {from_guide}"))
             .unwrap_or_default();
         format!(
-            "\"{}\" → \"{}\", {:.0} mm: {} {value}{unit} {relation} {limit}{unit} at t = {:.2} s ({}){place}",
-            self.from_configuration,
-            self.to_configuration,
-            self.length_mm,
-            quantity(self.limit),
-            self.time_s,
-            self.pose,
+            "\"{}\" → \"{}\", {:.0} mm: {what} at t = {:.2} s ({}){place}",
+            self.from_configuration, self.to_configuration, self.length_mm, self.time_s, self.pose,
         )
     }
 }
@@ -111,17 +107,6 @@ impl std::fmt::Display for Diagnosis {
             }
         }
         Ok(())
-    }
-}
-
-/// The measured quantity of a limit, for people.
-fn quantity(limit: Rejection) -> &'static str {
-    match limit {
-        Rejection::TooShort => "stretch needed",
-        Rejection::Diverged => "no equilibrium",
-        Rejection::Contact => "clearance",
-        Rejection::Stretch => "stretch",
-        Rejection::Bend => "bend radius",
     }
 }
 
