@@ -298,9 +298,9 @@ impl<'a> Evaluator<'a> {
         self.judge(m, &start, &end, &nodes, pv.sub_segments, scene)
     }
 
-    /// How each length of `lengths` (sorted, > 0) fails (its [`Miss`]; `None`: it holds) at the guide
-    /// configurations `(start, end)` of segment `m`, over `poses` (stopping at a length's
-    /// first failing pose): the verdicts of the PVs `(S, start, end)` that
+    /// How each length of `lengths` (sorted, > 0) fails (its [`Miss`]; `None`: it holds) at
+    /// the guide configurations `(start, end)` of segment `m`, over `poses` (stopping at a
+    /// length's first failing pose): the verdicts of the PVs `(S, start, end)` that
     /// [`Evaluator::check`] gives pose by pose, solved with continuation — at each pose the
     /// lengths in increasing order, the first from the connected geometry, the second from
     /// the first's deviation from its connected geometry ([`continuation::change_length`]),
