@@ -786,11 +786,62 @@ fn bundled_motions_are_valid_and_stay_in_the_workspace() {
     }
 }
 
+/// Every bundled motion.
+const CYCLES: [&str; 5] = [
+    "pick_and_place",
+    "inspection",
+    "palletizing",
+    "machine_tending",
+    "screw_driving",
+];
+
+/// The three cycles added for the design space: each a closed cycle (it ends where it
+/// starts), at most half the URDF's joint speeds (finite differences of the samples), the
+/// flange above the floor and away from the column; the wrist works (joint 5 or 6 moves
+/// more than 30°).
+#[test]
+fn the_added_cycles_close_at_half_speed_in_the_workspace() {
+    let robot = viper();
+    let tool = robot.link_index("tool0").expect("tool0");
+    for name in &CYCLES[2..] {
+        let (_, csv) = bundled(name);
+        let motion = Motion::from_csv_file(&robot, &csv).unwrap_or_else(|e| panic!("{e}"));
+        let (first, last) = (&motion.samples()[0], &motion.samples()[motion.len() - 1]);
+        assert!(
+            first.iter().zip(last).all(|(a, b)| (a - b).abs() < 1e-9),
+            "{name}"
+        );
+        for j in 0..robot.dof() {
+            let limit = robot
+                .actuated_joint(j)
+                .limits
+                .and_then(|l| l.velocity)
+                .expect("limit");
+            let (peak, _) = finite_difference_peaks(&motion, j);
+            assert!(
+                peak <= 0.5 * limit * (1.0 + 1e-6),
+                "{name} joint {j}: {peak} > {limit} / 2"
+            );
+        }
+        for q in motion.samples() {
+            let p = robot.link_poses(q).expect("poses")[tool].translation.vector;
+            assert!(p.z > 0.1 && p.x.hypot(p.y) > 0.3, "{name}: flange at {p:?}");
+        }
+        let ranges = motion.ranges();
+        assert!(
+            ranges[4..]
+                .iter()
+                .any(|(lo, hi)| (hi - lo).to_degrees() > 30.0),
+            "{name}"
+        );
+    }
+}
+
 #[test]
 fn bundled_motions_regenerate_byte_for_byte() {
     let robot = viper();
     let dir = tempfile::tempdir().expect("temp dir");
-    for name in ["pick_and_place", "inspection"] {
+    for name in CYCLES {
         let (toml, csv) = bundled(name);
         let bundled_bytes = std::fs::read(&csv).expect("bundled CSV");
         // Through the library…
