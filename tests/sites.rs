@@ -248,6 +248,7 @@ fn bad_site_generators_are_refused_with_the_key() {
     );
     let message = refused(&nowhere);
     assert!(message.contains("inside the region"), "{message}");
+
     let out_of_limits = text.replace("0.0, -68.6, 216.4", "0.0, -68.6, 316.4");
     let message = refused(&out_of_limits);
     assert!(
@@ -403,5 +404,61 @@ fn the_sites_command_lists_and_draws_what_is_searched() {
         markers("\"G1 (site ") >= g1,
         "{} markers for {g1}",
         markers("\"G1 (site ")
+    );
+}
+
+/// A guide generated on a link that has no collision shape (nor a link fixed to it) is
+/// refused naming the link: there is nothing to mount a clamp on.
+#[test]
+fn sites_on_a_link_without_shapes_are_refused() {
+    let urdf = r#"<robot name="two">
+  <link name="base"><collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+  <link name="arm"/>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="arm"/><origin xyz="0 0 0.3"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/>
+  </joint>
+</robot>"#;
+    let cable = std::fs::read_to_string(root().join("cables/smc_le_cp_3.toml"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let text = r#"robot = "two.urdf"
+cable = "cable.toml"
+gravity_m_s2 = [0.0, 0.0, -9.81]
+max_guides_per_link = 1
+install_joints_deg = [0.0]
+
+[thresholds]
+contact_clearance_mm = 0.0
+stretch = 1.02
+min_bend_radius_mm = "cable"
+clamp_zone_mm = 20.0
+
+[robustness]
+delta_s = 1
+range = 2
+
+[[guides]]
+name = "G1"
+link = "base"
+sites = { spacing_mm = 50.0, clamp_height_mm = 8.0, directions_deg = [0.0] }
+
+[[guides]]
+name = "G2"
+link = "arm"
+sites = { spacing_mm = 50.0, clamp_height_mm = 8.0, directions_deg = [0.0] }
+
+[[segments]]
+from = "G1"
+to = "G2"
+lengths = { min = 30, max = 40, step = 1, allow_zero = false }
+"#;
+    let source = root().join("tests/data/two.toml");
+    let message = match Setup::from_texts(text, &source, urdf, &cable) {
+        Ok(_) => panic!("accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        message.contains("guides[1].sites") && message.contains("arm has no collision shapes"),
+        "{message}"
     );
 }

@@ -139,6 +139,13 @@ pub fn generate(
     let total = |measure: fn(&crate::robot::Shape, f64) -> f64| -> f64 {
         colliders().map(|c| measure(&c.shape, spec.spacing_m)).sum()
     };
+    if colliders().next().is_none() {
+        return Err(SiteError::Empty(format!(
+            "{} has no collision shapes, nor has any link fixed to it: nothing to mount a \
+             clamp on",
+            robot.links[link].name
+        )));
+    }
     let estimated = total(surface::estimated_count);
     if estimated > MAX_SURFACE_POINTS as f64 {
         return Err(SiteError::TooMany { estimated });
