@@ -462,3 +462,33 @@ lengths = { min = 30, max = 40, step = 1, allow_zero = false }
         "{message}"
     );
 }
+
+/// A catalogue too fine to search is refused before anything is allocated for it, with the
+/// count per segment and what to change: 10 mm spacing on the arm gives billions
+/// of candidate pieces.
+#[test]
+fn a_catalogue_too_large_to_search_is_refused_with_its_count() {
+    let path = root().join("robots/viper_s850/pick_and_place.toml");
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{e}"));
+    let fine = text.replace("spacing_mm = 80.0", "spacing_mm = 10.0");
+    let setup = Setup::from_toml_str(&fine, &path).unwrap_or_else(|e| panic!("{e}"));
+    let counted: u128 = (0..setup.segment_count())
+        .map(|m| setup.pv_count(m) as u128)
+        .sum();
+    assert!(counted > cable_dict::attachment::MAX_CANDIDATE_PIECES);
+    let motion = Motion::from_csv_file(
+        &setup.robot,
+        root().join("motions/viper_s850/pick_and_place.csv"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let options = cable_dict::solve::SolveOptions::default();
+    let message = match cable_dict::solve::solve(&setup, &motion, &options) {
+        Ok(_) => panic!("a search of {counted} pieces was started"),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        message.contains(&format!("{counted} candidate pieces")),
+        "{message}"
+    );
+    assert!(message.contains("raise spacing_mm"), "{message}");
+}

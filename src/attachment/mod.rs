@@ -63,6 +63,39 @@ pub struct SegmentSets {
 /// Nearest misses kept per segment.
 pub const NEAREST_MISSES: usize = 3;
 
+/// Most candidate pieces (PVs of D0, over all segments) one attachment test takes on: about
+/// 150 bytes each while it runs (the candidate, robustness and verdict lists), so 1.5 GB,
+/// and 5–80 µs each on one core. The robot-level bundled setups have about 1 million.
+pub const MAX_CANDIDATE_PIECES: u128 = 10_000_000;
+
+/// `Err` naming the count when `setup` has more candidate pieces than
+/// [`MAX_CANDIDATE_PIECES`], with the largest segments and what to change.
+pub fn check_size(setup: &Setup) -> Result<(), String> {
+    let per_segment: Vec<u128> = (0..setup.segment_count())
+        .map(|m| {
+            let (a, b) = setup.segment_guides(m);
+            setup.segments[m].lengths.len() as u128
+                * setup.guides[a].configurations.len() as u128
+                * setup.guides[b].configurations.len() as u128
+        })
+        .collect();
+    let total: u128 = per_segment.iter().sum();
+    if total <= MAX_CANDIDATE_PIECES {
+        return Ok(());
+    }
+    let listed: Vec<String> = per_segment
+        .iter()
+        .enumerate()
+        .map(|(m, n)| format!("C{} {n}", m + 1))
+        .collect();
+    Err(format!(
+        "{total} candidate pieces ({}), at most {MAX_CANDIDATE_PIECES} (about 150 bytes and \
+         up to 80 µs each): raise spacing_mm, use fewer directions_deg or a region, or narrow \
+         the length windows (`cable-dict sites` counts them)",
+        listed.join(", ")
+    ))
+}
+
 /// Runs the attachment test on every segment: intra-link segments first, then the inter-link
 /// ones pruned by their intra-link neighbours' D2.
 pub fn attachment_test(evaluator: &Evaluator<'_>, poses: &SegmentPoses) -> Vec<SegmentSets> {

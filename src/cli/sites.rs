@@ -97,6 +97,9 @@ fn listing(setup: &Setup, all: bool) -> String {
         out,
         "\ncandidate pieces (length × start × end configuration)"
     );
+    if let Err(too_many) = cable_dict::attachment::check_size(setup) {
+        let _ = writeln!(out, "  too many for solve and build: {too_many}");
+    }
     for m in 0..setup.segment_count() {
         let (a, b) = setup.segment_guides(m);
         let _ = writeln!(

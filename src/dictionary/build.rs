@@ -114,6 +114,7 @@ fn check_buildable(setup: &Setup, options: &BuildOptions) -> Result<(), Problem>
             u16::MAX
         )));
     }
+    crate::attachment::check_size(setup).map_err(Problem::Build)?;
     if setup.gravity_m_s2.norm() == 0.0 {
         return Err(Problem::Build(
             "the setup has no gravity, so there is no direction to sample; use solve --setup"

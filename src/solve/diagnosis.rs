@@ -68,15 +68,16 @@ impl NearestMiss {
                 "too short: its clamps are {:.0} mm apart",
                 self.length_mm * self.value
             ),
-            Rejection::Stretch => format!("stretch {:.3} > {:.3}", self.value, self.limit_value),
+            Rejection::Stretch => format!("stretch {:.4} > {:.4}", self.value, self.limit_value),
             limit => format!(
-                "{} {:.1} mm < {:.1} mm",
+                "{} {:.2} mm < {:.2} mm ({} short)",
                 match limit {
                     Rejection::Contact => "clearance",
                     _ => "bend radius",
                 },
                 self.value,
-                self.limit_value
+                self.limit_value,
+                shortfall(self.limit_value - self.value)
             ),
         };
         let place = self
@@ -87,6 +88,16 @@ impl NearestMiss {
             "\"{}\" → \"{}\", {:.0} mm: {what} at t = {:.2} s ({}){place}",
             self.from_configuration, self.to_configuration, self.length_mm, self.time_s, self.pose,
         )
+    }
+}
+
+/// A shortfall given in mm, to two decimals, or in µm below 0.01 mm (so that a miss by a
+/// hair does not read "0.00 mm short").
+fn shortfall(mm: f64) -> String {
+    if mm >= 0.01 {
+        format!("{mm:.2} mm")
+    } else {
+        format!("{:.2} µm", mm * 1e3)
     }
 }
 
@@ -141,8 +152,9 @@ fn attachment_diagnosis(
     let (a, b) = setup.segment_guides(m);
     let problem = if sets.d1 == 0 {
         format!(
-            "none of its {} candidate pieces holds every limit at its test poses",
-            sets.d0_pruned
+            "none of its {} candidate pieces holds every limit at its test poses{}",
+            sets.d0_pruned,
+            pruning_note(setup, m, sets)
         )
     } else {
         let r = setup.robustness;
@@ -177,6 +189,31 @@ fn attachment_diagnosis(
         failures: Vec::new(),
         suggestions,
     }
+}
+
+/// `" (of 693680: …)"` when its neighbours' robust pieces left only some of its candidates —
+/// the clamp configurations it shares with them.
+fn pruning_note(setup: &Setup, m: usize, sets: &SegmentSets) -> String {
+    if sets.d0_pruned == sets.d0 {
+        return String::new();
+    }
+    let neighbours: Vec<String> = [m.checked_sub(1), Some(m + 1)]
+        .into_iter()
+        .flatten()
+        .filter(|&n| n < setup.segment_count() && setup.is_intra_link(n))
+        .map(|n| format!("C{}", n + 1))
+        .collect();
+    format!(
+        " (of {}: only those on the clamp configurations the robust pieces of {} use; widen \
+         {} too)",
+        sets.d0,
+        neighbours.join(" and "),
+        if neighbours.len() > 1 {
+            "their windows or sites"
+        } else {
+            "its window or sites"
+        }
+    )
 }
 
 fn nearest_miss(
@@ -337,8 +374,9 @@ fn slower_joint(motion: &Motion, t_s: f64) -> Option<String> {
     let (joint, from, to, speed) = fastest_joint_move(motion, t_s)?;
     (speed >= 1.0).then(|| {
         format!(
-            "a slower {joint} between t = {from:.2} s and {to:.2} s: it moves at {speed:.0}°/s \
-             when the cable fails at t = {t_s:.2} s"
+            "a slower move between t = {from:.2} s and {to:.2} s (a lower speed_scale or \
+             accelerations in the waypoint file, or an extra waypoint): {joint}, the fastest \
+             joint, moves at {speed:.0}°/s when the cable fails at t = {t_s:.2} s"
         )
     })
 }

@@ -26,7 +26,7 @@ pub use report::{
 
 use crate::attachment::{
     ConnectMethod, Evaluator, MotionSweep, SegmentPoses, SegmentSets, SweepFailure,
-    attachment_test_with,
+    attachment_test_with, check_size,
 };
 use crate::chain::{ChainError, ChainSearch};
 use crate::dictionary::{Dictionary, LookupError, MotionLookup};
@@ -154,6 +154,7 @@ fn solve_with(
 ) -> Result<SolveReport, SolveError> {
     let total = Instant::now();
     let setup = &options.setup_for(setup)?;
+    check_size(setup).map_err(SolveError::Options)?;
     let clock = Instant::now();
     let poses = SegmentPoses::new(setup, motion)?;
     let critical_poses_s = clock.elapsed().as_secs_f64();
