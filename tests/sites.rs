@@ -238,7 +238,7 @@ fn bad_site_generators_are_refused_with_the_key() {
     let twice = text.replacen("[0.0, 90.0, 180.0, 270.0]", "[0.0, 360.0]", 1);
     let message = refused(&twice);
     assert!(
-        message.contains("directions_deg") && message.contains("twice"),
+        message.contains("directions_deg") && message.contains("360° is the same direction as 0°"),
         "{message}"
     );
     let nowhere = text.replacen(

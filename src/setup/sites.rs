@@ -139,9 +139,10 @@ fn directions(src: Source, key: &str, raw: &Spanned<Vec<f64>>) -> Result<Vec<f64
             return Err(fail(format!("{angle} is not a finite angle")));
         }
         let wrapped = angle.rem_euclid(360.0);
-        if seen.iter().any(|s| (s - wrapped).abs() < 1e-9) {
+        if let Some(twin) = seen.iter().position(|s| (s - wrapped).abs() < 1e-9) {
             return Err(fail(format!(
-                "{angle}° is given twice (angles are modulo 360°)"
+                "{angle}° is the same direction as {}° (angles are modulo 360°)",
+                list[twin]
             )));
         }
         seen.push(wrapped);
