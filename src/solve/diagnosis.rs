@@ -374,8 +374,9 @@ fn slower_joint(motion: &Motion, t_s: f64) -> Option<String> {
     let (joint, from, to, speed) = fastest_joint_move(motion, t_s)?;
     (speed >= 1.0).then(|| {
         format!(
-            "a slower move between t = {from:.2} s and {to:.2} s (a lower speed_scale or \
-             accelerations in the waypoint file, or an extra waypoint): {joint}, the fastest \
+            "a gentler move between t = {from:.2} s and {to:.2} s — lower accelerations \
+             (acceleration_deg_s2 in the waypoint file) more than a lower speed_scale: a long \
+             loop swings after every acceleration and keeps swinging; {joint}, the fastest \
              joint, moves at {speed:.0}°/s when the cable fails at t = {t_s:.2} s"
         )
     })
