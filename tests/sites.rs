@@ -1,12 +1,26 @@
 //! Guide sites generated from the robot's collision geometry, and the clamps' twist references
 //! derived from the installed cable's route.
 
+mod common;
+
 use cable_dict::motion::Motion;
 use cable_dict::robot::Shape;
 use cable_dict::setup::{ConfigurationOrigin, Setup};
 use nalgebra::{Point3, Vector3};
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
+
+/// The limits and robustness tables of the small setups written inline below.
+const LIMITS: &str = r#"[thresholds]
+contact_clearance_mm = 0.0
+stretch = 1.02
+min_bend_radius_mm = "cable"
+clamp_zone_mm = 20.0
+
+[robustness]
+delta_s = 1
+range = 2
+"#;
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -303,16 +317,7 @@ gravity_m_s2 = [0.0, 0.0, -9.81]
 max_guides_per_link = 1
 install_joints_deg = [0.0, 0.0]
 
-[thresholds]
-contact_clearance_mm = 0.0
-stretch = 1.02
-min_bend_radius_mm = "cable"
-clamp_zone_mm = 20.0
-
-[robustness]
-delta_s = 1
-range = 2
-
+{LIMITS}
 [[guides]]
 name = "G1"
 link = "base_link"
@@ -361,15 +366,12 @@ fn the_sites_command_lists_and_draws_what_is_searched() {
     let setup = Setup::from_file(&file).unwrap_or_else(|e| panic!("{e}"));
     let dir = tempfile::tempdir().unwrap_or_else(|e| panic!("{e}"));
     let glb = dir.path().join("sites.glb");
-    let output = std::process::Command::new(env!("CARGO_BIN_EXE_cable-dict"))
-        .args([
-            "sites",
-            &file.display().to_string(),
-            "--gltf",
-            &glb.display().to_string(),
-        ])
-        .output()
-        .unwrap_or_else(|e| panic!("{e}"));
+    let output = common::run(&[
+        "sites",
+        &file.display().to_string(),
+        "--gltf",
+        &glb.display().to_string(),
+    ]);
     assert!(
         output.status.success(),
         "{}",
@@ -421,39 +423,32 @@ fn sites_on_a_link_without_shapes_are_refused() {
 </robot>"#;
     let cable = std::fs::read_to_string(root().join("cables/smc_le_cp_3.toml"))
         .unwrap_or_else(|e| panic!("{e}"));
-    let text = r#"robot = "two.urdf"
+    let text = format!(
+        r#"robot = "two.urdf"
 cable = "cable.toml"
 gravity_m_s2 = [0.0, 0.0, -9.81]
 max_guides_per_link = 1
 install_joints_deg = [0.0]
 
-[thresholds]
-contact_clearance_mm = 0.0
-stretch = 1.02
-min_bend_radius_mm = "cable"
-clamp_zone_mm = 20.0
-
-[robustness]
-delta_s = 1
-range = 2
-
+{LIMITS}
 [[guides]]
 name = "G1"
 link = "base"
-sites = { spacing_mm = 50.0, clamp_height_mm = 8.0, directions_deg = [0.0] }
+sites = {{ spacing_mm = 50.0, clamp_height_mm = 8.0, directions_deg = [0.0] }}
 
 [[guides]]
 name = "G2"
 link = "arm"
-sites = { spacing_mm = 50.0, clamp_height_mm = 8.0, directions_deg = [0.0] }
+sites = {{ spacing_mm = 50.0, clamp_height_mm = 8.0, directions_deg = [0.0] }}
 
 [[segments]]
 from = "G1"
 to = "G2"
-lengths = { min = 30, max = 40, step = 1, allow_zero = false }
-"#;
+lengths = {{ min = 30, max = 40, step = 1, allow_zero = false }}
+"#
+    );
     let source = root().join("tests/data/two.toml");
-    let message = match Setup::from_texts(text, &source, urdf, &cable) {
+    let message = match Setup::from_texts(&text, &source, urdf, &cable) {
         Ok(_) => panic!("accepted"),
         Err(e) => e.to_string(),
     };

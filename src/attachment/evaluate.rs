@@ -8,7 +8,7 @@ use crate::pose::Pose;
 use crate::rigid_chain::{
     ConvergenceWindow, DynamicsSettings, LinearConnect, SegmentShape, connect_linear, relax,
 };
-use crate::setup::{Setup, Thresholds, turn_about_axis};
+use crate::setup::{Setup, Thresholds};
 use crate::statics::{FarEnd, RodParameters, SolverOptions, StaticSolver, continuation};
 use crate::stress::contact::{
     ClampZone, ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
@@ -317,7 +317,7 @@ impl<'a> Evaluator<'a> {
         let mut solver = StaticSolver::default();
         let turns: Vec<Pose> = lengths
             .iter()
-            .map(|&s| turn_about_axis(-self.setup.installed_twist_rad(m, s, (start, end))))
+            .map(|&s| self.setup.end_clamp_turn(m, s, (start, end)))
             .collect();
         for (p, pose) in poses.iter().enumerate() {
             let (scene, declared) = self.at_pose(m, (start, end), pose);
@@ -367,11 +367,9 @@ impl<'a> Evaluator<'a> {
         let mut solver = StaticSolver::default();
         // The last two poses' solutions and guides, the last first.
         let mut earlier: Vec<(Solved, (Pose, Pose))> = Vec::with_capacity(3);
-        let turn = turn_about_axis(-self.setup.installed_twist_rad(
-            m,
-            pv.sub_segments,
-            (pv.start, pv.end),
-        ));
+        let turn = self
+            .setup
+            .end_clamp_turn(m, pv.sub_segments, (pv.start, pv.end));
         for pose in poses {
             let (scene, declared) = self.at_pose(m, (pv.start, pv.end), pose);
             let guides = (declared.0, declared.1 * turn);

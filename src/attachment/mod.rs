@@ -72,12 +72,7 @@ pub const MAX_CANDIDATE_PIECES: u128 = 10_000_000;
 /// [`MAX_CANDIDATE_PIECES`], with the largest segments and what to change.
 pub fn check_size(setup: &Setup) -> Result<(), String> {
     let per_segment: Vec<u128> = (0..setup.segment_count())
-        .map(|m| {
-            let (a, b) = setup.segment_guides(m);
-            setup.segments[m].lengths.len() as u128
-                * setup.guides[a].configurations.len() as u128
-                * setup.guides[b].configurations.len() as u128
-        })
+        .map(|m| setup.pv_count(m) as u128)
         .collect();
     let total: u128 = per_segment.iter().sum();
     if total <= MAX_CANDIDATE_PIECES {

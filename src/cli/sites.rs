@@ -158,13 +158,10 @@ fn guide_listing(out: &mut String, setup: &Setup, guide: &Guide, all: bool) {
         let along = c.pose.rotation * Vector3::z();
         let p = c.position_mm;
         let _ = match (site, all) {
-            (Some(_), false) => writeln!(
+            (Some(k), false) => writeln!(
                 out,
-                "  {:<34} at ({:7.1}, {:7.1}, {:7.1}) mm, surface normal ({:5.2}, {:5.2}, {:5.2})",
-                c.name
-                    .split(']')
-                    .next()
-                    .map_or(c.name.clone(), |s| format!("{s}]")),
+                "  {:<10} at ({:7.1}, {:7.1}, {:7.1}) mm, surface normal ({:5.2}, {:5.2}, {:5.2})",
+                format!("site {}", k + 1),
                 p[0],
                 p[1],
                 p[2],

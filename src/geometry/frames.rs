@@ -57,7 +57,7 @@ fn node_tangents(
 
 /// Angle (rad) about the frame's tangent that turns its normal onto `target_normal`, on the
 /// principal branch `(−π, π]`: an exact half turn is reported as `+π`, never `−π`.
-fn twist_mismatch(frame: &Rotation3<f64>, target_normal: &Unit<Vector3<f64>>) -> f64 {
+pub(crate) fn twist_mismatch(frame: &Rotation3<f64>, target_normal: &Unit<Vector3<f64>>) -> f64 {
     let m = frame.matrix();
     let (normal, binormal) = (m.column(0), m.column(1));
     principal_angle(target_normal.dot(&binormal), target_normal.dot(&normal))

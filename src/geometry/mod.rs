@@ -14,7 +14,7 @@
 
 mod chain;
 pub mod connected;
-mod frames;
+pub(crate) mod frames;
 mod guides;
 pub mod hermite;
 pub mod rmf;

@@ -14,6 +14,7 @@
 //! references, as written.
 
 use super::Setup;
+use crate::geometry::frames::twist_mismatch;
 use crate::geometry::{HermiteCurve, connect, double_reflection, sag_direction};
 use crate::pose::Pose;
 use nalgebra::{Isometry3, Point3, Translation3, Unit, UnitQuaternion, Vector3};
@@ -44,11 +45,18 @@ impl Setup {
         (start, end): (usize, usize),
     ) -> (Pose, Pose) {
         let (a, b) = self.segment_guides(m);
-        let turn = -self.installed_twist_rad(m, sub_segments, (start, end));
         (
             self.guide_world_pose(link_poses, a, start),
-            self.guide_world_pose(link_poses, b, end) * turn_about_axis(turn),
+            self.guide_world_pose(link_poses, b, end)
+                * self.end_clamp_turn(m, sub_segments, (start, end)),
         )
+    }
+
+    /// The turn about the cable axis that [`Setup::clamp_poses`] applies to the end clamp's
+    /// declared pose (right-multiplied): by −Δψ of [`Setup::installed_twist_rad`]. It does not
+    /// depend on the robot's pose, so loops over poses compute it once.
+    pub fn end_clamp_turn(&self, m: usize, sub_segments: usize, pair: (usize, usize)) -> Pose {
+        turn_about_axis(-self.installed_twist_rad(m, sub_segments, pair))
     }
 
     /// The angle Δψ (rad, principal branch) between the end clamp's declared +x axis and the
@@ -103,13 +111,7 @@ fn hermite_twist(start: &Pose, end: &Pose) -> f64 {
         .unzip();
     let start_normal = Unit::new_normalize(start.rotation * Vector3::x());
     let frames = double_reflection(&points, &tangents, start_normal);
-    let Some(last) = frames.last() else {
-        return 0.0;
-    };
-    let arrived = last * Vector3::x();
-    let end_x = end.rotation * Vector3::x();
-    let end_axis = end.rotation * Vector3::z();
-    end_axis
-        .dot(&arrived.cross(&end_x))
-        .atan2(arrived.dot(&end_x))
+    frames.last().map_or(0.0, |last| {
+        twist_mismatch(last, &Unit::new_normalize(end.rotation * Vector3::x()))
+    })
 }

@@ -292,12 +292,15 @@ impl Setup {
 
     /// |D0,m|: the number of parameter vectors (S, P_m, P_(m+1)) of segment `m`, i.e.
     /// |lengths| × |configurations of G_m| × |configurations of G_(m+1)|, coincident copies
-    /// included. Some of them are not admissible ([`Setup::is_admissible`]).
+    /// included. Some of them are not admissible ([`Setup::is_admissible`]). Saturates at
+    /// `usize::MAX` (a generated catalogue can be made arbitrarily large).
     pub fn pv_count(&self, m: usize) -> usize {
         let (a, b) = self.segment_guides(m);
-        self.segments[m].lengths.len()
-            * self.guides[a].configurations.len()
-            * self.guides[b].configurations.len()
+        self.segments[m]
+            .lengths
+            .len()
+            .saturating_mul(self.guides[a].configurations.len())
+            .saturating_mul(self.guides[b].configurations.len())
     }
 
     /// True when configuration `ca` of guide `ga` and `cb` of guide `gb` are the same place:

@@ -69,7 +69,7 @@ impl<'a> SiteContext<'a> {
         for (k, site) in sites.iter().enumerate() {
             for &angle in &spec.directions_rad {
                 let pose = site_frame(site, angle);
-                // + 0.0 turns a rounded −0 into 0 in the name.
+                // + 0.0 writes −0 as 0, in the numbers and in the rounded name.
                 let position_mm =
                     [site.position.x, site.position.y, site.position.z].map(|v| v * 1e3 + 0.0);
                 let (r, p, y) = pose.rotation.euler_angles();

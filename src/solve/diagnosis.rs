@@ -396,9 +396,7 @@ fn fastest_joint_move(motion: &Motion, t_s: f64) -> Option<(String, f64, f64, f6
     let joint = (0..motion.dof())
         .filter(|&j| motion.rotary()[j])
         .max_by(|&x, &y| speed(x, k).total_cmp(&speed(y, k)))?;
-    let peak = (1..times.len())
-        .map(|i| speed(joint, i))
-        .fold(0.0, f64::max);
+    let peak = motion.peak_speeds()[joint];
     let at_rest = |i: usize| speed(joint, i) <= 0.01 * peak;
     let from = (1..k)
         .rev()
