@@ -1,18 +1,22 @@
 //! Dictionaries against independent references: the direction sample against the sphere's
-//! geometry (cap areas, the octahedron's known covering radius), the stored results against
+//! geometry (cap areas, the octahedron's known covering radius), the stored margins against
 //! the attachment test run in the world frame at a robot pose with the same gravity in the
-//! link, the lookup's required directions against gravity computed from the joint angles by
-//! hand, `solve --dict` against a direct recomputation, and the bytes against the thread count.
+//! link, the interpolation against a brute-force neighbour search, the lookup against the
+//! exact test at random directions (no false reject), `solve --dict` against `solve --setup`
+//! on every bundled motion, and the bytes against the thread count.
 
-use cable_dict::attachment::{ConnectMethod, Evaluator, TestPose};
-use cable_dict::dictionary::directions::{covering_radius, fibonacci_sphere};
-use cable_dict::dictionary::format::{PvRecord, Verdict};
-use cable_dict::dictionary::{BuildOptions, Built, Dictionary, MotionLookup, build};
+use cable_dict::attachment::{ConnectMethod, Evaluator, Margins, TestPose};
+use cable_dict::dictionary::directions::{
+    Neighbours, covering_radius, fibonacci_sphere, probe_directions,
+};
+use cable_dict::dictionary::format::{MARGIN_UNITS, MarginRecord, PvRecord};
+use cable_dict::dictionary::{BuildOptions, Built, Dictionary, DirectionAnswer, build};
 use cable_dict::motion::Motion;
 use cable_dict::path::Pv;
 use cable_dict::setup::Setup;
-use cable_dict::solve::{SolveOptions, solve_with_dictionary};
+use cable_dict::solve::{SolveOptions, solve, solve_with_dictionary};
 use nalgebra::Vector3;
+use rayon::prelude::*;
 use std::path::Path;
 
 const SETUP: &str = "tests/data/dict_setup.toml";
@@ -104,10 +108,11 @@ fn the_covering_radius_bounds_the_gap_of_every_probe_direction() {
     }
 }
 
-/// The stored result of a PV and direction equals the attachment test of the same PV in the
-/// world frame, at a robot pose where gravity, seen from link_4, points along that direction.
+/// The stored margins of a PV and direction equal the attachment test of the same PV in the
+/// world frame (clearance against link_4, as for an intra-link segment), at a robot pose
+/// where gravity, seen from link_4, points along that direction — to the fixed-point unit.
 #[test]
-fn stored_results_match_the_attachment_test_at_a_pose_with_that_gravity() {
+fn stored_margins_match_the_attachment_test_at_a_pose_with_that_gravity() {
     let setup = setup();
     let dir = tempfile::tempdir().expect("temp dir");
     let dictionary = opened(dir.path(), &built(&setup, 16));
@@ -120,18 +125,15 @@ fn stored_results_match_the_attachment_test_at_a_pose_with_that_gravity() {
         joints: joints.to_vec(),
         reason: "test".into(),
         link_poses: link_poses.clone(),
+        clearance_link: Some(link_4),
     };
     let g = setup.gravity_m_s2.norm();
-    let mut compared = 0;
+    let (mut compared, mut unmeasured) = (0, 0);
     for (k, record) in dictionary.pv_records().iter().enumerate() {
         if !record.has(PvRecord::ADMISSIBLE) || record.sub_segments == 0 {
             continue;
         }
-        let pv = Pv {
-            sub_segments: record.sub_segments as usize,
-            start: record.start as usize,
-            end: record.end as usize,
-        };
+        let pv = record.pv();
         for d in [0, 5, 11] {
             let stored = dictionary.results()[k * 16 + d];
             let direction = Vector3::from(dictionary.directions()[d]);
@@ -140,118 +142,237 @@ fn stored_results_match_the_attachment_test_at_a_pose_with_that_gravity() {
             let evaluator = Evaluator::new(&world, ConnectMethod::Hermite).expect("evaluator");
             let check = evaluator.check(C2, &pv, &pose);
             let Some(metrics) = check.metrics else {
-                assert_eq!(
-                    Verdict::from_rejection(check.rejection) as u8,
-                    stored.verdict,
-                    "{pv:?} direction {d}"
-                );
+                assert_eq!(stored, MarginRecord::UNMEASURED, "{pv:?} direction {d}");
+                unmeasured += 1;
                 continue;
             };
-            let close = |a: f32, b: f64| (f64::from(a) - b).abs() <= 1e-4 * b.abs().max(1.0);
-            assert!(close(stored.stretch, metrics.stretch), "{pv:?} {d}");
-            assert!(
-                close(stored.min_bend_radius_mm, metrics.min_bend_radius_m * 1e3),
-                "{pv:?} {d}: {} vs {}",
-                stored.min_bend_radius_mm,
-                metrics.min_bend_radius_m * 1e3
-            );
-            // The world test sees every link; the dictionary only link_4, so it can only be
-            // farther from an obstacle, and equal when the nearest link is link_4.
-            // NaN: no sub-segment outside the clamp zones faces link_4.
-            if let Some(world_mm) = metrics.clearance_m.map(|c| c * 1e3)
-                && !stored.clearance_mm.is_nan()
-            {
+            let expected = Margins::of(&metrics, &setup.thresholds).to_array();
+            let values = stored.values().expect("measured");
+            for c in 0..3 {
+                let range = f64::from(i16::MAX) * MARGIN_UNITS[c];
+                let expected = expected[c].clamp(-range, range);
+                // Half a unit of rounding, and the solver's tolerance on the shape.
+                let tolerance = MARGIN_UNITS[c] + 1e-4 * expected.abs();
                 assert!(
-                    f64::from(stored.clearance_mm) >= world_mm - 1e-3,
-                    "{pv:?} {d}: {} vs {world_mm} ({:?})",
-                    stored.clearance_mm,
-                    metrics.clearance_link
+                    (values[c] - expected).abs() <= tolerance,
+                    "{pv:?} direction {d} margin {c}: stored {} vs {expected}",
+                    values[c]
                 );
-                if metrics.clearance_link == Some(link_4) {
-                    assert!(close(stored.clearance_mm, world_mm), "{pv:?} {d}");
-                    assert_eq!(
-                        Verdict::from_rejection(check.rejection) as u8,
-                        stored.verdict
-                    );
-                }
             }
             compared += 1;
         }
     }
-    assert!(compared >= 20, "only {compared} comparisons");
-}
-
-#[test]
-fn the_motion_requires_the_directions_around_gravity_in_the_link_frame() {
-    let setup = setup();
-    let dir = tempfile::tempdir().expect("temp dir");
-    let dictionary = opened(dir.path(), &built(&setup, 64));
-    // Two samples: the zero pose (forearm up: gravity along −z of link_4) and joint 2 at
-    // 45° (link_4 turned by 45° about y: gravity (sin 45°, 0, −cos 45°) in link_4).
-    let header = "time_s,joint_1_deg,joint_2_deg,joint_3_deg,joint_4_deg,joint_5_deg,joint_6_deg";
-    let csv = format!("{header}\n0,0,0,0,0,0,0\n1,0,45,0,0,0,0\n");
-    let motion = Motion::from_csv_str(&setup.robot, &csv, Path::new("two.csv")).expect("motion");
-    let lookup = MotionLookup::new(&dictionary, &setup, &motion).expect("lookup");
-    let s = std::f64::consts::FRAC_1_SQRT_2;
-    let gravity_in_link = [Vector3::new(0.0, 0.0, -1.0), Vector3::new(s, 0.0, -s)];
-    let radius = dictionary.header().directions.covering_radius_rad;
-    let directions = dictionary.directions();
-    let nearest = |u: &Vector3<f64>| {
-        (0..directions.len())
-            .min_by(|&a, &b| angle(&directions[a], u).total_cmp(&angle(&directions[b], u)))
-            .expect("directions")
-    };
-    let expected: Vec<bool> = (0..directions.len())
-        .map(|k| {
-            gravity_in_link
-                .iter()
-                .any(|u| angle(&directions[k], u) <= radius + 1e-9 || nearest(u) == k)
-        })
-        .collect();
-    assert_eq!(lookup.required(C2).expect("intra-link"), &expected[..]);
-    assert!(lookup.required(0).is_none(), "C1 is inter-link");
-}
-
-/// `solve --dict`'s intra-link D1 is exactly the candidates that pass the static test at
-/// every direction the motion requires, recomputed here PV by PV.
-#[test]
-fn solve_with_a_dictionary_keeps_the_pvs_that_pass_every_required_direction() {
-    let setup = setup();
-    let dir = tempfile::tempdir().expect("temp dir");
-    let dictionary = opened(dir.path(), &built(&setup, 16));
-    let motion = Motion::from_csv_file(&setup.robot, "motions/viper_s850/pick_and_place.csv")
-        .expect("motion");
-    let options = SolveOptions {
-        motion_test: false,
-        ..SolveOptions::default()
-    };
-    let report = solve_with_dictionary(&dictionary, &setup, &motion, &options).expect("solves");
-    let lookup = MotionLookup::new(&dictionary, &setup, &motion).expect("lookup");
-    let required = lookup.required(C2).expect("intra-link");
-    let evaluator = Evaluator::new(&setup, ConnectMethod::Hermite).expect("evaluator");
-    let g = setup.gravity_m_s2.norm();
-    let d1 = cable_dict::attachment::admissible_pvs(&setup, C2)
-        .into_iter()
-        .filter(|pv| {
-            dictionary
-                .directions()
-                .iter()
-                .zip(required)
-                .filter(|(_, needed)| **needed)
-                .all(|(d, _)| {
-                    evaluator
-                        .check_in_link_frame(C2, pv, &(Vector3::from(*d) * g))
-                        .passed()
-                })
-        })
-        .count();
-    assert_eq!(report.segments[C2].d1, d1);
-    assert!(d1 > 0, "the fixture keeps some PVs");
-    let used = report.inputs.dictionary.as_ref().expect("dictionary named");
-    assert_eq!(
-        used.required_directions,
-        vec![("C2".to_string(), lookup.required_count(C2))]
+    assert!(
+        compared >= 20,
+        "only {compared} comparisons ({unmeasured} unmeasured)"
     );
+}
+
+/// The interpolation neighbours are the nearest stored directions by brute force; a query
+/// on a stored direction returns its value, a constant is reproduced everywhere and every
+/// interpolated value lies within its neighbours' range.
+#[test]
+fn interpolation_uses_the_nearest_directions_and_stays_in_their_range() {
+    let directions = fibonacci_sphere(64);
+    for probe in probe_directions(200) {
+        let u = Vector3::from(probe);
+        let neighbours = Neighbours::of(&directions, &u);
+        let mut by_angle: Vec<usize> = (0..directions.len()).collect();
+        by_angle.sort_by(|&a, &b| angle(&directions[a], &u).total_cmp(&angle(&directions[b], &u)));
+        assert_eq!(neighbours.indices.to_vec(), by_angle[..4].to_vec());
+        let total: f64 = neighbours.weights.iter().sum();
+        assert!((total - 1.0).abs() < 1e-12);
+        let constant = neighbours
+            .interpolate(|_| Some([2.5, -1.0, 0.25]))
+            .expect("values");
+        assert!(
+            constant
+                .mean
+                .iter()
+                .zip([2.5, -1.0, 0.25])
+                .all(|(a, b)| (a - b).abs() < 1e-12)
+        );
+        let value = |k: usize| Some([k as f64, (k * k) as f64, -(k as f64)]);
+        let interpolated = neighbours.interpolate(value).expect("values");
+        for c in 0..3 {
+            let values: Vec<f64> = neighbours
+                .indices
+                .iter()
+                .map(|&k| value(k).expect("v")[c])
+                .collect();
+            let (low, high) = values
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                    (l.min(*v), h.max(*v))
+                });
+            assert!(interpolated.mean[c] >= low - 1e-9 && interpolated.mean[c] <= high + 1e-9);
+            assert!((interpolated.spread[c] - (high - low)).abs() < 1e-12);
+        }
+    }
+    for (k, d) in directions.iter().enumerate() {
+        let neighbours = Neighbours::of(&directions, &Vector3::from(*d));
+        assert_eq!((neighbours.indices[0], neighbours.weights[0]), (k, 1.0));
+    }
+}
+
+/// The lookup never rejects a piece that the exact test (the static solve in the link frame,
+/// lengths continued as `solve --setup` does) keeps under that gravity direction, over
+/// random directions, for the fixture and both hand-written bundled setups; the pieces it
+/// lets through that the exact test rejects (false accepts) are counted and printed.
+#[test]
+fn the_lookup_never_rejects_a_piece_the_exact_test_keeps() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    for (path, directions) in [
+        (SETUP, 16),
+        ("robots/viper_s850/hand_written/pick_and_place.toml", 64),
+        ("robots/viper_s850/hand_written/inspection.toml", 64),
+    ] {
+        let setup = Setup::from_file(path).expect("setup");
+        let dictionary = opened(dir.path(), &built(&setup, directions));
+        let evaluator = Evaluator::new(&setup, ConnectMethod::Hermite).expect("evaluator");
+        let queries = random_directions(200, 0x5eed);
+        let mut counts = [0usize; 4]; // holds, fails, undecided, false accepts
+        for m in (0..setup.segment_count()).filter(|&m| setup.is_intra_link(m)) {
+            let pairs = admissible_pairs(&setup, m);
+            let tallies: Vec<[usize; 4]> = pairs
+                .par_iter()
+                .map(|((start, end), lengths)| {
+                    let mut tally = [0usize; 4];
+                    for down in &queries {
+                        let exact = evaluator.link_frame_metrics(m, (*start, *end), lengths, down);
+                        for (&s, exact) in lengths.iter().zip(exact) {
+                            let keeps = exact.is_ok_and(|metrics| {
+                                Margins::first_violation(Margins::of(&metrics, &setup.thresholds).to_array()).is_none()
+                            });
+                            let pv = Pv::new(s, *start, *end);
+                            let answer = dictionary.answer_at(m, &pv, down).expect("stored");
+                            match answer {
+                                DirectionAnswer::Fails { rejection, margins } => {
+                                    assert!(!keeps, "{path} C{} {pv:?} at {down:?}: the exact test keeps it, the lookup rejects it ({rejection:?}, {margins:?})", m + 1);
+                                    tally[1] += 1;
+                                }
+                                DirectionAnswer::Holds => {
+                                    tally[0] += 1;
+                                    tally[3] += usize::from(!keeps);
+                                }
+                                DirectionAnswer::Undecided => tally[2] += 1,
+                            }
+                        }
+                    }
+                    tally
+                })
+                .collect();
+            for tally in tallies {
+                for (c, t) in counts.iter_mut().zip(tally) {
+                    *c += t;
+                }
+            }
+        }
+        let total: usize = counts[..3].iter().sum();
+        println!(
+            "{path}: {total} piece-directions, {} hold, {} fail, {} undecided ({:.2} %), {} false accepts ({:.3} % of the accepted)",
+            counts[0],
+            counts[1],
+            counts[2],
+            100.0 * counts[2] as f64 / total as f64,
+            counts[3],
+            100.0 * counts[3] as f64 / counts[0].max(1) as f64
+        );
+        assert!(
+            counts[1] > 0 && counts[0] + counts[2] > 0,
+            "{path}: both answers occur"
+        );
+        // The bound decides most pieces by itself: otherwise the dictionary saves nothing.
+        assert!(
+            counts[2] * 5 < total,
+            "{path}: {} of {total} undecided",
+            counts[2]
+        );
+    }
+}
+
+/// Unit vectors from a fixed linear congruential sequence (reproducible, no dependency).
+fn random_directions(n: usize, seed: u64) -> Vec<Vector3<f64>> {
+    let mut state = seed;
+    let mut uniform = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..n)
+        .map(|_| {
+            let z = 2.0 * uniform() - 1.0;
+            let phi = 2.0 * std::f64::consts::PI * uniform();
+            let r = (1.0 - z * z).sqrt();
+            Vector3::new(r * phi.cos(), r * phi.sin(), z)
+        })
+        .collect()
+}
+
+/// The admissible cable lengths (> 0) of segment `m` per pair of configurations, the
+/// robustness neighbours included, as the attachment test asks for them.
+fn admissible_pairs(setup: &Setup, m: usize) -> Vec<((usize, usize), Vec<usize>)> {
+    let candidates = cable_dict::attachment::admissible_pvs(setup, m);
+    let r = &setup.robustness;
+    let mut pairs: std::collections::BTreeMap<(usize, usize), Vec<usize>> = Default::default();
+    for pv in cable_dict::attachment::needed_pvs(&candidates, r.delta_s, r.range) {
+        if pv.sub_segments > 0 {
+            pairs
+                .entry((pv.start, pv.end))
+                .or_default()
+                .push(pv.sub_segments);
+        }
+    }
+    pairs.into_iter().collect()
+}
+
+/// `solve --dict` and `solve --setup` give the same intra-link D1 and D2 and the same path
+/// on every bundled motion, with the hand-written bundled setups and a dictionary of each.
+#[test]
+fn solve_with_a_dictionary_equals_solve_on_the_fly_on_every_bundled_motion() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let cases = [
+        (
+            "pick_and_place",
+            [
+                "pick_and_place",
+                "palletizing",
+                "machine_tending",
+                "screw_driving",
+            ]
+            .as_slice(),
+        ),
+        ("inspection", ["inspection"].as_slice()),
+    ];
+    for (setup_name, motions) in cases {
+        let setup = Setup::from_file(format!("robots/viper_s850/hand_written/{setup_name}.toml"))
+            .expect("setup");
+        let dictionary = opened(dir.path(), &built(&setup, 64));
+        for motion_name in motions {
+            let motion = Motion::from_csv_file(
+                &setup.robot,
+                format!("motions/viper_s850/{motion_name}.csv"),
+            )
+            .expect("motion");
+            let options = SolveOptions::default();
+            let exact = solve(&setup, &motion, &options).expect("solves");
+            let looked_up =
+                solve_with_dictionary(&dictionary, &setup, &motion, &options).expect("solves");
+            for m in (0..setup.segment_count()).filter(|&m| setup.is_intra_link(m)) {
+                let (a, b) = (&exact.segments[m], &looked_up.segments[m]);
+                assert_eq!((a.d1, &a.d2), (b.d1, &b.d2), "{motion_name} C{}", m + 1);
+            }
+            assert_eq!(exact.status, looked_up.status, "{motion_name}");
+            assert_eq!(exact.optimal, looked_up.optimal, "{motion_name}");
+            let used = looked_up
+                .inputs
+                .dictionary
+                .as_ref()
+                .expect("dictionary named");
+            assert!(used.segments.iter().all(|s| s.gravity_directions > 0));
+        }
+    }
 }
 
 #[test]

@@ -156,38 +156,49 @@ fn a_wrong_magic_is_not_a_dictionary() {
 }
 
 #[test]
-fn a_future_or_unknown_version_is_refused_as_such() {
+fn a_future_old_or_unknown_version_is_refused_as_such() {
     let bytes = whole().1.to_bytes().expect("encodes");
     let dir = tempfile::tempdir().expect("temp dir");
-    for version in [2u32, 0] {
+    for version in [3u32, 1, 0] {
         let mut altered = bytes.clone();
         altered[8..12].copy_from_slice(&version.to_le_bytes());
         let path = write(dir.path(), &format!("v{version}.cdict"), &altered);
         let error = open_error(&path);
-        if version == 2 {
-            assert!(
-                matches!(
-                    error.problem,
-                    Problem::FutureVersion {
-                        found: 2,
-                        supported: 1
-                    }
-                ),
-                "{error}"
-            );
-            assert_names(&error, &path, "newer");
-        } else {
-            assert!(
-                matches!(
-                    error.problem,
-                    Problem::UnknownVersion {
-                        found: 0,
-                        supported: 1
-                    }
-                ),
-                "{error}"
-            );
-            assert_names(&error, &path, "version 0");
+        match version {
+            3 => {
+                assert!(
+                    matches!(
+                        error.problem,
+                        Problem::FutureVersion {
+                            found: 3,
+                            supported: 2
+                        }
+                    ),
+                    "{error}"
+                );
+                assert_names(&error, &path, "newer");
+            }
+            // Version 1 (verdicts) is refused with the command that rebuilds it.
+            1 => {
+                assert!(
+                    matches!(error.problem, Problem::OldVersion { found: 1 }),
+                    "{error}"
+                );
+                assert_names(&error, &path, "cable-dict build");
+            }
+            _ => {
+                assert!(
+                    matches!(
+                        error.problem,
+                        Problem::UnknownVersion {
+                            found: 0,
+                            supported: 2
+                        }
+                    ),
+                    "{error}"
+                );
+                assert_names(&error, &path, "version 0");
+            }
         }
     }
 }

@@ -37,6 +37,7 @@ fn sample_pose(setup: &Setup, motion: &Motion, k: usize) -> TestPose {
         link_poses: setup.robot.link_poses(&joints).unwrap(),
         joints,
         reason: String::new(),
+        clearance_link: None,
     }
 }
 

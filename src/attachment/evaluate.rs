@@ -16,6 +16,7 @@ use crate::stress::contact::{
 use crate::stress::{BendRadius, min_bend_radius, stretch};
 use nalgebra::{Point3, Vector3};
 use serde::Serialize;
+use std::borrow::Borrow;
 
 /// How the start shape of a segment is obtained, and which solver finds its equilibrium.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -99,6 +100,51 @@ impl Miss {
         }
     }
 
+    /// The miss of a limit a lookup found violated at test pose `pose`, from the looked-up
+    /// margins `[clearance mm, stretch, curvature 1/m]` (unmeasured without them). The
+    /// place on the cable is not known.
+    pub fn looked_up(
+        setup: &Setup,
+        rejection: Rejection,
+        margins: Option<[f64; 3]>,
+        pose: usize,
+    ) -> Miss {
+        let limits = &setup.thresholds;
+        let unmeasured = Miss {
+            pose,
+            ..Miss::unmeasured(rejection)
+        };
+        let Some([clearance_mm, stretch, curvature]) = margins else {
+            return unmeasured;
+        };
+        let (severity, value) = match rejection {
+            Rejection::Contact => (
+                -clearance_mm * 1e-3 / setup.cable.diameter_m,
+                limits.contact_clearance_m + clearance_mm * 1e-3,
+            ),
+            Rejection::Stretch => {
+                let value = limits.stretch - stretch;
+                (
+                    (value - 1.0) / (limits.stretch - 1.0).max(1e-12) - 1.0,
+                    value,
+                )
+            }
+            Rejection::Bend => {
+                let limit = limits.static_min_bend_radius_m();
+                let radius = 1.0 / (1.0 / limit - curvature);
+                ((limit - radius) / limit, radius)
+            }
+            Rejection::TooShort | Rejection::Diverged => return unmeasured,
+        };
+        Miss {
+            rejection,
+            severity: severity.max(0.0),
+            value,
+            pose,
+            at_m: f64::NAN,
+        }
+    }
+
     /// The miss of a failed `check` at test pose `pose`; `None` when it passed.
     fn of(
         check: &Check,
@@ -168,6 +214,49 @@ pub struct Metrics {
     pub min_bend_node: usize,
 }
 
+/// How far an equilibrium is from each limit, positive when the limit holds: what a
+/// dictionary stores per PV and direction ([`crate::dictionary::format::MarginRecord`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Margins {
+    /// Clearance − contact limit (mm); infinite when no clearance was measured.
+    pub clearance_mm: f64,
+    /// Stretch limit − stretch.
+    pub stretch: f64,
+    /// 1/(minimum bend radius) − 1/(bend radius) (1/m): curvature, so that a straight cable
+    /// has a finite margin and the value changes smoothly with the shape.
+    pub curvature_per_m: f64,
+}
+
+impl Margins {
+    /// The margins of `metrics` against `limits` (the static bend radius, margin included).
+    pub fn of(metrics: &Metrics, limits: &Thresholds) -> Margins {
+        Margins {
+            clearance_mm: metrics
+                .clearance_m
+                .map_or(f64::INFINITY, |c| (c - limits.contact_clearance_m) * 1e3),
+            stretch: limits.stretch - metrics.stretch,
+            curvature_per_m: 1.0 / limits.static_min_bend_radius_m()
+                - 1.0 / metrics.min_bend_radius_m,
+        }
+    }
+
+    /// `[clearance_mm, stretch, curvature_per_m]`.
+    pub fn to_array(self) -> [f64; 3] {
+        [self.clearance_mm, self.stretch, self.curvature_per_m]
+    }
+
+    /// The limit `[clearance, stretch, curvature]` margins violate first, in the order of
+    /// [`Evaluator::check`] (contact, stretch, bend); `None` when all are non-negative.
+    pub fn first_violation(margins: [f64; 3]) -> Option<Rejection> {
+        let kinds = [Rejection::Contact, Rejection::Stretch, Rejection::Bend];
+        kinds
+            .into_iter()
+            .zip(margins)
+            .find(|(_, m)| *m < 0.0)
+            .map(|(k, _)| k)
+    }
+}
+
 /// The outcome of one PV at one pose.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Check {
@@ -232,7 +321,12 @@ impl<'a> Evaluator<'a> {
     /// Checks PV `pv` of segment `m` at `pose`. A zero-length PV (coincident guides) has no
     /// cable and passes.
     pub fn check(&self, m: usize, pv: &Pv, pose: &TestPose) -> Check {
-        self.check_at(m, pv, &pose.link_poses)
+        let scene = Scene {
+            link_poses: &pose.link_poses,
+            gravity_m_s2: self.rod.gravity_m_s2,
+            links: pose.clearance_link.as_ref().map(std::slice::from_ref),
+        };
+        self.check_in(m, pv, &scene)
     }
 
     /// Checks PV `pv` of segment `m` with the links at `link_poses` (world frame).
@@ -263,6 +357,50 @@ impl<'a> Evaluator<'a> {
             links: Some(&[link]),
         };
         self.check_in(m, pv, &scene)
+    }
+
+    /// The metrics of the PVs `(S, start, end)` of intra-link segment `m`, one per length of
+    /// `lengths` (sorted, > 0), in the link's frame under gravity along `down` (unit vector
+    /// in that frame), clearance against the own link: the link-frame twin of
+    /// [`Evaluator::first_rejections`] at one pose, lengths continued the same way, every
+    /// length measured (none skipped). `Err` with the rejection when there is no
+    /// equilibrium (a cable too short for its clamps, a failed solve).
+    pub fn link_frame_metrics(
+        &self,
+        m: usize,
+        (start, end): (usize, usize),
+        lengths: &[usize],
+        down: &Vector3<f64>,
+    ) -> Vec<Result<Metrics, Rejection>> {
+        let setup = self.setup;
+        let link = setup.guides[setup.segment_guides(m).0].link;
+        let link_poses = vec![Pose::identity(); setup.robot.links.len()];
+        let scene = Scene {
+            link_poses: &link_poses,
+            gravity_m_s2: down * self.rod.gravity_m_s2.norm(),
+            links: Some(std::slice::from_ref(&link)),
+        };
+        let (a, b) = setup.segment_guides(m);
+        let declared = (
+            setup.guide_world_pose(&link_poses, a, start),
+            setup.guide_world_pose(&link_poses, b, end),
+        );
+        let mut solver = StaticSolver::default();
+        let mut earlier: Vec<Solved> = Vec::with_capacity(3);
+        lengths
+            .iter()
+            .map(|&length| {
+                let guides = (
+                    declared.0,
+                    declared.1 * setup.end_clamp_turn(m, length, (start, end)),
+                );
+                let check = self.next_length(&mut solver, &mut earlier, m, &guides, length, &scene);
+                match (check.metrics, check.rejection) {
+                    (Some(metrics), _) => Ok(metrics),
+                    (None, rejection) => Err(rejection.unwrap_or(Rejection::Diverged)),
+                }
+            })
+            .collect()
     }
 
     /// The equilibrium of PV `pv` of segment `m` with the links at `link_poses` under the
@@ -306,12 +444,12 @@ impl<'a> Evaluator<'a> {
     /// the first's deviation from its connected geometry ([`continuation::change_length`]),
     /// the others extrapolated from the last two ([`continuation::extrapolate_length`]). The
     /// linear method relaxes every PV from scratch.
-    pub fn first_rejections(
+    pub fn first_rejections<P: Borrow<TestPose>>(
         &self,
         m: usize,
         (start, end): (usize, usize),
         lengths: &[usize],
-        poses: &[TestPose],
+        poses: &[P],
     ) -> Vec<Option<Miss>> {
         let mut verdicts: Vec<Option<Miss>> = vec![None; lengths.len()];
         let mut solver = StaticSolver::default();
@@ -320,31 +458,16 @@ impl<'a> Evaluator<'a> {
             .map(|&s| self.setup.end_clamp_turn(m, s, (start, end)))
             .collect();
         for (p, pose) in poses.iter().enumerate() {
-            let (scene, declared) = self.at_pose(m, (start, end), pose);
+            let (scene, declared) = self.at_pose(m, (start, end), pose.borrow());
             // The last two solutions at this pose, the nearest first.
             let mut earlier: Vec<Solved> = Vec::with_capacity(3);
-            for ((verdict, &length), turn) in verdicts.iter_mut().zip(lengths).zip(&turns) {
-                if verdict.is_some() {
+            for (i, (&length, turn)) in lengths.iter().zip(&turns).enumerate() {
+                if verdicts[i].is_some() {
                     continue;
                 }
                 let guides = (declared.0, declared.1 * turn);
-                let check = match self.solve_warm(
-                    &mut solver,
-                    &guides,
-                    length,
-                    &scene,
-                    Warm::Length(&earlier),
-                ) {
-                    Ok(solved) => {
-                        let check =
-                            self.judge(m, &guides.0, &guides.1, &solved.nodes, length, &scene);
-                        earlier.insert(0, solved);
-                        earlier.truncate(EXTRAPOLATION_POINTS);
-                        check
-                    }
-                    Err(check) => check,
-                };
-                *verdict = Miss::of(&check, self.setup, p, &guides, length);
+                let check = self.next_length(&mut solver, &mut earlier, m, &guides, length, &scene);
+                verdicts[i] = Miss::of(&check, self.setup, p, &guides, length);
             }
         }
         verdicts
@@ -400,6 +523,28 @@ impl<'a> Evaluator<'a> {
         None
     }
 
+    /// Checks the next length of a continuation over lengths at one pose: solved from
+    /// `earlier` (the last solutions, the nearest first), which it then joins.
+    fn next_length(
+        &self,
+        solver: &mut StaticSolver,
+        earlier: &mut Vec<Solved>,
+        m: usize,
+        guides: &(Pose, Pose),
+        length: usize,
+        scene: &Scene<'_>,
+    ) -> Check {
+        match self.solve_warm(solver, guides, length, scene, Warm::Length(earlier)) {
+            Ok(solved) => {
+                let check = self.judge(m, &guides.0, &guides.1, &solved.nodes, length, scene);
+                earlier.insert(0, solved);
+                earlier.truncate(EXTRAPOLATION_POINTS);
+                check
+            }
+            Err(check) => check,
+        }
+    }
+
     /// The scene of `pose` (all links, the setup's gravity) and the world poses of segment
     /// `m`'s guides in the configurations `(start, end)` as declared (the end clamp's twist
     /// reference not yet turned: it depends on the length, see [`Setup::clamp_poses`]).
@@ -413,7 +558,7 @@ impl<'a> Evaluator<'a> {
         let scene = Scene {
             link_poses: &pose.link_poses,
             gravity_m_s2: self.rod.gravity_m_s2,
-            links: None,
+            links: pose.clearance_link.as_ref().map(std::slice::from_ref),
         };
         let guides = (
             self.setup.guide_world_pose(&pose.link_poses, a, start),

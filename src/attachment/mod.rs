@@ -25,8 +25,8 @@ mod evaluate;
 mod poses;
 mod sweep;
 
-pub use evaluate::{Check, ConnectMethod, Evaluator, Metrics, Miss, Rejection};
-pub use poses::{SegmentPoses, TestPose};
+pub use evaluate::{Check, ConnectMethod, Evaluator, Margins, Metrics, Miss, Rejection};
+pub use poses::{GRAVITY_RESOLUTION_DEG, IntraLinkCriterion, SegmentPoses, TestPose};
 pub use sweep::{MotionSweep, SweepFailure};
 
 use crate::path::Pv;
@@ -35,6 +35,7 @@ use crate::setup::Setup;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 /// The sets of one segment after the attachment test.
@@ -56,6 +57,8 @@ pub struct SegmentSets {
     pub nearest_misses: Vec<(Pv, Miss)>,
     /// (guides, length) combinations evaluated, robustness lengths included.
     pub evaluations: usize,
+    /// How a lookup answered them (intra-link segments solved with a dictionary).
+    pub looked_up: Option<LookedUp>,
     /// Wall time of this segment's test (s).
     pub time_s: f64,
 }
@@ -97,13 +100,13 @@ pub fn attachment_test(evaluator: &Evaluator<'_>, poses: &SegmentPoses) -> Vec<S
     attachment_test_with(evaluator, poses, None)
 }
 
-/// [`attachment_test`], with the intra-link segments' verdicts given by `intra_link` (e.g.
-/// a dictionary's, over the motion's gravity directions) instead of tested at their poses
-/// when it is `Some`: `intra_link(m, pv)` is the first limit PV `pv` of segment `m` violates.
+/// [`attachment_test`], with the intra-link segments' pieces answered by `intra_link` (a
+/// dictionary's lookup over the same test poses) when it is `Some`: the pieces it cannot
+/// decide are solved exactly at the undecided poses, so the sets equal the exact test's.
 pub fn attachment_test_with(
     evaluator: &Evaluator<'_>,
     poses: &SegmentPoses,
-    intra_link: Option<&IntraLinkVerdict<'_>>,
+    intra_link: Option<&IntraLinkAnswer<'_>>,
 ) -> Vec<SegmentSets> {
     let setup = evaluator.setup();
     let count = setup.segment_count();
@@ -114,17 +117,22 @@ pub fn attachment_test_with(
     for m in (0..count).filter(|&m| setup.is_intra_link(m)) {
         let candidates = admissible_pvs(setup, m);
         sets[m] = Some(match intra_link {
-            Some(lookup) => test_segment(setup, m, candidates, |(start, end), lengths| {
-                let pv = |sub_segments| Pv {
-                    sub_segments,
-                    start,
-                    end,
-                };
-                lengths
-                    .iter()
-                    .map(|&s| lookup(m, &pv(s)).map(Miss::unmeasured))
-                    .collect()
-            }),
+            Some(lookup) => {
+                let counts = LookupCounts::default();
+                let mut tested = test_segment(setup, m, candidates, |guides, lengths| {
+                    looked_up(
+                        evaluator,
+                        &poses.poses[m],
+                        lookup,
+                        m,
+                        guides,
+                        lengths,
+                        &counts,
+                    )
+                });
+                tested.looked_up = Some(counts.into_inner());
+                tested
+            }
             None => test_segment(setup, m, candidates, |guides, lengths| {
                 at_poses(m, guides, lengths)
             }),
@@ -149,9 +157,109 @@ pub fn attachment_test_with(
     sets.into_iter().flatten().collect()
 }
 
-/// The first limit a PV of a segment violates (`None`: it passes), from elsewhere than the
-/// test poses.
-pub type IntraLinkVerdict<'v> = dyn Fn(usize, &Pv) -> Option<Rejection> + Sync + 'v;
+/// A lookup's answer for one piece of an intra-link segment over the segment's test poses
+/// (e.g. a dictionary's, [`crate::dictionary::MotionLookup`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum LookupAnswer {
+    /// Every limit holds at every test pose, by more than the lookup's error.
+    Holds,
+    /// A limit fails at test pose `pose` (index) by more than the lookup's error;
+    /// `margins`, the looked-up `[clearance mm, stretch, curvature 1/m]` there.
+    Fails {
+        /// Index of the test pose.
+        pose: usize,
+        /// The limit.
+        rejection: Rejection,
+        /// The looked-up margins, when there are any (not for a cable too short).
+        margins: Option<[f64; 3]>,
+    },
+    /// The lookup cannot decide at these test poses (indices, ascending): solve them.
+    Undecided(Vec<usize>),
+}
+
+/// The answer for piece `pv` of segment `m`.
+pub type IntraLinkAnswer<'v> = dyn Fn(usize, &Pv) -> LookupAnswer + Sync + 'v;
+
+/// How the pieces of an intra-link segment were answered by a lookup.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct LookedUp {
+    /// Pieces (robustness lengths included) that hold by the lookup alone.
+    pub holds: usize,
+    /// Pieces that fail by the lookup alone.
+    pub fails: usize,
+    /// Pieces the lookup could not decide, solved exactly.
+    pub solved: usize,
+    /// Of those, the ones the exact check rejected: the lookup's false accepts.
+    pub solved_failed: usize,
+}
+
+/// [`LookedUp`] counted from parallel workers.
+#[derive(Default)]
+struct LookupCounts([AtomicUsize; 4]);
+
+impl LookupCounts {
+    fn add(&self, k: usize) {
+        self.0[k].fetch_add(1, Ordering::Relaxed);
+    }
+
+    fn into_inner(self) -> LookedUp {
+        let [holds, fails, solved, solved_failed] = self.0.map(AtomicUsize::into_inner);
+        LookedUp {
+            holds,
+            fails,
+            solved,
+            solved_failed,
+        }
+    }
+}
+
+/// The verdicts of the lengths of one pair of configurations from `lookup`, the undecided
+/// ones solved at their undecided poses.
+fn looked_up(
+    evaluator: &Evaluator<'_>,
+    poses: &[TestPose],
+    lookup: &IntraLinkAnswer<'_>,
+    m: usize,
+    (start, end): (usize, usize),
+    lengths: &[usize],
+    counts: &LookupCounts,
+) -> Vec<Option<Miss>> {
+    let setup = evaluator.setup();
+    lengths
+        .iter()
+        .map(|&sub_segments| {
+            let pv = Pv::new(sub_segments, start, end);
+            match lookup(m, &pv) {
+                LookupAnswer::Holds => {
+                    counts.add(0);
+                    None
+                }
+                LookupAnswer::Fails {
+                    pose,
+                    rejection,
+                    margins,
+                } => {
+                    counts.add(1);
+                    Some(Miss::looked_up(setup, rejection, margins, pose))
+                }
+                LookupAnswer::Undecided(at) => {
+                    counts.add(2);
+                    let chosen: Vec<&TestPose> = at.iter().map(|&p| &poses[p]).collect();
+                    let exact =
+                        evaluator.first_rejections(m, (start, end), &[sub_segments], &chosen);
+                    let miss = exact.into_iter().next().flatten().map(|miss| Miss {
+                        pose: at[miss.pose],
+                        ..miss
+                    });
+                    if miss.is_some() {
+                        counts.add(3);
+                    }
+                    miss
+                }
+            }
+        })
+        .collect()
+}
 
 /// The configurations of the shared guide used by the D2 of neighbour `n`, when `n` is an
 /// intra-link segment already tested; `None` (no pruning) otherwise.
@@ -264,6 +372,7 @@ fn test_segment(
         rejections,
         nearest_misses: misses,
         evaluations: verdicts.len(),
+        looked_up: None,
         time_s: timer.elapsed().as_secs_f64(),
     }
 }

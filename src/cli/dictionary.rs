@@ -129,7 +129,7 @@ fn describe(info: &Info) -> String {
     );
     let _ = writeln!(
         text,
-        "{} gravity directions ({}, covering radius {:.2}°); {}",
+        "{} gravity directions ({}, at most {:.2}° from any direction); {}",
         info.directions, info.direction_method, info.covering_radius_deg, info.solver
     );
     let _ = writeln!(
@@ -151,6 +151,19 @@ fn describe(info: &Info) -> String {
             s.candidates,
             s.d1_all,
             s.d2_all
+        );
+    }
+    let _ = writeln!(
+        text,
+        "\ninterpolation error per unit of neighbour spread (measured at {} probe directions, × 1.5):",
+        info.probes
+    );
+    for s in &info.segments {
+        let [clearance, stretch, curvature] = s.margin_error;
+        let _ = writeln!(
+            text,
+            "  {:<6} clearance {clearance:.3}, stretch {stretch:.3}, curvature {curvature:.3}",
+            s.segment
         );
     }
     text

@@ -3,7 +3,7 @@
 
 use super::{Failure, emit, print_json};
 use cable_dict::atomic_file::write_atomically;
-use cable_dict::attachment::{ConnectMethod, SegmentPoses};
+use cable_dict::attachment::{ConnectMethod, IntraLinkCriterion, SegmentPoses};
 use cable_dict::dictionary::Dictionary;
 use cable_dict::motion::Motion;
 use cable_dict::motion_test::EngineKind;
@@ -63,6 +63,19 @@ pub struct Args {
     /// stiff cables).
     #[arg(long, value_enum, default_value_t = MotionEngine::Implicit)]
     motion_engine: MotionEngine,
+    /// Where pieces between two clamps on one link are tested: `gravity-directions` (under
+    /// every direction of gravity the motion produces in the link's frame, to 2°; what a
+    /// dictionary answers) or `first-pose` (the paper's rule: one pose, the motion's first).
+    #[arg(long, value_enum, default_value_t = IntraLink::GravityDirections)]
+    intra_link: IntraLink,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, clap::ValueEnum)]
+enum IntraLink {
+    /// Every gravity direction of the motion in the link's frame.
+    GravityDirections,
+    /// The motion's first pose only.
+    FirstPose,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, clap::ValueEnum)]
@@ -115,6 +128,10 @@ pub fn run(args: Args) -> Result<(), Failure> {
         engine: match args.motion_engine {
             MotionEngine::Implicit => EngineKind::Implicit,
             MotionEngine::RigidChain => EngineKind::RigidChain,
+        },
+        intra_link: match args.intra_link {
+            IntraLink::GravityDirections => IntraLinkCriterion::GravityDirections,
+            IntraLink::FirstPose => IntraLinkCriterion::FirstPose,
         },
     };
     let report = match &dictionary {
@@ -238,7 +255,8 @@ pub fn run_critical(args: CriticalArgs) -> Result<(), Failure> {
     let mut text = String::new();
     for s in &segments {
         let kind = if s.intra_link {
-            "intra-link: tested at the first pose and its neighbours' critical poses".to_string()
+            "intra-link: tested under each gravity direction of the motion in its link's frame"
+                .to_string()
         } else {
             format!("traverses {}", s.traversed_joints.join(", "))
         };

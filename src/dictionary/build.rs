@@ -1,25 +1,35 @@
-//! Building a dictionary (or one shard of it): every PV of every intra-link segment, under
-//! every sampled gravity direction in the segment's link frame, through the same static test
-//! as the attachment test ([`Evaluator::check_in_link_frame`]).
+//! Building a dictionary (or one shard of it): the three margins of every PV of every
+//! intra-link segment under every sampled gravity direction in the segment's link frame,
+//! through the same static test as the attachment test
+//! ([`Evaluator::link_frame_metrics`]: a pair of clamps' lengths solved by continuation,
+//! exactly as `solve --setup` does at one pose), then the same at probe directions between
+//! the stored ones, where the interpolation error is measured and stored in the header.
 //!
-//! Work is spread over PVs with rayon and collected in PV order, so the bytes do not depend
-//! on the thread count. A failed solve is stored as such (verdict `Diverged`); it never stops
-//! the build.
+//! Work is spread over pairs of clamp configurations with rayon and collected in PV order,
+//! so the bytes do not depend on the thread count. A failed solve is stored as unmeasured;
+//! it never stops the build.
 
-use super::directions::{MIN_DIRECTION_COUNT, covering_radius, fibonacci_sphere};
+use super::directions::{
+    Interpolated, MIN_DIRECTION_COUNT, Neighbours, covering_radius, fibonacci_sphere,
+    probe_directions,
+};
 use super::error::Problem;
 use super::format::{
-    DirectionParameters, EmbeddedSetup, Header, PHYSICS_VERSION, PvRecord, ResultRecord,
-    SegmentEntry, ShardRange, SolverParameters, Verdict, encode,
+    DirectionParameters, ERROR_SAFETY, EmbeddedSetup, Header, MARGIN_UNITS, MarginRecord,
+    PHYSICS_VERSION, PvRecord, SegmentEntry, ShardRange, SolverParameters, encode,
 };
-use crate::attachment::{Check, ConnectMethod, Evaluator, needed_pvs, robust_neighbours};
+use crate::attachment::{
+    ConnectMethod, Evaluator, Margins, Rejection, needed_pvs, robust_neighbours,
+};
 use crate::path::Pv;
 use crate::progress;
 use crate::robot::Shape;
 use crate::setup::{Robustness, Setup};
 use crate::statics::SolverOptions;
+use nalgebra::Vector3;
 use rayon::prelude::*;
 use std::collections::BTreeSet;
+use std::ops::Range;
 
 /// What to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -39,8 +49,8 @@ pub struct Built {
     pub directions: Vec<[f64; 3]>,
     /// The PV records this file holds.
     pub pvs: Vec<PvRecord>,
-    /// The results, `directions.len()` per PV record.
-    pub results: Vec<ResultRecord>,
+    /// The margins, `directions.len()` per PV record.
+    pub results: Vec<MarginRecord>,
 }
 
 impl Built {
@@ -54,7 +64,8 @@ impl Built {
 pub fn build(setup: &Setup, options: &BuildOptions) -> Result<Built, Problem> {
     check_buildable(setup, options)?;
     let directions = fibonacci_sphere(options.directions);
-    let mut header = header(setup, &directions)?;
+    let probes = probe_directions(probe_count(options.directions));
+    let mut header = header(setup, &directions, probes.len())?;
     let stored = match options.shard {
         Some((index, count)) => {
             let shard = ShardRange::new(index, count, header.pv_total);
@@ -63,25 +74,44 @@ pub fn build(setup: &Setup, options: &BuildOptions) -> Result<Built, Problem> {
         }
         None => 0..header.pv_total,
     };
-    let pvs: Vec<PvRecord> = stored.map(|g| pv_record(setup, &header, g)).collect();
+    let mut pvs: Vec<PvRecord> = stored
+        .clone()
+        .map(|g| pv_record(setup, &header, g))
+        .collect();
     let evaluator =
         Evaluator::new(setup, ConnectMethod::Hermite).map_err(|e| Problem::Build(e.to_string()))?;
-    let gravity = header.directions.gravity_m_s2;
-    progress::begin("dictionary build", pvs.len() as u64);
-    let results: Vec<ResultRecord> = pvs
+    let sample = DirectionSample::new(directions, probes);
+    let pairs = pairs_in(&header, &stored);
+    progress::begin("dictionary build", pairs.len() as u64);
+    let solved: Vec<SolvedPair> = pairs
         .par_iter()
-        .map(|record| {
-            let rows = evaluate_pv(&evaluator, record, &directions, gravity);
+        .map(|pair| {
+            let solved = solve_pair(&evaluator, &header, pair, &stored, &sample);
             progress::advance(1);
-            rows
+            solved
         })
-        .collect::<Vec<_>>()
-        .concat();
+        .collect();
     progress::end();
-    log::info!("built {} PVs × {} directions", pvs.len(), directions.len());
+    let n = sample.stored.len();
+    let mut results = vec![MarginRecord::UNMEASURED; pvs.len() * n];
+    for solved in &solved {
+        let entry = &mut header.segments[solved.pair.slot];
+        for (g, piece) in &solved.pieces {
+            let k = (g - stored.start) as usize;
+            match &piece.rows {
+                Some(rows) => results[k * n..(k + 1) * n].copy_from_slice(rows),
+                None => pvs[k].flags |= PvRecord::TOO_SHORT,
+            }
+            pvs[k].error_factor = piece.error_factor;
+            for (worst, factor) in entry.margin_error.iter_mut().zip(pvs[k].error_factors()) {
+                *worst = worst.max(factor);
+            }
+        }
+    }
+    log::info!("built {} PVs × {n} directions", pvs.len());
     let mut built = Built {
         header,
-        directions,
+        directions: sample.stored,
         pvs,
         results,
     };
@@ -89,6 +119,192 @@ pub fn build(setup: &Setup, options: &BuildOptions) -> Result<Built, Problem> {
         finalize(&mut built, &setup.robustness);
     }
     Ok(built)
+}
+
+/// Probe directions for `n` stored ones: a quarter as many (at least 8), so that measuring
+/// the interpolation error costs a quarter of the build.
+fn probe_count(n: usize) -> usize {
+    (n / 4).max(8)
+}
+
+/// The stored directions, the probes, each probe's interpolation neighbours, and each stored
+/// direction's neighbours among the others (leave-one-out).
+struct DirectionSample {
+    stored: Vec<[f64; 3]>,
+    probes: Vec<[f64; 3]>,
+    probe_neighbours: Vec<Neighbours>,
+    left_out_neighbours: Vec<Neighbours>,
+}
+
+impl DirectionSample {
+    fn new(stored: Vec<[f64; 3]>, probes: Vec<[f64; 3]>) -> DirectionSample {
+        let probe_neighbours = probes
+            .iter()
+            .map(|p| Neighbours::of(&stored, &Vector3::from(*p)))
+            .collect();
+        let left_out_neighbours = (0..stored.len())
+            .map(|k| Neighbours::excluding(&stored, &Vector3::from(stored[k]), Some(k)))
+            .collect();
+        DirectionSample {
+            stored,
+            probes,
+            probe_neighbours,
+            left_out_neighbours,
+        }
+    }
+}
+
+/// The largest sign-flipping interpolation error per unit of neighbour spread, per margin.
+#[derive(Default)]
+struct ErrorRatio([f64; 3]);
+
+impl ErrorRatio {
+    /// Adds the comparison of `interpolated` with the `exact` margins (clamped to the stored
+    /// range): only an error that flips a margin's sign can flip a verdict.
+    fn add(&mut self, interpolated: &Interpolated, exact: &[f64; 3]) {
+        for k in 0..3 {
+            let range = f64::from(i16::MAX) * MARGIN_UNITS[k];
+            let exact = exact[k].clamp(-range, range);
+            let mean = interpolated.mean[k];
+            if (mean < 0.0) != (exact < 0.0) {
+                let excess = (mean - exact).abs() - MARGIN_UNITS[k];
+                let spread = interpolated.spread[k].max(MARGIN_UNITS[k]);
+                self.0[k] = self.0[k].max(excess / spread);
+            }
+        }
+    }
+
+    /// The stored factor: [`ERROR_SAFETY`] × the largest ratio of the three, in sixteenths,
+    /// for all three margins: a piece that changes branch moves its whole shape, so an
+    /// irregular margin makes the others suspect too.
+    fn factor(&self) -> [u8; 3] {
+        let worst = self.0.iter().fold(0.0f64, |a, &b| a.max(b));
+        [PvRecord::quantize_factor(ERROR_SAFETY * worst); 3]
+    }
+}
+
+/// One pair of clamp configurations of one segment: the unit of work (its lengths are solved
+/// together, by continuation).
+struct Pair {
+    /// Position of the segment in the header.
+    slot: usize,
+    start: usize,
+    end: usize,
+}
+
+/// The pairs with at least one PV in `stored`, in PV order.
+fn pairs_in(header: &Header, stored: &Range<u64>) -> Vec<Pair> {
+    let mut pairs = Vec::new();
+    for (slot, entry) in header.segments.iter().enumerate() {
+        let count = entry.lengths.len() as u64;
+        let block = entry.first_pv..entry.first_pv + entry.pv_count();
+        let first = block.start.max(stored.start);
+        let end = block.end.min(stored.end);
+        if first >= end {
+            continue;
+        }
+        let first_pair = (first - block.start) / count;
+        let end_pair = (end - block.start).div_ceil(count);
+        let nb = u64::from(entry.end_configurations);
+        pairs.extend((first_pair..end_pair).map(|p| Pair {
+            slot,
+            start: (p / nb) as usize,
+            end: (p % nb) as usize,
+        }));
+    }
+    pairs
+}
+
+/// A solved pair: its PVs in the stored range (global index and piece).
+struct SolvedPair<'p> {
+    pair: &'p Pair,
+    pieces: Vec<(u64, Piece)>,
+}
+
+/// One PV's margins under every stored direction (`None`: too short for its clamps) and its
+/// error factor.
+struct Piece {
+    rows: Option<Vec<MarginRecord>>,
+    error_factor: [u8; 3],
+}
+
+/// Every admissible length of `pair` under every stored direction, then at the probes; each
+/// length's interpolation error measured leaving each stored direction out and at the
+/// probes. All its admissible lengths are solved, also those of another shard, so that
+/// continuation gives the same values in any shard.
+fn solve_pair<'p>(
+    evaluator: &Evaluator<'_>,
+    header: &Header,
+    pair: &'p Pair,
+    stored: &Range<u64>,
+    sample: &DirectionSample,
+) -> SolvedPair<'p> {
+    let setup = evaluator.setup();
+    let entry = &header.segments[pair.slot];
+    let m = entry.segment as usize;
+    let configurations = (pair.start, pair.end);
+    let lengths: Vec<(u64, usize)> = entry
+        .lengths
+        .iter()
+        .map(|&s| s as usize)
+        .filter(|&s| s > 0 && setup.is_admissible(m, s, pair.start, pair.end))
+        .filter_map(|s| {
+            let local = entry.grid_index(s, pair.start, pair.end)?;
+            Some((entry.first_pv + local, s))
+        })
+        .collect();
+    let sub_segments: Vec<usize> = lengths.iter().map(|&(_, s)| s).collect();
+    let limits = &setup.thresholds;
+    let margins_at = |d: &[f64; 3]| -> Vec<Result<[f64; 3], Rejection>> {
+        let down = Vector3::from(*d);
+        let metrics = evaluator.link_frame_metrics(m, configurations, &sub_segments, &down);
+        metrics
+            .into_iter()
+            .map(|r| r.map(|metrics| Margins::of(&metrics, limits).to_array()))
+            .collect()
+    };
+    let n = sample.stored.len();
+    let mut rows = vec![Vec::with_capacity(n); lengths.len()];
+    let mut too_short = vec![false; lengths.len()];
+    for d in &sample.stored {
+        for (i, margins) in margins_at(d).into_iter().enumerate() {
+            too_short[i] |= margins == Err(Rejection::TooShort);
+            rows[i].push(MarginRecord::quantize(margins.ok()));
+        }
+    }
+    let mut ratios: Vec<ErrorRatio> = lengths.iter().map(|_| ErrorRatio::default()).collect();
+    for (i, rows) in rows.iter().enumerate() {
+        for (k, neighbours) in sample.left_out_neighbours.iter().enumerate() {
+            let exact = rows[k].values();
+            let interpolated = neighbours.interpolate(|j| rows[j].values());
+            if let (Some(exact), Some(interpolated)) = (exact, interpolated) {
+                ratios[i].add(&interpolated, &exact);
+            }
+        }
+    }
+    for (probe, neighbours) in sample.probes.iter().zip(&sample.probe_neighbours) {
+        for (i, exact) in margins_at(probe).into_iter().enumerate() {
+            let interpolated = neighbours.interpolate(|k| rows[i][k].values());
+            if let (Ok(exact), Some(interpolated)) = (exact, interpolated) {
+                ratios[i].add(&interpolated, &exact);
+            }
+        }
+    }
+    let pieces = lengths
+        .iter()
+        .zip(rows)
+        .zip(too_short)
+        .zip(ratios)
+        .filter(|((((g, _), _), _), _)| stored.contains(g))
+        .map(|((((g, _), rows), short), ratio)| {
+            let piece = Piece {
+                rows: (!short).then_some(rows),
+                error_factor: if short { [0; 3] } else { ratio.factor() },
+            };
+            (*g, piece)
+        })
+        .collect();
+    SolvedPair { pair, pieces }
 }
 
 /// Refuses what a dictionary cannot represent.
@@ -141,7 +357,7 @@ fn check_buildable(setup: &Setup, options: &BuildOptions) -> Result<(), Problem>
 }
 
 /// The header of a whole dictionary of `setup` (no shard).
-fn header(setup: &Setup, directions: &[[f64; 3]]) -> Result<Header, Problem> {
+fn header(setup: &Setup, directions: &[[f64; 3]], probes: usize) -> Result<Header, Problem> {
     let file_name = setup
         .source
         .file_name()
@@ -160,6 +376,7 @@ fn header(setup: &Setup, directions: &[[f64; 3]]) -> Result<Header, Problem> {
             first_pv,
             d1_all: 0,
             d2_all: 0,
+            margin_error: [0.0; 3],
         };
         first_pv += entry.pv_count();
         segments.push(entry);
@@ -184,6 +401,7 @@ fn header(setup: &Setup, directions: &[[f64; 3]]) -> Result<Header, Problem> {
             method: "fibonacci".into(),
             count: directions.len() as u32,
             covering_radius_rad: covering_radius(directions),
+            probes: probes as u32,
             gravity_m_s2: setup.gravity_m_s2.norm(),
         },
         segments,
@@ -220,6 +438,7 @@ fn pv_record(setup: &Setup, header: &Header, g: u64) -> PvRecord {
         segment: entry.segment as u16,
         flags: if admissible { PvRecord::ADMISSIBLE } else { 0 }
             | if candidate { PvRecord::CANDIDATE } else { 0 },
+        error_factor: [0; 3],
         reserved: 0,
     }
 }
@@ -235,63 +454,28 @@ pub(super) fn pv_at(header: &Header, g: u64) -> (usize, Pv) {
         entry.start_configurations as usize,
         entry.end_configurations as usize,
     );
+    let count = entry.lengths.len();
+    let pair = local / count;
     let pv = Pv::new(
-        entry.lengths[local / (na * nb)] as usize,
-        local / nb % na,
-        local % nb,
+        entry.lengths[local % count] as usize,
+        pair / nb % na,
+        pair % nb,
     );
     (slot, pv)
-}
-
-/// The results of one PV under every direction.
-fn evaluate_pv(
-    evaluator: &Evaluator<'_>,
-    record: &PvRecord,
-    directions: &[[f64; 3]],
-    gravity_m_s2: f64,
-) -> Vec<ResultRecord> {
-    if !record.has(PvRecord::ADMISSIBLE) {
-        return vec![result(Verdict::NotEvaluated, None); directions.len()];
-    }
-    let pv = record.pv();
-    directions
-        .iter()
-        .map(|d| {
-            let gravity = nalgebra::Vector3::from(*d) * gravity_m_s2;
-            let check = evaluator.check_in_link_frame(record.segment as usize, &pv, &gravity);
-            from_check(&check)
-        })
-        .collect()
-}
-
-fn from_check(check: &Check) -> ResultRecord {
-    result(
-        Verdict::from_rejection(check.rejection),
-        check.metrics.as_ref(),
-    )
-}
-
-fn result(verdict: Verdict, metrics: Option<&crate::attachment::Metrics>) -> ResultRecord {
-    let nan = f32::NAN;
-    ResultRecord {
-        clearance_mm: metrics
-            .and_then(|m| m.clearance_m)
-            .map_or(nan, |c| (c * 1e3) as f32),
-        stretch: metrics.map_or(nan, |m| m.stretch as f32),
-        min_bend_radius_mm: metrics.map_or(nan, |m| (m.min_bend_radius_m * 1e3) as f32),
-        verdict: verdict as u8,
-        reserved: [0; 3],
-    }
 }
 
 /// Sets the all-directions D1/D2 flags and counts of a whole dictionary: D1 = candidates that
 /// pass every direction; D2 = those whose robustness neighbours (candidates or not) do too.
 pub(super) fn finalize(built: &mut Built, robustness: &Robustness) {
     let n = built.directions.len();
+    let holds = |r: &MarginRecord| r.values().is_some_and(|v| v.iter().all(|&m| m >= 0.0));
     let passes_all: Vec<bool> = built
         .results
         .chunks_exact(n.max(1))
-        .map(|rows| rows.iter().all(|r| r.verdict == Verdict::Pass as u8))
+        .zip(&built.pvs)
+        .map(|(rows, record)| {
+            record.has(PvRecord::ADMISSIBLE) && (record.sub_segments == 0 || rows.iter().all(holds))
+        })
         .collect();
     let header = &mut built.header;
     for entry in &mut header.segments {

@@ -1,5 +1,4 @@
-//! Gravity directions sampled on the unit sphere, and the conservative neighbourhood of a
-//! direction the motion produces.
+//! Gravity directions sampled on the unit sphere, and the interpolation between them.
 //!
 //! The sample is the golden-angle (Fibonacci) spiral: point k of N has height
 //! `z = 1 − (2k + 1)/N` and azimuth `k·π(3 − √5)`. It is quasi-uniform (every point covers
@@ -13,11 +12,8 @@
 use nalgebra::Vector3;
 use std::f64::consts::PI;
 
-/// The default N: covering radius 10.3°. Between neighbouring directions a stored PV's bend
-/// radius changes by 0.04 mm per degree (median), 0.46 mm per degree (99th percentile;
-/// measured on the bundled pick-and-place setup, README "Dictionaries"), so inside 10° a
-/// limit crossing is rarely hidden, and a build of a bundled setup takes minutes on two
-/// cores (build time is linear in N).
+/// The default N: covering radius 10.3°. The interpolation error, and with it the share of
+/// pieces the lookup leaves to an exact check, shrinks with N; build time grows linearly.
 pub const DEFAULT_DIRECTION_COUNT: usize = 256;
 
 /// Fewest directions a build accepts (fewer would leave hemispheres unsampled).
@@ -60,26 +56,107 @@ fn nearest_angle(directions: &[[f64; 3]], p: &[f64; 3]) -> f64 {
     best.clamp(-1.0, 1.0).acos()
 }
 
-/// Marks in `required` every direction within `radius_rad` of the unit vector `u`, and the
-/// nearest one in any case (so a radius below the covering radius still marks one).
-pub fn mark_neighbourhood(
-    directions: &[[f64; 3]],
-    u: &Vector3<f64>,
-    radius_rad: f64,
-    required: &mut [bool],
-) {
-    let cos_radius = radius_rad.cos();
-    let mut nearest = (f64::NEG_INFINITY, 0);
-    for (k, d) in directions.iter().enumerate() {
-        let cos = d[0] * u.x + d[1] * u.y + d[2] * u.z;
-        if cos >= cos_radius {
-            required[k] = true;
+/// Stored directions an interpolation weighs.
+pub const NEIGHBOURS: usize = 4;
+
+/// The [`NEIGHBOURS`] stored directions nearest to a query direction and their weights
+/// (summing to 1): inverse squared angle, so that a query on a stored direction returns its
+/// value exactly and the weights change smoothly between.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Neighbours {
+    /// Indices into the stored directions, nearest first.
+    pub indices: [usize; NEIGHBOURS],
+    /// Weight of each.
+    pub weights: [f64; NEIGHBOURS],
+}
+
+impl Neighbours {
+    /// The neighbours of the unit vector `u` among `directions` (at least [`NEIGHBOURS`] of
+    /// them, as every build has).
+    pub fn of(directions: &[[f64; 3]], u: &Vector3<f64>) -> Neighbours {
+        Neighbours::excluding(directions, u, None)
+    }
+
+    /// [`Neighbours::of`] without the stored direction `left_out` (for leave-one-out
+    /// estimates of the interpolation error at a stored direction).
+    pub fn excluding(
+        directions: &[[f64; 3]],
+        u: &Vector3<f64>,
+        left_out: Option<usize>,
+    ) -> Neighbours {
+        let mut nearest = [(f64::NEG_INFINITY, 0usize); NEIGHBOURS];
+        for (k, d) in directions.iter().enumerate() {
+            if Some(k) == left_out {
+                continue;
+            }
+            let cos = d[0] * u.x + d[1] * u.y + d[2] * u.z;
+            if cos > nearest[NEIGHBOURS - 1].0 {
+                nearest[NEIGHBOURS - 1] = (cos, k);
+                // Insertion into the sorted list, strict so that ties keep the lower index.
+                let mut i = NEIGHBOURS - 1;
+                while i > 0 && nearest[i].0 > nearest[i - 1].0 {
+                    nearest.swap(i, i - 1);
+                    i -= 1;
+                }
+            }
         }
-        if cos > nearest.0 {
-            nearest = (cos, k);
+        // atan2(|d × u|, d · u): exact 0 on a stored direction, accurate near it (acos is not).
+        let angles = nearest.map(|(_, k)| {
+            let d = Vector3::from(directions[k]);
+            d.cross(u).norm().atan2(d.dot(u))
+        });
+        let weights = if angles[0] == 0.0 {
+            std::array::from_fn(|i| if i == 0 { 1.0 } else { 0.0 })
+        } else {
+            let raw = angles.map(|a| 1.0 / (a * a));
+            let total: f64 = raw.iter().sum();
+            raw.map(|w| w / total)
+        };
+        Neighbours {
+            indices: nearest.map(|(_, k)| k),
+            weights,
         }
     }
-    if let Some(slot) = required.get_mut(nearest.1) {
-        *slot = true;
+
+    /// The weighted mean of `value(index)` over the neighbours and the spread (largest −
+    /// smallest) of their values, per component; `None` when any value is `None`.
+    pub fn interpolate(&self, value: impl Fn(usize) -> Option<[f64; 3]>) -> Option<Interpolated> {
+        let mut mean = [0.0; 3];
+        let mut low = [f64::INFINITY; 3];
+        let mut high = [f64::NEG_INFINITY; 3];
+        for (&k, &w) in self.indices.iter().zip(&self.weights) {
+            let v = value(k)?;
+            for c in 0..3 {
+                mean[c] += w * v[c];
+                low[c] = low[c].min(v[c]);
+                high[c] = high[c].max(v[c]);
+            }
+        }
+        Some(Interpolated {
+            mean,
+            spread: std::array::from_fn(|c| high[c] - low[c]),
+        })
     }
+}
+
+/// Interpolated values and how much the neighbours they come from differ: the local
+/// variation the interpolation error is measured against.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Interpolated {
+    /// The weighted mean.
+    pub mean: [f64; 3],
+    /// Largest − smallest neighbour value.
+    pub spread: [f64; 3],
+}
+
+/// `n` probe directions for measuring the interpolation error: the golden-angle spiral of
+/// `n` points turned by a fixed rotation (1 rad about (1, 2, 3)/√14), so that they fall
+/// between the stored directions of any count rather than on them.
+pub fn probe_directions(n: usize) -> Vec<[f64; 3]> {
+    let axis = nalgebra::Unit::new_normalize(Vector3::new(1.0, 2.0, 3.0));
+    let turn = nalgebra::UnitQuaternion::from_axis_angle(&axis, 1.0);
+    fibonacci_sphere(n)
+        .into_iter()
+        .map(|d| (turn * Vector3::from(d)).into())
+        .collect()
 }

@@ -46,6 +46,16 @@ pub enum Problem {
         /// The newest version this build reads.
         supported: u32,
     },
+    /// Written by an older cable-dict in a format this one no longer reads.
+    #[error(
+        "format version {found} (pass/fail verdicts per direction) is no longer read; this \
+         cable-dict reads version 2 (margins per direction, interpolated): rebuild it from the \
+         setup it was built for with `cable-dict build SETUP.toml -o FILE.cdict`"
+    )]
+    OldVersion {
+        /// The file's version.
+        found: u32,
+    },
     /// A version number no cable-dict ever wrote.
     #[error("format version {found} is not a known version (this cable-dict reads {supported})")]
     UnknownVersion {

@@ -1,14 +1,14 @@
-//! The `.cdict` byte layout, version 1 (docs/cdict-format.md): a checksummed preamble, a
+//! The `.cdict` byte layout, version 2 (docs/cdict-format.md): a checksummed preamble, a
 //! checksummed section table, then four sections at 16-byte aligned offsets — the header
-//! (bincode), the gravity directions, the PV records and the result records (fixed-size,
-//! little-endian, read in place from the memory map).
+//! (bincode), the gravity directions, the PV records and the margin records (fixed-size,
+//! little-endian, read in place from the memory map). Version 1 stored verdicts instead of
+//! margins; it is refused with the command that rebuilds it.
 //!
 //! [`parse`] checks everything that is O(1) or O(header): magic, version, length, the
 //! preamble's and the table's checksums, every section's bounds, alignment and record size,
 //! and the header's own checksum; [`verify_sections`] checks the bulk sections' checksums.
 
 use super::error::Problem;
-use crate::attachment::Rejection;
 use crate::path::Pv;
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
@@ -20,7 +20,7 @@ compile_error!("the .cdict records are read in place as little-endian values");
 /// The first 8 bytes of every dictionary (the CR LF catches text-mode copies).
 pub const MAGIC: [u8; 8] = *b"CDICT\0\r\n";
 /// The format version this build writes and reads.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 /// Bytes of the preamble; the section table follows.
 pub const PREAMBLE_LEN: usize = 64;
 /// Bytes of one section-table entry.
@@ -30,7 +30,8 @@ pub const ALIGNMENT: usize = 16;
 /// Version of the physics behind the stored results: bumped whenever the static solver or
 /// the metrics change what they compute, so that old dictionaries are refused, not trusted.
 /// 2: cables in EI/GJ, the `L D Lᵀ` Newton solver, retraction to 5e-13.
-pub const PHYSICS_VERSION: u32 = 2;
+/// 3: the end clamp turned by the installed cable's twist; lengths continued per direction.
+pub const PHYSICS_VERSION: u32 = 3;
 /// Largest header accepted when decoding (the URDF text dominates it).
 const HEADER_LIMIT: usize = 64 << 20;
 
@@ -43,7 +44,7 @@ pub enum SectionKind {
     Directions = 2,
     /// [`PvRecord`]s.
     Pvs = 3,
-    /// [`ResultRecord`]s, `directions` per PV, PV-major.
+    /// [`MarginRecord`]s, `directions` per PV, PV-major.
     Results = 4,
 }
 
@@ -72,13 +73,14 @@ impl SectionKind {
             SectionKind::Header => 1,
             SectionKind::Directions => size_of::<[f64; 3]>(),
             SectionKind::Pvs => size_of::<PvRecord>(),
-            SectionKind::Results => size_of::<ResultRecord>(),
+            SectionKind::Results => size_of::<MarginRecord>(),
         }
     }
 }
 
-/// One PV of an intra-link segment, in the dense grid (length, start configuration, end
-/// configuration) of its segment.
+/// One PV of an intra-link segment, in the dense grid (start configuration, end
+/// configuration, length) of its segment: a pair of clamps' lengths are neighbours, so a
+/// shard holds whole pairs and solves their lengths by continuation.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct PvRecord {
@@ -91,10 +93,17 @@ pub struct PvRecord {
     /// Segment index m (0-based).
     pub segment: u16,
     /// [`PvRecord::ADMISSIBLE`] | [`PvRecord::CANDIDATE`] | [`PvRecord::D1_ALL`] |
-    /// [`PvRecord::D2_ALL`].
+    /// [`PvRecord::D2_ALL`] | [`PvRecord::TOO_SHORT`].
     pub flags: u16,
+    /// This PV's interpolation error per unit of neighbour spread (clearance, stretch,
+    /// curvature), in sixteenths, rounded up: the largest `(error − one unit) / spread`
+    /// that flipped a margin's sign, measured anywhere on the sphere — leaving each stored
+    /// direction out in turn, and at the probe directions — × [`ERROR_SAFETY`]. A piece
+    /// that changes branch somewhere (a loop that can hang on either side of its link) gets
+    /// a large factor everywhere, so the lookup leaves it to the exact check.
+    pub error_factor: [u8; 3],
     /// Zero.
-    pub reserved: u32,
+    pub reserved: u8,
 }
 
 impl PvRecord {
@@ -107,6 +116,22 @@ impl PvRecord {
     pub const D1_ALL: u16 = 4;
     /// In D2 for every stored direction (whole dictionaries only).
     pub const D2_ALL: u16 = 8;
+    /// The cable is shorter than the distance between its clamps: it fails under every
+    /// direction (its margins are not measured).
+    pub const TOO_SHORT: u16 = 16;
+    /// Every flag a writer sets.
+    pub const KNOWN: u16 =
+        Self::ADMISSIBLE | Self::CANDIDATE | Self::D1_ALL | Self::D2_ALL | Self::TOO_SHORT;
+
+    /// [`PvRecord::error_factor`] as numbers.
+    pub fn error_factors(&self) -> [f64; 3] {
+        self.error_factor.map(|f| f64::from(f) / 16.0)
+    }
+
+    /// The stored sixteenths of an error factor, rounded up, saturated at 255.
+    pub fn quantize_factor(factor: f64) -> u8 {
+        (factor * 16.0).ceil().clamp(0.0, 255.0) as u8
+    }
 
     /// True when `flag` is set.
     pub fn has(&self, flag: u16) -> bool {
@@ -123,79 +148,73 @@ impl PvRecord {
     }
 }
 
-/// The static test of one PV under one gravity direction.
+/// The three margins of one PV under one gravity direction, in fixed point: how far the
+/// static equilibrium is from each limit of the embedded setup, positive when the limit
+/// holds ([`crate::attachment::Margins`]). Values beyond the `i16` range saturate (a
+/// saturated margin is at least that large); [`MarginRecord::NOT_MEASURED`] in all three
+/// marks a direction without an equilibrium (a failed solve, a cable too short for its
+/// clamps, a grid placeholder).
 #[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct ResultRecord {
-    /// Lowest clearance to the segment's own link (mm), clamp zones excluded; NaN when none
-    /// was measured.
-    pub clearance_mm: f32,
-    /// Centreline length / natural length; NaN without an equilibrium.
-    pub stretch: f32,
-    /// Smallest bend radius (mm); NaN without an equilibrium, infinite when straight.
-    pub min_bend_radius_mm: f32,
-    /// [`Verdict`] as a byte.
-    pub verdict: u8,
-    /// Zero.
-    pub reserved: [u8; 3],
+#[derive(Debug, Clone, Copy, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct MarginRecord {
+    /// Clearance − contact limit, in [`MARGIN_UNITS`]`[0]` mm (saturates at ±327 mm; no
+    /// clearance measured, e.g. every node in a clamp zone: the positive maximum).
+    pub clearance: i16,
+    /// Stretch limit − stretch, in [`MARGIN_UNITS`]`[1]` (saturates at ±0.33).
+    pub stretch: i16,
+    /// 1/(minimum bend radius) − 1/(bend radius), in [`MARGIN_UNITS`]`[2]` 1/m (saturates
+    /// at ±65 1/m).
+    pub bend: i16,
 }
 
-/// The outcome stored in a [`ResultRecord`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Verdict {
-    /// All three limits hold.
-    Pass = 0,
-    /// Shorter than the distance between the guides.
-    TooShort = 1,
-    /// The connected geometry or the static solver failed.
-    Diverged = 2,
-    /// Clearance below the threshold.
-    Contact = 3,
-    /// Stretch above the threshold.
-    Stretch = 4,
-    /// Bend radius below the minimum.
-    Bend = 5,
-    /// Not a real PV (grid placeholder); never evaluated.
-    NotEvaluated = 6,
-}
+/// The fixed-point units of a [`MarginRecord`]'s fields: clearance (mm), stretch ratio,
+/// curvature (1/m). Rounding costs half a unit, which the lookup adds to its error bound.
+pub const MARGIN_UNITS: [f64; 3] = [0.01, 1e-5, 0.002];
 
-impl Verdict {
-    /// The verdict of an attachment-test outcome (`None`: passed).
-    pub fn from_rejection(rejection: Option<Rejection>) -> Verdict {
-        match rejection {
-            None => Verdict::Pass,
-            Some(Rejection::TooShort) => Verdict::TooShort,
-            Some(Rejection::Diverged) => Verdict::Diverged,
-            Some(Rejection::Contact) => Verdict::Contact,
-            Some(Rejection::Stretch) => Verdict::Stretch,
-            Some(Rejection::Bend) => Verdict::Bend,
+impl MarginRecord {
+    /// The marker of a direction without an equilibrium.
+    pub const NOT_MEASURED: i16 = i16::MIN;
+
+    /// A direction without an equilibrium.
+    pub const UNMEASURED: MarginRecord = MarginRecord {
+        clearance: Self::NOT_MEASURED,
+        stretch: Self::NOT_MEASURED,
+        bend: Self::NOT_MEASURED,
+    };
+
+    /// The record of `margins` (clearance mm, stretch, curvature 1/m; `None`: no
+    /// equilibrium), rounded and saturated.
+    pub fn quantize(margins: Option<[f64; 3]>) -> MarginRecord {
+        let Some(values) = margins else {
+            return Self::UNMEASURED;
+        };
+        let fixed = |k: usize| {
+            let units = (values[k] / MARGIN_UNITS[k]).round();
+            // NaN (never produced by the metrics) maps to the most negative value.
+            units.clamp(-f64::from(i16::MAX), f64::from(i16::MAX)) as i16
+        };
+        MarginRecord {
+            clearance: fixed(0),
+            stretch: fixed(1),
+            bend: fixed(2),
         }
     }
 
-    /// The attachment-test outcome (`None`: passed); a placeholder counts as a failed solve.
-    pub fn rejection(self) -> Option<Rejection> {
-        match self {
-            Verdict::Pass => None,
-            Verdict::TooShort => Some(Rejection::TooShort),
-            Verdict::Contact => Some(Rejection::Contact),
-            Verdict::Stretch => Some(Rejection::Stretch),
-            Verdict::Bend => Some(Rejection::Bend),
-            Verdict::Diverged | Verdict::NotEvaluated => Some(Rejection::Diverged),
+    /// The margins in their units (clearance mm, stretch, curvature 1/m), `None` for a
+    /// direction without an equilibrium.
+    pub fn values(&self) -> Option<[f64; 3]> {
+        let raw = [self.clearance, self.stretch, self.bend];
+        if raw.contains(&Self::NOT_MEASURED) {
+            return None;
         }
+        Some(std::array::from_fn(|k| f64::from(raw[k]) * MARGIN_UNITS[k]))
     }
 
-    /// The verdict of a stored byte, `None` for a byte no writer produces.
-    pub fn from_byte(byte: u8) -> Option<Verdict> {
-        Some(match byte {
-            0 => Verdict::Pass,
-            1 => Verdict::TooShort,
-            2 => Verdict::Diverged,
-            3 => Verdict::Contact,
-            4 => Verdict::Stretch,
-            5 => Verdict::Bend,
-            6 => Verdict::NotEvaluated,
-            _ => return None,
-        })
+    /// True for a well-formed record: all three fields measured, or none.
+    pub fn is_consistent(&self) -> bool {
+        let raw = [self.clearance, self.stretch, self.bend];
+        let missing = raw.iter().filter(|&&v| v == Self::NOT_MEASURED).count();
+        missing == 0 || missing == 3
     }
 }
 
@@ -256,8 +275,11 @@ pub struct DirectionParameters {
     /// Number of directions N.
     pub count: u32,
     /// Largest angle from any direction on the sphere to its nearest sample (rad), an upper
-    /// estimate: the neighbourhood radius of the conservative lookup.
+    /// estimate: how far a looked-up direction can be from the stored ones.
     pub covering_radius_rad: f64,
+    /// Probe directions (between the stored ones) at which the build measured the
+    /// interpolation error of every PV.
+    pub probes: u32,
     /// Magnitude of gravity (m/s²), from the setup.
     pub gravity_m_s2: f64,
 }
@@ -281,7 +303,25 @@ pub struct SegmentEntry {
     pub d1_all: u64,
     /// |D2| over every stored direction (0 in a shard).
     pub d2_all: u64,
+    /// The largest [`PvRecord::error_factor`] of this file's PVs (clearance, stretch,
+    /// curvature): how irregular the segment's worst piece is (for `info`).
+    pub margin_error: [f64; 3],
 }
+
+impl PvRecord {
+    /// The error bound of a margin of this PV interpolated from neighbours of `spread`:
+    /// its error factor (at least [`MIN_ERROR_FACTOR`]) × spread, plus one fixed-point unit.
+    pub fn error_bound(&self, spread: [f64; 3]) -> [f64; 3] {
+        let factors = self.error_factors();
+        std::array::from_fn(|k| factors[k].max(MIN_ERROR_FACTOR) * spread[k] + MARGIN_UNITS[k])
+    }
+}
+
+/// Factor on the largest interpolation error measured for a PV.
+pub const ERROR_SAFETY: f64 = 1.5;
+/// Least error factor the lookup applies: half the neighbours' spread, whatever was measured
+/// (a weighted mean lies inside the neighbours' range; the truth may lie outside it).
+pub const MIN_ERROR_FACTOR: f64 = 1.0;
 
 impl SegmentEntry {
     /// PV records of this segment: lengths × start × end configurations (saturating; a
@@ -297,7 +337,7 @@ impl SegmentEntry {
             .checked_mul(u64::from(self.end_configurations))
     }
 
-    /// Index of (S, i, j) within the segment's block, `None` when not stored.
+    /// Index of (i, j, S) within the segment's block, `None` when not stored.
     pub fn grid_index(&self, sub_segments: usize, start: usize, end: usize) -> Option<u64> {
         let (na, nb) = (
             self.start_configurations as usize,
@@ -307,7 +347,8 @@ impl SegmentEntry {
             .lengths
             .binary_search(&u32::try_from(sub_segments).ok()?)
             .ok()?;
-        (start < na && end < nb).then(|| ((length * na + start) * nb + end) as u64)
+        let count = self.lengths.len();
+        (start < na && end < nb).then(|| ((start * nb + end) * count + length) as u64)
     }
 }
 
@@ -370,7 +411,7 @@ pub fn encode(
     header: &Header,
     directions: &[[f64; 3]],
     pvs: &[PvRecord],
-    results: &[ResultRecord],
+    results: &[MarginRecord],
 ) -> Result<Vec<u8>, Problem> {
     let header_bytes = bincode::serde::encode_to_vec(header, bincode::config::standard())
         .map_err(|e| Problem::Header(format!("cannot encode: {e}")))?;
@@ -480,6 +521,9 @@ fn parse_preamble(bytes: &[u8]) -> Result<&[u8], Problem> {
             found: version,
             supported: FORMAT_VERSION,
         });
+    }
+    if version == 1 {
+        return Err(Problem::OldVersion { found: version });
     }
     if version != FORMAT_VERSION {
         return Err(Problem::UnknownVersion {
@@ -630,6 +674,16 @@ fn check_segments(header: &Header) -> Result<(), Problem> {
         if entry.lengths.is_empty() || entry.lengths.windows(2).any(|w| w[0] >= w[1]) {
             return Err(Problem::Header(format!(
                 "{name}: lengths are not strictly ascending"
+            )));
+        }
+        if entry
+            .margin_error
+            .iter()
+            .any(|e| !(e.is_finite() && *e >= 0.0))
+        {
+            return Err(Problem::Header(format!(
+                "{name}: the interpolation error bound {:?} is not finite and non-negative",
+                entry.margin_error
             )));
         }
         if entry.first_pv != next {

@@ -28,6 +28,8 @@ pub struct Info {
     pub directions: u32,
     /// Direction sampling method.
     pub direction_method: String,
+    /// Probe directions of the error measurement.
+    pub probes: u32,
     /// Neighbourhood radius of the lookup (deg).
     pub covering_radius_deg: f64,
     /// Connected geometry and solver of the build.
@@ -63,6 +65,8 @@ pub struct SegmentInfo {
     pub d1_all: u64,
     /// |D2| for every stored direction (0 in a shard).
     pub d2_all: u64,
+    /// The lookup's error bound: clearance (mm), stretch, curvature (1/m).
+    pub margin_error: [f64; 3],
 }
 
 impl Info {
@@ -95,6 +99,7 @@ impl Info {
                     candidates,
                     d1_all: e.d1_all,
                     d2_all: e.d2_all,
+                    margin_error: e.margin_error,
                 }
             })
             .collect();
@@ -110,6 +115,7 @@ impl Info {
             cable,
             directions: header.directions.count,
             direction_method: header.directions.method.clone(),
+            probes: header.directions.probes,
             covering_radius_deg: header.directions.covering_radius_rad.to_degrees(),
             solver: format!(
                 "{} connect, Newton to {:e} N in ≤ {} iterations, clearance to the {}",

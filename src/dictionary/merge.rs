@@ -50,6 +50,8 @@ pub fn merge(paths: &[PathBuf]) -> Result<Built, DictionaryError> {
         }
     }
     check_tiling(&shards, common.pv_total)?;
+    let mut common = common;
+    merged_error_bounds(&mut common, &shards);
     let setup = embedded_setup(&common).map_err(|p| DictionaryError::new(first.path(), p))?;
     let mut built = Built {
         header: common,
@@ -67,11 +69,28 @@ pub fn merge(paths: &[PathBuf]) -> Result<Built, DictionaryError> {
     Ok(built)
 }
 
-/// The header as a whole dictionary's, before its D1/D2 counts are known.
+/// The header as a whole dictionary's, before its D1/D2 counts and error bounds are known
+/// (each shard measured the interpolation error of its own PVs).
 fn unsharded(header: &Header) -> Header {
-    Header {
+    let mut whole = Header {
         shard: None,
         ..header.clone()
+    };
+    for entry in &mut whole.segments {
+        entry.margin_error = [0.0; 3];
+    }
+    whole
+}
+
+/// The error bound of each segment of the whole dictionary: the largest of the shards'.
+fn merged_error_bounds(common: &mut Header, shards: &[(ShardRange, Dictionary)]) {
+    for (slot, entry) in common.segments.iter_mut().enumerate() {
+        for (_, shard) in shards {
+            let bounds = shard.header().segments[slot].margin_error;
+            for (merged, bound) in entry.margin_error.iter_mut().zip(bounds) {
+                *merged = merged.max(bound);
+            }
+        }
     }
 }
 

@@ -4,9 +4,12 @@
 //! An intra-link segment's shape depends only on gravity's direction in its link's frame. A
 //! build evaluates every PV of every intra-link segment (the setup's lengths and their
 //! robustness neighbours) under N gravity directions sampled on the sphere ([`directions`])
-//! and stores, per PV and direction, the verdict and the three metrics ([`format`](mod@format)). Solving
-//! a motion then needs no static solve for those segments: the motion's gravity directions in
-//! each link frame select the stored directions to require ([`MotionLookup`]).
+//! and stores, per PV and direction, the three margins ([`format`](mod@format)), plus the
+//! interpolation error measured at probe directions between them. Solving a motion asks the
+//! question `solve --setup` answers exactly — does the piece hold its limits under every
+//! gravity direction the motion produces in its link's frame — by interpolating the margins
+//! at those directions, widened by the error bound; only pieces the bound cannot decide are
+//! solved ([`MotionLookup`]).
 //!
 //! - [`build()`]: the whole dictionary or one shard (`--shard i/n`), in parallel, the same
 //!   bytes at any thread count.
@@ -30,7 +33,7 @@ pub use build::{BuildOptions, Built, build};
 pub use directions::DEFAULT_DIRECTION_COUNT;
 pub use error::{DictionaryError, Problem};
 pub use info::{Info, SegmentInfo};
-pub use lookup::{LookupError, MotionLookup};
+pub use lookup::{DirectionAnswer, LookupError, MotionLookup};
 pub use merge::merge;
 pub use reader::Dictionary;
 
@@ -55,7 +58,7 @@ pub fn check_bytes(bytes: &[u8]) -> Result<format::Header, Problem> {
     format::verify_sections(bytes, &layout)?;
     // Copies: `bytes` need not be aligned for in-place reading.
     let pvs: Vec<format::PvRecord> = records(&bytes[layout.range(SectionKind::Pvs)]);
-    let results: Vec<format::ResultRecord> = records(&bytes[layout.range(SectionKind::Results)]);
+    let results: Vec<format::MarginRecord> = records(&bytes[layout.range(SectionKind::Results)]);
     reader::check_records(&layout.header, &pvs, &results)?;
     Ok(layout.header)
 }

@@ -3,8 +3,8 @@
 
 use super::error::{DictionaryError, Problem};
 use super::format::{
-    Header, Layout, PHYSICS_VERSION, PvRecord, ResultRecord, SectionKind, SegmentEntry, Verdict,
-    parse, verify_sections,
+    Header, Layout, MarginRecord, PHYSICS_VERSION, PvRecord, SectionKind, SegmentEntry, parse,
+    verify_sections,
 };
 use crate::path::Pv;
 use crate::setup::Setup;
@@ -66,8 +66,8 @@ impl Dictionary {
         bytemuck::cast_slice(self.section(SectionKind::Pvs))
     }
 
-    /// The result records, `directions().len()` per PV record.
-    pub fn results(&self) -> &[ResultRecord] {
+    /// The margin records, `directions().len()` per PV record.
+    pub fn results(&self) -> &[MarginRecord] {
         bytemuck::cast_slice(self.section(SectionKind::Results))
     }
 
@@ -79,20 +79,21 @@ impl Dictionary {
             .find(|e| e.segment as usize == m)
     }
 
-    /// The stored results of `pv` of segment `m`, one per direction; `None` when the
-    /// dictionary does not hold it. O(log lengths).
-    pub fn lookup(&self, m: usize, pv: &Pv) -> Option<&[ResultRecord]> {
+    /// The record and stored margins of `pv` of segment `m`, one row per direction; `None`
+    /// when the dictionary does not hold it. O(log lengths).
+    pub fn lookup(&self, m: usize, pv: &Pv) -> Option<(&PvRecord, &[MarginRecord])> {
         let entry = self.segment(m)?;
         let local = entry.grid_index(pv.sub_segments, pv.start, pv.end)?;
         let stored = self.header().stored_pvs();
-        let g = (entry.first_pv + local).checked_sub(stored.start)?;
+        let g = usize::try_from((entry.first_pv + local).checked_sub(stored.start)?).ok()?;
         let n = self.directions().len();
-        let first = usize::try_from(g).ok()?.checked_mul(n)?;
-        self.results().get(first..first.checked_add(n)?)
+        let first = g.checked_mul(n)?;
+        let rows = self.results().get(first..first.checked_add(n)?)?;
+        Some((self.pv_records().get(g)?, rows))
     }
 
     /// Checks every section's checksum and that the records agree with the header: grid
-    /// positions, flags, verdict bytes and the all-directions |D1| and |D2| counts.
+    /// positions, flags, margin records and the all-directions |D1| and |D2| counts.
     pub fn verify(&self) -> Result<(), DictionaryError> {
         let error = |problem| DictionaryError::new(&self.path, problem);
         verify_sections(&self.map, &self.layout).map_err(error)?;
@@ -126,13 +127,13 @@ impl Dictionary {
     }
 }
 
-/// The records agree with the header: grid positions, zero padding, verdict bytes, flags,
+/// The records agree with the header: grid positions, zero padding, margin records, flags,
 /// and (whole dictionaries) the |D1|/|D2| counts. `results` holds `header.directions.count`
 /// rows per PV record, as [`parse`] checked.
 pub(super) fn check_records(
     header: &Header,
     pv_records: &[PvRecord],
-    results: &[ResultRecord],
+    results: &[MarginRecord],
 ) -> Result<(), Problem> {
     let stored = header.stored_pvs();
     let mut counts = vec![(0u64, 0u64); header.segments.len()];
@@ -142,7 +143,10 @@ pub(super) fn check_records(
         let place = || format!("PV record {g}");
         let (slot, pv) = super::build::pv_at(header, g);
         let at_place = record.segment == header.segments[slot].segment as u16 && record.pv() == pv;
-        if !at_place || record.reserved != 0 {
+        let unmeasured = !record.has(PvRecord::ADMISSIBLE)
+            || record.sub_segments == 0
+            || record.has(PvRecord::TOO_SHORT);
+        if !at_place || record.reserved != 0 || (unmeasured && record.error_factor != [0; 3]) {
             return Err(record_error(place(), "does not match its grid position"));
         }
         let rows = results.get(k * n..(k + 1) * n).unwrap_or_default();
@@ -166,28 +170,32 @@ pub(super) fn check_records(
     Ok(())
 }
 
-/// The rows of one PV: known verdict bytes, zero padding, placeholders only for
-/// placeholders, D1/D2 flags only on candidates that pass everywhere.
-fn check_results(record: &PvRecord, rows: &[ResultRecord]) -> Result<(), String> {
-    let admissible = record.has(PvRecord::ADMISSIBLE);
-    let mut all_pass = true;
+/// The rows of one PV: well-formed margin records, measured only for a real cable that
+/// reaches between its clamps, flags that the rows justify.
+fn check_results(record: &PvRecord, rows: &[MarginRecord]) -> Result<(), String> {
+    let cable = record.has(PvRecord::ADMISSIBLE)
+        && record.sub_segments > 0
+        && !record.has(PvRecord::TOO_SHORT);
+    let mut all_hold = true;
     for (d, row) in rows.iter().enumerate() {
-        let verdict = Verdict::from_byte(row.verdict)
-            .ok_or_else(|| format!("direction {d}: unknown verdict byte {}", row.verdict))?;
-        if row.reserved != [0; 3] || (verdict == Verdict::NotEvaluated) == admissible {
-            return Err(format!("direction {d}: inconsistent result record"));
+        let values = row.values();
+        if !row.is_consistent() || (values.is_some() && !cable) {
+            return Err(format!("direction {d}: inconsistent margin record"));
         }
-        all_pass &= verdict == Verdict::Pass;
+        all_hold &= values.is_some_and(|v| v.iter().all(|&m| m >= 0.0));
     }
+    let passes = record.has(PvRecord::ADMISSIBLE) && (record.sub_segments == 0 || all_hold);
     let d1 = record.has(PvRecord::D1_ALL);
     let d2 = record.has(PvRecord::D2_ALL);
-    let known = PvRecord::ADMISSIBLE | PvRecord::CANDIDATE | PvRecord::D1_ALL | PvRecord::D2_ALL;
-    if record.flags & !known != 0
-        || (d1 && !(all_pass && record.has(PvRecord::CANDIDATE)))
+    let short_ok = !record.has(PvRecord::TOO_SHORT)
+        || (record.has(PvRecord::ADMISSIBLE) && record.sub_segments > 0);
+    if record.flags & !PvRecord::KNOWN != 0
+        || (d1 && !(passes && record.has(PvRecord::CANDIDATE)))
         || (d2 && !d1)
+        || !short_ok
     {
         return Err(format!(
-            "flags {:#06x} contradict its results",
+            "flags {:#06x} contradict its margins",
             record.flags
         ));
     }
@@ -208,7 +216,7 @@ fn check_alignment(bytes: &[u8], layout: &Layout) -> Result<(), Problem> {
             .is_ok()
             && bytemuck::try_cast_slice::<u8, PvRecord>(&bytes[layout.range(SectionKind::Pvs)])
                 .is_ok()
-            && bytemuck::try_cast_slice::<u8, ResultRecord>(
+            && bytemuck::try_cast_slice::<u8, MarginRecord>(
                 &bytes[layout.range(SectionKind::Results)],
             )
             .is_ok();

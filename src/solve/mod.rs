@@ -19,14 +19,14 @@ mod report;
 pub use diagnosis::{Diagnosis, NearestMiss, SegmentDiagnosis};
 
 pub use report::{
-    CandidateOutcome, DictionaryUse, Ecpv, Inputs, Margin, PathGuide, PathSegment, PoseSummary,
-    SegmentReport, SolveReport, Status, SweepRejection, SweepSummary, Timings, ecpv, guide_names,
-    pose_summary,
+    CandidateOutcome, DictionarySegmentUse, DictionaryUse, Ecpv, Inputs, Margin, PathGuide,
+    PathSegment, PoseSummary, SegmentReport, SolveReport, Status, SweepRejection, SweepSummary,
+    Timings, ecpv, guide_names, pose_summary,
 };
 
 use crate::attachment::{
-    ConnectMethod, Evaluator, MotionSweep, SegmentPoses, SegmentSets, SweepFailure,
-    attachment_test_with, check_size,
+    ConnectMethod, Evaluator, IntraLinkCriterion, LookupAnswer, MotionSweep, SegmentPoses,
+    SegmentSets, SweepFailure, attachment_test_with, check_size,
 };
 use crate::chain::{ChainError, ChainSearch};
 use crate::dictionary::{Dictionary, LookupError, MotionLookup};
@@ -58,6 +58,9 @@ pub struct SolveOptions {
     pub shape_interval_s: Option<f64>,
     /// What simulates the cable in the motion test, at its default settings.
     pub engine: EngineKind,
+    /// Which poses the intra-link segments are tested at (the dictionary's criterion, or
+    /// the paper's one pose).
+    pub intra_link: IntraLinkCriterion,
 }
 
 impl Default for SolveOptions {
@@ -70,6 +73,7 @@ impl Default for SolveOptions {
             static_sweep: true,
             shape_interval_s: None,
             engine: EngineKind::Implicit,
+            intra_link: IntraLinkCriterion::GravityDirections,
         }
     }
 }
@@ -156,17 +160,20 @@ fn solve_with(
     let setup = &options.setup_for(setup)?;
     check_size(setup).map_err(SolveError::Options)?;
     let clock = Instant::now();
-    let poses = SegmentPoses::new(setup, motion)?;
+    let poses = SegmentPoses::with(setup, motion, options.intra_link)?;
     let critical_poses_s = clock.elapsed().as_secs_f64();
     log::info!("critical poses: {critical_poses_s:.3} s");
 
     let clock = Instant::now();
     let evaluator = Evaluator::new(setup, options.method)?;
     let lookup = dictionary
-        .map(|d| MotionLookup::new(d, setup, motion))
+        .map(|d| MotionLookup::new(d, setup, &poses))
         .transpose()?;
-    let verdict = |m: usize, pv: &Pv| lookup.as_ref().and_then(|l| l.verdict(m, pv));
-    let sets = attachment_test_with(&evaluator, &poses, lookup.is_some().then_some(&verdict));
+    let answer = |m: usize, pv: &Pv| match &lookup {
+        Some(lookup) => lookup.answer(m, pv),
+        None => LookupAnswer::Undecided(Vec::new()),
+    };
+    let sets = attachment_test_with(&evaluator, &poses, lookup.is_some().then_some(&answer));
     let attachment_s = clock.elapsed().as_secs_f64();
     log_sets(&sets, lookup.as_ref(), attachment_s);
 
@@ -201,26 +208,29 @@ fn solve_with(
         setup, motion, options, &evaluator, &poses, &sets, &search, outcome, timings,
     );
     if let Some(lookup) = &lookup {
-        report.inputs.dictionary = Some(dictionary_use(lookup, setup));
-        // Their verdicts came from the dictionary's directions, not from poses.
-        for m in (0..setup.segment_count()).filter(|&m| setup.is_intra_link(m)) {
-            report.segments[m].test_poses.clear();
-        }
+        report.inputs.dictionary = Some(dictionary_use(lookup, &sets));
     }
     Ok(report)
 }
 
 /// What the report says of the dictionary a solve used.
-fn dictionary_use(lookup: &MotionLookup<'_>, setup: &Setup) -> DictionaryUse {
+fn dictionary_use(lookup: &MotionLookup<'_>, sets: &[SegmentSets]) -> DictionaryUse {
     let dictionary = lookup.dictionary();
     let header = dictionary.header();
     DictionaryUse {
         file: dictionary.path().display().to_string(),
         directions: header.directions.count,
         covering_radius_deg: header.directions.covering_radius_rad.to_degrees(),
-        required_directions: (0..setup.segment_count())
-            .filter(|&m| setup.is_intra_link(m))
-            .map(|m| (format!("C{}", m + 1), lookup.required_count(m)))
+        segments: sets
+            .iter()
+            .enumerate()
+            .filter_map(|(m, s)| {
+                Some(DictionarySegmentUse {
+                    segment: format!("C{}", m + 1),
+                    gravity_directions: lookup.direction_count(m),
+                    pieces: s.looked_up?,
+                })
+            })
             .collect(),
     }
 }
@@ -228,9 +238,15 @@ fn dictionary_use(lookup: &MotionLookup<'_>, setup: &Setup) -> DictionaryUse {
 /// One `info` line per segment: its set sizes, and where intra-link verdicts came from.
 fn log_sets(sets: &[SegmentSets], lookup: Option<&MotionLookup<'_>>, attachment_s: f64) {
     for (m, s) in sets.iter().enumerate() {
-        let source = match lookup.and_then(|l| l.required(m).map(|_| l.required_count(m))) {
-            Some(n) => format!(", from the dictionary ({n} directions)"),
-            None => String::new(),
+        let source = match (lookup, s.looked_up) {
+            (Some(l), Some(p)) => format!(
+                ", from the dictionary ({} directions: {} hold, {} fail, {} solved)",
+                l.direction_count(m),
+                p.holds,
+                p.fails,
+                p.solved
+            ),
+            _ => String::new(),
         };
         log::info!(
             "attachment C{}: |D0| {} |D'0| {} |D1| {} |D2| {}, {:.2} s{source}",

@@ -169,6 +169,8 @@ pub struct SegmentReport {
     pub rejections: BTreeMap<Rejection, usize>,
     /// (guides, length) combinations evaluated, robustness lengths included.
     pub evaluations: usize,
+    /// Wall time of this segment's attachment test (s).
+    pub time_s: f64,
 }
 
 /// A test pose, without its link poses.
@@ -266,10 +268,21 @@ pub struct DictionaryUse {
     pub file: String,
     /// Gravity directions it stores.
     pub directions: u32,
-    /// Neighbourhood radius of the lookup (deg).
+    /// Largest angle from any direction to a stored one (deg).
     pub covering_radius_deg: f64,
-    /// Per intra-link segment (`C2`, …): stored directions the motion required.
-    pub required_directions: Vec<(String, usize)>,
+    /// Per intra-link segment: what the lookup decided.
+    pub segments: Vec<DictionarySegmentUse>,
+}
+
+/// How a dictionary answered for one intra-link segment.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DictionarySegmentUse {
+    /// `C2`, …
+    pub segment: String,
+    /// Distinct gravity directions of the motion in the segment's link frame.
+    pub gravity_directions: usize,
+    /// Pieces that held or failed by the lookup alone, and those solved exactly.
+    pub pieces: crate::attachment::LookedUp,
 }
 
 /// Everything `solve` found. Serializes as the result JSON (README, "Result JSON"): the names
@@ -727,6 +740,7 @@ fn segment_reports(
                 d2: s.d2.len(),
                 rejections: s.rejections.clone(),
                 evaluations: s.evaluations,
+                time_s: s.time_s,
             }
         })
         .collect()
@@ -820,19 +834,21 @@ impl fmt::Display for SolveReport {
             i.motion_samples
         )?;
         if let Some(d) = &i.dictionary {
-            let required: Vec<String> = d
-                .required_directions
-                .iter()
-                .map(|(segment, n)| format!("{segment} {n}"))
-                .collect();
             writeln!(
                 f,
-                "intra-link sets from dictionary {} ({} directions, radius {:.1}°; required: {})",
-                d.file,
-                d.directions,
-                d.covering_radius_deg,
-                required.join(", ")
+                "intra-link pieces from dictionary {} ({} stored gravity directions, at most \
+                 {:.1}° from any direction)",
+                d.file, d.directions, d.covering_radius_deg,
             )?;
+            for s in &d.segments {
+                let p = &s.pieces;
+                writeln!(
+                    f,
+                    "  {}: {} gravity directions of the motion; {} pieces hold, {} fail by the \
+                     stored margins, {} too close to a limit were solved ({} of them failed)",
+                    s.segment, s.gravity_directions, p.holds, p.fails, p.solved, p.solved_failed
+                )?;
+            }
         }
         if let (Some(path), Some(total)) = (&self.optimal, self.optimal_length_mm) {
             writeln!(f, "\noptimal cable path — total {total:.0} mm")?;
