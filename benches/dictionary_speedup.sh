@@ -27,7 +27,7 @@ while [ "$#" -ge 3 ]; do
 import json, sys
 s, d = (json.load(open(p)) for p in sys.argv[1:3])
 def intra(r):
-    return sum(x["time_s"] for x in r["sets"] if x["kind"] == "intra-link")
+    return r["timings_s"]["attachment_intra_link"]
 def sets(r):
     return [(x["segment"], x["d1"], x["d2"]) for x in r["sets"] if x["kind"] == "intra-link"]
 ts, td = s["timings_s"], d["timings_s"]

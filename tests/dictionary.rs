@@ -5,7 +5,9 @@
 //! exact test at random directions (no false reject), `solve --dict` against `solve --setup`
 //! on every bundled motion, and the bytes against the thread count.
 
-use cable_dict::attachment::{ConnectMethod, Evaluator, Margins, TestPose};
+use cable_dict::attachment::{
+    ConnectMethod, Evaluator, GRAVITY_RESOLUTION_DEG, Margins, SegmentPoses, TestPose,
+};
 use cable_dict::dictionary::directions::{
     Neighbours, covering_radius, fibonacci_sphere, probe_directions,
 };
@@ -328,51 +330,109 @@ fn admissible_pairs(setup: &Setup, m: usize) -> Vec<((usize, usize), Vec<usize>)
 }
 
 /// `solve --dict` and `solve --setup` give the same intra-link D1 and D2 and the same path
-/// on every bundled motion, with the hand-written bundled setups and a dictionary of each.
+/// on every bundled motion with the hand-written bundled setups, and on two with a coarser
+/// copy of the robot-level one (generated sites, installed twist), each with its own
+/// dictionary (the full robot-level catalogue: README, "Dictionaries").
 #[test]
 fn solve_with_a_dictionary_equals_solve_on_the_fly_on_every_bundled_motion() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let cases = [
-        (
-            "pick_and_place",
-            [
-                "pick_and_place",
-                "palletizing",
-                "machine_tending",
-                "screw_driving",
-            ]
-            .as_slice(),
-        ),
-        ("inspection", ["inspection"].as_slice()),
+    let gripper = [
+        "pick_and_place",
+        "palletizing",
+        "machine_tending",
+        "screw_driving",
     ];
-    for (setup_name, motions) in cases {
-        let setup = Setup::from_file(format!("robots/viper_s850/hand_written/{setup_name}.toml"))
-            .expect("setup");
-        let dictionary = opened(dir.path(), &built(&setup, 64));
-        for motion_name in motions {
-            let motion = Motion::from_csv_file(
-                &setup.robot,
-                format!("motions/viper_s850/{motion_name}.csv"),
-            )
-            .expect("motion");
+    let cases = [
+        // Generated sites: the motions with the most gravity directions on link_4.
+        (
+            "tests/data/dict_sites_setup.toml",
+            16,
+            &["machine_tending", "screw_driving"][..],
+        ),
+        (
+            "robots/viper_s850/hand_written/pick_and_place.toml",
+            64,
+            gripper.as_slice(),
+        ),
+        (
+            "robots/viper_s850/hand_written/inspection.toml",
+            64,
+            ["inspection"].as_slice(),
+        ),
+    ];
+    for (path, directions, motions) in cases {
+        let setup = Setup::from_file(path).expect("setup");
+        let dictionary = opened(dir.path(), &built(&setup, directions));
+        for name in motions {
+            let motion = format!("motions/viper_s850/{name}.csv");
+            let motion = Motion::from_csv_file(&setup.robot, motion).expect("motion");
             let options = SolveOptions::default();
             let exact = solve(&setup, &motion, &options).expect("solves");
             let looked_up =
                 solve_with_dictionary(&dictionary, &setup, &motion, &options).expect("solves");
             for m in (0..setup.segment_count()).filter(|&m| setup.is_intra_link(m)) {
                 let (a, b) = (&exact.segments[m], &looked_up.segments[m]);
-                assert_eq!((a.d1, &a.d2), (b.d1, &b.d2), "{motion_name} C{}", m + 1);
+                assert_eq!((a.d1, a.d2), (b.d1, b.d2), "{path} {name} C{}", m + 1);
             }
-            assert_eq!(exact.status, looked_up.status, "{motion_name}");
-            assert_eq!(exact.optimal, looked_up.optimal, "{motion_name}");
-            let used = looked_up
-                .inputs
-                .dictionary
-                .as_ref()
-                .expect("dictionary named");
+            assert_eq!(exact.status, looked_up.status, "{path} {name}");
+            assert_eq!(exact.optimal, looked_up.optimal, "{path} {name}");
+            let used = looked_up.inputs.dictionary.as_ref().expect("named");
             assert!(used.segments.iter().all(|s| s.gravity_directions > 0));
         }
     }
+}
+
+/// The intra-link test poses are the motion's gravity directions in the link frame to the stated
+/// resolution: the first sample among them, no two closer, and every sample's direction
+/// within it of one of them — gravity in the link computed from the link's world rotation.
+#[test]
+fn intra_link_poses_are_the_motions_gravity_directions_to_the_resolution() {
+    let setup = setup();
+    let motion = Motion::from_csv_file(&setup.robot, "motions/viper_s850/machine_tending.csv")
+        .expect("motion");
+    let poses = SegmentPoses::new(&setup, &motion).expect("poses");
+    let link_4 = setup.robot.link_index("link_4").expect("link_4");
+    let down = setup.gravity_m_s2.normalize();
+    let in_link = |joints: &[f64]| {
+        let link_poses = setup.robot.link_poses(joints).expect("pose");
+        link_poses[link_4].rotation.inverse() * down
+    };
+    let chosen: Vec<Vector3<f64>> = poses.poses[C2].iter().map(|p| in_link(&p.joints)).collect();
+    assert_eq!(poses.poses[C2][0].sample, 0);
+    assert!(
+        poses.poses[C2]
+            .iter()
+            .all(|p| p.clearance_link == Some(link_4))
+    );
+    let resolution = GRAVITY_RESOLUTION_DEG.to_radians();
+    for (i, a) in chosen.iter().enumerate() {
+        for b in &chosen[..i] {
+            assert!(
+                a.angle(b) > resolution,
+                "two test poses within the resolution"
+            );
+        }
+    }
+    for joints in motion.samples() {
+        let u = in_link(joints);
+        let nearest = chosen
+            .iter()
+            .map(|c| c.angle(&u))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            nearest <= resolution + 1e-12,
+            "a sample {nearest} rad from every test pose"
+        );
+    }
+    assert!(
+        chosen.len() > 5,
+        "link_4 turns: {} directions",
+        chosen.len()
+    );
+    assert!(
+        poses.poses[0].iter().all(|p| p.clearance_link.is_none()),
+        "C1 sees every link"
+    );
 }
 
 #[test]

@@ -228,7 +228,6 @@ fn segment(
         d2: d[3],
         rejections: BTreeMap::new(),
         evaluations: 0,
-        time_s: 0.0,
     }
 }
 

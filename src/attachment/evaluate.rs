@@ -299,6 +299,8 @@ pub struct Evaluator<'a> {
     rod: RodParameters,
     solver: SolverOptions,
     method: ConnectMethod,
+    /// Every link at the identity: the frame of an intra-link segment's own link.
+    link_frame_poses: Vec<Pose>,
 }
 
 impl<'a> Evaluator<'a> {
@@ -310,6 +312,7 @@ impl<'a> Evaluator<'a> {
             rod: RodParameters::new(&setup.cable, setup.gravity_m_s2),
             solver: SolverOptions::STRESS_CHECK,
             method,
+            link_frame_poses: vec![Pose::identity(); setup.robot.links.len()],
         })
     }
 
@@ -321,12 +324,36 @@ impl<'a> Evaluator<'a> {
     /// Checks PV `pv` of segment `m` at `pose`. A zero-length PV (coincident guides) has no
     /// cable and passes.
     pub fn check(&self, m: usize, pv: &Pv, pose: &TestPose) -> Check {
-        let scene = Scene {
-            link_poses: &pose.link_poses,
-            gravity_m_s2: self.rod.gravity_m_s2,
-            links: pose.clearance_link.as_ref().map(std::slice::from_ref),
-        };
-        self.check_in(m, pv, &scene)
+        self.check_in(m, pv, &self.scene_at(pose))
+    }
+
+    /// Where a PV is solved at `pose`: in the world frame, or — for a pose that measures
+    /// clearance against one link, an intra-link segment's — in that link's frame with
+    /// gravity turned into it. The physics is the same; the arithmetic is then exactly a
+    /// dictionary build's ([`Evaluator::link_frame_metrics`]), so that the two cannot part on
+    /// rounding where a piece has two equilibria close together.
+    fn scene_at<'s>(&'s self, pose: &'s TestPose) -> Scene<'s> {
+        match pose.clearance_link {
+            Some(link) => {
+                let down = pose.gravity_in_link(link, &self.rod.gravity_m_s2);
+                self.link_frame_scene(link, &down)
+            }
+            None => Scene {
+                link_poses: &pose.link_poses,
+                gravity_m_s2: self.rod.gravity_m_s2,
+                links: None,
+            },
+        }
+    }
+
+    /// The scene of `link`'s frame with gravity along `down` (unit, in that frame), clearance
+    /// against that link only.
+    fn link_frame_scene(&self, link: usize, down: &Vector3<f64>) -> Scene<'_> {
+        Scene {
+            link_poses: &self.link_frame_poses,
+            gravity_m_s2: down * self.rod.gravity_m_s2.norm(),
+            links: Some(link),
+        }
     }
 
     /// Checks PV `pv` of segment `m` with the links at `link_poses` (world frame).
@@ -350,11 +377,10 @@ impl<'a> Evaluator<'a> {
         gravity_in_link_m_s2: &Vector3<f64>,
     ) -> Check {
         let link = self.setup.guides[self.setup.segment_guides(m).0].link;
-        let link_poses = vec![Pose::identity(); self.setup.robot.links.len()];
         let scene = Scene {
-            link_poses: &link_poses,
+            link_poses: &self.link_frame_poses,
             gravity_m_s2: *gravity_in_link_m_s2,
-            links: Some(&[link]),
+            links: Some(link),
         };
         self.check_in(m, pv, &scene)
     }
@@ -373,17 +399,11 @@ impl<'a> Evaluator<'a> {
         down: &Vector3<f64>,
     ) -> Vec<Result<Metrics, Rejection>> {
         let setup = self.setup;
-        let link = setup.guides[setup.segment_guides(m).0].link;
-        let link_poses = vec![Pose::identity(); setup.robot.links.len()];
-        let scene = Scene {
-            link_poses: &link_poses,
-            gravity_m_s2: down * self.rod.gravity_m_s2.norm(),
-            links: Some(std::slice::from_ref(&link)),
-        };
         let (a, b) = setup.segment_guides(m);
+        let scene = self.link_frame_scene(setup.guides[a].link, down);
         let declared = (
-            setup.guide_world_pose(&link_poses, a, start),
-            setup.guide_world_pose(&link_poses, b, end),
+            setup.guide_world_pose(scene.link_poses, a, start),
+            setup.guide_world_pose(scene.link_poses, b, end),
         );
         let mut solver = StaticSolver::default();
         let mut earlier: Vec<Solved> = Vec::with_capacity(3);
@@ -444,30 +464,57 @@ impl<'a> Evaluator<'a> {
     /// the first's deviation from its connected geometry ([`continuation::change_length`]),
     /// the others extrapolated from the last two ([`continuation::extrapolate_length`]). The
     /// linear method relaxes every PV from scratch.
+    ///
+    /// For an intra-link segment, every length up to the longest that still holds is solved
+    /// at each pose, also those that failed at an earlier one: a length's shape then depends
+    /// only on the pose and the shorter lengths, exactly as in a dictionary's build
+    /// ([`Evaluator::link_frame_metrics`]), so that a piece with two equilibria (a loop that
+    /// can hang on either side of its link) lands on the same one either way.
     pub fn first_rejections<P: Borrow<TestPose>>(
+        &self,
+        m: usize,
+        pair: (usize, usize),
+        lengths: &[usize],
+        poses: &[P],
+    ) -> Vec<Option<Miss>> {
+        self.first_rejections_of(m, pair, lengths, poses, &vec![true; lengths.len()])
+    }
+
+    /// [`Evaluator::first_rejections`] of the lengths marked in `wanted` only (`None` for the
+    /// others); the unwanted ones are still solved where a longer wanted one's continuation
+    /// needs them.
+    pub fn first_rejections_of<P: Borrow<TestPose>>(
         &self,
         m: usize,
         (start, end): (usize, usize),
         lengths: &[usize],
         poses: &[P],
+        wanted: &[bool],
     ) -> Vec<Option<Miss>> {
         let mut verdicts: Vec<Option<Miss>> = vec![None; lengths.len()];
+        let whole_chain = self.setup.is_intra_link(m);
         let mut solver = StaticSolver::default();
         let turns: Vec<Pose> = lengths
             .iter()
             .map(|&s| self.setup.end_clamp_turn(m, s, (start, end)))
             .collect();
+        let open = |verdicts: &[Option<Miss>], i: usize| wanted[i] && verdicts[i].is_none();
         for (p, pose) in poses.iter().enumerate() {
             let (scene, declared) = self.at_pose(m, (start, end), pose.borrow());
             // The last two solutions at this pose, the nearest first.
             let mut earlier: Vec<Solved> = Vec::with_capacity(3);
-            for (i, (&length, turn)) in lengths.iter().zip(&turns).enumerate() {
-                if verdicts[i].is_some() {
+            let chain_end = (0..lengths.len())
+                .rposition(|i| open(&verdicts, i))
+                .map_or(0, |i| i + 1);
+            for (i, (&length, turn)) in lengths.iter().zip(&turns).enumerate().take(chain_end) {
+                if !whole_chain && !open(&verdicts, i) {
                     continue;
                 }
                 let guides = (declared.0, declared.1 * turn);
                 let check = self.next_length(&mut solver, &mut earlier, m, &guides, length, &scene);
-                verdicts[i] = Miss::of(&check, self.setup, p, &guides, length);
+                if open(&verdicts, i) {
+                    verdicts[i] = Miss::of(&check, self.setup, p, &guides, length);
+                }
             }
         }
         verdicts
@@ -524,7 +571,8 @@ impl<'a> Evaluator<'a> {
     }
 
     /// Checks the next length of a continuation over lengths at one pose: solved from
-    /// `earlier` (the last solutions, the nearest first), which it then joins.
+    /// `earlier` (the last solutions, the nearest first), which it then joins; from the
+    /// connected geometry when that fails.
     fn next_length(
         &self,
         solver: &mut StaticSolver,
@@ -534,7 +582,17 @@ impl<'a> Evaluator<'a> {
         length: usize,
         scene: &Scene<'_>,
     ) -> Check {
-        match self.solve_warm(solver, guides, length, scene, Warm::Length(earlier)) {
+        let mut solved = self.solve_warm(solver, guides, length, scene, Warm::Length(earlier));
+        // A start shape carried over from other lengths can lead Newton astray where the
+        // connected geometry would not: a failed warm solve is retried from it.
+        let diverged = |r: &Result<Solved, Check>| {
+            r.as_ref()
+                .is_err_and(|c| c.rejection == Some(Rejection::Diverged))
+        };
+        if diverged(&solved) && !earlier.is_empty() {
+            solved = self.solve_warm(solver, guides, length, scene, Warm::Length(&[]));
+        }
+        match solved {
             Ok(solved) => {
                 let check = self.judge(m, &guides.0, &guides.1, &solved.nodes, length, scene);
                 earlier.insert(0, solved);
@@ -549,20 +607,16 @@ impl<'a> Evaluator<'a> {
     /// `m`'s guides in the configurations `(start, end)` as declared (the end clamp's twist
     /// reference not yet turned: it depends on the length, see [`Setup::clamp_poses`]).
     fn at_pose<'p>(
-        &self,
+        &'p self,
         m: usize,
         (start, end): (usize, usize),
         pose: &'p TestPose,
     ) -> (Scene<'p>, (Pose, Pose)) {
         let (a, b) = self.setup.segment_guides(m);
-        let scene = Scene {
-            link_poses: &pose.link_poses,
-            gravity_m_s2: self.rod.gravity_m_s2,
-            links: pose.clearance_link.as_ref().map(std::slice::from_ref),
-        };
+        let scene = self.scene_at(pose);
         let guides = (
-            self.setup.guide_world_pose(&pose.link_poses, a, start),
-            self.setup.guide_world_pose(&pose.link_poses, b, end),
+            self.setup.guide_world_pose(scene.link_poses, a, start),
+            self.setup.guide_world_pose(scene.link_poses, b, end),
         );
         (scene, guides)
     }
@@ -746,13 +800,13 @@ impl<'a> Evaluator<'a> {
         let radius = 0.5 * setup.cable.diameter_m;
         let clearance = match scene.links {
             None => min_clearance(&self.obstacles, scene.link_poses, nodes, radius, &zones),
-            Some(links) => min_clearance_to_links(
+            Some(link) => min_clearance_to_links(
                 &self.obstacles,
                 scene.link_poses,
                 nodes,
                 radius,
                 &zones,
-                links,
+                std::slice::from_ref(&link),
             ),
         };
         let clearance = match clearance {
@@ -799,12 +853,12 @@ enum Warm<'a> {
     Poses(&'a [(Solved, (Pose, Pose))]),
 }
 
-/// Where a PV is checked: the links' poses, gravity in the same frame, and which links count
-/// for clearance (`None`: all).
+/// Where a PV is checked: the links' poses, gravity in the same frame, and the one link
+/// that counts for clearance (`None`: all).
 struct Scene<'p> {
     link_poses: &'p [Pose],
     gravity_m_s2: Vector3<f64>,
-    links: Option<&'p [usize]>,
+    links: Option<usize>,
 }
 
 /// The first limit `metrics` violates, in the order contact, stretch, bend.

@@ -213,8 +213,9 @@ impl LookupCounts {
     }
 }
 
-/// The verdicts of the lengths of one pair of configurations from `lookup`, the undecided
-/// ones solved at their undecided poses.
+/// The verdicts of the lengths of one pair of configurations from `lookup`; the undecided
+/// ones solved at the poses where any length of the pair is undecided, the whole chain of
+/// lengths together, as the exact test solves them.
 fn looked_up(
     evaluator: &Evaluator<'_>,
     poses: &[TestPose],
@@ -225,37 +226,55 @@ fn looked_up(
     counts: &LookupCounts,
 ) -> Vec<Option<Miss>> {
     let setup = evaluator.setup();
-    lengths
+    let answers: Vec<LookupAnswer> = lengths
         .iter()
-        .map(|&sub_segments| {
-            let pv = Pv::new(sub_segments, start, end);
-            match lookup(m, &pv) {
-                LookupAnswer::Holds => {
-                    counts.add(0);
-                    None
+        .map(|&s| lookup(m, &Pv::new(s, start, end)))
+        .collect();
+    let undecided: BTreeSet<usize> = answers
+        .iter()
+        .filter_map(|a| match a {
+            LookupAnswer::Undecided(at) => Some(at.iter().copied()),
+            _ => None,
+        })
+        .flatten()
+        .collect();
+    let at: Vec<usize> = undecided.into_iter().collect();
+    let wanted: Vec<bool> = answers
+        .iter()
+        .map(|a| matches!(a, LookupAnswer::Undecided(_)))
+        .collect();
+    let exact = if at.is_empty() {
+        vec![None; lengths.len()]
+    } else {
+        let chosen: Vec<&TestPose> = at.iter().map(|&p| &poses[p]).collect();
+        evaluator.first_rejections_of(m, (start, end), lengths, &chosen, &wanted)
+    };
+    answers
+        .into_iter()
+        .enumerate()
+        .map(|(i, answer)| match answer {
+            LookupAnswer::Holds => {
+                counts.add(0);
+                None
+            }
+            LookupAnswer::Fails {
+                pose,
+                rejection,
+                margins,
+            } => {
+                counts.add(1);
+                Some(Miss::looked_up(setup, rejection, margins, pose))
+            }
+            LookupAnswer::Undecided(_) => {
+                counts.add(2);
+                let miss = exact[i].map(|miss| Miss {
+                    pose: at[miss.pose],
+                    ..miss
+                });
+                if miss.is_some() {
+                    counts.add(3);
                 }
-                LookupAnswer::Fails {
-                    pose,
-                    rejection,
-                    margins,
-                } => {
-                    counts.add(1);
-                    Some(Miss::looked_up(setup, rejection, margins, pose))
-                }
-                LookupAnswer::Undecided(at) => {
-                    counts.add(2);
-                    let chosen: Vec<&TestPose> = at.iter().map(|&p| &poses[p]).collect();
-                    let exact =
-                        evaluator.first_rejections(m, (start, end), &[sub_segments], &chosen);
-                    let miss = exact.into_iter().next().flatten().map(|miss| Miss {
-                        pose: at[miss.pose],
-                        ..miss
-                    });
-                    if miss.is_some() {
-                        counts.add(3);
-                    }
-                    miss
-                }
+                miss
             }
         })
         .collect()

@@ -22,9 +22,10 @@ use serde::Serialize;
 /// intra-link segment's test: the stated resolution of "every direction the motion
 /// produces". Between neighbouring directions a piece's bend radius changes by 0.04 mm per
 /// degree (median) to 0.46 mm per degree (99th percentile; README "Dictionaries"), so a
-/// direction skipped within 2° moves a 99th-percentile piece by under 1 mm; the static sweep
-/// then checks every motion pose. The bundled motions produce 1–180 directions per link.
-pub const GRAVITY_RESOLUTION_DEG: f64 = 2.0;
+/// direction skipped within 3° moves a 99th-percentile piece by under 1.4 mm; the static
+/// sweep then checks every motion pose of the candidates against every link. The bundled
+/// motions produce 1–120 directions per link at 3° (2°: 1.5× as many, and as many solves).
+pub const GRAVITY_RESOLUTION_DEG: f64 = 3.0;
 
 /// Which poses an intra-link segment is tested at.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]

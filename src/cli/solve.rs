@@ -64,7 +64,7 @@ pub struct Args {
     #[arg(long, value_enum, default_value_t = MotionEngine::Implicit)]
     motion_engine: MotionEngine,
     /// Where pieces between two clamps on one link are tested: `gravity-directions` (under
-    /// every direction of gravity the motion produces in the link's frame, to 2°; what a
+    /// every direction of gravity the motion produces in the link's frame, to 3°; what a
     /// dictionary answers) or `first-pose` (the paper's rule: one pose, the motion's first).
     #[arg(long, value_enum, default_value_t = IntraLink::GravityDirections)]
     intra_link: IntraLink,

@@ -199,6 +199,10 @@ fn solve_with(
     let timings = Timings {
         critical_poses_s,
         attachment_s,
+        attachment_intra_link_s: (0..setup.segment_count())
+            .filter(|&m| setup.is_intra_link(m))
+            .map(|m| sets[m].time_s)
+            .sum(),
         chain_s,
         static_sweep_s: outcome.sweep_s,
         motion_test_s,

@@ -63,8 +63,15 @@ pub(crate) struct Workspace {
     last_shift: f64,
 }
 
+/// A line search that finds no lower energy ends the solve as converged when the largest
+/// force is within this factor of the tolerance (the energy's rounding floor: measured on the
+/// robot-level pick-and-place catalogue, solves stalled there at 1.8e-6 and 3.4e-6 N for a
+/// 1e-6 N tolerance, between neighbours that converged).
+const STALL_TOLERANCE_FACTOR: f64 = 10.0;
+
 /// Minimizes the rod energy from `x` until the largest force component is at most
-/// `tolerance` (N) or `max_iterations` steps were taken; the evaluation at the result is
+/// `tolerance` (N) — or within [`STALL_TOLERANCE_FACTOR`] of it where the energy can no
+/// longer decrease — or `max_iterations` steps were taken; the evaluation at the result is
 /// left in `workspace.evaluation`.
 pub(crate) fn minimize(
     rod: &Rod,
@@ -91,6 +98,11 @@ pub(crate) fn minimize(
         }
         ws.descent_direction(rod.twist_stiffness());
         if !ws.line_search(rod, &x) {
+            // At a minimum the energy stops decreasing in floating point a little before the
+            // forces reach a tight tolerance: that is convergence, not a failure.
+            if residual <= STALL_TOLERANCE_FACTOR * tolerance {
+                break None;
+            }
             break Some("the line search found no lower energy".to_string());
         }
         std::mem::swap(&mut x, &mut ws.trial);
