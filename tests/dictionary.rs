@@ -447,3 +447,31 @@ fn the_bytes_do_not_depend_on_the_thread_count() {
     };
     assert_eq!(bytes(1), bytes(2));
 }
+
+/// Without gravity an intra-link segment has one test pose, and its pieces' verdicts there
+/// (solved in the link's frame) are the world-frame check's at that pose.
+#[test]
+fn without_gravity_the_intra_link_test_is_one_pose_and_finite() {
+    let mut setup = setup();
+    setup.gravity_m_s2 = Vector3::zeros();
+    let motion = Motion::from_csv_file(&setup.robot, "motions/viper_s850/pick_and_place.csv")
+        .expect("motion");
+    let poses = SegmentPoses::new(&setup, &motion).expect("poses");
+    assert_eq!(poses.poses[C2].len(), 1);
+    let evaluator = Evaluator::new(&setup, ConnectMethod::Hermite).expect("evaluator");
+    let pose = &poses.poses[C2][0];
+    for ((start, end), lengths) in admissible_pairs(&setup, C2) {
+        let verdicts = evaluator.first_rejections(C2, (start, end), &lengths, &poses.poses[C2]);
+        for (&s, verdict) in lengths.iter().zip(verdicts) {
+            let check = evaluator.check(C2, &Pv::new(s, start, end), pose);
+            assert_eq!(
+                verdict.map(|m| m.rejection),
+                check.rejection,
+                "S = {s} ({start}, {end})"
+            );
+            if let Some(metrics) = check.metrics {
+                assert!(metrics.stretch.is_finite() && metrics.min_bend_radius_m > 0.0);
+            }
+        }
+    }
+}

@@ -366,25 +366,6 @@ impl<'a> Evaluator<'a> {
         self.check_in(m, pv, &scene)
     }
 
-    /// Checks PV `pv` of intra-link segment `m` in its link's frame, with gravity
-    /// `gravity_in_link_m_s2` expressed in that frame: the motion-independent test a
-    /// dictionary stores. Clearance is measured against the segment's own link only (the
-    /// other links' places depend on the pose).
-    pub fn check_in_link_frame(
-        &self,
-        m: usize,
-        pv: &Pv,
-        gravity_in_link_m_s2: &Vector3<f64>,
-    ) -> Check {
-        let link = self.setup.guides[self.setup.segment_guides(m).0].link;
-        let scene = Scene {
-            link_poses: &self.link_frame_poses,
-            gravity_m_s2: *gravity_in_link_m_s2,
-            links: Some(link),
-        };
-        self.check_in(m, pv, &scene)
-    }
-
     /// The metrics of the PVs `(S, start, end)` of intra-link segment `m`, one per length of
     /// `lengths` (sorted, > 0), in the link's frame under gravity along `down` (unit vector
     /// in that frame), clearance against the own link: the link-frame twin of

@@ -58,12 +58,15 @@ pub struct TestPose {
 }
 
 impl TestPose {
-    /// Gravity's direction (unit) in the frame of `link` at this pose, for `gravity_m_s2` in
-    /// the world frame.
+    /// Gravity's direction (unit; zero without gravity) in the frame of `link` at this pose,
+    /// for `gravity_m_s2` in the world frame.
     pub fn gravity_in_link(&self, link: usize, gravity_m_s2: &Vector3<f64>) -> Vector3<f64> {
+        let down = gravity_m_s2
+            .try_normalize(0.0)
+            .unwrap_or_else(Vector3::zeros);
         self.link_poses[link]
             .rotation
-            .inverse_transform_vector(&gravity_m_s2.normalize())
+            .inverse_transform_vector(&down)
     }
 }
 

@@ -22,8 +22,8 @@ pub struct Args {
     /// it must be the setup the dictionary was built for.
     #[arg(long, value_name = "SETUP.toml", required_unless_present = "dict")]
     setup: Option<PathBuf>,
-    /// Take the intra-link segments' sets from this dictionary (cable-dict build) instead of
-    /// testing them at their poses.
+    /// Answer the intra-link segments' pieces from this dictionary (cable-dict build): the
+    /// same sets as solving them, faster; the pieces its margins cannot decide are solved.
     #[arg(long, value_name = "DICT.cdict")]
     dict: Option<PathBuf>,
     /// The motion CSV (see motions/README.md).

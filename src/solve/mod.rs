@@ -3,8 +3,9 @@
 //! 1. Critical poses of every inter-link segment, test poses of the intra-link ones
 //!    ([`SegmentPoses`]).
 //! 2. The attachment test: D0 → D'0 → D1 → D2 per segment ([`crate::attachment::attachment_test`]); with a
-//!    dictionary ([`solve_with_dictionary`]) the intra-link segments' verdicts are looked up
-//!    for the motion's gravity directions instead ([`MotionLookup`]).
+//!    dictionary ([`solve_with_dictionary`]) the intra-link segments' pieces are answered
+//!    from its margins at the motion's gravity directions, the undecided ones solved
+//!    ([`MotionLookup`]): the same sets either way.
 //! 3. The chain search over D2: |D3| and the shortest chain d̂ ([`ChainSearch`]).
 //! 4. The motion test of the chains in non-decreasing length: the first that passes is d*.
 //!    Each PV of a chain is first swept statically over every pose of the motion
@@ -130,9 +131,9 @@ pub fn solve(
     solve_with(setup, motion, options, None)
 }
 
-/// Runs the whole pipeline with the intra-link segments' verdicts from `dictionary`, whose
-/// embedded setup is `setup` ([`Dictionary::setup`]): only the inter-link segments are
-/// tested at their critical poses.
+/// Runs the whole pipeline with the intra-link segments' pieces answered by `dictionary`,
+/// whose embedded setup is `setup` ([`Dictionary::setup`]); the inter-link segments are
+/// tested at their critical poses as in [`solve`].
 pub fn solve_with_dictionary(
     dictionary: &Dictionary,
     setup: &Setup,
