@@ -341,7 +341,7 @@ impl<'a> Evaluator<'a> {
             None => Scene {
                 link_poses: &pose.link_poses,
                 gravity_m_s2: self.rod.gravity_m_s2,
-                links: None,
+                clearance_link: None,
             },
         }
     }
@@ -352,7 +352,7 @@ impl<'a> Evaluator<'a> {
         Scene {
             link_poses: &self.link_frame_poses,
             gravity_m_s2: down * self.rod.gravity_m_s2.norm(),
-            links: Some(link),
+            clearance_link: Some(link),
         }
     }
 
@@ -361,7 +361,7 @@ impl<'a> Evaluator<'a> {
         let scene = Scene {
             link_poses,
             gravity_m_s2: self.rod.gravity_m_s2,
-            links: None,
+            clearance_link: None,
         };
         self.check_in(m, pv, &scene)
     }
@@ -713,7 +713,7 @@ impl<'a> Evaluator<'a> {
         let scene = Scene {
             link_poses: &[],
             gravity_m_s2,
-            links: None,
+            clearance_link: None,
         };
         let mut solver = StaticSolver::default();
         self.solve_warm(
@@ -779,7 +779,7 @@ impl<'a> Evaluator<'a> {
             clamp_zone(GuideEnd::End, setup.guides[b].link, setup),
         ];
         let radius = 0.5 * setup.cable.diameter_m;
-        let clearance = match scene.links {
+        let clearance = match scene.clearance_link {
             None => min_clearance(&self.obstacles, scene.link_poses, nodes, radius, &zones),
             Some(link) => min_clearance_to_links(
                 &self.obstacles,
@@ -839,7 +839,7 @@ enum Warm<'a> {
 struct Scene<'p> {
     link_poses: &'p [Pose],
     gravity_m_s2: Vector3<f64>,
-    links: Option<usize>,
+    clearance_link: Option<usize>,
 }
 
 /// The first limit `metrics` violates, in the order contact, stretch, bend.

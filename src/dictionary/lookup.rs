@@ -108,13 +108,6 @@ impl<'d> MotionLookup<'d> {
         let Some((record, rows)) = self.dictionary.lookup(m, pv) else {
             return LookupAnswer::Undecided((0..segment.neighbours.len()).collect());
         };
-        if record.has(PvRecord::TOO_SHORT) {
-            return LookupAnswer::Fails {
-                pose: 0,
-                rejection: Rejection::TooShort,
-                margins: None,
-            };
-        }
         let mut undecided = Vec::new();
         for (pose, neighbours) in segment.neighbours.iter().enumerate() {
             match at_direction(record, rows, neighbours) {
@@ -124,7 +117,7 @@ impl<'d> MotionLookup<'d> {
                     return LookupAnswer::Fails {
                         pose,
                         rejection,
-                        margins: Some(margins),
+                        margins,
                     };
                 }
             }
@@ -142,13 +135,13 @@ impl<'d> MotionLookup<'d> {
 pub enum DirectionAnswer {
     /// Every interpolated margin, widened by the error bound, is non-negative.
     Holds,
-    /// A margin is negative even widened: the first such limit and the interpolated
-    /// margins.
+    /// A margin is negative even widened, or the cable is too short for its clamps: the
+    /// first such limit and the interpolated margins (none for a cable too short).
     Fails {
         /// The limit.
         rejection: Rejection,
         /// Interpolated `[clearance mm, stretch, curvature 1/m]`.
-        margins: [f64; 3],
+        margins: Option<[f64; 3]>,
     },
     /// The error bound straddles zero, or a neighbour has no equilibrium.
     Undecided,
@@ -164,12 +157,6 @@ impl Dictionary {
             return Some(DirectionAnswer::Holds);
         }
         let (record, rows) = self.lookup(m, pv)?;
-        if record.has(PvRecord::TOO_SHORT) {
-            return Some(DirectionAnswer::Fails {
-                rejection: Rejection::TooShort,
-                margins: [f64::NAN; 3],
-            });
-        }
         let neighbours = Neighbours::of(self.directions(), down);
         Some(at_direction(record, rows, &neighbours))
     }
@@ -182,6 +169,12 @@ fn at_direction(
     rows: &[MarginRecord],
     neighbours: &Neighbours,
 ) -> DirectionAnswer {
+    if record.has(PvRecord::TOO_SHORT) {
+        return DirectionAnswer::Fails {
+            rejection: Rejection::TooShort,
+            margins: None,
+        };
+    }
     let Some(interpolated) = neighbours.interpolate(|k| rows.get(k)?.values()) else {
         return DirectionAnswer::Undecided;
     };
@@ -189,7 +182,10 @@ fn at_direction(
     let error = record.error_bound(interpolated.spread);
     let upper: [f64; 3] = std::array::from_fn(|k| margins[k] + error[k]);
     if let Some(rejection) = Margins::first_violation(upper) {
-        return DirectionAnswer::Fails { rejection, margins };
+        return DirectionAnswer::Fails {
+            rejection,
+            margins: Some(margins),
+        };
     }
     let lower: [f64; 3] = std::array::from_fn(|k| margins[k] - error[k]);
     match Margins::first_violation(lower) {
