@@ -12,16 +12,21 @@ use cable_dict::dictionary::directions::{
     Neighbours, covering_radius, fibonacci_sphere, probe_directions,
 };
 use cable_dict::dictionary::format::{MARGIN_UNITS, MarginRecord, PvRecord};
-use cable_dict::dictionary::{BuildOptions, Built, Dictionary, DirectionAnswer, build};
+use cable_dict::dictionary::{
+    BuildOptions, Built, Dictionary, DirectionAnswer, MotionLookup, build,
+};
 use cable_dict::motion::Motion;
 use cable_dict::path::Pv;
 use cable_dict::setup::Setup;
 use cable_dict::solve::{SolveOptions, solve, solve_with_dictionary};
 use nalgebra::Vector3;
 use rayon::prelude::*;
+use std::collections::BTreeMap;
 use std::path::Path;
+use std::sync::{Mutex, OnceLock};
 
 const SETUP: &str = "tests/data/dict_setup.toml";
+const HAND_WRITTEN_PICK_AND_PLACE: &str = "robots/viper_s850/hand_written/pick_and_place.toml";
 /// The intra-link segment of the fixture (C2, on link_4).
 const C2: usize = 1;
 
@@ -41,6 +46,29 @@ fn opened(dir: &Path, built: &Built) -> Dictionary {
     let path = dir.join("fixture.cdict");
     cable_dict::dictionary::write_dictionary(&path, built).expect("written");
     Dictionary::open(&path).expect("opens")
+}
+
+/// The dictionary of a bundled setup at `directions`, built once per test binary (the
+/// hand-written pick-and-place catalogue takes about 11 s at 64 directions).
+fn shared(path: &'static str, directions: usize) -> &'static Dictionary {
+    type Cache = Mutex<BTreeMap<(&'static str, usize), &'static Dictionary>>;
+    static CACHE: OnceLock<Cache> = OnceLock::new();
+    static DIR: OnceLock<tempfile::TempDir> = OnceLock::new();
+    let dir = DIR.get_or_init(|| tempfile::tempdir().expect("temp dir"));
+    let mut cache = CACHE.get_or_init(Cache::default).lock().expect("cache");
+    cache.entry((path, directions)).or_insert_with(|| {
+        let setup = Setup::from_file(path).expect("setup");
+        let file = dir
+            .path()
+            .join(format!("{}-{directions}.cdict", cache_name(path)));
+        cable_dict::dictionary::write_dictionary(&file, &built(&setup, directions))
+            .expect("written");
+        Box::leak(Box::new(Dictionary::open(&file).expect("opens")))
+    })
+}
+
+fn cache_name(path: &str) -> String {
+    path.replace(['/', '.'], "_")
 }
 
 fn angle(a: &[f64; 3], b: &Vector3<f64>) -> f64 {
@@ -131,13 +159,21 @@ fn stored_margins_match_the_attachment_test_at_a_pose_with_that_gravity() {
     };
     let g = setup.gravity_m_s2.norm();
     let (mut compared, mut unmeasured) = (0, 0);
-    for (k, record) in dictionary.pv_records().iter().enumerate() {
-        if !record.has(PvRecord::ADMISSIBLE) || record.sub_segments == 0 {
-            continue;
-        }
-        let pv = record.pv();
+    // The setup's own PVs, found in link_4's catalogue through their clamp poses.
+    let stored_segment = dictionary.stored_segment(&setup, C2).expect("C2 stored");
+    let pieces = admissible_pairs(&setup, C2)
+        .into_iter()
+        .flat_map(|((start, end), lengths)| {
+            lengths.into_iter().map(move |s| Pv::new(s, start, end))
+        });
+    for pv in pieces {
+        let piece = stored_segment.piece(&pv).expect("mapped");
+        let (record, rows) = dictionary
+            .lookup(stored_segment.slot, &piece)
+            .expect("stored");
+        assert!(record.has(PvRecord::ADMISSIBLE) && record.pv() == piece);
         for d in [0, 5, 11] {
-            let stored = dictionary.results()[k * 16 + d];
+            let stored = rows[d];
             let direction = Vector3::from(dictionary.directions()[d]);
             let mut world = setup.clone();
             world.gravity_m_s2 = link_poses[link_4].rotation * (direction * g);
@@ -223,19 +259,19 @@ fn interpolation_uses_the_nearest_directions_and_stays_in_their_range() {
 /// lets through that the exact test rejects (false accepts) are counted and printed.
 #[test]
 fn the_lookup_never_rejects_a_piece_the_exact_test_keeps() {
-    let dir = tempfile::tempdir().expect("temp dir");
     for (path, directions) in [
         (SETUP, 16),
-        ("robots/viper_s850/hand_written/pick_and_place.toml", 64),
+        (HAND_WRITTEN_PICK_AND_PLACE, 64),
         ("robots/viper_s850/hand_written/inspection.toml", 64),
     ] {
         let setup = Setup::from_file(path).expect("setup");
-        let dictionary = opened(dir.path(), &built(&setup, directions));
+        let dictionary = shared(path, directions);
         let evaluator = Evaluator::new(&setup, ConnectMethod::Hermite).expect("evaluator");
         let queries = random_directions(200, 0x5eed);
         let mut counts = [0usize; 4]; // holds, fails, undecided, false accepts
         for m in (0..setup.segment_count()).filter(|&m| setup.is_intra_link(m)) {
             let pairs = admissible_pairs(&setup, m);
+            let stored = dictionary.stored_segment(&setup, m).expect("stored");
             let tallies: Vec<[usize; 4]> = pairs
                 .par_iter()
                 .map(|((start, end), lengths)| {
@@ -247,7 +283,8 @@ fn the_lookup_never_rejects_a_piece_the_exact_test_keeps() {
                                 Margins::first_violation(Margins::of(&metrics, &setup.thresholds).to_array()).is_none()
                             });
                             let pv = Pv::new(s, *start, *end);
-                            let answer = dictionary.answer_at(m, &pv, down).expect("stored");
+                            let piece = stored.piece(&pv).expect("mapped");
+                            let answer = dictionary.answer_at(stored.slot, &piece, down).expect("stored");
                             match answer {
                                 DirectionAnswer::Fails { rejection, margins } => {
                                     assert!(!keeps, "{path} C{} {pv:?} at {down:?}: the exact test keeps it, the lookup rejects it ({rejection:?}, {margins:?})", m + 1);
@@ -332,45 +369,64 @@ fn admissible_pairs(setup: &Setup, m: usize) -> Vec<((usize, usize), Vec<usize>)
 /// `solve --dict` and `solve --setup` give the same intra-link D1 and D2 and the same path
 /// on every bundled motion with the hand-written bundled setups, and on two with a coarser
 /// copy of the robot-level one (generated sites, installed twist), each with its own
-/// dictionary (the full robot-level catalogue: README, "Dictionaries").
+/// dictionary (the full robot-level catalogue: README, "Dictionaries"); and with a setup
+/// drawn from the hand-written pick-and-place catalogue (subsets of its places, other
+/// lengths, two clamps on a link the build setup has one on) and the dictionary of that
+/// catalogue.
 #[test]
 fn solve_with_a_dictionary_equals_solve_on_the_fly_on_every_bundled_motion() {
-    let dir = tempfile::tempdir().expect("temp dir");
     let gripper = [
         "pick_and_place",
         "palletizing",
         "machine_tending",
         "screw_driving",
     ];
+    // (setup, dictionary built from, directions, motions)
     let cases = [
         // Generated sites: the motions with the most gravity directions on link_4.
         (
+            "tests/data/dict_sites_setup.toml",
             "tests/data/dict_sites_setup.toml",
             16,
             &["machine_tending", "screw_driving"][..],
         ),
         (
-            "robots/viper_s850/hand_written/pick_and_place.toml",
+            HAND_WRITTEN_PICK_AND_PLACE,
+            HAND_WRITTEN_PICK_AND_PLACE,
             64,
             gripper.as_slice(),
         ),
         (
+            "tests/data/dict_subset_setup.toml",
+            HAND_WRITTEN_PICK_AND_PLACE,
+            64,
+            ["pick_and_place", "machine_tending"].as_slice(),
+        ),
+        (
+            "robots/viper_s850/hand_written/inspection.toml",
             "robots/viper_s850/hand_written/inspection.toml",
             64,
             ["inspection"].as_slice(),
         ),
     ];
-    for (path, directions, motions) in cases {
+    for (path, built_from, directions, motions) in cases {
         let setup = Setup::from_file(path).expect("setup");
-        let dictionary = opened(dir.path(), &built(&setup, directions));
-        for name in motions {
+        let dictionary = shared(built_from, directions);
+        for (k, name) in motions.iter().enumerate() {
             let motion = format!("motions/viper_s850/{name}.csv");
             let motion = Motion::from_csv_file(&setup.robot, motion).expect("motion");
-            let options = SolveOptions::default();
+            // The static sweep and the motion test are a deterministic function of the D2
+            // sets, so equal sets give an equal d*: each case runs them on its first motion
+            // (end to end), the others compare every set and the shortest chain.
+            let options = SolveOptions {
+                motion_test: k == 0,
+                static_sweep: k == 0,
+                ..SolveOptions::default()
+            };
             let exact = solve(&setup, &motion, &options).expect("solves");
             let looked_up =
-                solve_with_dictionary(&dictionary, &setup, &motion, &options).expect("solves");
-            for m in (0..setup.segment_count()).filter(|&m| setup.is_intra_link(m)) {
+                solve_with_dictionary(dictionary, &setup, &motion, &options).expect("solves");
+            for m in 0..setup.segment_count() {
                 let (a, b) = (&exact.segments[m], &looked_up.segments[m]);
                 assert_eq!((a.d1, a.d2), (b.d1, b.d2), "{path} {name} C{}", m + 1);
             }
@@ -473,5 +529,45 @@ fn without_gravity_the_intra_link_test_is_one_pose_and_finite() {
                 assert!(metrics.stretch.is_finite() && metrics.min_bend_radius_m > 0.0);
             }
         }
+    }
+}
+
+/// A setup the dictionary cannot serve is refused, naming the first thing that differs: a
+/// clamp place that is not in the link's catalogue (with its position), other limits, a
+/// length that is not stored. The unchanged text is served (the control).
+#[test]
+fn a_setup_outside_the_catalogue_is_refused_naming_what_differs() {
+    let dictionary = shared(SETUP, 16);
+    let text = std::fs::read_to_string(SETUP).expect("fixture");
+    let motion = Motion::from_csv_file(&setup().robot, "motions/viper_s850/pick_and_place.csv")
+        .expect("motion");
+    let refusal = |edited: &str| -> Option<String> {
+        let setup = Setup::from_toml_str(edited, Path::new(SETUP)).expect("edited setup loads");
+        let poses = SegmentPoses::new(&setup, &motion).expect("poses");
+        MotionLookup::new(dictionary, &setup, &poses)
+            .err()
+            .map(|e| e.to_string())
+    };
+    assert_eq!(refusal(&text), None);
+    let cases = [
+        (
+            "[-72.0, 0.0, 280.0]",
+            "[-72.0, 0.0, 281.0]",
+            "G3 'back z280' at (-72.0, 0.0, 281.0) mm is not among the dictionary's",
+        ),
+        ("stretch = 1.02", "stretch = 1.03", "other limits"),
+        (
+            "min = 4, max = 8",
+            "min = 4, max = 12",
+            "S = 11 is not stored",
+        ),
+    ];
+    for (from, to, expected) in cases {
+        assert!(text.contains(from), "{from}");
+        let message = refusal(&text.replace(from, to)).expect("refused");
+        assert!(
+            message.contains(expected) && message.contains(".cdict"),
+            "{message}"
+        );
     }
 }

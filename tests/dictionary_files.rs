@@ -95,24 +95,25 @@ fn a_valid_file_opens_verifies_and_info_reports_the_build() {
     let info: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
     assert_eq!(info["directions"], DIRECTIONS);
     assert!(info["shard"].is_null());
-    let segments = info["segments"].as_array().expect("segments");
-    let intra: Vec<usize> = (0..setup.segment_count())
-        .filter(|&m| setup.is_intra_link(m))
-        .collect();
-    assert_eq!(segments.len(), intra.len());
-    for (segment, m) in segments.iter().zip(intra) {
-        let (start, end) = (&setup.guides[m], &setup.guides[m + 1]);
-        assert_eq!(segment["segment"], format!("C{}", m + 1));
-        assert_eq!(segment["link"], setup.robot.links[start.link].name);
-        assert_eq!(
-            segment["configurations"],
-            serde_json::json!([start.configurations.len(), end.configurations.len()])
-        );
+    // One catalogue per link with two or more distinct places, counted here from the
+    // positions and angles as written (coincident copies are the same place).
+    let mut places: std::collections::BTreeMap<String, std::collections::BTreeSet<String>> =
+        Default::default();
+    for guide in &setup.guides {
+        let link = setup.robot.links[guide.body].name.clone();
+        for c in &guide.configurations {
+            let written = format!("{:?} {:?}", c.position_mm, c.rpy_deg);
+            places.entry(link.clone()).or_default().insert(written);
+        }
     }
-    assert!(
-        segments.iter().any(|s| s["segment"] == "C2"),
-        "{segments:?}"
-    );
+    places.retain(|_, written| written.len() >= 2);
+    let links = info["links"].as_array().expect("links");
+    assert_eq!(links.len(), places.len(), "{links:?}");
+    for (entry, (link, written)) in links.iter().zip(&places) {
+        assert_eq!(entry["link"], link.as_str());
+        assert_eq!(entry["clamps"], written.len());
+    }
+    assert!(links.iter().any(|s| s["link"] == "link_4"), "{links:?}");
 }
 
 #[test]
@@ -159,29 +160,30 @@ fn a_wrong_magic_is_not_a_dictionary() {
 fn a_future_old_or_unknown_version_is_refused_as_such() {
     let bytes = whole().1.to_bytes().expect("encodes");
     let dir = tempfile::tempdir().expect("temp dir");
-    for version in [3u32, 1, 0] {
+    for version in [4u32, 2, 1, 0] {
         let mut altered = bytes.clone();
         altered[8..12].copy_from_slice(&version.to_le_bytes());
         let path = write(dir.path(), &format!("v{version}.cdict"), &altered);
         let error = open_error(&path);
         match version {
-            3 => {
+            4 => {
                 assert!(
                     matches!(
                         error.problem,
                         Problem::FutureVersion {
-                            found: 3,
-                            supported: 2
+                            found: 4,
+                            supported: 3
                         }
                     ),
                     "{error}"
                 );
                 assert_names(&error, &path, "newer");
             }
-            // Version 1 (verdicts) is refused with the command that rebuilds it.
-            1 => {
+            // Versions 1 (verdicts) and 2 (one block per segment) are refused with the
+            // command that rebuilds them.
+            1 | 2 => {
                 assert!(
-                    matches!(error.problem, Problem::OldVersion { found: 1 }),
+                    matches!(error.problem, Problem::OldVersion { found } if found == version),
                     "{error}"
                 );
                 assert_names(&error, &path, "cable-dict build");
@@ -192,7 +194,7 @@ fn a_future_old_or_unknown_version_is_refused_as_such() {
                         error.problem,
                         Problem::UnknownVersion {
                             found: 0,
-                            supported: 2
+                            supported: 3
                         }
                     ),
                     "{error}"
@@ -428,17 +430,18 @@ fn the_binary_refuses_damaged_files_with_exit_code_2() {
     assert!(stderr.contains("truncated.cdict"), "{stderr}");
 }
 
-/// A forged header whose grid (lengths × configurations) overflows 64 bits is refused, not
-/// multiplied (found by review of the reader: it panicked in debug builds, passed in release).
+/// A forged header with more clamps on a link than a PV record can index (so that its grid,
+/// lengths × clamps², would be out of reach of the records) is refused before anything is
+/// multiplied (an earlier layout's count overflowed 64 bits: it panicked in debug builds).
 #[test]
-fn a_header_whose_pv_count_overflows_is_refused() {
+fn a_header_with_more_clamps_than_a_record_indexes_is_refused() {
     let built = &whole().1;
     let mut header = built.header.clone();
-    let segment = &mut header.segments[0];
-    segment.lengths = vec![1, 2];
-    segment.start_configurations = u32::MAX;
-    segment.end_configurations = u32::MAX;
-    header.pv_total = 2u64.wrapping_mul(u64::from(u32::MAX) * u64::from(u32::MAX));
+    let link = &mut header.links[0];
+    link.lengths = vec![1, 2];
+    let clamp = link.clamps[0].clone();
+    link.clamps = vec![clamp; usize::from(u16::MAX) + 1];
+    header.pv_total = 2 * (1u64 << 32);
     header.shard = Some(format::ShardRange {
         index: 0,
         count: 1,
@@ -455,7 +458,7 @@ fn a_header_whose_pv_count_overflows_is_refused() {
     .expect("encodes");
     let problem = cable_dict::dictionary::check_bytes(&bytes).expect_err("refused");
     assert!(
-        matches!(&problem, Problem::Header(detail) if detail.contains("overflows")),
+        matches!(&problem, Problem::Header(detail) if detail.contains("65536 clamps, not 2 to 65535")),
         "{problem}"
     );
 }

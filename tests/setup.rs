@@ -881,8 +881,14 @@ fn a_setup_rebuilt_from_its_kept_texts_has_the_same_hash() {
     // A folder without the robot and cable files: the kept texts are enough.
     let dir = tempfile::tempdir().unwrap_or_else(|e| panic!("{e}"));
     let source = dir.path().join("robots/viper_s850/inspection.toml");
-    let rebuilt = Setup::from_texts(&setup.text, &source, &setup.robot_text, &setup.cable_text)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let rebuilt = Setup::from_texts(
+        &setup.text,
+        &source,
+        &setup.robot_text,
+        &setup.cable_text,
+        &[],
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(rebuilt.content_hash, setup.content_hash);
     assert_eq!(rebuilt.canonical_bytes(), setup.canonical_bytes());
     assert_eq!(rebuilt.source, source);

@@ -448,7 +448,7 @@ lengths = {{ min = 30, max = 40, step = 1, allow_zero = false }}
 "#
     );
     let source = root().join("tests/data/two.toml");
-    let message = match Setup::from_texts(&text, &source, urdf, &cable) {
+    let message = match Setup::from_texts(&text, &source, urdf, &cable, &[]) {
         Ok(_) => panic!("accepted"),
         Err(e) => e.to_string(),
     };

@@ -183,46 +183,36 @@ fn copy_folder(from: &Path, to: &Path) {
     }
 }
 
-#[test]
-fn a_setup_and_a_waypoint_file_beside_the_urdf_work_from_bare_file_names() {
+/// A copy of the package in a temporary folder, and its urdf folder.
+fn package_copy() -> (tempfile::TempDir, PathBuf) {
     let root = tempfile::tempdir().expect("temp dir");
     copy_folder(&package(), &root.path().join("my_robot_description"));
     let urdf = root.path().join("my_robot_description/urdf");
-    let cable = Path::new(env!("CARGO_MANIFEST_DIR")).join("cables/smc_le_cp_3_paper.toml");
-    let setup = format!(
-        r#"robot = "robot.urdf"
-cable = '{}'
-gravity_m_s2 = [0.0, 0.0, -9.81]
-max_guides_per_link = 1
+    (root, urdf)
+}
 
-[thresholds]
-contact_clearance_mm = 0.0
-stretch = 1.02
-min_bend_radius_mm = 25.0
-clamp_zone_mm = 20.0
-
-[robustness]
-delta_s = 1
-range = 2
-
-[[guides]]
+#[test]
+fn a_setup_and_a_waypoint_file_beside_the_urdf_work_from_bare_file_names() {
+    let (_root, urdf) = package_copy();
+    write_setup(
+        &urdf,
+        1,
+        r#"[[guides]]
 name = "G1"
 link = "link_1"
-configurations = [{{ name = "side", position_mm = [70.0, 0.0, 200.0], rpy_deg = [0.0, 0.0, 0.0] }}]
+configurations = [{ name = "side", position_mm = [70.0, 0.0, 200.0], rpy_deg = [0.0, 0.0, 0.0] }]
 
 [[guides]]
 name = "G2"
 link = "link_2"
-configurations = [{{ name = "front", position_mm = [120.0, 0.0, 100.0], rpy_deg = [0.0, 0.0, 0.0] }}]
+configurations = [{ name = "front", position_mm = [120.0, 0.0, 100.0], rpy_deg = [0.0, 0.0, 0.0] }]
 
 [[segments]]
 from = "G1"
 to = "G2"
-lengths = {{ min = 25, max = 30, step = 1, allow_zero = false }}
+lengths = { min = 25, max = 30, step = 1, allow_zero = false }
 "#,
-        cable.display()
     );
-    std::fs::write(urdf.join("setup.toml"), setup).expect("setup written");
     let waypoints = r#"robot = "robot.urdf"
 sample_rate_hz = 10.0
 speed_scale = 0.5
@@ -251,6 +241,105 @@ joints_deg = [30.0, 45.0]
     assert_eq!(segments[0]["links"][0], "link_1");
     assert_eq!(segments[0]["links"][1], "link_2");
     assert_eq!(segments[0]["traversed_joints"][0], "joint_2");
+}
+
+/// Writes `setup.toml` into `dir` (beside robot.urdf): the paper's cable, gravity, limits and
+/// robustness, `max_guides_per_link`, then `guides_and_segments`.
+fn write_setup(dir: &Path, max_guides_per_link: usize, guides_and_segments: &str) {
+    let cable = Path::new(env!("CARGO_MANIFEST_DIR")).join("cables/smc_le_cp_3_paper.toml");
+    let setup = format!(
+        r#"robot = "robot.urdf"
+cable = '{}'
+gravity_m_s2 = [0.0, 0.0, -9.81]
+max_guides_per_link = {max_guides_per_link}
+
+[thresholds]
+contact_clearance_mm = 0.0
+stretch = 1.02
+min_bend_radius_mm = 25.0
+clamp_zone_mm = 20.0
+
+[robustness]
+delta_s = 1
+range = 2
+
+{guides_and_segments}"#,
+        cable.display()
+    );
+    std::fs::write(dir.join("setup.toml"), setup).expect("setup written");
+}
+
+/// A dictionary of a robot with mesh colliders embeds the mesh files: built, the package
+/// folder deleted, it still opens, verifies, loads its setup with the same collision meshes
+/// (vertex for vertex) and solves a motion with `--dict` alone.
+#[test]
+fn a_dictionary_embeds_the_mesh_files_and_works_without_them() {
+    let (root, urdf) = package_copy();
+    write_setup(
+        &urdf,
+        2,
+        r#"[[guides]]
+name = "G1"
+link = "link_2"
+configurations = [
+  { name = "front low", position_mm = [60.0, 0.0, 60.0], rpy_deg = [0.0, 0.0, 0.0] },
+  { name = "front mid", position_mm = [60.0, 0.0, 100.0], rpy_deg = [0.0, 0.0, 0.0] },
+]
+
+[[guides]]
+name = "G2"
+link = "link_2"
+configurations = [{ name = "front high", position_mm = [60.0, 0.0, 160.0], rpy_deg = [0.0, 0.0, 0.0] }]
+
+[[segments]]
+from = "G1"
+to = "G2"
+lengths = { min = 8, max = 12, step = 1, allow_zero = false }
+"#,
+    );
+    std::fs::write(
+        urdf.join("waypoints.toml"),
+        "robot = \"robot.urdf\"\nsample_rate_hz = 10.0\nspeed_scale = 0.5\nprofile = \"trapezoidal\"\n\
+         time_to_full_speed_s = 0.25\n\n[[waypoint]]\njoints_deg = [0.0, 0.0]\n\n\
+         [[waypoint]]\njoints_deg = [30.0, 45.0]\n",
+    )
+    .expect("waypoints written");
+    let dict = root.path().join("mesh_robot.cdict");
+    let motion = root.path().join("motion.csv");
+    let dict_arg = dict.to_str().expect("utf-8");
+    let motion_arg = motion.to_str().expect("utf-8");
+    for args in [
+        &["motion", "waypoints.toml", "-o", motion_arg][..],
+        &["build", "setup.toml", "--directions", "16", "-o", dict_arg][..],
+    ] {
+        let output = run_in(&urdf, args);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(0), "{args:?}: {stderr}");
+    }
+    let from_files = Robot::from_urdf_file(urdf.join("robot.urdf")).expect("robot");
+    std::fs::remove_dir_all(root.path().join("my_robot_description")).expect("deleted");
+
+    let dictionary = cable_dict::dictionary::Dictionary::open(&dict).expect("opens");
+    dictionary.verify().expect("verifies");
+    let embedded = dictionary.setup().expect("the embedded setup loads").robot;
+    assert_eq!(embedded.mesh_files, from_files.mesh_files);
+    assert_eq!(embedded.mesh_files.len(), 3);
+    for (a, b) in embedded.links.iter().zip(&from_files.links) {
+        for (ca, cb) in a.colliders.iter().zip(&b.colliders) {
+            match (&ca.shape, &cb.shape) {
+                (Shape::Mesh(ma), Shape::Mesh(mb)) => {
+                    assert_eq!((&ma.vertices, &ma.triangles), (&mb.vertices, &mb.triangles));
+                }
+                (a, b) => panic!("{} vs {}", a.describe(), b.describe()),
+            }
+        }
+    }
+    let output = run_in(root.path(), &["solve", "--dict", dict_arg, motion_arg]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(0), "solve --dict: {stderr}");
+    let output = run_in(root.path(), &["info", dict_arg]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("3 mesh files embedded"), "{stdout}");
 }
 
 /// A xacro file under a URDF's name: the namespace, a macro and its use.

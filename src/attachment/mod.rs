@@ -25,7 +25,9 @@ mod evaluate;
 mod poses;
 mod sweep;
 
-pub use evaluate::{Check, ConnectMethod, Evaluator, Margins, Metrics, Miss, Rejection};
+pub use evaluate::{
+    CONTINUATION_BLOCK, Check, ConnectMethod, Evaluator, Margins, Metrics, Miss, Rejection,
+};
 pub use poses::{GRAVITY_RESOLUTION_DEG, IntraLinkCriterion, SegmentPoses, TestPose};
 pub use sweep::{MotionSweep, SweepFailure};
 

@@ -12,7 +12,8 @@ use std::time::Instant;
 
 #[derive(Debug, clap::Args)]
 pub struct BuildArgs {
-    /// The setup whose intra-link segments to store.
+    /// The setup whose clamp places to store: every pair of places on each link with two or
+    /// more (from all its guides on that link), at its intra-link segments' lengths.
     setup: PathBuf,
     /// The dictionary (or shard) to write; replaced atomically.
     #[arg(short, long, value_name = "DICT.cdict")]
@@ -78,11 +79,12 @@ pub fn run_build(args: BuildArgs) -> Result<(), Failure> {
             shard.index, shard.count, shard.first_pv, shard.end_pv, built.header.pv_total
         );
     }
-    for e in &built.header.segments {
+    for e in &built.header.links {
         let _ = write!(
             text,
-            "; C{} |D1| {} |D2| {}",
-            e.segment + 1,
+            "; {} ({} clamps) |D1| {} |D2| {}",
+            e.link,
+            e.clamps.len(),
             e.d1_all,
             e.d2_all
         );
@@ -132,21 +134,26 @@ fn describe(info: &Info) -> String {
         "{} gravity directions ({}, at most {:.2}° from any direction); {}",
         info.directions, info.direction_method, info.covering_radius_deg, info.solver
     );
-    let _ = writeln!(
-        text,
-        "\nsegment  link      lengths (S)    configs    PVs  candidates  |D1| all  |D2| all"
-    );
-    for s in &info.segments {
+    if info.mesh_files > 0 {
         let _ = writeln!(
             text,
-            "  {:<6} {:<9} {:>3}..={:<3} ({:>2})  {:>2} × {:<2} {:>6} {:>11} {:>9} {:>9}",
-            s.segment,
+            "{} mesh files embedded with the URDF",
+            info.mesh_files
+        );
+    }
+    let _ = writeln!(
+        text,
+        "\nlink        clamp places  lengths (S)        pieces  candidates  |D1| all  |D2| all"
+    );
+    for s in &info.links {
+        let _ = writeln!(
+            text,
+            "  {:<10} {:>12}  {:>3} to {:<3} ({:>2}) {:>9} {:>11} {:>9} {:>9}",
             s.link,
+            s.clamps,
             s.lengths[0],
             s.lengths[1],
             s.length_count,
-            s.configurations[0],
-            s.configurations[1],
             s.pvs,
             s.candidates,
             s.d1_all,
@@ -159,9 +166,9 @@ fn describe(info: &Info) -> String {
          × 1.5, measured leaving each direction out and at {} probe directions):",
         info.probes
     );
-    for s in &info.segments {
+    for s in &info.links {
         // One factor per piece serves all three margins (a branch change moves the whole shape).
-        let _ = writeln!(text, "  {:<6} {:.3}", s.segment, s.margin_error[0]);
+        let _ = writeln!(text, "  {:<10} {:.3}", s.link, s.margin_error[0]);
     }
     text
 }

@@ -50,7 +50,8 @@ enum Command {
     ExportScene(scene::Args),
     /// List (or draw, glTF) the clamp sites and cable directions a setup's search will try.
     Sites(sites::Args),
-    /// Precompute a setup's intra-link segments into a dictionary (or one shard of it).
+    /// Precompute the cable pieces between a setup's clamp places on each link into a
+    /// dictionary (or one shard of it).
     Build(dictionary::BuildArgs),
     /// Describe a dictionary: build parameters, setup, set sizes.
     Info(dictionary::InfoArgs),

@@ -19,7 +19,8 @@ use std::path::{Path, PathBuf};
 pub struct Args {
     /// The setup file (robot, cable, guide candidates, segment lengths, limits; see
     /// docs/setup-format.md). Optional with --dict (which embeds its setup); given with it,
-    /// it must be the setup the dictionary was built for.
+    /// it must have the dictionary's robot, cable, gravity, limits and installation pose and
+    /// take its intra-link clamps from the dictionary's places.
     #[arg(long, value_name = "SETUP.toml", required_unless_present = "dict")]
     setup: Option<PathBuf>,
     /// Answer the intra-link segments' pieces from this dictionary (cable-dict build): the

@@ -1,29 +1,33 @@
-//! Building a dictionary (or one shard of it): the three margins of every PV of every
-//! intra-link segment under every sampled gravity direction in the segment's link frame,
-//! through the same static test as the attachment test
+//! Building a dictionary (or one shard of it): the three margins of every cable piece between
+//! two clamps of one link's catalogue ([`link_catalogues`]: every link with two or more clamp
+//! places among the setup's guides) under every sampled gravity direction in the link's
+//! frame, through the same static test as the attachment test
 //! ([`Evaluator::link_frame_metrics`]: a pair of clamps' lengths solved by continuation,
 //! exactly as `solve --setup` does at one pose), then the same at probe directions between
-//! the stored ones, where the interpolation error is measured and stored in the header.
+//! the stored ones, where the interpolation error is measured and stored per piece.
+//!
+//! The lengths are the same for every link: the candidate lengths of the setup's intra-link
+//! segments (all of them together) and their robustness neighbours.
 //!
 //! Work is spread over pairs of clamp configurations with rayon and collected in PV order,
 //! so the bytes do not depend on the thread count. A failed solve is stored as unmeasured;
 //! it never stops the build.
 
+use super::catalogue::{LinkCatalogue, link_catalogues};
 use super::directions::{
     Interpolated, MIN_DIRECTION_COUNT, Neighbours, covering_radius, fibonacci_sphere,
     probe_directions,
 };
 use super::error::Problem;
 use super::format::{
-    DirectionParameters, ERROR_SAFETY, EmbeddedSetup, Header, MARGIN_UNITS, MarginRecord,
-    PHYSICS_VERSION, PvRecord, SegmentEntry, ShardRange, SolverParameters, encode,
+    ClampEntry, DirectionParameters, ERROR_SAFETY, EmbeddedSetup, HEADER_LIMIT, Header, LinkEntry,
+    MARGIN_UNITS, MarginRecord, PHYSICS_VERSION, PvRecord, ShardRange, SolverParameters, encode,
 };
 use crate::attachment::{
     ConnectMethod, Evaluator, Margins, Rejection, needed_pvs, robust_neighbours,
 };
 use crate::path::Pv;
 use crate::progress;
-use crate::robot::Shape;
 use crate::setup::{Robustness, Setup};
 use crate::statics::SolverOptions;
 use nalgebra::Vector3;
@@ -60,12 +64,21 @@ impl Built {
     }
 }
 
-/// Builds the dictionary of `setup`'s intra-link segments (or one shard of it).
+/// Builds the dictionary of `setup`'s clamp catalogue (or one shard of it).
 pub fn build(setup: &Setup, options: &BuildOptions) -> Result<Built, Problem> {
     check_buildable(setup, options)?;
+    let (stored_lengths, candidate_lengths) = catalogue_lengths(setup);
+    let catalogues = link_catalogues(setup, &candidate_lengths);
+    check_catalogues(&catalogues, stored_lengths.len(), options.directions)?;
     let directions = fibonacci_sphere(options.directions);
     let probes = probe_directions(probe_count(options.directions));
-    let mut header = header(setup, &directions, probes.len())?;
+    let mut header = header(
+        setup,
+        &catalogues,
+        &stored_lengths,
+        &directions,
+        probes.len(),
+    );
     let stored = match options.shard {
         Some((index, count)) => {
             let shard = ShardRange::new(index, count, header.pv_total);
@@ -76,17 +89,21 @@ pub fn build(setup: &Setup, options: &BuildOptions) -> Result<Built, Problem> {
     };
     let mut pvs: Vec<PvRecord> = stored
         .clone()
-        .map(|g| pv_record(setup, &header, g))
+        .map(|g| pv_record(&catalogues, &header, g))
         .collect();
-    let evaluator =
-        Evaluator::new(setup, ConnectMethod::Hermite).map_err(|e| Problem::Build(e.to_string()))?;
+    let evaluators = catalogues
+        .iter()
+        .map(|c| Evaluator::new(&c.setup, ConnectMethod::Hermite))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| Problem::Build(e.to_string()))?;
     let sample = DirectionSample::new(directions, probes);
     let pairs = pairs_in(&header, &stored);
     progress::begin("dictionary build", pairs.len() as u64);
     let solved: Vec<SolvedPair> = pairs
         .par_iter()
         .map(|pair| {
-            let solved = solve_pair(&evaluator, &header, pair, &stored, &sample);
+            let evaluator = &evaluators[pair.slot];
+            let solved = solve_pair(evaluator, &header, pair, &stored, &sample);
             progress::advance(1);
             solved
         })
@@ -95,7 +112,7 @@ pub fn build(setup: &Setup, options: &BuildOptions) -> Result<Built, Problem> {
     let n = sample.stored.len();
     let mut results = vec![MarginRecord::UNMEASURED; pvs.len() * n];
     for solved in &solved {
-        let entry = &mut header.segments[solved.pair.slot];
+        let entry = &mut header.links[solved.pair.slot];
         for (g, piece) in &solved.pieces {
             let k = (g - stored.start) as usize;
             match &piece.rows {
@@ -183,10 +200,10 @@ impl ErrorRatio {
     }
 }
 
-/// One pair of clamp configurations of one segment: the unit of work (its lengths are solved
+/// One pair of clamps of one link's catalogue: the unit of work (its lengths are solved
 /// together, by continuation).
 struct Pair {
-    /// Position of the segment in the header.
+    /// Position of the link in the header.
     slot: usize,
     start: usize,
     end: usize,
@@ -195,7 +212,7 @@ struct Pair {
 /// The pairs with at least one PV in `stored`, in PV order.
 fn pairs_in(header: &Header, stored: &Range<u64>) -> Vec<Pair> {
     let mut pairs = Vec::new();
-    for (slot, entry) in header.segments.iter().enumerate() {
+    for (slot, entry) in header.links.iter().enumerate() {
         let count = entry.lengths.len() as u64;
         let block = entry.first_pv..entry.first_pv + entry.pv_count();
         let first = block.start.max(stored.start);
@@ -205,7 +222,7 @@ fn pairs_in(header: &Header, stored: &Range<u64>) -> Vec<Pair> {
         }
         let first_pair = (first - block.start) / count;
         let end_pair = (end - block.start).div_ceil(count);
-        let nb = u64::from(entry.end_configurations);
+        let nb = entry.clamps.len() as u64;
         pairs.extend((first_pair..end_pair).map(|p| Pair {
             slot,
             start: (p / nb) as usize,
@@ -239,9 +256,10 @@ fn solve_pair<'p>(
     stored: &Range<u64>,
     sample: &DirectionSample,
 ) -> SolvedPair<'p> {
+    // The evaluator's setup is the link's catalogue: one segment, both guides every clamp.
     let setup = evaluator.setup();
-    let entry = &header.segments[pair.slot];
-    let m = entry.segment as usize;
+    let entry = &header.links[pair.slot];
+    let m = 0;
     let configurations = (pair.start, pair.end);
     let lengths: Vec<(u64, usize)> = entry
         .lengths
@@ -322,15 +340,6 @@ fn check_buildable(setup: &Setup, options: &BuildOptions) -> Result<(), Problem>
             "--shard {index}/{count}: the index must be 0 … count − 1 and the count at least 1"
         )));
     }
-    let widest = setup.guides.iter().map(|g| g.configurations.len()).max();
-    if widest.unwrap_or(0) > usize::from(u16::MAX) || setup.segment_count() > usize::from(u16::MAX)
-    {
-        return Err(Problem::Build(format!(
-            "a PV record holds configuration and segment indices below {}",
-            u16::MAX
-        )));
-    }
-    crate::attachment::check_size(setup).map_err(Problem::Build)?;
     if setup.gravity_m_s2.norm() == 0.0 {
         return Err(Problem::Build(
             "the setup has no gravity, so there is no direction to sample; use solve --setup"
@@ -342,53 +351,119 @@ fn check_buildable(setup: &Setup, options: &BuildOptions) -> Result<(), Problem>
             "the setup has no intra-link segment (two guides on one link): nothing to store".into(),
         ));
     }
-    let meshes = setup.robot.links.iter().flat_map(|l| &l.colliders);
-    if meshes
-        .into_iter()
-        .any(|c| matches!(c.shape, Shape::Mesh(_)))
-    {
-        return Err(Problem::Build(
-            "the robot has mesh colliders; a dictionary embeds the URDF text but not mesh \
-             files, so it would not be self-contained (not supported yet)"
-                .into(),
-        ));
+    let embedded: usize = setup.text.len()
+        + setup.robot_text.len()
+        + setup.cable_text.len()
+        + setup
+            .robot
+            .mesh_files
+            .iter()
+            .map(|f| f.bytes.len())
+            .sum::<usize>();
+    // The rest of the header (catalogues, lengths) needs far less than the last megabyte.
+    if embedded > HEADER_LIMIT - (1 << 20) {
+        return Err(Problem::Build(format!(
+            "the setup, URDF, cable and mesh files take {:.1} MB; a dictionary embeds at most \
+             {} MB: simplify the collision meshes",
+            embedded as f64 / 1e6,
+            (HEADER_LIMIT >> 20) - 1
+        )));
     }
     Ok(())
 }
 
-/// The header of a whole dictionary of `setup` (no shard).
-fn header(setup: &Setup, directions: &[[f64; 3]], probes: usize) -> Result<Header, Problem> {
+/// Most bytes of margin records a build holds in memory (and writes): 4 GiB.
+pub const MAX_RESULT_BYTES: u128 = 4 << 30;
+
+/// Refuses a setup whose links offer no two clamp places (nothing to store), more clamps on
+/// one link than a PV record can index, or more margin records than [`MAX_RESULT_BYTES`].
+fn check_catalogues(
+    catalogues: &[LinkCatalogue],
+    lengths: usize,
+    directions: usize,
+) -> Result<(), Problem> {
+    if catalogues.is_empty() {
+        return Err(Problem::Build(
+            "no link of the setup offers two or more clamp places: nothing to store".into(),
+        ));
+    }
+    let widest = catalogues.iter().map(|c| c.clamps().len()).max();
+    if widest.unwrap_or(0) > usize::from(u16::MAX) || catalogues.len() > usize::from(u16::MAX) {
+        return Err(Problem::Build(format!(
+            "a PV record indexes at most {} clamps of one link and {} links",
+            u16::MAX,
+            u16::MAX
+        )));
+    }
+    let pieces: u128 = catalogues
+        .iter()
+        .map(|c| (c.clamps().len() as u128).pow(2) * lengths as u128)
+        .sum();
+    let bytes = pieces * directions as u128 * size_of::<MarginRecord>() as u128;
+    if bytes > MAX_RESULT_BYTES {
+        return Err(Problem::Build(format!(
+            "{pieces} pieces × {directions} directions need {:.1} GB of margins, at most {} GB: \
+             use fewer directions, fewer clamp places (a larger spacing_mm) or narrower length \
+             windows",
+            bytes as f64 / 1e9,
+            MAX_RESULT_BYTES >> 30
+        )));
+    }
+    Ok(())
+}
+
+/// The lengths every link's catalogue stores (ascending): the candidate lengths of all the
+/// setup's intra-link segments with their robustness neighbours, and those candidates alone.
+fn catalogue_lengths(setup: &Setup) -> (Vec<u32>, Vec<usize>) {
+    let mut stored = BTreeSet::new();
+    let mut candidates = BTreeSet::new();
+    for m in (0..setup.segment_count()).filter(|&m| setup.is_intra_link(m)) {
+        stored.extend(stored_lengths(setup, m));
+        candidates.extend(setup.segments[m].lengths.iter().copied().filter(|&s| s > 0));
+    }
+    (
+        stored.into_iter().collect(),
+        candidates.into_iter().collect(),
+    )
+}
+
+/// The header of a whole dictionary of `setup`'s `catalogues` (no shard).
+fn header(
+    setup: &Setup,
+    catalogues: &[LinkCatalogue],
+    lengths: &[u32],
+    directions: &[[f64; 3]],
+    probes: usize,
+) -> Header {
     let file_name = setup
         .source
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let mut segments = Vec::new();
+    let mut links = Vec::new();
     let mut first_pv = 0;
-    for m in (0..setup.segment_count()).filter(|&m| setup.is_intra_link(m)) {
-        let (a, b) = setup.segment_guides(m);
-        let entry = SegmentEntry {
-            segment: m as u32,
-            link: setup.robot.links[setup.guides[a].link].name.clone(),
-            lengths: stored_lengths(setup, m),
-            start_configurations: setup.guides[a].configurations.len() as u32,
-            end_configurations: setup.guides[b].configurations.len() as u32,
+    for catalogue in catalogues {
+        let entry = LinkEntry {
+            link: setup.robot.links[catalogue.body].name.clone(),
+            clamps: catalogue.clamps().iter().map(clamp_entry).collect(),
+            lengths: lengths.to_vec(),
             first_pv,
             d1_all: 0,
             d2_all: 0,
             margin_error: [0.0; 3],
         };
         first_pv += entry.pv_count();
-        segments.push(entry);
+        links.push(entry);
     }
     let solver = SolverOptions::STRESS_CHECK;
-    Ok(Header {
+    Header {
         physics_version: PHYSICS_VERSION,
         setup: EmbeddedSetup {
             file_name,
             text: setup.text.clone(),
             robot_text: setup.robot_text.clone(),
             cable_text: setup.cable_text.clone(),
+            meshes: setup.robot.mesh_files.clone(),
         },
         setup_hash: setup.content_hash,
         solver: SolverParameters {
@@ -404,10 +479,20 @@ fn header(setup: &Setup, directions: &[[f64; 3]], probes: usize) -> Result<Heade
             probes: probes as u32,
             gravity_m_s2: setup.gravity_m_s2.norm(),
         },
-        segments,
+        links,
         pv_total: first_pv,
         shard: None,
-    })
+    }
+}
+
+/// The header entry of one clamp place.
+fn clamp_entry(clamp: &crate::setup::GuideConfiguration) -> ClampEntry {
+    let q = clamp.pose.rotation.quaternion();
+    ClampEntry {
+        name: clamp.name.clone(),
+        position_m: clamp.pose.translation.vector.into(),
+        rotation_xyzw: [q.i, q.j, q.k, q.w],
+    }
 }
 
 /// The setup's candidate lengths of segment `m` and their robustness neighbours, ascending:
@@ -425,17 +510,16 @@ fn stored_lengths(setup: &Setup, m: usize) -> Vec<u32> {
 }
 
 /// The record of global PV `g` (flags: admissible, candidate).
-fn pv_record(setup: &Setup, header: &Header, g: u64) -> PvRecord {
+fn pv_record(catalogues: &[LinkCatalogue], header: &Header, g: u64) -> PvRecord {
     let (slot, pv) = pv_at(header, g);
-    let entry = &header.segments[slot];
-    let m = entry.segment as usize;
-    let admissible = setup.is_admissible(m, pv.sub_segments, pv.start, pv.end);
-    let candidate = admissible && setup.segments[m].lengths.contains(&pv.sub_segments);
+    let catalogue = &catalogues[slot].setup;
+    let admissible = catalogue.is_admissible(0, pv.sub_segments, pv.start, pv.end);
+    let candidate = admissible && catalogue.segments[0].lengths.contains(&pv.sub_segments);
     PvRecord {
         sub_segments: pv.sub_segments as u32,
         start: pv.start as u16,
         end: pv.end as u16,
-        segment: entry.segment as u16,
+        link: slot as u16,
         flags: if admissible { PvRecord::ADMISSIBLE } else { 0 }
             | if candidate { PvRecord::CANDIDATE } else { 0 },
         error_factor: [0; 3],
@@ -443,17 +527,14 @@ fn pv_record(setup: &Setup, header: &Header, g: u64) -> PvRecord {
     }
 }
 
-/// The segment (its position in the header) and PV of global index `g`, which must be below
+/// The link (its position in the header) and PV of global index `g`, which must be below
 /// `header.pv_total` of a header [`parse`](super::format::parse) accepted.
 pub(super) fn pv_at(header: &Header, g: u64) -> (usize, Pv) {
-    let position = header.segments.partition_point(|e| e.first_pv <= g);
+    let position = header.links.partition_point(|e| e.first_pv <= g);
     let slot = position.saturating_sub(1);
-    let entry = &header.segments[slot];
+    let entry = &header.links[slot];
     let local = (g - entry.first_pv) as usize;
-    let (na, nb) = (
-        entry.start_configurations as usize,
-        entry.end_configurations as usize,
-    );
+    let (na, nb) = (entry.clamps.len(), entry.clamps.len());
     let count = entry.lengths.len();
     let pair = local / count;
     let pv = Pv::new(
@@ -478,7 +559,7 @@ pub(super) fn finalize(built: &mut Built, robustness: &Robustness) {
         })
         .collect();
     let header = &mut built.header;
-    for entry in &mut header.segments {
+    for entry in &mut header.links {
         let block = entry.first_pv as usize..(entry.first_pv + entry.pv_count()) as usize;
         let passes = |pv: &Pv| {
             entry

@@ -48,9 +48,10 @@ pub enum Problem {
     },
     /// Written by an older cable-dict in a format this one no longer reads.
     #[error(
-        "format version {found} (pass/fail verdicts per direction) is no longer read; this \
-         cable-dict reads version 2 (margins per direction, interpolated): rebuild it from the \
-         setup it was built for with `cable-dict build SETUP.toml -o FILE.cdict`"
+        "format version {found} is no longer read; this cable-dict reads version 3 (margins \
+         per direction for every pair of clamps of each link's catalogue): rebuild it from the \
+         setup it was built for with `cable-dict build SETUP.toml -o FILE.cdict` (`cable-dict \
+         info` on it with the cable-dict that wrote it names that setup)"
     )]
     OldVersion {
         /// The file's version.

@@ -1,8 +1,9 @@
-//! The `.cdict` byte layout, version 2 (docs/cdict-format.md): a checksummed preamble, a
+//! The `.cdict` byte layout, version 3 (docs/cdict-format.md): a checksummed preamble, a
 //! checksummed section table, then four sections at 16-byte aligned offsets — the header
 //! (bincode), the gravity directions, the PV records and the margin records (fixed-size,
 //! little-endian, read in place from the memory map). Version 1 stored verdicts instead of
-//! margins; it is refused with the command that rebuilds it.
+//! margins, version 2 one block per segment of one setup instead of one per link's clamp
+//! catalogue; both are refused with the command that rebuilds them.
 //!
 //! [`parse`] checks everything that is O(1) or O(header): magic, version, length, the
 //! preamble's and the table's checksums, every section's bounds, alignment and record size,
@@ -20,7 +21,7 @@ compile_error!("the .cdict records are read in place as little-endian values");
 /// The first 8 bytes of every dictionary (the CR LF catches text-mode copies).
 pub const MAGIC: [u8; 8] = *b"CDICT\0\r\n";
 /// The format version this build writes and reads.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 /// Bytes of the preamble; the section table follows.
 pub const PREAMBLE_LEN: usize = 64;
 /// Bytes of one section-table entry.
@@ -31,9 +32,10 @@ pub const ALIGNMENT: usize = 16;
 /// the metrics change what they compute, so that old dictionaries are refused, not trusted.
 /// 2: cables in EI/GJ, the `L D Lᵀ` Newton solver, retraction to 5e-13.
 /// 3: the end clamp turned by the installed cable's twist; lengths continued per direction.
-pub const PHYSICS_VERSION: u32 = 3;
+/// 4: lengths continued in fixed blocks ([`crate::attachment::CONTINUATION_BLOCK`]).
+pub const PHYSICS_VERSION: u32 = 4;
 /// Largest header accepted when decoding (the URDF text dominates it).
-const HEADER_LIMIT: usize = 64 << 20;
+pub const HEADER_LIMIT: usize = 64 << 20;
 
 /// The four sections, in file order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -78,20 +80,20 @@ impl SectionKind {
     }
 }
 
-/// One PV of an intra-link segment, in the dense grid (start configuration, end
-/// configuration, length) of its segment: a pair of clamps' lengths are neighbours, so a
+/// One cable piece between two clamps of one link's catalogue, in the dense grid (start
+/// clamp, end clamp, length) of its link: a pair of clamps' lengths are neighbours, so a
 /// shard holds whole pairs and solves their lengths by continuation.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct PvRecord {
     /// Length S in sub-segments.
     pub sub_segments: u32,
-    /// Configuration index of the start guide.
+    /// Index of the start clamp in its link's catalogue ([`LinkEntry::clamps`]).
     pub start: u16,
-    /// Configuration index of the end guide.
+    /// Index of the end clamp in its link's catalogue.
     pub end: u16,
-    /// Segment index m (0-based).
-    pub segment: u16,
+    /// Index of its link's entry in [`Header::links`].
+    pub link: u16,
     /// [`PvRecord::ADMISSIBLE`] | [`PvRecord::CANDIDATE`] | [`PvRecord::D1_ALL`] |
     /// [`PvRecord::D2_ALL`] | [`PvRecord::TOO_SHORT`].
     pub flags: u16,
@@ -107,10 +109,11 @@ pub struct PvRecord {
 }
 
 impl PvRecord {
-    /// S = 0 exactly when the two configurations coincide: a real cable (or a real single
-    /// clamp). Other grid cells are placeholders and were not evaluated.
+    /// S = 0 exactly when the two clamps coincide: a real cable (or a real single clamp).
+    /// Other grid cells are placeholders and were not evaluated.
     pub const ADMISSIBLE: u16 = 1;
-    /// The length is one of the setup's candidates (others are robustness neighbours only).
+    /// The length is one of the build setup's candidate lengths of an intra-link segment
+    /// (others are robustness neighbours only).
     pub const CANDIDATE: u16 = 2;
     /// In D1 for every stored direction (whole dictionaries only).
     pub const D1_ALL: u16 = 4;
@@ -233,15 +236,16 @@ pub struct Header {
     pub solver: SolverParameters,
     /// The sampled gravity directions.
     pub directions: DirectionParameters,
-    /// The intra-link segments, in setup order.
-    pub segments: Vec<SegmentEntry>,
-    /// PVs of all segments together (the length of a whole dictionary's PV section).
+    /// The clamp catalogue of every link with two or more clamp places, in the robot's link
+    /// order.
+    pub links: Vec<LinkEntry>,
+    /// PVs of all links together (the length of a whole dictionary's PV section).
     pub pv_total: u64,
     /// `Some` for one shard of a sharded build.
     pub shard: Option<ShardRange>,
 }
 
-/// The setup files' texts.
+/// The setup files' texts and the robot's mesh files.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct EmbeddedSetup {
     /// File name of the setup (no folders: the bytes must not depend on the machine).
@@ -252,6 +256,8 @@ pub struct EmbeddedSetup {
     pub robot_text: String,
     /// The cable TOML.
     pub cable_text: String,
+    /// Every mesh file the URDF references, under the URI written in it.
+    pub meshes: Vec<crate::robot::MeshFile>,
 }
 
 /// Static solver and metric settings of the build.
@@ -284,28 +290,46 @@ pub struct DirectionParameters {
     pub gravity_m_s2: f64,
 }
 
-/// One intra-link segment's block of PV records.
+/// One link's clamp catalogue and its block of PV records: every ordered pair of its
+/// clamps × every stored length.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct SegmentEntry {
-    /// Segment index m (0-based; `C{m+1}` for people).
-    pub segment: u32,
-    /// Link both guides are on (URDF name).
+pub struct LinkEntry {
+    /// The link (URDF name) the clamps move with.
     pub link: String,
-    /// Every length stored, ascending: the candidates and their robustness neighbours.
+    /// The clamps, in the order the PV records index them.
+    pub clamps: Vec<ClampEntry>,
+    /// Every length stored, ascending: the candidate lengths and their robustness neighbours.
     pub lengths: Vec<u32>,
-    /// Configurations of the start guide.
-    pub start_configurations: u32,
-    /// Configurations of the end guide.
-    pub end_configurations: u32,
-    /// Index of the segment's first PV record in the whole dictionary.
+    /// Index of the link's first PV record in the whole dictionary.
     pub first_pv: u64,
     /// |D1| over every stored direction (0 in a shard).
     pub d1_all: u64,
     /// |D2| over every stored direction (0 in a shard).
     pub d2_all: u64,
     /// The largest [`PvRecord::error_factor`] of this file's PVs (clearance, stretch,
-    /// curvature): how irregular the segment's worst piece is (for `info`).
+    /// curvature): how irregular the link's worst piece is (for `info`).
     pub margin_error: [f64; 3],
+}
+
+/// One clamp of a link's catalogue: where a setup's guide configuration must be to use the
+/// stored pieces.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ClampEntry {
+    /// The configuration's name in the build setup, prefixed with its guide (`G2/site 3`).
+    pub name: String,
+    /// Position of the clamp frame in the link's frame (m).
+    pub position_m: [f64; 3],
+    /// Orientation of the clamp frame in the link's frame: unit quaternion `[x, y, z, w]`.
+    pub rotation_xyzw: [f64; 4],
+}
+
+impl ClampEntry {
+    /// Finite position and a unit quaternion (to 1e-9).
+    fn is_well_formed(&self) -> bool {
+        let finite = self.position_m.iter().all(|v| v.is_finite());
+        let norm: f64 = self.rotation_xyzw.iter().map(|q| q * q).sum();
+        finite && (norm - 1.0).abs() <= 1e-9
+    }
 }
 
 impl PvRecord {
@@ -323,26 +347,24 @@ pub const ERROR_SAFETY: f64 = 1.5;
 /// (a weighted mean lies inside the neighbours' range; the truth may lie outside it).
 pub const MIN_ERROR_FACTOR: f64 = 1.0;
 
-impl SegmentEntry {
-    /// PV records of this segment: lengths × start × end configurations (saturating; a
-    /// header [`parse`] accepted never saturates).
+impl LinkEntry {
+    /// PV records of this link: lengths × clamps × clamps (saturating; a header [`parse`]
+    /// accepted never saturates).
     pub fn pv_count(&self) -> u64 {
         self.checked_pv_count().unwrap_or(u64::MAX)
     }
 
     /// [`SegmentEntry::pv_count`], `None` on overflow (a forged header).
     fn checked_pv_count(&self) -> Option<u64> {
+        let clamps = self.clamps.len() as u64;
         (self.lengths.len() as u64)
-            .checked_mul(u64::from(self.start_configurations))?
-            .checked_mul(u64::from(self.end_configurations))
+            .checked_mul(clamps)?
+            .checked_mul(clamps)
     }
 
-    /// Index of (i, j, S) within the segment's block, `None` when not stored.
+    /// Index of (i, j, S) within the link's block, `None` when not stored.
     pub fn grid_index(&self, sub_segments: usize, start: usize, end: usize) -> Option<u64> {
-        let (na, nb) = (
-            self.start_configurations as usize,
-            self.end_configurations as usize,
-        );
+        let (na, nb) = (self.clamps.len(), self.clamps.len());
         let length = self
             .lengths
             .binary_search(&u32::try_from(sub_segments).ok()?)
@@ -522,7 +544,7 @@ fn parse_preamble(bytes: &[u8]) -> Result<&[u8], Problem> {
             supported: FORMAT_VERSION,
         });
     }
-    if version == 1 {
+    if (1..FORMAT_VERSION).contains(&version) {
         return Err(Problem::OldVersion { found: version });
     }
     if version != FORMAT_VERSION {
@@ -636,12 +658,12 @@ fn check_counts(layout: &Layout) -> Result<(), Problem> {
             count(SectionKind::Directions)
         )));
     }
-    check_segments(header)?;
-    let grid: u64 = header.segments.iter().map(SegmentEntry::pv_count).sum();
+    check_links(header)?;
+    let grid: u64 = header.links.iter().map(LinkEntry::pv_count).sum();
     let stored = header.stored_pvs();
     if grid != header.pv_total || stored.start > stored.end || stored.end > header.pv_total {
         return Err(Problem::Header(format!(
-            "the segments hold {grid} PVs, the header says {} and stores {}..{}",
+            "the links hold {grid} PVs, the header says {} and stores {}..{}",
             header.pv_total, stored.start, stored.end
         )));
     }
@@ -662,14 +684,33 @@ fn check_counts(layout: &Layout) -> Result<(), Problem> {
     Ok(())
 }
 
-/// The segment table is a valid grid: non-empty configuration sets, strictly ascending
-/// lengths, blocks that follow each other; a shard's index is below its count.
-fn check_segments(header: &Header) -> Result<(), Problem> {
+/// The link table is a valid grid: catalogues of 2 to 65 535 clamps at finite poses with
+/// unit rotations, strictly ascending lengths, blocks that follow each other; a shard's
+/// index is below its count.
+fn check_links(header: &Header) -> Result<(), Problem> {
     let mut next = 0u64;
-    for entry in &header.segments {
-        let name = format!("segment C{}", u64::from(entry.segment) + 1);
-        if entry.start_configurations == 0 || entry.end_configurations == 0 {
-            return Err(Problem::Header(format!("{name} has no configurations")));
+    if header.links.len() > usize::from(u16::MAX) {
+        return Err(Problem::Header(format!(
+            "{} link entries, at most {}",
+            header.links.len(),
+            u16::MAX
+        )));
+    }
+    for entry in &header.links {
+        let name = format!("link {}", entry.link);
+        if entry.clamps.len() < 2 || entry.clamps.len() > usize::from(u16::MAX) {
+            return Err(Problem::Header(format!(
+                "{name} has {} clamps, not 2 to {}",
+                entry.clamps.len(),
+                u16::MAX
+            )));
+        }
+        if let Some(clamp) = entry.clamps.iter().find(|c| !c.is_well_formed()) {
+            return Err(Problem::Header(format!(
+                "{name}: clamp '{}' has a non-finite position or a rotation that is not a unit \
+                 quaternion",
+                clamp.name
+            )));
         }
         if entry.lengths.is_empty() || entry.lengths.windows(2).any(|w| w[0] >= w[1]) {
             return Err(Problem::Header(format!(
@@ -688,7 +729,7 @@ fn check_segments(header: &Header) -> Result<(), Problem> {
         }
         if entry.first_pv != next {
             return Err(Problem::Header(format!(
-                "{name} starts at PV {}, the previous segments end at {next}",
+                "{name} starts at PV {}, the previous links end at {next}",
                 entry.first_pv
             )));
         }

@@ -1,5 +1,5 @@
 //! What `cable-dict info` shows of a dictionary: build parameters, the embedded setup and
-//! per-segment set sizes, read from the header and the PV flags (no checksum pass).
+//! per-link catalogue sizes, read from the header and the PV flags (no checksum pass).
 
 use super::format::{FORMAT_VERSION, PvRecord};
 use super::reader::{Dictionary, embedded_setup};
@@ -40,24 +40,24 @@ pub struct Info {
     pub pv_total: u64,
     /// PV records in this file.
     pub pv_records: usize,
-    /// The intra-link segments.
-    pub segments: Vec<SegmentInfo>,
+    /// Mesh files embedded with the URDF.
+    pub mesh_files: usize,
+    /// The links' clamp catalogues.
+    pub links: Vec<LinkInfo>,
 }
 
-/// One intra-link segment of a dictionary.
+/// One link's clamp catalogue in a dictionary.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SegmentInfo {
-    /// `C2`, …
-    pub segment: String,
-    /// Link of both guides.
+pub struct LinkInfo {
+    /// The link (URDF name).
     pub link: String,
     /// Stored lengths (sub-segments), shortest and longest.
     pub lengths: [u32; 2],
     /// Number of stored lengths.
     pub length_count: usize,
-    /// Start × end guide configurations.
-    pub configurations: [u32; 2],
-    /// PV records (grid cells) of the segment.
+    /// Clamp places.
+    pub clamps: usize,
+    /// PV records (grid cells) of the link: clamps × clamps × lengths.
     pub pvs: u64,
     /// Candidate PVs (admissible, with a candidate length) held in this file.
     pub candidates: usize,
@@ -78,23 +78,23 @@ impl Info {
             Err(problem) => (format!("(embedded setup: {problem})"), String::new()),
         };
         let records = dictionary.pv_records();
-        let segments = header
-            .segments
+        let links = header
+            .links
             .iter()
-            .map(|e| {
+            .enumerate()
+            .map(|(slot, e)| {
                 let candidates = records
                     .iter()
-                    .filter(|r| u32::from(r.segment) == e.segment && r.has(PvRecord::CANDIDATE))
+                    .filter(|r| usize::from(r.link) == slot && r.has(PvRecord::CANDIDATE))
                     .count();
-                SegmentInfo {
-                    segment: format!("C{}", u64::from(e.segment) + 1),
+                LinkInfo {
                     link: e.link.clone(),
                     lengths: [
                         e.lengths.first().copied().unwrap_or(0),
                         e.lengths.last().copied().unwrap_or(0),
                     ],
                     length_count: e.lengths.len(),
-                    configurations: [e.start_configurations, e.end_configurations],
+                    clamps: e.clamps.len(),
                     pvs: e.pv_count(),
                     candidates,
                     d1_all: e.d1_all,
@@ -127,7 +127,8 @@ impl Info {
             shard: header.shard.map(|s| format!("{}/{}", s.index, s.count)),
             pv_total: header.pv_total,
             pv_records: records.len(),
-            segments,
+            mesh_files: header.setup.meshes.len(),
+            links,
         }
     }
 }

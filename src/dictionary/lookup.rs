@@ -14,65 +14,88 @@
 //!   undecided poses ([`LookupAnswer::Undecided`]).
 //!
 //! So the dictionary never rejects a piece the exact test keeps (as long as the error bound
-//! holds, which `tests/dictionary_lookup.rs` checks over random directions), and the pieces
+//! holds, which `tests/dictionary.rs` checks over random directions), and the pieces
 //! it cannot rule out cost one exact check each.
 
 use super::directions::Neighbours;
 use super::error::{DictionaryError, Problem};
-use super::format::{MarginRecord, PvRecord};
+use super::format::{ClampEntry, MarginRecord, PvRecord};
 use super::reader::Dictionary;
 use crate::attachment::{
     LookupAnswer, Margins, Rejection, SegmentPoses, admissible_pvs, needed_pvs,
 };
 use crate::path::Pv;
-use crate::setup::Setup;
-use nalgebra::Vector3;
+use crate::pose::Pose;
+use crate::setup::{Setup, same_place};
+use nalgebra::{Quaternion, Translation3, UnitQuaternion, Vector3};
 
 /// The dictionary's answers for one motion.
 #[derive(Debug)]
 pub struct MotionLookup<'d> {
     dictionary: &'d Dictionary,
-    /// Per segment (`None` for inter-link ones): the interpolation neighbours of each test
-    /// pose's gravity direction, and the error bound.
+    /// Per segment (`None` for inter-link ones): where its pieces are stored and the
+    /// interpolation neighbours of each test pose's gravity direction.
     segments: Vec<Option<SegmentLookup>>,
 }
 
 #[derive(Debug)]
 struct SegmentLookup {
+    stored: StoredSegment,
     neighbours: Vec<Neighbours>,
 }
 
+/// Where an intra-link segment's pieces are stored: its link's catalogue and the catalogue
+/// index of each configuration of its guides.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct StoredSegment {
+    /// Position of the link's catalogue in [`Header::links`](super::format::Header::links).
+    pub slot: usize,
+    /// Catalogue index of each configuration of the start guide.
+    pub start_clamps: Vec<usize>,
+    /// Catalogue index of each configuration of the end guide.
+    pub end_clamps: Vec<usize>,
+}
+
+impl StoredSegment {
+    /// The stored piece (catalogue clamp indices) of the segment's PV `pv`; `None` for a
+    /// configuration out of range.
+    pub fn piece(&self, pv: &Pv) -> Option<Pv> {
+        let start = *self.start_clamps.get(pv.start)?;
+        let end = *self.end_clamps.get(pv.end)?;
+        Some(Pv::new(pv.sub_segments, start, end))
+    }
+}
+
 impl<'d> MotionLookup<'d> {
-    /// The interpolation neighbours of every intra-link segment's test poses (`poses`, for
-    /// `setup`, the dictionary's setup). Fails when the dictionary lacks a PV the setup
-    /// needs.
+    /// Checks that `setup` can use `dictionary` — the same robot (URDF and meshes), cable,
+    /// gravity, limits and installation pose as the setup it was built from, every
+    /// configuration of an intra-link segment's guides among the clamp places of its link's
+    /// catalogue, every length the attachment test asks for stored — and finds the
+    /// interpolation neighbours of every intra-link segment's test poses (`poses`). The
+    /// error names the first thing that does not fit.
     pub fn new(
         dictionary: &'d Dictionary,
         setup: &Setup,
         poses: &SegmentPoses,
     ) -> Result<MotionLookup<'d>, LookupError> {
+        let built_for = dictionary.setup()?;
+        same_physics(&built_for, setup).map_err(|detail| mismatch(dictionary, detail))?;
         let mut segments = Vec::with_capacity(setup.segment_count());
-        let gravity = setup.gravity_m_s2;
         for m in 0..setup.segment_count() {
             if !setup.is_intra_link(m) {
                 segments.push(None);
                 continue;
             }
-            check_coverage(dictionary, setup, m)?;
-            if dictionary.segment(m).is_none() {
-                return Err(
-                    mismatch(dictionary, format!("segment C{} is not stored", m + 1)).into(),
-                );
-            }
-            let link = setup.guides[setup.segment_guides(m).0].link;
+            let stored = dictionary.stored_segment(setup, m)?;
+            let body = setup.guides[setup.segment_guides(m).0].body;
             let neighbours = poses.poses[m]
                 .iter()
                 .map(|pose| {
-                    let down: Vector3<f64> = pose.gravity_in_link(link, &gravity);
+                    let down: Vector3<f64> = pose.gravity_in_link(body, &setup.gravity_m_s2);
                     Neighbours::of(dictionary.directions(), &down)
                 })
                 .collect();
-            segments.push(Some(SegmentLookup { neighbours }));
+            segments.push(Some(SegmentLookup { stored, neighbours }));
         }
         Ok(MotionLookup {
             dictionary,
@@ -105,7 +128,11 @@ impl<'d> MotionLookup<'d> {
         if pv.sub_segments == 0 {
             return LookupAnswer::Holds;
         }
-        let Some((record, rows)) = self.dictionary.lookup(m, pv) else {
+        let stored = &segment.stored;
+        let stored = stored
+            .piece(pv)
+            .and_then(|piece| self.dictionary.lookup(stored.slot, &piece));
+        let Some((record, rows)) = stored else {
             return LookupAnswer::Undecided((0..segment.neighbours.len()).collect());
         };
         let mut undecided = Vec::new();
@@ -148,15 +175,15 @@ pub enum DirectionAnswer {
 }
 
 impl Dictionary {
-    /// The answer for `pv` of intra-link segment `m` with gravity along `down` (unit vector
-    /// in the link's frame); `None` when the piece is not stored. A zero-length piece holds;
-    /// a cable too short for its clamps fails.
-    pub fn answer_at(&self, m: usize, pv: &Pv, down: &Vector3<f64>) -> Option<DirectionAnswer> {
-        self.segment(m)?;
+    /// The answer for piece `pv` (catalogue clamp indices) of the link at `slot` with
+    /// gravity along `down` (unit vector in the link's frame); `None` when the piece is not
+    /// stored. A zero-length piece holds; a cable too short for its clamps fails.
+    pub fn answer_at(&self, slot: usize, pv: &Pv, down: &Vector3<f64>) -> Option<DirectionAnswer> {
+        self.link(slot)?;
         if pv.sub_segments == 0 {
             return Some(DirectionAnswer::Holds);
         }
-        let (record, rows) = self.lookup(m, pv)?;
+        let (record, rows) = self.lookup(slot, pv)?;
         let neighbours = Neighbours::of(self.directions(), down);
         Some(at_direction(record, rows, &neighbours))
     }
@@ -206,25 +233,115 @@ fn mismatch(dictionary: &Dictionary, detail: String) -> DictionaryError {
     DictionaryError::new(dictionary.path(), Problem::Mismatch(detail))
 }
 
-/// Every PV the attachment test of segment `m` asks about ([`needed_pvs`]: candidates and
-/// robustness neighbours) is stored.
-fn check_coverage(dictionary: &Dictionary, setup: &Setup, m: usize) -> Result<(), DictionaryError> {
-    let robustness = &setup.robustness;
-    let candidates = admissible_pvs(setup, m);
-    for needed in needed_pvs(&candidates, robustness.delta_s, robustness.range) {
-        if needed.sub_segments > 0 && dictionary.lookup(m, &needed).is_none() {
-            return Err(mismatch(
-                dictionary,
-                format!(
-                    "segment C{} S = {} configurations ({}, {}) is not stored: the \
-                     dictionary was built for another setup",
-                    m + 1,
+/// What differs between the physics of `built_for` (a dictionary's setup) and `setup`, for
+/// people; `Ok` when a piece evaluates the same under both.
+fn same_physics(built_for: &Setup, setup: &Setup) -> Result<(), String> {
+    let install = |s: &Setup| s.installation.as_ref().map(|i| i.joints.clone());
+    // What the margins are measured against (not where the bend limit was written).
+    let limits = |s: &Setup| {
+        let t = &s.thresholds;
+        [
+            t.contact_clearance_m,
+            t.stretch,
+            t.static_min_bend_radius_m(),
+            t.clamp_zone_m,
+        ]
+    };
+    let difference = if built_for.robot_text != setup.robot_text {
+        "another robot (the URDF texts differ)".to_string()
+    } else if built_for.robot.mesh_files != setup.robot.mesh_files {
+        "another robot (its mesh files differ)".to_string()
+    } else if built_for.cable_text != setup.cable_text {
+        "another cable (the cable files differ)".to_string()
+    } else if built_for.gravity_m_s2 != setup.gravity_m_s2 {
+        format!(
+            "gravity {:?} m/s², the setup has {:?}",
+            built_for.gravity_m_s2.as_slice(),
+            setup.gravity_m_s2.as_slice()
+        )
+    } else if limits(built_for) != limits(setup) {
+        "other limits ([thresholds] differ)".to_string()
+    } else if install(built_for) != install(setup) {
+        "another installation pose (install_joints_deg differs)".to_string()
+    } else {
+        return Ok(());
+    };
+    Err(format!(
+        "built for {} with {difference}: build a dictionary from this setup (cable-dict \
+         build) or use solve --setup",
+        built_for.source.display()
+    ))
+}
+
+impl Dictionary {
+    /// Where the pieces of intra-link segment `m` of `setup` are stored; an error naming the
+    /// first configuration of its guides that is not among the clamp places of its link's
+    /// catalogue, or the first length the attachment test asks for that is not stored.
+    /// (Whether `setup` has the dictionary's physics is [`MotionLookup::new`]'s check.)
+    pub fn stored_segment(
+        &self,
+        setup: &Setup,
+        m: usize,
+    ) -> Result<StoredSegment, DictionaryError> {
+        let dictionary = self;
+        let (a, b) = setup.segment_guides(m);
+        let link = &setup.robot.links[setup.guides[a].body].name;
+        let fail = |detail: String| mismatch(dictionary, format!("segment C{}: {detail}", m + 1));
+        let slot = dictionary
+            .link_slot(link)
+            .ok_or_else(|| fail(format!("{link} has no clamp catalogue in the dictionary")))?;
+        let entry = &dictionary.header().links[slot];
+        let places: Vec<Pose> = entry.clamps.iter().map(clamp_pose).collect();
+        let indices =
+            |g: usize| -> Result<Vec<usize>, DictionaryError> {
+                let guide = &setup.guides[g];
+                (0..guide.configurations.len())
+                    .map(|c| {
+                        let pose = guide.pose_in_body(c);
+                        places.iter().position(|p| same_place(p, &pose)).ok_or_else(|| {
+                    let mm = pose.translation.vector * 1e3;
+                    fail(format!(
+                        "{} '{}' at ({:.1}, {:.1}, {:.1}) mm is not among the dictionary's \
+                         {} clamp places on {link}",
+                        guide.name,
+                        guide.configurations[c].name,
+                        mm.x,
+                        mm.y,
+                        mm.z,
+                        places.len()
+                    ))
+                })
+                    })
+                    .collect()
+            };
+        let (start_clamps, end_clamps) = (indices(a)?, indices(b)?);
+        let robustness = &setup.robustness;
+        let candidates = admissible_pvs(setup, m);
+        for needed in needed_pvs(&candidates, robustness.delta_s, robustness.range) {
+            let length = u32::try_from(needed.sub_segments).unwrap_or(u32::MAX);
+            if needed.sub_segments > 0 && entry.lengths.binary_search(&length).is_err() {
+                return Err(fail(format!(
+                    "S = {} is not stored (the dictionary holds {}..={} on {link})",
                     needed.sub_segments,
-                    needed.start,
-                    needed.end
-                ),
-            ));
+                    entry.lengths.first().copied().unwrap_or(0),
+                    entry.lengths.last().copied().unwrap_or(0)
+                )));
+            }
         }
+        Ok(StoredSegment {
+            slot,
+            start_clamps,
+            end_clamps,
+        })
     }
-    Ok(())
+}
+
+/// The pose of a stored clamp place (a header [`parse`](super::format::parse) accepted has
+/// unit quaternions).
+fn clamp_pose(clamp: &ClampEntry) -> Pose {
+    let [x, y, z, w] = clamp.rotation_xyzw;
+    Pose::from_parts(
+        Translation3::from(Vector3::from(clamp.position_m)),
+        UnitQuaternion::new_unchecked(Quaternion::new(w, x, y, z)),
+    )
 }

@@ -76,17 +76,17 @@ fn unsharded(header: &Header) -> Header {
         shard: None,
         ..header.clone()
     };
-    for entry in &mut whole.segments {
+    for entry in &mut whole.links {
         entry.margin_error = [0.0; 3];
     }
     whole
 }
 
-/// The error bound of each segment of the whole dictionary: the largest of the shards'.
+/// The error bound of each link of the whole dictionary: the largest of the shards'.
 fn merged_error_bounds(common: &mut Header, shards: &[(ShardRange, Dictionary)]) {
-    for (slot, entry) in common.segments.iter_mut().enumerate() {
+    for (slot, entry) in common.links.iter_mut().enumerate() {
         for (_, shard) in shards {
-            let bounds = shard.header().segments[slot].margin_error;
+            let bounds = shard.header().links[slot].margin_error;
             for (merged, bound) in entry.margin_error.iter_mut().zip(bounds) {
                 *merged = merged.max(bound);
             }

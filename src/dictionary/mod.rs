@@ -2,10 +2,15 @@
 //! once per robot + cable + guide catalogue and shared as a `.cdict` file.
 //!
 //! An intra-link segment's shape depends only on gravity's direction in its link's frame. A
-//! build evaluates every PV of every intra-link segment (the setup's lengths and their
-//! robustness neighbours) under N gravity directions sampled on the sphere ([`directions`])
-//! and stores, per PV and direction, the three margins ([`format`](mod@format)), plus the
-//! interpolation error measured at probe directions between them. Solving a motion asks the
+//! build gathers the clamp places of each link from all of the setup's guides on it (the
+//! link's catalogue, [`link_catalogues`]) and evaluates every ordered pair of places × every
+//! length (the candidate lengths of the setup's intra-link segments and their robustness
+//! neighbours) under N gravity directions sampled on the sphere ([`directions`]); it stores,
+//! per piece and direction, the three margins ([`format`](mod@format)), plus the
+//! interpolation error measured at probe directions between them. Any setup of the same
+//! robot, cable, gravity, limits and installation pose whose intra-link guides take their
+//! places from the catalogues can use the file ([`MotionLookup::new`] checks and maps them,
+//! naming the first thing that differs). Solving a motion asks the
 //! question `solve --setup` answers exactly — does the piece hold its limits under every
 //! gravity direction the motion produces in its link's frame — by interpolating the margins
 //! at those directions, widened by the error bound; only pieces the bound cannot decide are
@@ -21,6 +26,7 @@
 //! The byte layout is documented in docs/cdict-format.md.
 
 mod build;
+mod catalogue;
 pub mod directions;
 mod error;
 pub mod format;
@@ -29,11 +35,12 @@ mod lookup;
 mod merge;
 mod reader;
 
-pub use build::{BuildOptions, Built, build};
+pub use build::{BuildOptions, Built, MAX_RESULT_BYTES, build};
+pub use catalogue::{LinkCatalogue, link_catalogues};
 pub use directions::DEFAULT_DIRECTION_COUNT;
 pub use error::{DictionaryError, Problem};
-pub use info::{Info, SegmentInfo};
-pub use lookup::{DirectionAnswer, LookupError, MotionLookup};
+pub use info::{Info, LinkInfo};
+pub use lookup::{DirectionAnswer, LookupError, MotionLookup, StoredSegment};
 pub use merge::merge;
 pub use reader::Dictionary;
 

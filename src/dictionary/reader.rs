@@ -3,7 +3,7 @@
 
 use super::error::{DictionaryError, Problem};
 use super::format::{
-    Header, Layout, MarginRecord, PHYSICS_VERSION, PvRecord, SectionKind, SegmentEntry, parse,
+    Header, Layout, LinkEntry, MarginRecord, PHYSICS_VERSION, PvRecord, SectionKind, parse,
     verify_sections,
 };
 use crate::path::Pv;
@@ -71,18 +71,21 @@ impl Dictionary {
         bytemuck::cast_slice(self.section(SectionKind::Results))
     }
 
-    /// The entry of intra-link segment `m`, `None` when `m` is not one.
-    pub fn segment(&self, m: usize) -> Option<&SegmentEntry> {
-        self.header()
-            .segments
-            .iter()
-            .find(|e| e.segment as usize == m)
+    /// The position in [`Header::links`] of the catalogue of the link called `link`.
+    pub fn link_slot(&self, link: &str) -> Option<usize> {
+        self.header().links.iter().position(|e| e.link == link)
     }
 
-    /// The record and stored margins of `pv` of segment `m`, one row per direction; `None`
-    /// when the dictionary does not hold it. O(log lengths).
-    pub fn lookup(&self, m: usize, pv: &Pv) -> Option<(&PvRecord, &[MarginRecord])> {
-        let entry = self.segment(m)?;
+    /// The catalogue entry at position `slot`.
+    pub fn link(&self, slot: usize) -> Option<&LinkEntry> {
+        self.header().links.get(slot)
+    }
+
+    /// The record and stored margins of piece `pv` (clamp indices of the catalogue) of the
+    /// link at `slot`, one row per direction; `None` when the dictionary does not hold it.
+    /// O(log lengths).
+    pub fn lookup(&self, slot: usize, pv: &Pv) -> Option<(&PvRecord, &[MarginRecord])> {
+        let entry = self.link(slot)?;
         let local = entry.grid_index(pv.sub_segments, pv.start, pv.end)?;
         let stored = self.header().stored_pvs();
         let g = usize::try_from((entry.first_pv + local).checked_sub(stored.start)?).ok()?;
@@ -136,13 +139,13 @@ pub(super) fn check_records(
     results: &[MarginRecord],
 ) -> Result<(), Problem> {
     let stored = header.stored_pvs();
-    let mut counts = vec![(0u64, 0u64); header.segments.len()];
+    let mut counts = vec![(0u64, 0u64); header.links.len()];
     let n = usize::try_from(header.directions.count).unwrap_or(usize::MAX);
     for (k, record) in pv_records.iter().enumerate() {
         let g = stored.start + k as u64;
         let place = || format!("PV record {g}");
         let (slot, pv) = super::build::pv_at(header, g);
-        let at_place = record.segment == header.segments[slot].segment as u16 && record.pv() == pv;
+        let at_place = usize::from(record.link) == slot && record.pv() == pv;
         let unmeasured = !record.has(PvRecord::ADMISSIBLE)
             || record.sub_segments == 0
             || record.has(PvRecord::TOO_SHORT);
@@ -157,13 +160,11 @@ pub(super) fn check_records(
     if header.shard.is_some() {
         return Ok(());
     }
-    for (entry, (d1, d2)) in header.segments.iter().zip(counts) {
+    for (entry, (d1, d2)) in header.links.iter().zip(counts) {
         if (d1, d2) != (entry.d1_all, entry.d2_all) {
             return Err(Problem::Header(format!(
-                "segment C{}: |D1| {} and |D2| {} in the header, {d1} and {d2} flagged",
-                u64::from(entry.segment) + 1,
-                entry.d1_all,
-                entry.d2_all
+                "link {}: |D1| {} and |D2| {} in the header, {d1} and {d2} flagged",
+                entry.link, entry.d1_all, entry.d2_all
             )));
         }
     }
@@ -238,6 +239,7 @@ pub(super) fn embedded_setup(header: &Header) -> Result<Setup, Problem> {
         Path::new(&embedded.file_name),
         &embedded.robot_text,
         &embedded.cable_text,
+        &embedded.meshes,
     )
     .map_err(|e| Problem::Setup(e.to_string()))?;
     if setup.content_hash != header.setup_hash {

@@ -1,9 +1,9 @@
 //! Collision geometry of the links, as URDF describes it.
 
-use super::mesh::load_mesh;
+use super::mesh::{MeshFile, MeshSource, load_mesh};
 use crate::pose::{Pose, pose_from_xyz_rpy};
 use nalgebra::{Point3, Vector3};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// One collision shape of a link, posed in the link frame.
 #[derive(Debug, Clone)]
@@ -93,10 +93,12 @@ impl Shape {
     }
 }
 
-/// The colliders of a URDF link; the error text names the offending `<collision>`.
+/// The colliders of a URDF link, with meshes from `meshes`; each mesh file read joins
+/// `files` (once per URI). The error text names the offending `<collision>`.
 pub(super) fn colliders_of_link(
     link: &urdf_rs::Link,
-    base_dir: &Path,
+    meshes: MeshSource<'_>,
+    files: &mut Vec<MeshFile>,
 ) -> Result<Vec<Collider>, String> {
     link.collision
         .iter()
@@ -108,7 +110,7 @@ pub(super) fn colliders_of_link(
             if xyz.iter().chain(rpy.iter()).any(|v| !v.is_finite()) {
                 return Err(at("<origin> has a non-finite value".into()));
             }
-            let shape = shape_of(&collision.geometry, base_dir).map_err(at)?;
+            let shape = shape_of(&collision.geometry, meshes, files).map_err(at)?;
             Ok(Collider {
                 origin: pose_from_xyz_rpy(xyz, rpy),
                 shape,
@@ -117,7 +119,11 @@ pub(super) fn colliders_of_link(
         .collect()
 }
 
-fn shape_of(geometry: &urdf_rs::Geometry, base_dir: &Path) -> Result<Shape, String> {
+fn shape_of(
+    geometry: &urdf_rs::Geometry,
+    meshes: MeshSource<'_>,
+    files: &mut Vec<MeshFile>,
+) -> Result<Shape, String> {
     use urdf_rs::Geometry as G;
     match geometry {
         G::Box { size } => {
@@ -152,7 +158,11 @@ fn shape_of(geometry: &urdf_rs::Geometry, base_dir: &Path) -> Result<Shape, Stri
             if scale.iter().any(|v| !v.is_finite() || *v == 0.0) {
                 return Err(format!("mesh scale {scale:?} must be finite and non-zero"));
             }
-            load_mesh(filename, Vector3::from(scale), base_dir).map(Shape::Mesh)
+            let (mesh, file) = load_mesh(filename, Vector3::from(scale), meshes)?;
+            if !files.iter().any(|f| f.uri == file.uri) {
+                files.push(file);
+            }
+            Ok(Shape::Mesh(mesh))
         }
     }
 }

@@ -2,6 +2,7 @@
 
 use super::collision::colliders_of_link;
 use super::locate::{first_problem, first_xacro_use};
+use super::mesh::{MeshFile, MeshSource};
 use super::{Joint, JointDrive, JointKind, JointLimits, Link, Robot, RobotError};
 use crate::pose::pose_from_xyz_rpy;
 use nalgebra::{Unit, Vector3};
@@ -14,10 +15,16 @@ pub(super) fn from_file(path: &Path) -> Result<Robot, RobotError> {
     }
     let text = std::fs::read_to_string(path)
         .map_err(|e| RobotError::file(path, format!("cannot read the URDF file: {e}")))?;
-    from_str(&text, path)
+    from_str(&text, path, None)
 }
 
-pub(super) fn from_str(text: &str, source: &Path) -> Result<Robot, RobotError> {
+/// The robot of URDF `text`; meshes from `embedded` when given, else from files next to
+/// `source`.
+pub(super) fn from_str(
+    text: &str,
+    source: &Path,
+    embedded: Option<&[MeshFile]>,
+) -> Result<Robot, RobotError> {
     if let Some((line, use_of_xacro)) = first_xacro_use(text) {
         return Err(RobotError::at_line(
             source,
@@ -29,7 +36,16 @@ pub(super) fn from_str(text: &str, source: &Path) -> Result<Robot, RobotError> {
         Some((line, problem)) => RobotError::at_line(source, line, problem),
         None => RobotError::file(source, format!("not a valid URDF document: {e}")),
     })?;
-    Builder { text, source }.build(&urdf)
+    let meshes = match embedded {
+        Some(files) => MeshSource::Embedded(files),
+        None => MeshSource::Files(folder_of(source)),
+    };
+    Builder {
+        text,
+        source,
+        meshes,
+    }
+    .build(&urdf)
 }
 
 /// The folder `path` is in: "." for a bare file name (whose parent is the empty path, which
@@ -76,6 +92,7 @@ fn element_line(text: &str, tag: &str, name: &str) -> Option<usize> {
 struct Builder<'a> {
     text: &'a str,
     source: &'a Path,
+    meshes: MeshSource<'a>,
 }
 
 impl Builder<'_> {
@@ -106,7 +123,7 @@ impl Builder<'_> {
             .iter()
             .map(|&j| self.joint(urdf, j, &link_index, &new_link_of, &actuated))
             .collect::<Result<Vec<_>, _>>()?;
-        let links = self.links(urdf, &link_order, &joints)?;
+        let (links, mesh_files) = self.links(urdf, &link_order, &joints)?;
         if actuated.is_empty() {
             return Err(RobotError::file(
                 self.source,
@@ -119,6 +136,7 @@ impl Builder<'_> {
             links,
             joints,
             actuated: actuated.iter().map(|(_, new)| *new).collect(),
+            mesh_files,
         })
     }
 
@@ -351,14 +369,14 @@ impl Builder<'_> {
         urdf: &urdf_rs::Robot,
         link_order: &[usize],
         joints: &[Joint],
-    ) -> Result<Vec<Link>, RobotError> {
-        let base_dir = folder_of(self.source);
-        link_order
+    ) -> Result<(Vec<Link>, Vec<MeshFile>), RobotError> {
+        let mut files = Vec::new();
+        let links = link_order
             .iter()
             .enumerate()
             .map(|(new, &old)| {
                 let urdf_link = &urdf.links[old];
-                let colliders = colliders_of_link(urdf_link, base_dir)
+                let colliders = colliders_of_link(urdf_link, self.meshes, &mut files)
                     .map_err(|problem| self.error("link", &urdf_link.name, problem))?;
                 Ok(Link {
                     name: urdf_link.name.clone(),
@@ -366,7 +384,8 @@ impl Builder<'_> {
                     colliders,
                 })
             })
-            .collect()
+            .collect::<Result<Vec<_>, RobotError>>()?;
+        Ok((links, files))
     }
 }
 

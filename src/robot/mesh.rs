@@ -1,17 +1,38 @@
-//! Mesh files referenced by a URDF: path resolution without ROS, and STL reading.
+//! Mesh files referenced by a URDF: path resolution without ROS, STL reading, and the same
+//! from bytes embedded in a dictionary.
 
 use super::TriMesh;
 use nalgebra::{Point3, Vector3};
+use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
-/// Reads the STL mesh `uri` (relative to `base_dir`, `file://` or `package://`) and scales it.
+/// A mesh file's bytes under the URI the URDF names it by: what a dictionary embeds so that
+/// it carries the whole robot.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct MeshFile {
+    /// The `filename` attribute as written in the URDF.
+    pub uri: String,
+    /// The file's bytes.
+    pub bytes: Vec<u8>,
+}
+
+/// Where mesh files come from.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum MeshSource<'a> {
+    /// Files, relative URIs resolved against this folder.
+    Files(&'a Path),
+    /// Files embedded in a dictionary, found by URI.
+    Embedded(&'a [MeshFile]),
+}
+
+/// Reads the STL mesh `uri` (from a file relative to the URDF's folder, `file://` or
+/// `package://`, or embedded) and scales it; with it, the file's bytes.
 pub(super) fn load_mesh(
     uri: &str,
     scale: Vector3<f64>,
-    base_dir: &Path,
-) -> Result<TriMesh, String> {
-    let file = resolve_mesh_uri(uri, base_dir)?;
-    let is_stl = file
+    source: MeshSource<'_>,
+) -> Result<(TriMesh, MeshFile), String> {
+    let is_stl = Path::new(uri)
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("stl"));
     if !is_stl {
@@ -19,10 +40,21 @@ pub(super) fn load_mesh(
             "mesh '{uri}': only STL meshes are supported; convert it or use primitive shapes"
         ));
     }
-    let mut reader = std::fs::File::open(&file)
-        .map(std::io::BufReader::new)
-        .map_err(|e| format!("mesh '{uri}': cannot open {}: {e}", file.display()))?;
-    let stl = stl_io::read_stl(&mut reader).map_err(|e| {
+    let (file, bytes) = match source {
+        MeshSource::Files(base_dir) => {
+            let file = resolve_mesh_uri(uri, base_dir)?;
+            let bytes = std::fs::read(&file)
+                .map_err(|e| format!("mesh '{uri}': cannot read {}: {e}", file.display()))?;
+            (file, bytes)
+        }
+        MeshSource::Embedded(files) => {
+            let embedded = files.iter().find(|f| f.uri == uri).ok_or_else(|| {
+                format!("mesh '{uri}' is not among the mesh files embedded with the URDF")
+            })?;
+            (PathBuf::from(uri), embedded.bytes.clone())
+        }
+    };
+    let stl = stl_io::read_stl(&mut std::io::Cursor::new(&bytes)).map_err(|e| {
         format!(
             "mesh '{uri}': {} is not a readable STL file: {e}",
             file.display()
@@ -51,11 +83,18 @@ pub(super) fn load_mesh(
         .iter()
         .map(|f| f.vertices.map(|i| i as u32))
         .collect();
-    Ok(TriMesh {
+    let mesh = TriMesh {
         file,
         vertices,
         triangles,
-    })
+    };
+    Ok((
+        mesh,
+        MeshFile {
+            uri: uri.to_string(),
+            bytes,
+        },
+    ))
 }
 
 /// Resolves a URDF mesh filename to a file that exists.

@@ -18,6 +18,7 @@ mod mesh;
 
 pub use collision::{Collider, Shape, TriMesh};
 pub use error::{JointVectorError, RobotError};
+pub use mesh::MeshFile;
 
 use crate::pose::Pose;
 use nalgebra::{Unit, Vector3};
@@ -36,6 +37,9 @@ pub struct Robot {
     pub joints: Vec<Joint>,
     /// For each joint-vector entry, the index into `joints` of the joint it drives.
     pub actuated: Vec<usize>,
+    /// The mesh files the colliders were read from, in the order first used (empty for a
+    /// robot of primitive shapes): what a dictionary embeds with the URDF.
+    pub mesh_files: Vec<MeshFile>,
 }
 
 /// A rigid body of the arm with its collision geometry.
@@ -157,7 +161,17 @@ impl Robot {
     /// non-positive shape dimensions, mesh files that are missing or not STL, and robots with
     /// no movable joint.
     pub fn from_urdf_str(text: &str, source: &std::path::Path) -> Result<Robot, RobotError> {
-        load::from_str(text, source)
+        load::from_str(text, source, None)
+    }
+
+    /// [`Robot::from_urdf_str`] with the mesh files given (as a dictionary embeds them)
+    /// instead of read: a URI the URDF names that is not among `meshes` is an error.
+    pub fn from_urdf_str_with_meshes(
+        text: &str,
+        source: &std::path::Path,
+        meshes: &[MeshFile],
+    ) -> Result<Robot, RobotError> {
+        load::from_str(text, source, Some(meshes))
     }
 
     /// A robot of one fixed link `world` without colliders: the frame a scene of a segment in
@@ -173,6 +187,7 @@ impl Robot {
             }],
             joints: Vec::new(),
             actuated: Vec::new(),
+            mesh_files: Vec::new(),
         }
     }
 

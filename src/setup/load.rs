@@ -8,7 +8,7 @@ use super::{
     hash, segments,
 };
 use crate::cable::CableSpec;
-use crate::robot::Robot;
+use crate::robot::{MeshFile, Robot};
 use nalgebra::Vector3;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
@@ -23,17 +23,18 @@ pub(super) fn from_file(path: &Path) -> Result<Setup, SetupError> {
     from_str(&text, path, None)
 }
 
-/// Loads a setup from its text; `given` holds the URDF and cable texts when they are not to
-/// be read from the files the setup names.
+/// Loads a setup from its text; `given` holds the URDF and cable texts and the mesh files
+/// when they are not to be read from the files the setup names.
 pub(super) fn from_str(
     text: &str,
     path: &Path,
-    given: Option<(&str, &str)>,
+    given: Option<(&str, &str, &[MeshFile])>,
 ) -> Result<Setup, SetupError> {
     let src = Source { file: path, text };
     let raw: RawSetup = toml::from_str(text).map_err(|e| src.toml_error(&e))?;
     let folder = path.parent().unwrap_or(Path::new(""));
-    let (robot_path, robot_text, robot) = load_robot(src, folder, &raw.robot, given.map(|g| g.0))?;
+    let given_robot = given.map(|(urdf, _, meshes)| (urdf, meshes));
+    let (robot_path, robot_text, robot) = load_robot(src, folder, &raw.robot, given_robot)?;
     let (cable_path, cable_text, cable) = load_cable(src, folder, &raw.cable, given.map(|g| g.1))?;
     let gravity_m_s2 = gravity(src, &raw.gravity_m_s2)?;
     let max_guides_per_link = at_least_one(src, &raw.max_guides_per_link, "max_guides_per_link")?;
@@ -74,14 +75,17 @@ fn load_robot(
     src: Source,
     folder: &Path,
     robot: &Spanned<String>,
-    given: Option<&str>,
+    given: Option<(&str, &[MeshFile])>,
 ) -> Result<(PathBuf, String, Robot), SetupError> {
     let path = folder.join(robot.get_ref());
     let fail = |problem: String| src.error(robot.span(), "robot", problem);
-    let text = read_or_given(&path, given)
+    let text = read_or_given(&path, given.map(|g| g.0))
         .map_err(|e| fail(format!("cannot read the URDF {}: {e}", path.display())))?;
-    let model = Robot::from_urdf_str(&text, &path)
-        .map_err(|e| fail(format!("cannot load the robot: {e}")))?;
+    let model = match given {
+        Some((_, meshes)) => Robot::from_urdf_str_with_meshes(&text, &path, meshes),
+        None => Robot::from_urdf_str(&text, &path),
+    }
+    .map_err(|e| fail(format!("cannot load the robot: {e}")))?;
     Ok((path, text, model))
 }
 

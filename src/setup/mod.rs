@@ -68,6 +68,12 @@ mod segments;
 mod sites;
 
 pub use error::SetupError;
+
+/// True when two clamp poses in one frame are the same place: positions within
+/// [`COINCIDENCE_TOLERANCE_M`], orientations within [`COINCIDENCE_TOLERANCE_RAD`].
+pub fn same_place(a: &Pose, b: &Pose) -> bool {
+    guides::same_pose(a, b)
+}
 pub use hash::fnv1a64;
 pub use install::{Installation, turn_about_axis};
 
@@ -263,16 +269,17 @@ impl Setup {
     }
 
     /// Rebuilds a setup from the three texts a [`Setup`] keeps (`text`, `robot_text`,
-    /// `cable_text`), e.g. as embedded in a dictionary: the robot and cable files are not read
-    /// (mesh files a URDF references still are, relative to the resolved robot path). The
-    /// result has the same content hash as the setup the texts came from.
+    /// `cable_text`) and its robot's mesh files (`robot.mesh_files`), e.g. as embedded in a
+    /// dictionary: no file is read. The result has the same content hash as the setup the
+    /// texts came from.
     pub fn from_texts(
         text: &str,
         source: &Path,
         robot_text: &str,
         cable_text: &str,
+        meshes: &[crate::robot::MeshFile],
     ) -> Result<Setup, SetupError> {
-        load::from_str(text, source, Some((robot_text, cable_text)))
+        load::from_str(text, source, Some((robot_text, cable_text, meshes)))
     }
 
     /// Number of segments M.

@@ -131,23 +131,17 @@ pub fn solve(
     solve_with(setup, motion, options, None)
 }
 
-/// Runs the whole pipeline with the intra-link segments' pieces answered by `dictionary`,
-/// whose embedded setup is `setup` ([`Dictionary::setup`]); the inter-link segments are
-/// tested at their critical poses as in [`solve`].
+/// Runs the whole pipeline with the intra-link segments' pieces answered by `dictionary`:
+/// built from `setup`, or from any setup of the same robot, cable, gravity, limits and
+/// installation pose whose clamp catalogues hold every configuration of `setup`'s intra-link
+/// guides ([`MotionLookup::new`] checks it); the inter-link segments are tested at their
+/// critical poses as in [`solve`].
 pub fn solve_with_dictionary(
     dictionary: &Dictionary,
     setup: &Setup,
     motion: &Motion,
     options: &SolveOptions,
 ) -> Result<SolveReport, SolveError> {
-    if setup.content_hash != dictionary.header().setup_hash {
-        return Err(SolveError::Options(format!(
-            "{} was built for setup {:016x}, this setup is {}",
-            dictionary.path().display(),
-            dictionary.header().setup_hash,
-            setup.content_hash_hex()
-        )));
-    }
     solve_with(setup, motion, options, Some(dictionary))
 }
 
