@@ -13,8 +13,8 @@ use cable_dict::setup::Setup;
 use criterion::{Criterion, criterion_group, criterion_main};
 
 const SETUP: &str = "tests/data/dict_setup.toml";
-/// C2 of the fixture, the intra-link segment.
-const SEGMENT: usize = 1;
+/// The fixture's one clamp catalogue (link_4: G2's two places and G3's other one).
+const LINK: usize = 0;
 
 fn built_file(dir: &Path, directions: usize) -> PathBuf {
     let setup = Setup::from_file(SETUP).expect("fixture setup");
@@ -30,12 +30,13 @@ fn built_file(dir: &Path, directions: usize) -> PathBuf {
 
 fn open_and_lookup(path: &Path) -> usize {
     let dictionary = Dictionary::open(path).expect("opens");
+    // G2 "left z250" → G3 "back z280", 60 mm.
     let pv = Pv {
         sub_segments: 6,
-        start: 1,
-        end: 1,
+        start: 0,
+        end: 2,
     };
-    dictionary.lookup(SEGMENT, &pv).map_or(0, |(_, rows)| {
+    dictionary.lookup(LINK, &pv).map_or(0, |(_, rows)| {
         rows.iter().filter(|r| r.values().is_some()).count()
     })
 }

@@ -382,7 +382,7 @@ impl<'a> Evaluator<'a> {
     ) -> Vec<Result<Metrics, Rejection>> {
         let setup = self.setup;
         let (a, b) = setup.segment_guides(m);
-        let scene = self.link_frame_scene(setup.guides[a].link, down);
+        let scene = self.link_frame_scene(setup.guides[a].body, down);
         let declared = (
             setup.guide_world_pose(scene.link_poses, a, start),
             setup.guide_world_pose(scene.link_poses, b, end),

@@ -125,7 +125,7 @@ fn intra_link_poses(
     m: usize,
     criterion: IntraLinkCriterion,
 ) -> Result<Vec<TestPose>, MotionError> {
-    let link = setup.guides[setup.segment_guides(m).0].link;
+    let link = setup.guides[setup.segment_guides(m).0].body;
     let first = test_pose(setup, motion_sample(motion, 0, "first pose"), Some(link))?;
     let gravity = &setup.gravity_m_s2;
     if criterion == IntraLinkCriterion::FirstPose || gravity.norm() == 0.0 {
