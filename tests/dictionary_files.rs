@@ -476,3 +476,41 @@ fn an_unwritable_output_is_refused_with_exit_code_2() {
     assert!(stderr.contains("out.cdict"), "{stderr}");
     assert!(!dir.path().join("missing-folder").exists());
 }
+
+/// `solve --dict` with a setup of other limits is refused (exit 2) with one message that
+/// names the dictionary and the difference — once, not repeated by each error layer that
+/// wraps it (it was printed three times).
+#[test]
+fn a_setup_with_other_limits_is_refused_once_by_the_command() {
+    let built = &whole().1;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let dict = dir.path().join("dict.cdict");
+    write_dictionary(&dict, built).expect("written");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join(SETUP)).expect("fixture");
+    let robot = root.join("robots/viper_s850/viper_s850.urdf");
+    let cable = root.join("cables/smc_le_cp_3_paper.toml");
+    let edited = text
+        .replace(
+            "../../robots/viper_s850/viper_s850.urdf",
+            &robot.display().to_string(),
+        )
+        .replace(
+            "../../cables/smc_le_cp_3_paper.toml",
+            &cable.display().to_string(),
+        )
+        .replace("stretch = 1.02", "stretch = 1.03");
+    let setup = write(dir.path(), "stiffer.toml", edited.as_bytes());
+    let output = common::run(&[
+        "solve",
+        "--dict",
+        dict.to_str().expect("utf-8"),
+        "--setup",
+        setup.to_str().expect("utf-8"),
+        MOTION,
+    ]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.matches("other limits").count(), 1, "{stderr}");
+    assert!(stderr.contains("dict.cdict"), "{stderr}");
+}

@@ -371,8 +371,9 @@ impl<'a> Evaluator<'a> {
     /// `lengths` (sorted, > 0), in the link's frame under gravity along `down` (unit vector
     /// in that frame), clearance against the own link: the link-frame twin of
     /// [`Evaluator::first_rejections`] at one pose, lengths continued the same way (in
-    /// blocks of [`CONTINUATION_BLOCK`]), every length measured (none skipped). `Err` with the rejection when there is no
-    /// equilibrium (a cable too short for its clamps, a failed solve).
+    /// blocks of [`CONTINUATION_BLOCK`]), every length measured (none skipped). `Err` with
+    /// the rejection when there is no equilibrium (a cable too short for its clamps, a failed
+    /// solve).
     pub fn link_frame_metrics(
         &self,
         m: usize,

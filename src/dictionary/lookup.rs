@@ -225,7 +225,7 @@ fn at_direction(
 #[derive(Debug, thiserror::Error)]
 pub enum LookupError {
     /// The dictionary does not hold what the setup needs.
-    #[error("{0}")]
+    #[error(transparent)]
     Dictionary(#[from] DictionaryError),
 }
 

@@ -82,7 +82,7 @@ pub enum DynamicsError {
         what: String,
     },
     /// The start shape is not a cable the statics accept.
-    #[error("{0}")]
+    #[error(transparent)]
     Shape(#[from] StaticsError),
     /// Newton's method did not converge even on the shortest substeps.
     #[error(

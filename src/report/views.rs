@@ -20,10 +20,10 @@ const SNAPSHOTS_PER_ROW: usize = 5;
 #[derive(Debug, thiserror::Error)]
 pub enum ViewError {
     /// The robot's geometry cannot be used for the equilibria's clearance model.
-    #[error("{0}")]
+    #[error(transparent)]
     Obstacles(#[from] ContactError),
     /// A joint vector does not fit the robot.
-    #[error("{0}")]
+    #[error(transparent)]
     Kinematics(#[from] JointVectorError),
 }
 

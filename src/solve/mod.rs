@@ -100,13 +100,13 @@ impl SolveOptions {
 #[derive(Debug, thiserror::Error)]
 pub enum SolveError {
     /// The options do not fit the setup.
-    #[error("{0}")]
+    #[error(transparent)]
     Setup(#[from] SetupError),
     /// The motion does not fit the robot.
-    #[error("{0}")]
+    #[error(transparent)]
     Motion(#[from] MotionError),
     /// The robot's collision geometry cannot be used for clearance queries.
-    #[error("{0}")]
+    #[error(transparent)]
     Obstacles(#[from] ContactError),
     /// The chain search refused the sets (a bug if it happens: the sets come from the setup).
     #[error("chain search: {0}")]
@@ -118,7 +118,7 @@ pub enum SolveError {
     #[error("{0}")]
     Options(String),
     /// The dictionary cannot answer for this setup and motion.
-    #[error("{0}")]
+    #[error(transparent)]
     Dictionary(#[from] LookupError),
 }
 
