@@ -534,13 +534,13 @@ pub(super) fn pv_at(header: &Header, g: u64) -> (usize, Pv) {
     let slot = position.saturating_sub(1);
     let entry = &header.links[slot];
     let local = (g - entry.first_pv) as usize;
-    let (na, nb) = (entry.clamps.len(), entry.clamps.len());
+    let clamps = entry.clamps.len();
     let count = entry.lengths.len();
     let pair = local / count;
     let pv = Pv::new(
         entry.lengths[local % count] as usize,
-        pair / nb % na,
-        pair % nb,
+        pair / clamps % clamps,
+        pair % clamps,
     );
     (slot, pv)
 }

@@ -364,13 +364,13 @@ impl LinkEntry {
 
     /// Index of (i, j, S) within the link's block, `None` when not stored.
     pub fn grid_index(&self, sub_segments: usize, start: usize, end: usize) -> Option<u64> {
-        let (na, nb) = (self.clamps.len(), self.clamps.len());
+        let clamps = self.clamps.len();
         let length = self
             .lengths
             .binary_search(&u32::try_from(sub_segments).ok()?)
             .ok()?;
         let count = self.lengths.len();
-        (start < na && end < nb).then(|| ((start * nb + end) * count + length) as u64)
+        (start < clamps && end < clamps).then(|| ((start * clamps + end) * count + length) as u64)
     }
 }
 

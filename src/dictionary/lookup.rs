@@ -26,7 +26,7 @@ use crate::attachment::{
 };
 use crate::path::Pv;
 use crate::pose::Pose;
-use crate::setup::{Setup, same_place};
+use crate::setup::{Guide, Setup, same_place};
 use nalgebra::{Quaternion, Translation3, UnitQuaternion, Vector3};
 
 /// The dictionary's answers for one motion.
@@ -283,45 +283,23 @@ impl Dictionary {
         setup: &Setup,
         m: usize,
     ) -> Result<StoredSegment, DictionaryError> {
-        let dictionary = self;
         let (a, b) = setup.segment_guides(m);
         let link = &setup.robot.links[setup.guides[a].body].name;
-        let fail = |detail: String| mismatch(dictionary, format!("segment C{}: {detail}", m + 1));
-        let slot = dictionary
+        let fail = |detail: String| mismatch(self, format!("segment C{}: {detail}", m + 1));
+        let slot = self
             .link_slot(link)
             .ok_or_else(|| fail(format!("{link} has no clamp catalogue in the dictionary")))?;
-        let entry = &dictionary.header().links[slot];
+        let entry = &self.header().links[slot];
         let places: Vec<Pose> = entry.clamps.iter().map(clamp_pose).collect();
-        let indices =
-            |g: usize| -> Result<Vec<usize>, DictionaryError> {
-                let guide = &setup.guides[g];
-                (0..guide.configurations.len())
-                    .map(|c| {
-                        let pose = guide.pose_in_body(c);
-                        places.iter().position(|p| same_place(p, &pose)).ok_or_else(|| {
-                    let mm = pose.translation.vector * 1e3;
-                    fail(format!(
-                        "{} '{}' at ({:.1}, {:.1}, {:.1}) mm is not among the dictionary's \
-                         {} clamp places on {link}",
-                        guide.name,
-                        guide.configurations[c].name,
-                        mm.x,
-                        mm.y,
-                        mm.z,
-                        places.len()
-                    ))
-                })
-                    })
-                    .collect()
-            };
-        let (start_clamps, end_clamps) = (indices(a)?, indices(b)?);
+        let start_clamps = place_indices(&places, &setup.guides[a], link).map_err(&fail)?;
+        let end_clamps = place_indices(&places, &setup.guides[b], link).map_err(&fail)?;
         let robustness = &setup.robustness;
         let candidates = admissible_pvs(setup, m);
         for needed in needed_pvs(&candidates, robustness.delta_s, robustness.range) {
             let length = u32::try_from(needed.sub_segments).unwrap_or(u32::MAX);
             if needed.sub_segments > 0 && entry.lengths.binary_search(&length).is_err() {
                 return Err(fail(format!(
-                    "S = {} is not stored (the dictionary holds {}..={} on {link})",
+                    "S = {} is not stored (the dictionary holds S = {} to {} on {link})",
                     needed.sub_segments,
                     entry.lengths.first().copied().unwrap_or(0),
                     entry.lengths.last().copied().unwrap_or(0)
@@ -334,6 +312,29 @@ impl Dictionary {
             end_clamps,
         })
     }
+}
+
+/// The index among `places` (poses in the link's frame) of each configuration of `guide`;
+/// `Err` naming the first that is not one of them, with its position.
+fn place_indices(places: &[Pose], guide: &Guide, link: &str) -> Result<Vec<usize>, String> {
+    (0..guide.configurations.len())
+        .map(|c| {
+            let pose = guide.pose_in_body(c);
+            places.iter().position(|p| same_place(p, &pose)).ok_or_else(|| {
+                let mm = pose.translation.vector * 1e3;
+                format!(
+                    "{} '{}' at ({:.1}, {:.1}, {:.1}) mm is not among the dictionary's {} clamp \
+                     places on {link}",
+                    guide.name,
+                    guide.configurations[c].name,
+                    mm.x,
+                    mm.y,
+                    mm.z,
+                    places.len()
+                )
+            })
+        })
+        .collect()
 }
 
 /// The pose of a stored clamp place (a header [`parse`](super::format::parse) accepted has
