@@ -114,11 +114,12 @@ impl CableSpec {
     /// warnings](CableSpec::plausibility_warnings), naming the file.
     pub fn from_file(path: impl AsRef<Path>) -> Result<CableSpec, CableError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| CableError {
-            file: path.to_path_buf(),
-            line: None,
-            problem: format!("cannot read the cable file: {e}"),
-        })?;
+        let text =
+            crate::input::read_text(path, crate::input::CABLE).map_err(|problem| CableError {
+                file: path.to_path_buf(),
+                line: None,
+                problem,
+            })?;
         let spec = Self::from_toml_str(&text, path)?;
         spec.log_plausibility_warnings(path);
         Ok(spec)

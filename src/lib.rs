@@ -7,6 +7,7 @@
 //! The modules follow the pipeline of the design brief:
 //!
 //! - [`atomic_file`]: replacing a file so that readers never see a torn one.
+//! - [`input`]: reading input files with their size bounded (devices, pipes, huge files refused).
 //! - [`pose`]: rigid poses and the URDF roll–pitch–yaw convention shared by every module.
 //! - [`progress`]: progress of long stages, reported to a sink a front end draws.
 //! - [`robot`]: URDF loading, forward kinematics and collision geometry of the arm.
@@ -63,6 +64,7 @@ pub mod chain;
 pub mod dictionary;
 pub mod dynamics;
 pub mod geometry;
+pub mod input;
 pub mod motion;
 pub mod motion_test;
 pub mod path;

@@ -115,7 +115,7 @@ fn chosen_path(args: &PathArgs, setup: &Setup) -> Result<CablePath, Failure> {
 /// Candidate `rank` of a result JSON, or the one it passed (else its last).
 fn path_from_result(file: &Path, rank: Option<usize>) -> Result<CablePath, Failure> {
     let fail = |what: String| Failure::input(anyhow::anyhow!("{}: {what}", file.display()));
-    let text = std::fs::read_to_string(file).map_err(|e| fail(e.to_string()))?;
+    let text = cable_dict::input::read_text(file, cable_dict::input::RESULT).map_err(fail)?;
     let json: serde_json::Value =
         serde_json::from_str(&text).map_err(|e| fail(format!("not JSON: {e}")))?;
     let candidates = json["candidates"]

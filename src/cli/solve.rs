@@ -7,7 +7,7 @@ use cable_dict::attachment::{ConnectMethod, IntraLinkCriterion, SegmentPoses};
 use cable_dict::dictionary::Dictionary;
 use cable_dict::motion::Motion;
 use cable_dict::motion_test::EngineKind;
-use cable_dict::report::{ReportError, write_report};
+use cable_dict::report::{ReportError, check_report_folder, write_report};
 use cable_dict::setup::Setup;
 use cable_dict::solve::{
     SolveError, SolveOptions, SolveReport, guide_names, solve, solve_with_dictionary,
@@ -97,13 +97,7 @@ enum Connect {
 
 pub fn run(args: Args) -> Result<(), Failure> {
     if let Some(dir) = &args.report {
-        // Before the solve, not after: a typo should not cost the whole run.
-        std::fs::create_dir_all(dir).map_err(|e| {
-            Failure::input(anyhow::anyhow!(
-                "cannot create the report folder {}: {e}",
-                dir.display()
-            ))
-        })?;
+        check_report_folder(dir).map_err(Failure::input)?;
     }
     let dictionary = args.dict.as_deref().map(open_verified).transpose()?;
     let setup = match (&args.setup, &dictionary) {

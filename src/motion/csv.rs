@@ -4,6 +4,7 @@ use super::units::ColumnUnit;
 use super::{Motion, MotionError};
 use crate::atomic_file::write_atomically;
 use crate::robot::Robot;
+use std::borrow::Cow;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -35,8 +36,8 @@ impl Motion {
     /// Reads and validates a motion CSV for `robot` (format: see the [module](super) docs).
     pub fn from_csv_file(robot: &Robot, path: impl AsRef<Path>) -> Result<Motion, MotionError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| MotionError::in_file(path, format!("cannot read the motion: {e}")))?;
+        let text = crate::input::read_text(path, crate::input::MOTION)
+            .map_err(|e| MotionError::in_file(path, e))?;
         Motion::from_csv_str(robot, &text, path)
     }
 
@@ -132,7 +133,7 @@ fn parse_header(robot: &Robot, header: &str, at: &Cursor) -> Result<Vec<Column>,
         other => {
             return Err(at.error(format!(
                 "column 1 is `{}`; the first column must be `time_s`",
-                other.unwrap_or_default()
+                clipped(other.unwrap_or_default())
             )));
         }
     }
@@ -170,12 +171,13 @@ fn parse_column(
     number: usize,
     at: &Cursor,
 ) -> Result<Column, MotionError> {
+    let shown = clipped(field);
     let parsed = field
         .rsplit_once('_')
         .and_then(|(name, suffix)| Some((name, ColumnUnit::from_suffix(suffix)?)));
     let Some((name, unit)) = parsed else {
         return Err(at.error(format!(
-            "column {number} `{field}`: a joint column is named `<URDF joint name>_deg` or \
+            "column {number} `{shown}`: a joint column is named `<URDF joint name>_deg` or \
              `_rad` (`_mm` or `_m` for prismatic joints)"
         )));
     };
@@ -187,12 +189,13 @@ fn parse_column(
                 .map(|j| robot.actuated_joint(j).name.as_str())
                 .collect();
             format!(
-                "robot `{}` has no joint `{name}` (its actuated joints: {})",
+                "robot `{}` has no joint `{}` (its actuated joints: {})",
                 robot.name,
+                clipped(name),
                 known.join(", ")
             )
         };
-        return Err(at.error(format!("column {number} `{field}`: {problem}")));
+        return Err(at.error(format!("column {number} `{shown}`: {problem}")));
     };
     let rotary = robot.actuated_joint(joint).kind.is_rotary();
     if unit.is_rotary() != rotary {
@@ -201,7 +204,7 @@ fn parse_column(
             false => ("prismatic", "_mm or _m"),
         };
         return Err(at.error(format!(
-            "column {number} `{field}`: joint `{name}` is {kind}; use {units}"
+            "column {number} `{shown}`: joint `{name}` is {kind}; use {units}"
         )));
     }
     Ok(Column {
@@ -211,6 +214,16 @@ fn parse_column(
     })
 }
 
+/// `field` for a message: whole when short, else its start and its length, so that a
+/// malformed line of 100 MB is not echoed into the error.
+fn clipped(field: &str) -> Cow<'_, str> {
+    const SHOWN_CHARS: usize = 40;
+    match field.char_indices().nth(SHOWN_CHARS) {
+        None => Cow::Borrowed(field),
+        Some((end, _)) => Cow::Owned(format!("{}… ({} bytes)", &field[..end], field.len())),
+    }
+}
+
 /// One data row: the time (s) and the joint vector (SI), checked against the limits.
 fn parse_row(
     robot: &Robot,
@@ -218,11 +231,16 @@ fn parse_row(
     row: &str,
     at: &Cursor,
 ) -> Result<(f64, Vec<f64>), MotionError> {
-    let fields: Vec<&str> = row.split(',').map(str::trim).collect();
+    // At most one field more than expected is split off: a line of 10⁸ commas is refused
+    // without a list of 10⁸ fields.
+    let fields: Vec<&str> = row.splitn(columns.len() + 2, ',').map(str::trim).collect();
     if fields.len() != columns.len() + 1 {
+        let count = match fields.len() > columns.len() + 1 {
+            true => format!("more than {}", columns.len() + 1),
+            false => fields.len().to_string(),
+        };
         return Err(at.error(format!(
-            "{} values, but the header has {} columns",
-            fields.len(),
+            "{count} values, but the header has {} columns",
             columns.len() + 1
         )));
     }
@@ -241,13 +259,14 @@ fn parse_row(
 
 /// A finite number, or an error naming the column.
 fn parse_number(field: &str, number: usize, header: &str, at: &Cursor) -> Result<f64, MotionError> {
+    let field_shown = clipped(field);
     match field.parse::<f64>() {
         Ok(value) if value.is_finite() => Ok(value),
         Ok(_) => Err(at.error(format!(
-            "column {number} ({header}): `{field}` is not a finite number"
+            "column {number} ({header}): `{field_shown}` is not a finite number"
         ))),
         Err(_) => Err(at.error(format!(
-            "column {number} ({header}): `{field}` is not a number"
+            "column {number} ({header}): `{field_shown}` is not a number"
         ))),
     }
 }

@@ -138,9 +138,8 @@ impl WaypointFile {
     /// Reads and checks a waypoint file (everything that can be checked without the robot).
     pub fn from_file(path: impl AsRef<Path>) -> Result<WaypointFile, MotionError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| {
-            MotionError::in_file(path, format!("cannot read the waypoint file: {e}"))
-        })?;
+        let text = crate::input::read_text(path, crate::input::WAYPOINTS)
+            .map_err(|e| MotionError::in_file(path, e))?;
         WaypointFile::from_toml_str(&text, path)
     }
 

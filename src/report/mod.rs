@@ -1,6 +1,7 @@
 //! The report folder of a solve: what an engineer opens instead of reading JSON.
 //!
-//! [`write_report`] writes, each file atomically:
+//! [`write_report`] writes the folder as a whole (built next to it, then renamed into its
+//! place: a reader never sees half an old report and half a new one):
 //!
 //! - `result.json`: the result JSON, as `solve --json` prints it;
 //! - `summary.md`: the path, set sizes, margins, motion test, timings, inputs and hashes;
@@ -18,7 +19,7 @@ pub mod scene;
 mod summary;
 pub mod views;
 
-use crate::atomic_file::write_atomically;
+use crate::atomic_file::FolderReplacement;
 use crate::motion::Motion;
 use crate::setup::Setup;
 use crate::solve::SolveReport;
@@ -28,12 +29,12 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, thiserror::Error)]
 pub enum ReportError {
     /// A file or the folder cannot be written.
-    #[error("cannot write {path}: {source}")]
+    #[error("cannot write {path}: {error}")]
     Write {
         /// The file or folder.
         path: PathBuf,
-        /// Why.
-        source: std::io::Error,
+        /// Why (in the message, not a separate cause, so that it is printed once).
+        error: std::io::Error,
     },
     /// A plot could not be drawn.
     #[error("{file}: {source}")]
@@ -121,22 +122,24 @@ pub fn input_hashes(setup: &Setup, report: &SolveReport) -> Vec<Hashed> {
     inputs
 }
 
-/// Writes the report folder `dir` (created if missing; the report's own files replaced) of
-/// `report`, which solved `motion` with `setup` as solved
-/// ([`SolveOptions::setup_for`](crate::solve::SolveOptions::setup_for)). Returns the files
-/// written, `index.html` last.
+/// Writes the report folder `dir` of `report`, which solved `motion` with `setup` as
+/// solved ([`SolveOptions::setup_for`](crate::solve::SolveOptions::setup_for)): created, or
+/// replaced as a whole when it holds only what a report writes ([`is_report_file`]).
+/// Returns the files written, `index.html` last.
 pub fn write_report(
     dir: &Path,
     setup: &Setup,
     motion: &Motion,
     report: &SolveReport,
 ) -> Result<Vec<PathBuf>, ReportError> {
-    std::fs::create_dir_all(dir).map_err(|source| ReportError::Write {
+    let write_error = |error| ReportError::Write {
         path: dir.to_path_buf(),
-        source,
-    })?;
+        error,
+    };
+    let staging = FolderReplacement::begin(dir, is_report_file).map_err(write_error)?;
     let mut folder = Folder {
         dir,
+        staging: staging.path(),
         written: Vec::new(),
         described: Vec::new(),
     };
@@ -159,12 +162,34 @@ pub fn write_report(
     let title = format!("cable-dict: {}", report.status.describe());
     let page = page::index_html(&title, &summary, &figures);
     folder.put("index.html", "this page", page.as_bytes())?;
-    Ok(folder.written)
+    let written = folder.written;
+    staging.commit().map_err(write_error)?;
+    Ok(written)
+}
+
+/// `Ok` when [`write_report`] will be able to put its folder at `dir` (checked before a
+/// solve, so that a typo does not cost the whole run).
+pub fn check_report_folder(dir: &Path) -> Result<(), ReportError> {
+    FolderReplacement::check(dir, is_report_file).map_err(|error| ReportError::Write {
+        path: dir.to_path_buf(),
+        error,
+    })
+}
+
+/// The files a report folder may hold (what [`write_report`] writes, by extension): an
+/// existing folder holding anything else is not replaced.
+pub fn is_report_file(name: &str) -> bool {
+    [".json", ".md", ".html", ".svg", ".glb"]
+        .iter()
+        .any(|extension| name.ends_with(extension))
 }
 
 /// The folder being written, and what is in it so far.
 struct Folder<'a> {
+    /// Where the folder will be.
     dir: &'a Path,
+    /// Where it is written.
+    staging: &'a Path,
     written: Vec<PathBuf>,
     /// `(file, what it shows)` for the summary's list.
     described: Vec<(&'static str, &'static str)>,
@@ -177,12 +202,11 @@ impl Folder<'_> {
         what: &'static str,
         bytes: &[u8],
     ) -> Result<(), ReportError> {
-        let path = self.dir.join(file);
-        write_atomically(&path, bytes).map_err(|source| ReportError::Write {
-            path: path.clone(),
-            source,
+        std::fs::write(self.staging.join(file), bytes).map_err(|error| ReportError::Write {
+            path: self.dir.join(file),
+            error,
         })?;
-        self.written.push(path);
+        self.written.push(self.dir.join(file));
         self.described.push((file, what));
         Ok(())
     }

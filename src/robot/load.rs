@@ -1,7 +1,7 @@
 //! Turning a URDF document into a validated [`Robot`].
 
 use super::collision::colliders_of_link;
-use super::locate::{first_problem, first_xacro_use};
+use super::locate::{MAX_XML_DEPTH, first_problem, first_xacro_use, too_deep};
 use super::mesh::{MeshFile, MeshSource};
 use super::{Joint, JointDrive, JointKind, JointLimits, Link, Robot, RobotError};
 use crate::pose::pose_from_xyz_rpy;
@@ -13,8 +13,8 @@ pub(super) fn from_file(path: &Path) -> Result<Robot, RobotError> {
     if has_extension(path, "xacro") {
         return Err(xacro_refusal(path));
     }
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| RobotError::file(path, format!("cannot read the URDF file: {e}")))?;
+    let text =
+        crate::input::read_text(path, crate::input::URDF).map_err(|e| RobotError::file(path, e))?;
     from_str(&text, path, None)
 }
 
@@ -30,6 +30,13 @@ pub(super) fn from_str(
             source,
             line,
             format!("{use_of_xacro}; {XACRO_ADVICE}"),
+        ));
+    }
+    if let Some(line) = too_deep(text) {
+        return Err(RobotError::at_line(
+            source,
+            line,
+            format!("elements nested more than {MAX_XML_DEPTH} deep: not a URDF robot description"),
         ));
     }
     let urdf = urdf_rs::read_from_string(text).map_err(|e| match first_problem(text) {

@@ -29,6 +29,32 @@ const NUMERIC_ATTRIBUTES: [(&str, usize); 16] = [
     ("friction", 1),
 ];
 
+/// Deepest element nesting a URDF may have. Real ones nest 5–10 deep (robot, link,
+/// collision, geometry, mesh; a Gazebo plugin's options); the URDF parser recurses once per
+/// level, so a document 100 000 levels deep would overflow the stack.
+pub const MAX_XML_DEPTH: usize = 64;
+
+/// The 1-based line of the first element nested deeper than [`MAX_XML_DEPTH`], read without
+/// recursion; `None` when none is (syntax errors are left to [`first_problem`]).
+pub(super) fn too_deep(text: &str) -> Option<usize> {
+    let mut reader = Reader::from_str(text);
+    let mut depth = 0usize;
+    loop {
+        let element_start = reader.buffer_position() as usize;
+        match reader.read_event() {
+            Ok(Event::Start(_)) => {
+                depth += 1;
+                if depth > MAX_XML_DEPTH {
+                    return Some(line_of(text, element_start));
+                }
+            }
+            Ok(Event::End(_)) => depth = depth.saturating_sub(1),
+            Ok(Event::Eof) | Err(_) => return None,
+            Ok(_) => {}
+        }
+    }
+}
+
 /// The 1-based line and description of the first syntax error or malformed number in `text`,
 /// or `None` when the text looks well-formed (the problem is then structural).
 pub(super) fn first_problem(text: &str) -> Option<(usize, String)> {
@@ -158,7 +184,15 @@ fn line_of(text: &str, offset: usize) -> usize {
 
 #[cfg(test)]
 mod tests {
-    use super::{first_problem, first_xacro_use};
+    use super::{MAX_XML_DEPTH, first_problem, first_xacro_use, too_deep};
+
+    #[test]
+    fn nesting_is_measured_without_recursion() {
+        let deep = |n: usize| format!("<robot>\n{}{}</robot>", "<a>".repeat(n), "</a>".repeat(n));
+        assert_eq!(too_deep(&deep(MAX_XML_DEPTH - 1)), None);
+        assert_eq!(too_deep(&deep(MAX_XML_DEPTH)), Some(2));
+        assert_eq!(too_deep(&deep(100_000)), Some(2));
+    }
 
     #[test]
     fn points_at_the_line_of_the_problem() {

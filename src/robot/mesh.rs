@@ -43,8 +43,8 @@ pub(super) fn load_mesh(
     let (file, bytes) = match source {
         MeshSource::Files(base_dir) => {
             let file = resolve_mesh_uri(uri, base_dir)?;
-            let bytes = std::fs::read(&file)
-                .map_err(|e| format!("mesh '{uri}': cannot read {}: {e}", file.display()))?;
+            let bytes = crate::input::read_bytes(&file, crate::input::MESH)
+                .map_err(|e| format!("mesh '{uri}' ({}): {e}", file.display()))?;
             (file, bytes)
         }
         MeshSource::Embedded(files) => {

@@ -2,7 +2,7 @@
 //! expressed as a pair of configurations with equal poses. The rule is stated in the module
 //! documentation of [`super`].
 
-use super::guides::same_pose;
+use super::guides::PoseIndex;
 use super::{ConfigurationOrigin, Guide, GuideConfiguration, SegmentSpec};
 
 /// Adds the coincident copies for every intra-link segment that allows S = 0: first from the
@@ -26,19 +26,19 @@ pub(super) fn add_copies(guides: &mut [Guide], segments: &[SegmentSpec]) {
 /// already has; with `only_from_fixed`, only those declared by a fixed guide.
 fn copy(guides: &mut [Guide], from: usize, to: usize, only_from_fixed: bool) {
     let mut copies: Vec<GuideConfiguration> = Vec::new();
+    let mut known = PoseIndex::default();
+    for k in 0..guides[to].configurations.len() {
+        known.insert(&guides[to].pose_in_body(k), k);
+    }
     for c in 0..guides[from].configurations.len() {
         let (root_guide, root_configuration) = root_of(from, c, &guides[from].configurations[c]);
         let declared_by = &guides[root_guide];
         let in_body = guides[from].pose_in_body(c);
         let target = &guides[to];
-        let known = (0..target.configurations.len())
-            .any(|k| same_pose(&target.pose_in_body(k), &in_body))
-            || copies
-                .iter()
-                .any(|copy| same_pose(&(target.link_in_body * copy.pose), &in_body));
-        if known || (only_from_fixed && !declared_by.fixed) {
+        if known.find(&in_body).is_some() || (only_from_fixed && !declared_by.fixed) {
             continue;
         }
+        known.insert(&in_body, target.configurations.len() + copies.len());
         let original = &declared_by.configurations[root_configuration];
         copies.push(GuideConfiguration {
             name: format!("{}/{}", declared_by.name, original.name),

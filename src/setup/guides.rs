@@ -7,6 +7,7 @@ use super::sites::SiteContext;
 use super::{ConfigurationOrigin, Guide, GuideConfiguration, SetupError};
 use crate::pose::{Pose, pose_from_mm_deg};
 use crate::robot::Robot;
+use std::collections::{HashMap, HashSet};
 use toml::Spanned;
 
 type RawGuides = Spanned<Vec<Spanned<RawGuide>>>;
@@ -130,9 +131,32 @@ fn configurations(
     entries: &[(String, &Spanned<RawConfiguration>)],
 ) -> Result<Vec<GuideConfiguration>, SetupError> {
     let mut list: Vec<GuideConfiguration> = Vec::new();
+    let mut names: HashSet<String> = HashSet::new();
+    let mut poses = PoseIndex::default();
     for (key, entry) in entries {
         let configuration = configuration(src, key, entry)?;
-        check_distinct(src, key, entry, &configuration, &list)?;
+        if names.contains(&configuration.name) {
+            return Err(src.error(
+                entry.get_ref().name.span(),
+                format!("{key}.name"),
+                format!(
+                    "configuration name \"{}\" is used twice in this guide",
+                    configuration.name
+                ),
+            ));
+        }
+        if let Some(twin) = poses.find(&configuration.pose) {
+            return Err(src.error(
+                entry.span(),
+                key,
+                format!(
+                    "configuration \"{}\" has the same pose as \"{}\"",
+                    configuration.name, list[twin].name
+                ),
+            ));
+        }
+        names.insert(configuration.name.clone());
+        poses.insert(&configuration.pose, list.len());
         list.push(configuration);
     }
     Ok(list)
@@ -158,41 +182,62 @@ fn configuration(
     })
 }
 
-/// Refuses a configuration whose name or pose an earlier one of the same guide already has.
-fn check_distinct(
-    src: Source,
-    key: &str,
-    entry: &Spanned<RawConfiguration>,
-    new: &GuideConfiguration,
-    earlier: &[GuideConfiguration],
-) -> Result<(), SetupError> {
-    if earlier.iter().any(|c| c.name == new.name) {
-        return Err(src.error(
-            entry.get_ref().name.span(),
-            format!("{key}.name"),
-            format!(
-                "configuration name \"{}\" is used twice in this guide",
-                new.name
-            ),
-        ));
-    }
-    if let Some(twin) = earlier.iter().find(|c| same_pose(&c.pose, &new.pose)) {
-        return Err(src.error(
-            entry.span(),
-            key,
-            format!(
-                "configuration \"{}\" has the same pose as \"{}\"",
-                new.name, twin.name
-            ),
-        ));
-    }
-    Ok(())
-}
-
 /// Poses equal within the coincidence tolerances.
 pub(super) fn same_pose(a: &Pose, b: &Pose) -> bool {
     (a.translation.vector - b.translation.vector).norm() < super::COINCIDENCE_TOLERANCE_M
         && a.rotation.angle_to(&b.rotation) < super::COINCIDENCE_TOLERANCE_RAD
+}
+
+/// Poses found by position without comparing each with all others (a catalogue may hold
+/// 10⁵ of them): a hash grid of cells wider than the coincidence tolerance, so that a pose
+/// [`same_pose`] as an indexed one lies in the same or a neighbouring cell.
+#[derive(Default)]
+pub(super) struct PoseIndex {
+    cells: HashMap<[i64; 3], Vec<(Pose, usize)>>,
+}
+
+/// Cell width of [`PoseIndex`] (m): above the coincidence tolerance.
+const CELL_M: f64 = 1e-6;
+
+impl PoseIndex {
+    fn cell(pose: &Pose) -> [i64; 3] {
+        // `as` saturates: far or non-finite positions share the edge cells, still correct.
+        pose.translation
+            .vector
+            .map(|x| (x / CELL_M).floor() as i64)
+            .into()
+    }
+
+    /// The smallest index of an inserted pose that is [`same_pose`] as `pose`.
+    pub fn find(&self, pose: &Pose) -> Option<usize> {
+        let [x, y, z] = Self::cell(pose);
+        let mut found: Option<usize> = None;
+        for dx in -1..=1i64 {
+            for dy in -1..=1i64 {
+                for dz in -1..=1i64 {
+                    let key = [
+                        x.saturating_add(dx),
+                        y.saturating_add(dy),
+                        z.saturating_add(dz),
+                    ];
+                    for (other, index) in self.cells.get(&key).into_iter().flatten() {
+                        if same_pose(other, pose) && found.is_none_or(|f| *index < f) {
+                            found = Some(*index);
+                        }
+                    }
+                }
+            }
+        }
+        found
+    }
+
+    /// Adds `pose` under `index`.
+    pub fn insert(&mut self, pose: &Pose, index: usize) {
+        self.cells
+            .entry(Self::cell(pose))
+            .or_default()
+            .push((*pose, index));
+    }
 }
 
 /// A non-empty name without `/` (reserved for coincident copies such as `G2/back`).

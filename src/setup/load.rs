@@ -1,24 +1,25 @@
 //! Reading a setup file: parse, load the robot and the cable, validate, assemble.
 
-use super::error::Source;
+use super::error::{Source, newline_offsets};
 use super::raw::{BendRadiusSetting, RawRobustness, RawSetup, RawThresholds};
 use super::sites::SiteContext;
 use super::{
-    BendRadiusSource, Installation, Robustness, Setup, SetupError, Thresholds, coincide, guides,
-    hash, segments,
+    BendRadiusSource, Installation, MAX_SUB_SEGMENTS, Robustness, Setup, SetupError, Thresholds,
+    coincide, guides, hash, segments,
 };
 use crate::cable::CableSpec;
+use crate::input::{self, FileKind};
 use crate::robot::{MeshFile, Robot};
 use nalgebra::Vector3;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
 pub(super) fn from_file(path: &Path) -> Result<Setup, SetupError> {
-    let text = std::fs::read_to_string(path).map_err(|e| SetupError {
+    let text = input::read_text(path, input::SETUP).map_err(|problem| SetupError {
         file: path.to_path_buf(),
         line: None,
         key: None,
-        problem: format!("cannot read the setup file: {e}"),
+        problem,
     })?;
     from_str(&text, path, None)
 }
@@ -30,7 +31,12 @@ pub(super) fn from_str(
     path: &Path,
     given: Option<(&str, &str, &[MeshFile])>,
 ) -> Result<Setup, SetupError> {
-    let src = Source { file: path, text };
+    let newlines = newline_offsets(text);
+    let src = Source {
+        file: path,
+        text,
+        newlines: &newlines,
+    };
     let raw: RawSetup = toml::from_str(text).map_err(|e| src.toml_error(&e))?;
     let folder = path.parent().unwrap_or(Path::new(""));
     let given_robot = given.map(|(urdf, _, meshes)| (urdf, meshes));
@@ -79,8 +85,8 @@ fn load_robot(
 ) -> Result<(PathBuf, String, Robot), SetupError> {
     let path = folder.join(robot.get_ref());
     let fail = |problem: String| src.error(robot.span(), "robot", problem);
-    let text = read_or_given(&path, given.map(|g| g.0))
-        .map_err(|e| fail(format!("cannot read the URDF {}: {e}", path.display())))?;
+    let text = read_or_given(&path, given.map(|g| g.0), input::URDF)
+        .map_err(|e| fail(format!("{}: {e}", path.display())))?;
     let model = match given {
         Some((_, meshes)) => Robot::from_urdf_str_with_meshes(&text, &path, meshes),
         None => Robot::from_urdf_str(&text, &path),
@@ -99,22 +105,18 @@ fn load_cable(
 ) -> Result<(PathBuf, String, CableSpec), SetupError> {
     let path = folder.join(cable.get_ref());
     let fail = |problem: String| src.error(cable.span(), "cable", problem);
-    let text = read_or_given(&path, given).map_err(|e| {
-        fail(format!(
-            "cannot read the cable file {}: {e}",
-            path.display()
-        ))
-    })?;
+    let text = read_or_given(&path, given, input::CABLE)
+        .map_err(|e| fail(format!("{}: {e}", path.display())))?;
     let spec = CableSpec::from_toml_str(&text, &path)
         .map_err(|e| fail(format!("cannot load the cable: {e}")))?;
     spec.log_plausibility_warnings(&path);
     Ok((path, text, spec))
 }
 
-fn read_or_given(path: &Path, given: Option<&str>) -> std::io::Result<String> {
+fn read_or_given(path: &Path, given: Option<&str>, kind: FileKind) -> Result<String, String> {
     match given {
         Some(text) => Ok(text.to_string()),
-        None => std::fs::read_to_string(path),
+        None => input::read_text(path, kind),
     }
 }
 
@@ -259,8 +261,18 @@ fn bend_radius(
 }
 
 fn robustness(src: Source, raw: &RawRobustness) -> Result<Robustness, SetupError> {
-    Ok(Robustness {
-        delta_s: at_least_one(src, &raw.delta_s, "robustness.delta_s")?,
-        range: *raw.range.get_ref(),
-    })
+    let delta_s = at_least_one(src, &raw.delta_s, "robustness.delta_s")?;
+    let range = *raw.range.get_ref();
+    // R·ΔS is a length: bounded like the segments' lengths (and never overflowing).
+    if delta_s.saturating_mul(range) > MAX_SUB_SEGMENTS {
+        return Err(src.error(
+            raw.range.span(),
+            "robustness.range",
+            format!(
+                "range × delta_s = {range} × {delta_s} sub-segments, more than the \
+                 {MAX_SUB_SEGMENTS} a segment may have"
+            ),
+        ));
+    }
+    Ok(Robustness { delta_s, range })
 }

@@ -187,6 +187,11 @@ pub enum ConfigurationOrigin {
     },
 }
 
+/// Most sub-segments a segment's candidate lengths (and R·ΔS) may reach: 100 m at a 10 mm
+/// pitch, beyond any robot; the static solver's time and memory grow with the count, and a
+/// bound here keeps every length sum and product far from overflow.
+pub const MAX_SUB_SEGMENTS: usize = 10_000;
+
 /// Candidate lengths of one segment.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SegmentSpec {

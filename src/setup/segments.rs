@@ -3,7 +3,7 @@
 use super::error::Source;
 use super::guides::same_pose;
 use super::raw::{RawLengths, RawSegment};
-use super::{Guide, LengthRange, SegmentSpec, SetupError};
+use super::{Guide, LengthRange, MAX_SUB_SEGMENTS, SegmentSpec, SetupError};
 use toml::Spanned;
 
 /// Validates the `[[segments]]` list against the guides and ΔS.
@@ -95,6 +95,16 @@ fn length_range(
             raw.min.span(),
             "min",
             "min must be ≥ 1; S = 0 is asked for with `allow_zero = true`".into(),
+        ));
+    }
+    if max > MAX_SUB_SEGMENTS {
+        return Err(fail(
+            raw.max.span(),
+            "max",
+            format!(
+                "max = {max} sub-segments, more than the {MAX_SUB_SEGMENTS} a segment may have \
+                 (its cable is solved node by node)"
+            ),
         ));
     }
     if max < min {

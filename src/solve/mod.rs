@@ -153,7 +153,8 @@ fn solve_with(
 ) -> Result<SolveReport, SolveError> {
     let total = Instant::now();
     let setup = &options.setup_for(setup)?;
-    check_size(setup).map_err(SolveError::Options)?;
+    check_size(setup)
+        .map_err(|e| SolveError::Options(format!("{}: {e}", setup.source.display())))?;
     let clock = Instant::now();
     let poses = SegmentPoses::with(setup, motion, options.intra_link)?;
     let critical_poses_s = clock.elapsed().as_secs_f64();

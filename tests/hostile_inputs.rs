@@ -1,0 +1,216 @@
+//! Careless or hostile input files, end to end: each is refused with exit code 2 and a short
+//! message naming the file, the place and what is wrong — no panic, no runaway memory, no
+//! echo of the whole input. (Regression tests of issue 18's list; the dictionary cases are in
+//! `dictionary_files.rs`.)
+
+mod common;
+
+use common::run;
+use std::path::{Path, PathBuf};
+
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+const SETUP: &str = "robots/viper_s850/hand_written/pick_and_place.toml";
+const MOTION: &str = "motions/viper_s850/pick_and_place.csv";
+
+/// Exit code and standard error of a run that must fail.
+fn refusal(args: &[&str]) -> (i32, String) {
+    let output = run(args);
+    (
+        output.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+/// The bundled pick-and-place setup with its robot and cable paths made absolute and
+/// `edit` applied, written into `dir`.
+fn setup_with(dir: &Path, edit: impl Fn(String) -> String) -> PathBuf {
+    let text = std::fs::read_to_string(Path::new(ROOT).join(SETUP)).unwrap();
+    let text = text
+        .replace(
+            "robot = \"../viper_s850.urdf\"",
+            &format!("robot = \"{ROOT}/robots/viper_s850/viper_s850.urdf\""),
+        )
+        .replace(
+            "cable = \"../../../cables/",
+            &format!("cable = \"{ROOT}/cables/"),
+        );
+    let path = dir.join("setup.toml");
+    std::fs::write(&path, edit(text)).unwrap();
+    path
+}
+
+fn solve_refusal(setup: &Path) -> (i32, String) {
+    refusal(&["solve", "--setup", setup.to_str().unwrap(), MOTION])
+}
+
+#[test]
+fn a_device_as_the_robot_is_refused_before_reading_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let setup = setup_with(dir.path(), |t| {
+        t.replace(
+            &format!("robot = \"{ROOT}/robots/viper_s850/viper_s850.urdf\""),
+            "robot = \"/dev/zero\"",
+        )
+    });
+    let (code, message) = solve_refusal(&setup);
+    assert_eq!(code, 2, "{message}");
+    assert!(
+        message.contains("setup.toml:17: robot: /dev/zero: the URDF file is not a regular file"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_urdf_nested_100_000_deep_is_refused_at_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("deep.urdf");
+    let depth = 100_000;
+    let text = format!(
+        "<?xml version=\"1.0\"?>\n<robot name=\"r\">\n{}{}</robot>\n",
+        "<link>".repeat(depth),
+        "</link>".repeat(depth)
+    );
+    std::fs::write(&path, text).unwrap();
+    let (code, message) = refusal(&["robot-info", path.to_str().unwrap()]);
+    assert_eq!(code, 2, "{message}");
+    assert!(
+        message.contains("deep.urdf:3: elements nested more than 64 deep"),
+        "{message}"
+    );
+}
+
+#[test]
+fn lengths_near_the_integer_limits_are_refused_naming_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    for max in ["9223372036854775807", "1000000000"] {
+        let setup = setup_with(dir.path(), |t| {
+            t.replace("max = 75", &format!("max = {max}"))
+        });
+        let (code, message) = solve_refusal(&setup);
+        assert_eq!(code, 2, "{message}");
+        assert!(
+            message.contains(&format!(
+                "segments[0].lengths.max: max = {max} sub-segments, more than the 10000"
+            )),
+            "{message}"
+        );
+    }
+    let setup = setup_with(dir.path(), |t| {
+        t.replace("range = 2 ", "range = 9223372036854775807 ")
+    });
+    let (code, message) = solve_refusal(&setup);
+    assert_eq!(code, 2, "{message}");
+    assert!(
+        message.contains("robustness.range: range × delta_s"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_catalogue_of_100_000_clamp_places_is_refused_with_the_count() {
+    let dir = tempfile::tempdir().unwrap();
+    let places: Vec<String> = (0..100_000)
+        .map(|k| {
+            format!(
+                "  {{ name = \"c{k}\", position_mm = [{:.3}, 107.0, 330.0], rpy_deg = [153.4, -5.7, -111.3] }}",
+                -65.0 - 0.001 * k as f64
+            )
+        })
+        .collect();
+    let setup = setup_with(dir.path(), |t| {
+        let g2 = t.find("name = \"G2\"").unwrap();
+        let start = g2 + t[g2..].find("configurations = [").unwrap();
+        let end = start + t[start..].find("]\n").unwrap();
+        format!(
+            "{}configurations = [\n{}\n{}",
+            &t[..start],
+            places.join(",\n"),
+            &t[end..]
+        )
+    });
+    let (code, message) = solve_refusal(&setup);
+    assert_eq!(code, 2, "{message}");
+    // C2 (G2 → G3, S = 0 allowed) pairs the 100 000 places with themselves: 10¹⁰ per length.
+    assert!(message.contains("setup.toml: "), "{message}");
+    assert!(
+        message.contains("candidate pieces (C1 21700000, C2 2200"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_twin_place_in_a_large_catalogue_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let setup = setup_with(dir.path(), |t| {
+        t.replace(
+            "position_mm = [-75.0, 107.0, 340.0], rpy_deg = [153.2, -5.0, -109.8]",
+            "position_mm = [-65.0, 107.0, 330.0], rpy_deg = [153.4, -5.7, -111.3]",
+        )
+    });
+    let (code, message) = solve_refusal(&setup);
+    assert_eq!(code, 2, "{message}");
+    assert!(
+        message.contains(
+            "configuration \"fork bracket x-75 y107 z340\" has the same pose as \"fork bracket \
+             x-65 y107 z330\""
+        ),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_motion_line_of_10_mb_is_refused_without_echoing_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let header = "time_s,joint_1_deg,joint_2_deg,joint_3_deg,joint_4_deg,joint_5_deg,joint_6_deg";
+    let cases = [
+        (
+            "long.csv",
+            format!("{header}\n0,{}", "1".repeat(10_000_000)),
+            "2 values, but the header has 7 columns".to_string(),
+        ),
+        (
+            "fields.csv",
+            format!("{header}\n0{}\n", ",1".repeat(5_000_000)),
+            "more than 7 values, but the header has 7 columns".to_string(),
+        ),
+        (
+            "number.csv",
+            format!("{header}\n0,{},0,0,0,0,0\n", "9".repeat(10_000_000) + "x"),
+            format!("`{}… (10000001 bytes)` is not a number", "9".repeat(40)),
+        ),
+    ];
+    for (name, text, expected) in cases {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        let (code, message) = refusal(&["critical-poses", SETUP, path.to_str().unwrap()]);
+        assert_eq!(code, 2, "{name}");
+        assert!(
+            message.len() < 500,
+            "{name}: {} bytes of message",
+            message.len()
+        );
+        assert!(message.contains(&format!("{name}:2: ")), "{message}");
+        assert!(message.contains(&expected), "{message}");
+    }
+}
+
+#[test]
+fn a_report_folder_holding_other_files_is_left_alone() {
+    let dir = tempfile::tempdir().unwrap();
+    let precious = dir.path().join("thesis.tex");
+    std::fs::write(&precious, "years of work").unwrap();
+    let (code, message) = refusal(&[
+        "solve",
+        "--setup",
+        SETUP,
+        MOTION,
+        "--report",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{message}");
+    assert!(
+        message.contains("holds `thesis.tex`, which a report does not write"),
+        "{message}"
+    );
+    assert_eq!(std::fs::read_to_string(&precious).unwrap(), "years of work");
+}
