@@ -4,7 +4,11 @@
 //! header that contradicts its setup hash) is refused with its own [`Problem`] variant and a
 //! message naming the file (and the section); shards that do not make one dictionary are
 //! refused by `merge`, shards that do merge give the single build's bytes; a shard is refused
-//! where a whole dictionary is needed. The binary's exit code for all of these is 2.
+//! where a whole dictionary is needed. Resealed forgeries (valid checksums) that would change
+//! answers are refused by `verify` (a header that is not what a build of its embedded setup
+//! writes, overlapping sections, an embedded URDF nested 100 000 deep) or caught by
+//! `verify --recompute` (forged margins, an altered setup with its hash patched). The
+//! binary's exit code for all of these is 2.
 
 mod common;
 
@@ -254,7 +258,7 @@ fn a_flipped_byte_is_caught_by_the_checksum_of_its_place() {
 }
 
 #[test]
-fn a_header_whose_setup_does_not_match_its_hash_is_refused_by_setup_and_solve() {
+fn a_header_whose_setup_does_not_match_its_hash_is_refused_by_verify_setup_and_solve() {
     let built = &whole().1;
     let mut header = built.header.clone();
     let original = "stretch = 1.02";
@@ -266,14 +270,19 @@ fn a_header_whose_setup_does_not_match_its_hash_is_refused_by_setup_and_solve() 
     let path = write(dir.path(), "altered.cdict", &bytes);
 
     let dictionary = Dictionary::open(&path).expect("the checksums are valid");
-    dictionary.verify().expect("so is every record");
-    let error = dictionary.setup().expect_err("the hash does not match");
-    assert!(
-        matches!(error.problem, Problem::SetupHash { stored, computed }
-            if stored == built.header.setup_hash && computed != stored),
-        "{error}"
-    );
-    assert_names(&error, &path, "hash");
+    for error in [
+        dictionary
+            .verify()
+            .expect_err("verify loads the embedded setup"),
+        dictionary.setup().expect_err("the hash does not match"),
+    ] {
+        assert!(
+            matches!(error.problem, Problem::SetupHash { stored, computed }
+                if stored == built.header.setup_hash && computed != stored),
+            "{error}"
+        );
+        assert_names(&error, &path, "hash");
+    }
 
     let output = common::run(&["solve", "--dict", path.to_str().expect("utf-8"), MOTION]);
     let stderr = String::from_utf8_lossy(&output.stderr);
@@ -513,4 +522,272 @@ fn a_setup_with_other_limits_is_refused_once_by_the_command() {
     assert_eq!(output.status.code(), Some(2), "{stderr}");
     assert_eq!(stderr.matches("other limits").count(), 1, "{stderr}");
     assert!(stderr.contains("dict.cdict"), "{stderr}");
+}
+
+/// `bytes` with every checksum recomputed: what a forger does after editing a file.
+fn reseal(bytes: &mut [u8]) {
+    use xxhash_rust::xxh3::xxh3_64;
+    let word = |bytes: &[u8], at: usize| {
+        u64::from_le_bytes(bytes[at..at + 8].try_into().expect("8 bytes")) as usize
+    };
+    let table = format::PREAMBLE_LEN..format::PREAMBLE_LEN + 4 * format::TABLE_ENTRY_LEN;
+    for i in 0..4 {
+        let entry = table.start + i * format::TABLE_ENTRY_LEN;
+        let (offset, len) = (word(bytes, entry + 8), word(bytes, entry + 16));
+        let sum = xxh3_64(&bytes[offset..offset + len]);
+        bytes[entry + 24..entry + 32].copy_from_slice(&sum.to_le_bytes());
+    }
+    let sum = xxh3_64(&bytes[table]);
+    bytes[32..40].copy_from_slice(&sum.to_le_bytes());
+    let sum = xxh3_64(&bytes[..56]);
+    bytes[56..64].copy_from_slice(&sum.to_le_bytes());
+}
+
+/// The fixture re-encoded after `forge` edited its parts (checksums valid).
+fn forged(forge: impl Fn(&mut Built)) -> Vec<u8> {
+    let mut built = whole().1.clone();
+    forge(&mut built);
+    built.to_bytes().expect("encodes")
+}
+
+/// Headers a forger can reseal that would change what `solve --dict` answers (issue 18):
+/// each opens (its checksums are valid) and each is refused by `verify`, naming the part.
+#[test]
+fn resealed_headers_that_would_change_answers_are_refused_by_verify() {
+    let nan = f64::NAN;
+    let cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        (
+            "no directions (every piece would pass)",
+            forged(|b| {
+                b.header.directions.count = 0;
+                b.directions.clear();
+                b.results.clear();
+            }),
+            "0 gravity directions",
+        ),
+        (
+            "NaN covering radius",
+            forged(|b| b.header.directions.covering_radius_rad = nan),
+            "the covering radius",
+        ),
+        (
+            "infinite covering radius",
+            forged(|b| b.header.directions.covering_radius_rad = f64::INFINITY),
+            "the covering radius",
+        ),
+        (
+            "zero covering radius",
+            forged(|b| b.header.directions.covering_radius_rad = 0.0),
+            "the covering radius",
+        ),
+        (
+            "negated directions",
+            forged(|b| b.directions.iter_mut().flatten().for_each(|x| *x = -*x)),
+            "not the Fibonacci sample of 8 directions",
+        ),
+        (
+            "NaN direction",
+            forged(|b| b.directions[3][0] = nan),
+            "not the Fibonacci sample of 8 directions",
+        ),
+        (
+            "header gravity unlike the setup's",
+            forged(|b| b.header.directions.gravity_m_s2 = 1.62),
+            "the gravity",
+        ),
+        (
+            "other solver settings",
+            forged(|b| b.header.solver.max_iterations += 1),
+            "the solver settings",
+        ),
+        (
+            "a clamp moved",
+            forged(|b| b.header.links[0].clamps[0].position_m[2] += 0.01),
+            "the catalogue of link",
+        ),
+        (
+            "an error bound lowered",
+            forged(|b| b.header.links[0].margin_error = [0.0; 3]),
+            "error bounds",
+        ),
+    ];
+    let dir = tempfile::tempdir().expect("temp dir");
+    for (i, (case, bytes, words)) in cases.iter().enumerate() {
+        let path = write(dir.path(), &format!("forged{i}.cdict"), bytes);
+        let dictionary = Dictionary::open(&path).expect("its checksums are valid");
+        let error = dictionary.verify().expect_err(case);
+        assert!(error.to_string().contains(words), "{case}: {error}");
+        assert_names(&error, &path, words);
+    }
+}
+
+#[test]
+fn overlapping_sections_and_foreign_bytes_resealed_are_refused_on_open() {
+    let bytes = whole().1.to_bytes().expect("encodes");
+    let table = sections(&bytes);
+    let (directions, pvs) = (table[1].1.clone(), table[2].1.clone());
+    let entry = |i: usize| format::PREAMBLE_LEN + i * format::TABLE_ENTRY_LEN;
+    let mut overlapping = bytes.clone();
+    // The PV section pointed at the directions' bytes (as long as they last).
+    let start = (directions.start as u64).to_le_bytes();
+    overlapping[entry(2) + 8..entry(2) + 16].copy_from_slice(&start);
+    let len = (pvs.len().min(directions.len()) / 16 * 16) as u64;
+    overlapping[entry(2) + 16..entry(2) + 24].copy_from_slice(&len.to_le_bytes());
+    let mut reserved = bytes.clone();
+    reserved[44] = 1;
+    let mut trailing = bytes.clone();
+    trailing.extend_from_slice(&[0; 16]);
+    let file_len = (trailing.len() as u64).to_le_bytes();
+    trailing[16..24].copy_from_slice(&file_len);
+    let dir = tempfile::tempdir().expect("temp dir");
+    for (name, mut bytes, words) in [
+        ("overlapping", overlapping, "sections overlap"),
+        ("reserved", reserved, "reserved bytes 40..56"),
+        ("trailing", trailing, "16 bytes follow the last section"),
+    ] {
+        reseal(&mut bytes);
+        let path = write(dir.path(), &format!("{name}.cdict"), &bytes);
+        let error = open_error(&path);
+        assert!(error.to_string().contains(words), "{name}: {error}");
+    }
+}
+
+#[test]
+fn an_embedded_urdf_nested_100_000_deep_is_refused_by_verify_without_overflow() {
+    let depth = 100_000;
+    let bytes = forged(|b| {
+        b.header.setup.robot_text = format!(
+            "<robot name=\"r\">\n{}{}</robot>\n",
+            "<link>".repeat(depth),
+            "</link>".repeat(depth)
+        )
+    });
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = write(dir.path(), "deep.cdict", &bytes);
+    let dictionary = Dictionary::open(&path).expect("its checksums are valid");
+    let error = dictionary
+        .verify()
+        .expect_err("the embedded URDF is refused");
+    assert!(
+        error.to_string().contains("nested more than 64 deep"),
+        "{error}"
+    );
+    // `info` describes the header without loading the setup; it must not crash either.
+    let output = common::run(&["info", path.to_str().expect("utf-8")]);
+    assert_eq!(output.status.code(), Some(0), "killed by a signal?");
+    let path = path.to_str().expect("utf-8");
+    for args in [vec!["verify", path], vec!["solve", "--dict", path, MOTION]] {
+        let output = common::run(&args);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("nested more than 64 deep"),
+            "{args:?}: {stderr}"
+        );
+    }
+}
+
+#[test]
+fn shards_without_directions_are_refused_by_merge_without_a_panic() {
+    let setup = &whole().0;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let paths: Vec<PathBuf> = (0..2)
+        .map(|i| {
+            let mut shard = fixture(setup, DIRECTIONS, Some((i, 2)));
+            shard.header.directions.count = 0;
+            shard.directions.clear();
+            shard.results.clear();
+            let path = dir.path().join(format!("empty{i}.cdict"));
+            std::fs::write(&path, shard.to_bytes().expect("encodes")).expect("written");
+            path
+        })
+        .collect();
+    let error = merge(&paths).expect_err("a shard without directions does not verify");
+    assert!(
+        error.to_string().contains("0 gravity directions"),
+        "{error}"
+    );
+}
+
+/// The index of a measured record of the fixture with a negative stored margin at some
+/// direction: a piece the exact test rejects.
+fn a_failing_piece(built: &Built) -> usize {
+    let n = built.directions.len();
+    (0..built.pvs.len())
+        .find(|&k| {
+            let record = &built.pvs[k];
+            record.sub_segments > 0
+                && !record.has(format::PvRecord::TOO_SHORT)
+                && built.results[k * n..(k + 1) * n]
+                    .iter()
+                    .any(|r| r.values().is_some_and(|v| v.iter().any(|&m| m < -0.1)))
+        })
+        .expect("the fixture has a failing piece")
+}
+
+/// `verify --recompute` catches what no checksum can: margins forged to pass, and an
+/// embedded setup altered with its hash patched (a bend limit, so every stored margin is
+/// stale) — naming the first disagreeing record; the genuine file agrees everywhere.
+#[test]
+fn recomputation_catches_forged_margins_and_an_altered_setup() {
+    let (setup, built) = whole();
+    let k = a_failing_piece(built);
+    let n = built.directions.len();
+    let pass = format::MarginRecord::quantize(Some([5.0, 0.01, 1.0]));
+    let margins = forged(|b| b.results[k * n..(k + 1) * n].fill(pass));
+    let altered_text = setup.text.replace("stretch = 1.02", "stretch = 1.05");
+    assert_ne!(altered_text, setup.text);
+    let altered = Setup::from_texts(
+        &altered_text,
+        Path::new(&built.header.setup.file_name),
+        &setup.robot_text,
+        &setup.cable_text,
+        &setup.robot.mesh_files,
+    )
+    .expect("the altered setup loads");
+    let patched = forged(|b| {
+        b.header.setup.text = altered_text.clone();
+        b.header.setup_hash = altered.content_hash;
+    });
+    let dir = tempfile::tempdir().expect("temp dir");
+    let genuine = write(
+        dir.path(),
+        "genuine.cdict",
+        &built.to_bytes().expect("encodes"),
+    );
+    let margins = write(dir.path(), "margins.cdict", &margins);
+    let patched = write(dir.path(), "patched.cdict", &patched);
+    let all = cable_dict::dictionary::RecomputeChoice::All;
+    let recompute = |path: &Path| {
+        let dictionary = Dictionary::open(path).expect("opens");
+        dictionary
+            .verify()
+            .expect("every byte and the header check out");
+        dictionary.recompute(all).expect("recomputes")
+    };
+    let genuine_result = recompute(&genuine);
+    assert_eq!(genuine_result.disagreement, None);
+    assert_eq!(genuine_result.checked, genuine_result.measured);
+    let forged_margins = recompute(&margins).disagreement.expect("caught");
+    let record = built.header.stored_pvs().start + k as u64;
+    assert_eq!(forged_margins.record, record, "{forged_margins}");
+    assert!(
+        forged_margins.what.contains("stored +5"),
+        "{forged_margins}"
+    );
+    let stale = recompute(&patched).disagreement.expect("caught");
+    assert!(stale.what.contains("stretch margin"), "{stale}");
+
+    let output = common::run(&[
+        "verify",
+        margins.to_str().expect("utf-8"),
+        "--recompute",
+        "all",
+    ]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains(&format!("margins.cdict: a stored cable piece is not what the embedded setup gives (forged, stale or computed differently): PV record {record} ")),
+        "{stderr}"
+    );
 }

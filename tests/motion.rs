@@ -235,7 +235,10 @@ fn every_bad_csv_names_its_file_line_and_problem() {
     }
     let missing = dir.path().join("missing.csv");
     let err = Motion::from_csv_file(&robot, &missing).expect_err("no file");
-    assert!(err.to_string().contains("cannot read the motion CSV"), "{err}");
+    assert!(
+        err.to_string().contains("cannot read the motion CSV"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -3,10 +3,13 @@
 use super::solve::open_verified;
 use super::{Failure, emit, print_json};
 use cable_dict::dictionary::{
-    BuildOptions, DEFAULT_DIRECTION_COUNT, Dictionary, Info, build, merge, write_dictionary,
+    BuildOptions, DEFAULT_DIRECTION_COUNT, Dictionary, Info, RECOMPUTE_TOLERANCE_UNITS,
+    RecomputeChoice, build, merge, write_dictionary,
 };
 use cable_dict::setup::Setup;
+use std::collections::hash_map::RandomState;
 use std::fmt::Write as _;
+use std::hash::{BuildHasher, Hasher};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -177,17 +180,74 @@ fn describe(info: &Info) -> String {
 pub struct VerifyArgs {
     /// The dictionary (or shard).
     dict: PathBuf,
+    /// Also re-solve this many stored cable pieces, drawn at random, from the embedded setup
+    /// and compare them with the file ("all": every piece, as long as the build). Run it on
+    /// a dictionary from another team, machine or cable-dict version.
+    #[arg(long, value_name = "N|all", value_parser = recompute_arg)]
+    recompute: Option<Recount>,
+    /// Seed of the random draw (default: a fresh one, printed so the draw can be repeated).
+    #[arg(long, requires = "recompute")]
+    seed: Option<u64>,
+}
+
+/// `--recompute N` or `--recompute all`.
+#[derive(Debug, Clone, Copy)]
+enum Recount {
+    Some(usize),
+    All,
+}
+
+fn recompute_arg(text: &str) -> Result<Recount, String> {
+    match text {
+        "all" => Ok(Recount::All),
+        n => n
+            .parse::<usize>()
+            .ok()
+            .filter(|&n| n > 0)
+            .map(Recount::Some)
+            .ok_or_else(|| format!("`{n}`: give a number of pieces (≥ 1) or `all`")),
+    }
 }
 
 pub fn run_verify(args: VerifyArgs) -> Result<(), Failure> {
     let dictionary = open_verified(&args.dict)?;
-    emit(&format!(
-        "{}: ok ({} bytes; every section checksum and {} PV records × {} directions verified)\n",
+    let mut out = format!(
+        "{}: ok ({} bytes; every section checksum and {} PV records × {} directions verified; \
+         the header is what a build of the embedded setup writes)\n",
         args.dict.display(),
         dictionary.file_len(),
         dictionary.pv_records().len(),
         dictionary.directions().len()
-    ))
+    );
+    if let Some(recount) = args.recompute {
+        let seed = args
+            .seed
+            .unwrap_or_else(|| RandomState::new().build_hasher().finish());
+        let choice = match recount {
+            Recount::All => RecomputeChoice::All,
+            Recount::Some(count) => RecomputeChoice::Random { count, seed },
+        };
+        let recomputed = dictionary.recompute(choice).map_err(Failure::input)?;
+        let drawn = match recount {
+            Recount::All => "every piece".to_string(),
+            Recount::Some(_) => format!("drawn with --seed {seed}"),
+        };
+        if let Some(disagreement) = recomputed.disagreement {
+            return Err(Failure::input(anyhow::anyhow!(
+                "{}: a stored cable piece is not what the embedded setup gives (forged, stale \
+                 or computed differently): {disagreement}; re-solved {} of {} pieces, {drawn}",
+                args.dict.display(),
+                recomputed.checked,
+                recomputed.measured
+            )));
+        }
+        out.push_str(&format!(
+            "re-solved {} of {} cable pieces ({drawn}): all agree with the file within \
+             {RECOMPUTE_TOLERANCE_UNITS} stored unit\n",
+            recomputed.checked, recomputed.measured
+        ));
+    }
+    emit(&out)
 }
 
 #[derive(Debug, clap::Args)]

@@ -55,7 +55,8 @@ enum Command {
     Build(dictionary::BuildArgs),
     /// Describe a dictionary: build parameters, setup, set sizes.
     Info(dictionary::InfoArgs),
-    /// Check every checksum and record of a dictionary.
+    /// Check every checksum and record of a dictionary and that its header is what a build of
+    /// its embedded setup writes; with --recompute, re-solve stored cable pieces and compare.
     Verify(dictionary::VerifyArgs),
     /// Merge the shards of a sharded build into one dictionary.
     Merge(dictionary::MergeArgs),

@@ -15,8 +15,8 @@
 
 use super::catalogue::{LinkCatalogue, link_catalogues};
 use super::directions::{
-    Interpolated, MIN_DIRECTION_COUNT, Neighbours, covering_radius, fibonacci_sphere,
-    probe_directions,
+    Interpolated, MAX_DIRECTION_COUNT, MIN_DIRECTION_COUNT, Neighbours, covering_radius,
+    fibonacci_sphere, probe_directions,
 };
 use super::error::Problem;
 use super::format::{
@@ -140,13 +140,13 @@ pub fn build(setup: &Setup, options: &BuildOptions) -> Result<Built, Problem> {
 
 /// Probe directions for `n` stored ones: a quarter as many (at least 8), so that measuring
 /// the interpolation error costs a quarter of the build.
-fn probe_count(n: usize) -> usize {
+pub(super) fn probe_count(n: usize) -> usize {
     (n / 4).max(8)
 }
 
 /// The stored directions, the probes, each probe's interpolation neighbours, and each stored
 /// direction's neighbours among the others (leave-one-out).
-struct DirectionSample {
+pub(super) struct DirectionSample {
     stored: Vec<[f64; 3]>,
     probes: Vec<[f64; 3]>,
     probe_neighbours: Vec<Neighbours>,
@@ -154,7 +154,7 @@ struct DirectionSample {
 }
 
 impl DirectionSample {
-    fn new(stored: Vec<[f64; 3]>, probes: Vec<[f64; 3]>) -> DirectionSample {
+    pub(super) fn new(stored: Vec<[f64; 3]>, probes: Vec<[f64; 3]>) -> DirectionSample {
         let probe_neighbours = probes
             .iter()
             .map(|p| Neighbours::of(&stored, &Vector3::from(*p)))
@@ -202,11 +202,11 @@ impl ErrorRatio {
 
 /// One pair of clamps of one link's catalogue: the unit of work (its lengths are solved
 /// together, by continuation).
-struct Pair {
+pub(super) struct Pair {
     /// Position of the link in the header.
-    slot: usize,
-    start: usize,
-    end: usize,
+    pub slot: usize,
+    pub start: usize,
+    pub end: usize,
 }
 
 /// The pairs with at least one PV in `stored`, in PV order.
@@ -240,15 +240,15 @@ struct SolvedPair<'p> {
 
 /// One PV's margins under every stored direction (`None`: too short for its clamps) and its
 /// error factor.
-struct Piece {
-    rows: Option<Vec<MarginRecord>>,
-    error_factor: [u8; 3],
+pub(super) struct Piece {
+    pub rows: Option<Vec<MarginRecord>>,
+    pub error_factor: [u8; 3],
 }
 
 /// Every admissible length of `pair` under every stored direction, then at the probes; each
 /// length's interpolation error measured leaving each stored direction out and at the
-/// probes. All its admissible lengths are solved, also those of another shard, so that
-/// continuation gives the same values in any shard.
+/// probes. All its admissible lengths are solved, also those of another shard (solving them
+/// together shares the continuation's work); its pieces in the stored range are kept.
 fn solve_pair<'p>(
     evaluator: &Evaluator<'_>,
     header: &Header,
@@ -256,26 +256,46 @@ fn solve_pair<'p>(
     stored: &Range<u64>,
     sample: &DirectionSample,
 ) -> SolvedPair<'p> {
-    // The evaluator's setup is the link's catalogue: one segment, both guides every clamp.
-    let setup = evaluator.setup();
+    let lengths = pair_lengths(evaluator.setup(), header, pair);
+    let pieces = solve_lengths(evaluator, pair, &lengths, sample)
+        .into_iter()
+        .filter(|(g, _)| stored.contains(g))
+        .collect();
+    SolvedPair { pair, pieces }
+}
+
+/// The admissible stored lengths (> 0) of `pair`, with their global PV indices, ascending.
+fn pair_lengths(setup: &Setup, header: &Header, pair: &Pair) -> Vec<(u64, usize)> {
     let entry = &header.links[pair.slot];
-    let m = 0;
-    let configurations = (pair.start, pair.end);
-    let lengths: Vec<(u64, usize)> = entry
+    entry
         .lengths
         .iter()
         .map(|&s| s as usize)
-        .filter(|&s| s > 0 && setup.is_admissible(m, s, pair.start, pair.end))
+        .filter(|&s| s > 0 && setup.is_admissible(0, s, pair.start, pair.end))
         .filter_map(|s| {
             let local = entry.grid_index(s, pair.start, pair.end)?;
             Some((entry.first_pv + local, s))
         })
-        .collect();
+        .collect()
+}
+
+/// The pieces of `lengths` (global index, sub-segments; ascending) of `pair`: margins under
+/// every stored direction and error factors. A piece's values depend only on its clamps, its
+/// length and the directions (the lengths are continued in fixed blocks), so solving one
+/// length alone gives what solving it with the others gives.
+pub(super) fn solve_lengths(
+    evaluator: &Evaluator<'_>,
+    pair: &Pair,
+    lengths: &[(u64, usize)],
+    sample: &DirectionSample,
+) -> Vec<(u64, Piece)> {
+    // The evaluator's setup is the link's catalogue: one segment, both guides every clamp.
+    let m = 0;
+    let limits = &evaluator.setup().thresholds;
     let sub_segments: Vec<usize> = lengths.iter().map(|&(_, s)| s).collect();
-    let limits = &setup.thresholds;
     let margins_at = |d: &[f64; 3]| -> Vec<Result<[f64; 3], Rejection>> {
         let down = Vector3::from(*d);
-        let metrics = evaluator.link_frame_metrics(m, configurations, &sub_segments, &down);
+        let metrics = evaluator.link_frame_metrics(m, (pair.start, pair.end), &sub_segments, &down);
         metrics
             .into_iter()
             .map(|r| r.map(|metrics| Margins::of(&metrics, limits).to_array()))
@@ -308,12 +328,11 @@ fn solve_pair<'p>(
             }
         }
     }
-    let pieces = lengths
+    lengths
         .iter()
         .zip(rows)
         .zip(too_short)
         .zip(ratios)
-        .filter(|((((g, _), _), _), _)| stored.contains(g))
         .map(|((((g, _), rows), short), ratio)| {
             let piece = Piece {
                 rows: (!short).then_some(rows),
@@ -321,15 +340,14 @@ fn solve_pair<'p>(
             };
             (*g, piece)
         })
-        .collect();
-    SolvedPair { pair, pieces }
+        .collect()
 }
 
 /// Refuses what a dictionary cannot represent.
 fn check_buildable(setup: &Setup, options: &BuildOptions) -> Result<(), Problem> {
-    if options.directions < MIN_DIRECTION_COUNT || options.directions > u32::MAX as usize {
+    if !(MIN_DIRECTION_COUNT..=MAX_DIRECTION_COUNT).contains(&options.directions) {
         return Err(Problem::Build(format!(
-            "--directions must be at least {MIN_DIRECTION_COUNT}, got {}",
+            "--directions must be {MIN_DIRECTION_COUNT} to {MAX_DIRECTION_COUNT}, got {}",
             options.directions
         )));
     }
@@ -414,7 +432,7 @@ fn check_catalogues(
 
 /// The lengths every link's catalogue stores (ascending): the candidate lengths of all the
 /// setup's intra-link segments with their robustness neighbours, and those candidates alone.
-fn catalogue_lengths(setup: &Setup) -> (Vec<u32>, Vec<usize>) {
+pub(super) fn catalogue_lengths(setup: &Setup) -> (Vec<u32>, Vec<usize>) {
     let mut stored = BTreeSet::new();
     let mut candidates = BTreeSet::new();
     for m in (0..setup.segment_count()).filter(|&m| setup.is_intra_link(m)) {
@@ -483,6 +501,92 @@ fn header(
         pv_total: first_pv,
         shard: None,
     }
+}
+
+/// `Ok` when `header` and `directions` are what a build of `setup` (the embedded one)
+/// writes: the documented direction sample for the header's count, the same solver
+/// settings, catalogues, lengths and grid; else the first part that differs. Only the
+/// fields the margins determine (|D1|, |D2|, the error bounds) are not derived here.
+pub(super) fn check_derivation(
+    header: &Header,
+    directions: &[[f64; 3]],
+    setup: &Setup,
+) -> Result<(), Problem> {
+    let count = header.directions.count as usize;
+    if !(MIN_DIRECTION_COUNT..=MAX_DIRECTION_COUNT).contains(&count) {
+        return Err(Problem::Header(format!(
+            "{count} gravity directions; a build samples {MIN_DIRECTION_COUNT} to \
+             {MAX_DIRECTION_COUNT}"
+        )));
+    }
+    let sample = fibonacci_sphere(count);
+    let bits = |d: &[[f64; 3]]| -> Vec<u64> { d.iter().flatten().map(|x| x.to_bits()).collect() };
+    if bits(directions) != bits(&sample) {
+        return Err(Problem::Header(format!(
+            "the directions section is not the Fibonacci sample of {count} directions"
+        )));
+    }
+    let (stored_lengths, candidate_lengths) = catalogue_lengths(setup);
+    let catalogues = link_catalogues(setup, &candidate_lengths);
+    let mut expected = self::header(
+        setup,
+        &catalogues,
+        &stored_lengths,
+        &sample,
+        probe_count(count),
+    );
+    for (entry, stored) in expected.links.iter_mut().zip(&header.links) {
+        entry.d1_all = stored.d1_all;
+        entry.d2_all = stored.d2_all;
+        entry.margin_error = stored.margin_error;
+    }
+    expected.shard = header
+        .shard
+        .map(|s| ShardRange::new(s.index, s.count, expected.pv_total));
+    match first_difference(&expected, header) {
+        None => Ok(()),
+        Some(part) => Err(Problem::Header(format!(
+            "{part} is not what a build of the embedded setup writes (forged or from \
+             another version: rebuild it)"
+        ))),
+    }
+}
+
+/// The first part of `stored` that differs from `expected`, named.
+fn first_difference(expected: &Header, stored: &Header) -> Option<String> {
+    let (e, s) = (&expected.directions, &stored.directions);
+    let parts: [(&str, bool); 9] = [
+        (
+            "the physics version",
+            expected.physics_version == stored.physics_version,
+        ),
+        ("the setup hash", expected.setup_hash == stored.setup_hash),
+        ("the solver settings", expected.solver == stored.solver),
+        ("the direction method", e.method == s.method),
+        (
+            "the covering radius",
+            e.covering_radius_rad.to_bits() == s.covering_radius_rad.to_bits(),
+        ),
+        ("the probe count", e.probes == s.probes),
+        (
+            "the gravity",
+            e.gravity_m_s2.to_bits() == s.gravity_m_s2.to_bits(),
+        ),
+        (
+            "the number of link catalogues",
+            expected.links.len() == stored.links.len(),
+        ),
+        ("the shard range", expected.shard == stored.shard),
+    ];
+    if let Some((part, _)) = parts.iter().find(|(_, same)| !same) {
+        return Some(part.to_string());
+    }
+    for (e, s) in expected.links.iter().zip(&stored.links) {
+        if e != s {
+            return Some(format!("the catalogue of link {}", s.link));
+        }
+    }
+    (expected.pv_total != stored.pv_total).then(|| "the PV total".to_string())
 }
 
 /// The header entry of one clamp place.

@@ -19,6 +19,10 @@ pub const DEFAULT_DIRECTION_COUNT: usize = 256;
 /// Fewest directions a build accepts (fewer would leave hemispheres unsampled).
 pub const MIN_DIRECTION_COUNT: usize = 8;
 
+/// Most directions a build accepts (a covering radius of about 2°, 16 times the default's
+/// build time): `verify` recomputes the covering radius, whose cost grows with N².
+pub const MAX_DIRECTION_COUNT: usize = 4096;
+
 /// Densification of the spiral the covering radius is estimated on, and its least size.
 const DENSE_FACTOR: usize = 64;
 const DENSE_MIN: usize = 16_384;

@@ -497,6 +497,7 @@ pub fn parse(bytes: &[u8]) -> Result<Layout, Problem> {
         ranges[k] = range;
         checksums[k] = checksum;
     }
+    check_canonical(bytes, table, &ranges)?;
     let header_bytes = &bytes[ranges[0].clone()];
     check_checksum(SectionKind::Header, header_bytes, checksums[0])?;
     let header = decode_header(header_bytes)?;
@@ -507,6 +508,49 @@ pub fn parse(bytes: &[u8]) -> Result<Layout, Problem> {
     };
     check_counts(&layout)?;
     Ok(layout)
+}
+
+/// The one byte layout [`encode`] writes: reserved bytes zero, the sections in kind order,
+/// each at the next multiple of [`ALIGNMENT`] after the previous one, zero padding between
+/// them, the file ending with the last — so no two sections overlap and no byte is left
+/// unchecked.
+fn check_canonical(bytes: &[u8], table: &[u8], ranges: &[Range<usize>; 4]) -> Result<(), Problem> {
+    if bytes[40..56].iter().any(|&b| b != 0) {
+        return Err(layout(
+            "preamble".into(),
+            "reserved bytes 40..56 are not zero".into(),
+        ));
+    }
+    for (i, entry) in table.chunks_exact(TABLE_ENTRY_LEN).enumerate() {
+        if u32_at(entry, 4) != 0 || u32_at(entry, 0) != SectionKind::ALL[i] as u32 {
+            return Err(layout(
+                format!("section table entry {i}"),
+                "not the canonical entry (kind order, reserved bytes zero)".into(),
+            ));
+        }
+    }
+    let mut end = PREAMBLE_LEN + table.len();
+    for (kind, range) in SectionKind::ALL.iter().zip(ranges) {
+        let start = end.next_multiple_of(ALIGNMENT);
+        if range.start != start || bytes[end..start].iter().any(|&b| b != 0) {
+            return Err(layout(
+                format!("section '{}'", kind.name()),
+                format!(
+                    "starts at {}, not at {start} after zero padding (sections overlap or \
+                     leave a gap)",
+                    range.start
+                ),
+            ));
+        }
+        end = range.end;
+    }
+    if end != bytes.len() {
+        return Err(layout(
+            "file".into(),
+            format!("{} bytes follow the last section", bytes.len() - end),
+        ));
+    }
+    Ok(())
 }
 
 /// Checks the checksums of the directions, PV and result sections (the header's was checked

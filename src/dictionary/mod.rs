@@ -34,6 +34,7 @@ mod info;
 mod lookup;
 mod merge;
 mod reader;
+mod recompute;
 
 pub use build::{BuildOptions, Built, MAX_RESULT_BYTES, build};
 pub use catalogue::{LinkCatalogue, link_catalogues};
@@ -43,6 +44,7 @@ pub use info::{Info, LinkInfo};
 pub use lookup::{DirectionAnswer, LookupError, MotionLookup, StoredSegment};
 pub use merge::merge;
 pub use reader::Dictionary;
+pub use recompute::{Disagreement, RECOMPUTE_TOLERANCE_UNITS, RecomputeChoice, Recomputed};
 
 use crate::atomic_file::write_atomically;
 use std::path::Path;

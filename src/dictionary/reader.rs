@@ -1,6 +1,7 @@
 //! Opening a dictionary: a memory map, the O(1) structural checks of [`parse`], and
 //! zero-copy access to its records; [`Dictionary::verify`] checks every byte.
 
+use super::build::check_derivation;
 use super::error::{DictionaryError, Problem};
 use super::format::{
     Header, Layout, LinkEntry, MarginRecord, PHYSICS_VERSION, PvRecord, SectionKind, parse,
@@ -100,7 +101,10 @@ impl Dictionary {
     pub fn verify(&self) -> Result<(), DictionaryError> {
         let error = |problem| DictionaryError::new(&self.path, problem);
         verify_sections(&self.map, &self.layout).map_err(error)?;
-        check_records(self.header(), self.pv_records(), self.results()).map_err(error)
+        check_records(self.header(), self.pv_records(), self.results()).map_err(error)?;
+        let setup = embedded_setup(self.header()).map_err(error)?;
+        check_physics_version(self.header()).map_err(error)?;
+        check_derivation(self.header(), self.directions(), &setup).map_err(error)
     }
 
     /// The embedded setup, loaded and checked against the header's content hash; refuses a
@@ -115,13 +119,7 @@ impl Dictionary {
             }));
         }
         let setup = embedded_setup(header).map_err(error)?;
-        if header.physics_version != PHYSICS_VERSION {
-            return Err(error(Problem::Mismatch(format!(
-                "built with physics version {}, this cable-dict computes version \
-                 {PHYSICS_VERSION}: rebuild it (cable-dict build)",
-                header.physics_version
-            ))));
-        }
+        check_physics_version(header).map_err(error)?;
         Ok(setup)
     }
 
@@ -140,6 +138,7 @@ pub(super) fn check_records(
 ) -> Result<(), Problem> {
     let stored = header.stored_pvs();
     let mut counts = vec![(0u64, 0u64); header.links.len()];
+    let mut worst = vec![[0.0f64; 3]; header.links.len()];
     let n = usize::try_from(header.directions.count).unwrap_or(usize::MAX);
     for (k, record) in pv_records.iter().enumerate() {
         let g = stored.start + k as u64;
@@ -154,8 +153,20 @@ pub(super) fn check_records(
         }
         let rows = results.get(k * n..(k + 1) * n).unwrap_or_default();
         check_results(record, rows).map_err(|detail| record_error(place(), &detail))?;
+        for (w, factor) in worst[slot].iter_mut().zip(record.error_factors()) {
+            *w = w.max(factor);
+        }
         counts[slot].0 += u64::from(record.has(PvRecord::D1_ALL));
         counts[slot].1 += u64::from(record.has(PvRecord::D2_ALL));
+    }
+    for (entry, worst) in header.links.iter().zip(worst) {
+        let bits = |e: [f64; 3]| e.map(f64::to_bits);
+        if bits(entry.margin_error) != bits(worst) {
+            return Err(Problem::Header(format!(
+                "link {}: error bounds {:?} in the header, the records' largest are {worst:?}",
+                entry.link, entry.margin_error
+            )));
+        }
     }
     if header.shard.is_some() {
         return Ok(());
@@ -229,6 +240,18 @@ fn check_alignment(bytes: &[u8], layout: &Layout) -> Result<(), Problem> {
             detail: "a section is not aligned for in-place reading".into(),
         })
     }
+}
+
+/// Margins of another physics version are not what this version would compute.
+fn check_physics_version(header: &Header) -> Result<(), Problem> {
+    if header.physics_version == PHYSICS_VERSION {
+        return Ok(());
+    }
+    Err(Problem::Mismatch(format!(
+        "built with physics version {}, this cable-dict computes version {PHYSICS_VERSION}: \
+         rebuild it (cable-dict build)",
+        header.physics_version
+    )))
 }
 
 /// The setup embedded in `header`, with its content hash checked.
