@@ -59,8 +59,9 @@ pub fn write_dictionary(path: &Path, built: &Built) -> Result<(), DictionaryErro
         .map_err(|e| DictionaryError::new(path, Problem::Write(e.to_string())))
 }
 
-/// Every check a reader makes, on bytes in memory (any alignment): the structure, every
-/// checksum and every record. For fuzzing and for tools that hold a file in memory.
+/// Every check [`Dictionary::verify`] makes, on bytes in memory (any alignment): the
+/// structure, every checksum, every record and the meaning of the header. For fuzzing and
+/// for tools that hold a file in memory.
 pub fn check_bytes(bytes: &[u8]) -> Result<format::Header, Problem> {
     use format::SectionKind;
     let layout = format::parse(bytes)?;
@@ -69,6 +70,8 @@ pub fn check_bytes(bytes: &[u8]) -> Result<format::Header, Problem> {
     let pvs: Vec<format::PvRecord> = records(&bytes[layout.range(SectionKind::Pvs)]);
     let results: Vec<format::MarginRecord> = records(&bytes[layout.range(SectionKind::Results)]);
     reader::check_records(&layout.header, &pvs, &results)?;
+    let directions: Vec<[f64; 3]> = records(&bytes[layout.range(SectionKind::Directions)]);
+    reader::check_meaning(&layout.header, &directions)?;
     Ok(layout.header)
 }
 

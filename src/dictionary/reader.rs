@@ -102,9 +102,7 @@ impl Dictionary {
         let error = |problem| DictionaryError::new(&self.path, problem);
         verify_sections(&self.map, &self.layout).map_err(error)?;
         check_records(self.header(), self.pv_records(), self.results()).map_err(error)?;
-        let setup = embedded_setup(self.header()).map_err(error)?;
-        check_physics_version(self.header()).map_err(error)?;
-        check_derivation(self.header(), self.directions(), &setup).map_err(error)
+        check_meaning(self.header(), self.directions()).map_err(error)
     }
 
     /// The embedded setup, loaded and checked against the header's content hash; refuses a
@@ -240,6 +238,15 @@ fn check_alignment(bytes: &[u8], layout: &Layout) -> Result<(), Problem> {
             detail: "a section is not aligned for in-place reading".into(),
         })
     }
+}
+
+/// What the bytes mean, beyond their checksums: the embedded setup loads and matches its
+/// hash, the physics version is this program's, and the header and `directions` are what a
+/// build of that setup writes.
+pub(super) fn check_meaning(header: &Header, directions: &[[f64; 3]]) -> Result<(), Problem> {
+    let setup = embedded_setup(header)?;
+    check_physics_version(header)?;
+    check_derivation(header, directions, &setup)
 }
 
 /// Margins of another physics version are not what this version would compute.

@@ -76,13 +76,21 @@ pub fn critical_poses_with_tolerance(
             motion.dof()
         )));
     }
-    let mut picks: Vec<(usize, String)> = Vec::new();
+    let mut picks: Vec<Pick> = Vec::new();
     for &j in &joints {
         for kind in [Extreme::Max, Extreme::Min] {
             picks.extend(extreme_picks(motion, &joints, j, kind, tolerance));
         }
     }
     Ok(merge(motion, picks))
+}
+
+/// A critical sample and why: a joint's extreme (`joint_5 min`), over the whole motion or
+/// within another joint's dwell at its extreme (`joint_6 max (dwell 0.00–2.30 s)`).
+struct Pick {
+    sample: usize,
+    extreme: String,
+    during: Option<String>,
 }
 
 /// The critical samples for one extreme of joint `j` (see the module docs).
@@ -92,7 +100,7 @@ fn extreme_picks(
     j: usize,
     kind: Extreme,
     tolerance: f64,
-) -> Vec<(usize, String)> {
+) -> Vec<Pick> {
     let samples = motion.samples();
     let value = |sample: usize, joint: usize| samples[sample][joint];
     let names = motion.joint_names();
@@ -112,11 +120,15 @@ fn extreme_picks(
         .filter(|&k| k != j && spread(k) > tolerance)
         .collect();
     if moving.is_empty() {
-        return vec![(first, format!("{} {}", names[j], kind.name()))];
+        return vec![Pick {
+            sample: first,
+            extreme: format!("{} {}", names[j], kind.name()),
+            during: None,
+        }];
     }
     let times = motion.times_s();
     let during = format!(
-        "{} {} (dwell {}–{} s)",
+        "{} {} (dwell {:.2}–{:.2} s)",
         names[j],
         kind.name(),
         times[*run.start()],
@@ -125,8 +137,11 @@ fn extreme_picks(
     let mut picks = Vec::new();
     for k in moving {
         for other in [Extreme::Max, Extreme::Min] {
-            let at = other.first_index(run.clone(), |i| value(i, k));
-            picks.push((at, format!("{during}, {} {}", names[k], other.name())));
+            picks.push(Pick {
+                sample: other.first_index(run.clone(), |i| value(i, k)),
+                extreme: format!("{} {}", names[k], other.name()),
+                during: Some(during.clone()),
+            });
         }
     }
     picks
@@ -189,23 +204,39 @@ fn dwell(
     start..=end
 }
 
-/// One pose per sample, by time, reasons in the order they were found.
-fn merge(motion: &Motion, mut picks: Vec<(usize, String)>) -> Vec<CriticalPose> {
-    picks.sort_by_key(|(sample, _)| *sample);
+/// One pose per sample, by time. Its reason lists each extreme once: the motion's own
+/// extremes first, then per dwell the extremes within it that are not already among them
+/// (`joint_5 min; joint_6 max (dwell 0.00–2.30 s), joint_5 max`).
+fn merge(motion: &Motion, mut picks: Vec<Pick>) -> Vec<CriticalPose> {
+    picks.sort_by_key(|p| p.sample);
     let mut poses: Vec<CriticalPose> = Vec::new();
-    for (sample, reason) in picks {
-        match poses.last_mut() {
-            Some(last) if last.sample == sample => {
-                last.reason.push_str("; ");
-                last.reason.push_str(&reason);
+    for same in picks.chunk_by(|a, b| a.sample == b.sample) {
+        let sample = same[0].sample;
+        let plain: Vec<&str> = same
+            .iter()
+            .filter(|p| p.during.is_none())
+            .map(|p| p.extreme.as_str())
+            .collect();
+        let mut clauses: Vec<String> = plain.iter().map(|e| e.to_string()).collect();
+        let mut dwells: Vec<(&str, Vec<&str>)> = Vec::new();
+        for pick in same.iter().filter(|p| !plain.contains(&p.extreme.as_str())) {
+            let Some(during) = pick.during.as_deref() else {
+                continue;
+            };
+            match dwells.iter_mut().find(|(d, _)| *d == during) {
+                Some((_, extremes)) => extremes.push(&pick.extreme),
+                None => dwells.push((during, vec![&pick.extreme])),
             }
-            _ => poses.push(CriticalPose {
-                sample,
-                time_s: motion.times_s()[sample],
-                joints: motion.samples()[sample].clone(),
-                reason,
-            }),
         }
+        for (during, extremes) in dwells {
+            clauses.push(format!("{during}, {}", extremes.join(" and ")));
+        }
+        poses.push(CriticalPose {
+            sample,
+            time_s: motion.times_s()[sample],
+            joints: motion.samples()[sample].clone(),
+            reason: clauses.join("; "),
+        });
     }
     poses
 }
