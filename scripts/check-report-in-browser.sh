@@ -24,4 +24,5 @@ if [ ! -x "$chromium" ]; then
         exit 2
     fi
 fi
+[ -x "$chromium" ] || { echo "no browser at $chromium" >&2; exit 2; }
 CHROMIUM="$chromium" PLAYWRIGHT_CORE_DIR="$cache" exec node "$here/check-report-in-browser.mjs" "$1"
