@@ -11,10 +11,7 @@ if [ "$#" -ne 1 ]; then
 fi
 version="${GLTF_VALIDATOR_VERSION:-2.0.0-dev.3.10}"
 cache="${GLTF_VALIDATOR_CACHE:-${TMPDIR:-/tmp}/cable-dict-gltf-validator}"
-if [ ! -f "$cache/node_modules/gltf-validator/package.json" ]; then
-    mkdir -p "$cache"
-    echo "installing gltf-validator@$version into $cache" >&2
-    npm install --prefix "$cache" --no-audit --no-fund --silent "gltf-validator@$version" >&2
-fi
 here="$(cd "$(dirname "$0")" && pwd)"
+. "$here/npm-cached.sh"
+npm_cached gltf-validator "$version" "$cache"
 GLTF_VALIDATOR_DIR="$cache" exec node "$here/validate-gltf.mjs" "$1"

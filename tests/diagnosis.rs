@@ -1,9 +1,13 @@
 //! "Unsolved" as a diagnosis, on setups with a known, constructed cause: a length window too
 //! short for the clamps' distance, a bend-radius limit no piece can keep, and a robust length
-//! window wider than the lengths that pass.
+//! window wider than the lengths that pass. The report of an unsolved search pictures its
+//! nearest miss.
+
+mod svg_pictures;
 
 use cable_dict::attachment::{ConnectMethod, Evaluator, Rejection};
 use cable_dict::motion::Motion;
+use cable_dict::report::write_report;
 use cable_dict::setup::Setup;
 use cable_dict::solve::{Diagnosis, SolveOptions, SolveReport, Status, solve};
 use std::path::Path;
@@ -144,6 +148,62 @@ fn an_impossible_bend_limit_reports_the_radius_the_pieces_reach() {
             .iter()
             .any(|s| s.contains("other clamp sites"))
     );
+    check_nearest_miss_picture(&setup, &motion, &report, &evaluator);
+}
+
+/// Without a candidate path the report pictures the first nearest miss: its piece's static
+/// shape at the miss's time (re-solved here, projected here) in every view, and a red ring at
+/// its node nearest to the failing place.
+fn check_nearest_miss_picture(
+    setup: &Setup,
+    motion: &Motion,
+    report: &SolveReport,
+    evaluator: &Evaluator<'_>,
+) {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    write_report(dir.path(), setup, motion, report).expect("report written");
+    let miss = &diagnosis(report).segments[0].nearest_misses[0];
+    let pv = cable_dict::path::Pv {
+        sub_segments: (miss.length_mm / 10.0).round() as usize,
+        start: configuration(setup, 0, &miss.from_configuration),
+        end: configuration(setup, 1, &miss.to_configuration),
+    };
+    let links = setup
+        .robot
+        .link_poses(&motion.joints_at(miss.time_s))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let nodes = evaluator
+        .equilibrium_nodes(0, &pv, &links)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let place = miss.from_start_clamp_mm.expect("a place on the cable");
+    let ringed = nodes[(place / 10.0).round() as usize];
+    let svg = std::fs::read_to_string(dir.path().join("nearest-miss.svg")).expect("picture");
+    let elements = svg_pictures::elements(&svg);
+    // Front (x, −z), side (y, −z), top (x, −y), in mm to 0.1 mm.
+    let axes = [(0, 2), (1, 2), (0, 1)];
+    for (view, (right, up)) in svg_pictures::VIEWS.into_iter().zip(axes) {
+        let project = |p: &nalgebra::Point3<f64>| [p[right] * 1e3, -p[up] * 1e3];
+        let near = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).abs().max((a[1] - b[1]).abs()) <= 0.051;
+        let line = elements
+            .iter()
+            .find(|e| e.is("polyline", view, "cable"))
+            .unwrap_or_else(|| panic!("{view}: no cable"));
+        assert_eq!(line.attribute("data-piece"), "C1 nearest miss");
+        let drawn = svg_pictures::points(line.attribute("points"));
+        assert_eq!(drawn.len(), nodes.len(), "{view}");
+        for (d, node) in drawn.iter().zip(&nodes) {
+            assert!(near(*d, project(node)), "{view}: {d:?} vs {node:?}");
+        }
+        let ring = elements
+            .iter()
+            .find(|e| e.view.as_deref() == Some(view) && e.attribute("class") == "worst")
+            .unwrap_or_else(|| panic!("{view}: no ring"));
+        let centre =
+            [ring.attribute("cx"), ring.attribute("cy")].map(|v| v.parse().expect("number"));
+        assert!(near(centre, project(&ringed)), "{view}: ring at {centre:?}");
+    }
+    let page = std::fs::read_to_string(dir.path().join("index.html")).expect("page");
+    assert!(page.contains("nearest-miss.svg") && page.contains("No cable path was found."));
 }
 
 /// ±20 mm robustness around lengths of which only a 20 mm band passes: pieces pass, none is

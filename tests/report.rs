@@ -1,9 +1,10 @@
 //! `solve --report` and `export-scene` end to end: the folder holds every file, the page
 //! needs nothing outside it, the result file is what `--json` prints, the summary's hashes
 //! are the input files' own, the scene has the path's cable, the critical poses and the
-//! motion test's frames.
+//! motion test's frames, and the pictures show robot and cable in every view.
 
 mod common;
+mod svg_pictures;
 
 use common::run;
 use serde_json::Value;
@@ -71,7 +72,18 @@ fn a_report_folder_holds_every_file_and_the_page_needs_nothing_else() {
         .expect("report folder")
         .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
         .collect();
-    let expected = [
+    // result.json is what --json printed.
+    let written = std::fs::read(report.join("result.json")).expect("result.json");
+    assert_eq!(written, output.stdout);
+    let result: Value = serde_json::from_slice(&written).expect("JSON");
+    assert_eq!(result["status"], "unsolved");
+
+    // One picture per critical pose and one where the motion test failed.
+    let mut pictures: Vec<String> = (1..=critical_samples(&result).len())
+        .map(|k| format!("pose-{k}.svg"))
+        .collect();
+    pictures.push("worst-moment.svg".into());
+    let mut expected: BTreeSet<String> = [
         "index.html",
         "joints.svg",
         "result.json",
@@ -79,14 +91,12 @@ fn a_report_folder_holds_every_file_and_the_page_needs_nothing_else() {
         "sets.svg",
         "stress.svg",
         "summary.md",
-    ];
-    assert_eq!(files, expected.iter().map(|f| f.to_string()).collect());
-
-    // result.json is what --json printed.
-    let written = std::fs::read(report.join("result.json")).expect("result.json");
-    assert_eq!(written, output.stdout);
-    let result: Value = serde_json::from_slice(&written).expect("JSON");
-    assert_eq!(result["status"], "unsolved");
+    ]
+    .iter()
+    .map(|f| f.to_string())
+    .collect();
+    expected.extend(pictures.iter().cloned());
+    assert_eq!(files, expected);
 
     // The page refers only to files of the folder, and to each plot.
     let html = std::fs::read_to_string(report.join("index.html")).expect("index.html");
@@ -101,12 +111,16 @@ fn a_report_folder_holds_every_file_and_the_page_needs_nothing_else() {
             "index.html refers to {reference}, which is not a file of the folder"
         );
     }
-    for plot in ["joints.svg", "stress.svg", "sets.svg"] {
+    for plot in ["joints.svg", "stress.svg", "sets.svg"]
+        .into_iter()
+        .chain(pictures.iter().map(String::as_str))
+    {
         assert!(
             references.contains(&plot),
             "index.html does not show {plot}"
         );
     }
+    check_pictures(&report, &pictures, &html);
     for outside in ["http", "<script", "@import", "url("] {
         assert!(!html.contains(outside), "index.html contains {outside}");
     }
@@ -160,6 +174,35 @@ fn a_report_folder_holds_every_file_and_the_page_needs_nothing_else() {
     );
     assert!(!nodes_named(&glb, "C1 sub-segment").is_empty());
     assert_eq!(glb.animations().count(), 1);
+}
+
+/// Each picture is well-formed XML showing, in each of the three views, the robot (filled
+/// outlines), the cable (the candidate's one piece) and its two clamps; the page
+/// says that the candidate drawn failed the motion test, and where.
+fn check_pictures(report: &Path, pictures: &[String], html: &str) {
+    for file in pictures {
+        let svg = std::fs::read_to_string(report.join(file)).expect("picture");
+        let elements = svg_pictures::elements(&svg);
+        for view in svg_pictures::VIEWS {
+            let count = |name: &str, group: &str| {
+                elements.iter().filter(|e| e.is(name, view, group)).count()
+            };
+            assert!(count("polygon", "robot") >= 5, "{file} {view}: no robot");
+            assert_eq!(count("polyline", "cable"), 1, "{file} {view}: not 1 piece");
+            assert_eq!(count("circle", "clamps"), 2, "{file} {view}: not 2 clamps");
+        }
+        // Not degenerate: outlines have an area, the cable runs through its nodes.
+        for e in &elements {
+            let corners = svg_pictures::points(e.attribute("points")).len();
+            match (e.name.as_str(), e.group.as_deref()) {
+                ("polygon", Some("robot")) => assert!(corners >= 3, "{file}: {e:?}"),
+                ("polyline", Some("cable")) => assert!(corners >= 10, "{file}: {e:?}"),
+                _ => {}
+            }
+        }
+    }
+    assert!(html.contains("failed the motion test: this is the nearest miss"));
+    assert!(html.contains("The motion test failed at t = "));
 }
 
 /// `export-scene path` draws the candidate of a result file at a pose and says whether each

@@ -1,8 +1,10 @@
 //! `cable-dict solve` and `critical-poses` end to end: the result JSON's documented fields
 //! against the setup file, exit codes, and the motion-test search (no failed PV is tried
-//! twice) against the attachment test's own sets.
+//! twice) against the attachment test's own sets; the report's pictures against the
+//! physics' own cable shapes.
 
 mod common;
+mod svg_pictures;
 
 use cable_dict::attachment::{ConnectMethod, Evaluator, SegmentPoses, attachment_test};
 use cable_dict::motion::Motion;
@@ -437,6 +439,81 @@ fn check_report_folder(setup: &Setup, motion: &Motion, report: &cable_dict::solv
     assert_eq!(named("critical pose "), critical.len());
     let c1 = &report.optimal.as_ref().expect("d*").segments[0];
     assert_eq!(named("C1 sub-segment "), c1.sub_segments);
+    check_pictures_against_the_physics(setup, motion, report, &critical, &dir);
+}
+
+/// Each critical pose's picture draws d*'s static equilibrium there — computed here by the
+/// attachment test's evaluator, projected here — and its clamps where the setup puts them:
+/// every cable node and clamp at its world coordinates (mm, vertical axis negated, rounded to
+/// 0.1 mm) in each view.
+fn check_pictures_against_the_physics(
+    setup: &Setup,
+    motion: &Motion,
+    report: &cable_dict::solve::SolveReport,
+    critical: &BTreeSet<usize>,
+    dir: &Path,
+) {
+    let path = &report
+        .candidates
+        .iter()
+        .find(|c| c.passed == Some(true))
+        .expect("d*")
+        .path;
+    let evaluator = Evaluator::new(setup, ConnectMethod::Hermite).expect("evaluator");
+    // Front (x, −z), side (y, −z), top (x, −y), in mm.
+    let project = |view: &str, p: [f64; 3]| {
+        let (right, up) = match view {
+            "front" => (0, 2),
+            "side" => (1, 2),
+            _ => (0, 1),
+        };
+        [p[right] * 1e3, -p[up] * 1e3]
+    };
+    let near = |drawn: [f64; 2], expected: [f64; 2]| {
+        (drawn[0] - expected[0]).abs() <= 0.051 && (drawn[1] - expected[1]).abs() <= 0.051
+    };
+    for (k, &sample) in critical.iter().enumerate() {
+        let file = format!("pose-{}.svg", k + 1);
+        let svg = std::fs::read_to_string(dir.join(&file)).expect("picture");
+        let elements = svg_pictures::elements(&svg);
+        let link_poses = setup
+            .robot
+            .link_poses(&motion.samples()[sample])
+            .expect("poses");
+        for view in svg_pictures::VIEWS {
+            for m in 0..path.segment_count() {
+                let nodes = evaluator
+                    .equilibrium_nodes(m, &path.pv(m), &link_poses)
+                    .expect("an equilibrium");
+                let piece = format!("C{}", m + 1);
+                let line = elements
+                    .iter()
+                    .find(|e| e.is("polyline", view, "cable") && e.attribute("data-piece") == piece)
+                    .unwrap_or_else(|| panic!("{file} {view}: no {piece}"));
+                let drawn = svg_pictures::points(line.attribute("points"));
+                assert_eq!(drawn.len(), nodes.len(), "{file} {view} {piece}");
+                for (d, node) in drawn.iter().zip(&nodes) {
+                    let expected = project(view, [node.x, node.y, node.z]);
+                    assert!(
+                        near(*d, expected),
+                        "{file} {view} {piece}: {d:?} ≠ {expected:?}"
+                    );
+                }
+            }
+            let clamps: Vec<[f64; 2]> = elements
+                .iter()
+                .filter(|e| e.is("circle", view, "clamps"))
+                .map(|e| [e.attribute("cx"), e.attribute("cy")].map(|v| v.parse().expect("number")))
+                .collect();
+            assert_eq!(clamps.len(), setup.guides.len());
+            for (g, (guide, &c)) in setup.guides.iter().zip(&path.configurations).enumerate() {
+                let at = link_poses[guide.link] * guide.configurations[c].pose;
+                let v = at.translation.vector;
+                let expected = project(view, [v.x, v.y, v.z]);
+                assert!(near(clamps[g], expected), "{file} {view} G{}", g + 1);
+            }
+        }
+    }
 }
 
 /// `-v` logs each stage with its set sizes and time on standard error and leaves standard

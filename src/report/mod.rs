@@ -11,9 +11,13 @@
 //! - `sets.svg`: |D0|, |D'0|, |D1|, |D2| per segment;
 //! - `scene.glb`: robot, cable, guides, critical poses and the motion test's animation
 //!   ([`scene`], assembled by [`views`]);
-//! - `index.html`: the summary and the plots on one page needing nothing but the folder.
+//! - `pose-1.svg` …, `worst-moment.svg`, `nearest-miss.svg`: the cable on the robot, front,
+//!   side and top, drawn from the same scene ([`pictures`]);
+//! - `index.html`: the summary, the pictures and the plots on one page needing nothing but
+//!   the folder.
 
 mod page;
+pub mod pictures;
 pub mod plots;
 pub mod scene;
 mod summary;
@@ -149,18 +153,44 @@ pub fn write_report(
         "the result JSON (as `solve --json`)",
         json.as_bytes(),
     )?;
-    let figures = write_plots(&mut folder, setup, motion, report)?;
-    let notes = write_scene(&mut folder, setup, motion, report)?;
+    let plots = write_plots(&mut folder, setup, motion, report)?;
+    let (spec, problems) =
+        views::solve_scene(setup, motion, report).map_err(|e| ReportError::Scene(e.to_string()))?;
+    let notes = write_scene(&mut folder, &spec, problems)?;
+    let pictures = pictures::pictures(setup, report, &spec);
+    for picture in &pictures {
+        folder.put(&picture.file, &picture.what, picture.svg.as_bytes())?;
+    }
+    let described: Vec<(&str, &str)> = folder
+        .described
+        .iter()
+        .map(|(file, what)| (file.as_str(), what.as_str()))
+        .collect();
     let summary = summary::summary_markdown(
         report,
         &setup.thresholds,
         &input_hashes(setup, report),
-        &folder.described,
+        &described,
         &notes,
     );
     folder.put("summary.md", "this summary as Markdown", summary.as_bytes())?;
     let title = format!("cable-dict: {}", report.status.describe());
-    let page = page::index_html(&title, &summary, &figures);
+    let sections = [
+        page::Section {
+            heading: "The cable on the robot",
+            intro: PICTURES_INTRO,
+            figures: pictures
+                .iter()
+                .map(|p| (p.file.as_str(), p.caption.as_str()))
+                .collect(),
+        },
+        page::Section {
+            heading: "Plots",
+            intro: "",
+            figures: plots,
+        },
+    ];
+    let page = page::index_html(&title, &summary, &sections);
     folder.put("index.html", "this page", page.as_bytes())?;
     let written = folder.written;
     staging.commit().map_err(write_error)?;
@@ -192,25 +222,25 @@ struct Folder<'a> {
     staging: &'a Path,
     written: Vec<PathBuf>,
     /// `(file, what it shows)` for the summary's list.
-    described: Vec<(&'static str, &'static str)>,
+    described: Vec<(String, String)>,
 }
 
 impl Folder<'_> {
-    fn put(
-        &mut self,
-        file: &'static str,
-        what: &'static str,
-        bytes: &[u8],
-    ) -> Result<(), ReportError> {
+    fn put(&mut self, file: &str, what: &str, bytes: &[u8]) -> Result<(), ReportError> {
         std::fs::write(self.staging.join(file), bytes).map_err(|error| ReportError::Write {
             path: self.dir.join(file),
             error,
         })?;
         self.written.push(self.dir.join(file));
-        self.described.push((file, what));
+        self.described.push((file.into(), what.into()));
         Ok(())
     }
 }
+
+/// What the pictures on the page are, said once above them.
+const PICTURES_INTRO: &str = "The robot's collision shapes (grey), the cable (orange) and its \
+     clamps (blue), seen from the front, the side and the top, at one scale in the robot's \
+     base frame (mm): the shapes the physics checks, at each pose the path was tested at.";
 
 /// The three plots; returns `(file, caption)` of each for the page.
 fn write_plots(
@@ -271,16 +301,14 @@ fn stress_title(report: &SolveReport) -> String {
     }
 }
 
-/// `scene.glb`; returns the notes for the summary (segments drawn without a cable).
+/// `scene.glb` of `spec`; returns the notes for the summary: the `problems` of
+/// [`views::solve_scene`] (segments drawn without a cable).
 fn write_scene(
     folder: &mut Folder<'_>,
-    setup: &Setup,
-    motion: &Motion,
-    report: &SolveReport,
+    spec: &scene::SceneSpec<'_>,
+    problems: Vec<String>,
 ) -> Result<Vec<String>, ReportError> {
-    let (spec, problems) =
-        views::solve_scene(setup, motion, report).map_err(|e| ReportError::Scene(e.to_string()))?;
-    let bytes = scene::to_glb(&spec).map_err(|e| ReportError::Scene(e.to_string()))?;
+    let bytes = scene::to_glb(spec).map_err(|e| ReportError::Scene(e.to_string()))?;
     let what = if spec.animation.is_some() {
         "3D scene: robot, cable, guides, critical poses, motion-test animation (glTF 2.0)"
     } else {

@@ -1,11 +1,21 @@
-//! `index.html`: the summary and the plots on one page that needs nothing but the folder it
-//! is in (no scripts, no fonts, no network).
+//! `index.html`: the summary, the pictures and the plots on one page that needs nothing but
+//! the folder it is in (no scripts, no fonts, no network).
 
 use pulldown_cmark::{Options, Parser, html};
 
-/// The page: `summary_md` rendered, then each `(file, caption)` figure as an image of the
-/// folder, then links to the other files.
-pub fn index_html(title: &str, summary_md: &str, figures: &[(&str, &str)]) -> String {
+/// A titled group of figures on the page.
+pub struct Section<'a> {
+    /// The section's heading.
+    pub heading: &'a str,
+    /// A paragraph above the figures; empty for none.
+    pub intro: &'a str,
+    /// `(file, caption)` of each figure, an image of the folder.
+    pub figures: Vec<(&'a str, &'a str)>,
+}
+
+/// The page: `summary_md` rendered, then each section that has figures, each figure an image
+/// of the folder with its caption.
+pub fn index_html(title: &str, summary_md: &str, sections: &[Section<'_>]) -> String {
     let mut body = String::new();
     html::push_html(
         &mut body,
@@ -17,21 +27,24 @@ pub fn index_html(title: &str, summary_md: &str, figures: &[(&str, &str)]) -> St
         escape(title)
     );
     page.push_str(&body);
-    if !figures.is_empty() {
-        page.push_str("<h2>Plots</h2>\n");
-    }
-    for (file, caption) in figures {
-        page.push_str(&format!(
-            "<figure>\n<img src=\"{file}\" alt=\"{alt}\">\n<figcaption>{alt}</figcaption>\n</figure>\n",
-            alt = escape(caption)
-        ));
+    for section in sections.iter().filter(|s| !s.figures.is_empty()) {
+        page.push_str(&format!("<h2>{}</h2>\n", escape(section.heading)));
+        if !section.intro.is_empty() {
+            page.push_str(&format!("<p>{}</p>\n", escape(section.intro)));
+        }
+        for (file, caption) in &section.figures {
+            page.push_str(&format!(
+                "<figure>\n<img src=\"{file}\" alt=\"{alt}\">\n<figcaption>{alt}</figcaption>\n</figure>\n",
+                alt = escape(caption)
+            ));
+        }
     }
     page.push_str("</main>\n</body>\n</html>\n");
     page
 }
 
-/// `&`, `<`, `>` and `"` as HTML entities.
-fn escape(text: &str) -> String {
+/// `&`, `<`, `>` and `"` as HTML (and XML) entities.
+pub(super) fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")

@@ -9,7 +9,7 @@ use crate::path::{CablePath, Pv};
 use crate::pose::Pose;
 use crate::robot::JointVectorError;
 use crate::setup::Setup;
-use crate::solve::{CandidateOutcome, SolveReport};
+use crate::solve::{CandidateOutcome, NearestMiss, SolveReport};
 use crate::stress::contact::ContactError;
 use nalgebra::{Point3, Vector3};
 
@@ -145,8 +145,9 @@ pub fn solve_scene<'a>(
         // The animated cable is the simulated one: it starts from the same equilibrium.
         spec.main = animation.frames[0].clone();
     }
-    for (name, sample) in critical_poses(report) {
-        let (scene, missing) = at(&motion.samples()[sample])?;
+    for (i, pose) in critical_poses(report).into_iter().enumerate() {
+        let name = pose.scene_name(i + 1);
+        let (scene, missing) = at(&motion.samples()[pose.sample])?;
         problems.extend(missing.into_iter().map(|p| format!("{name}: {p}")));
         spec.snapshots.push(Snapshot {
             name,
@@ -166,13 +167,7 @@ fn nearest_miss_scene(
     report: &SolveReport,
 ) -> Option<Result<PoseScene, ViewError>> {
     let setup = evaluator.setup();
-    let (m, miss) = report.diagnosis.as_ref()?.segments.iter().find_map(|d| {
-        let m = report
-            .segments
-            .iter()
-            .position(|s| s.segment == d.segment)?;
-        Some((m, d.nearest_misses.first()?))
-    })?;
+    let (m, _, miss) = first_nearest_miss(report)?;
     let (a, b) = setup.segment_guides(m);
     let index = |g: usize, name: &str| setup.guides[g].configuration_index(name);
     let pv = Pv {
@@ -181,6 +176,18 @@ fn nearest_miss_scene(
         end: index(b, &miss.to_configuration)?,
     };
     Some(piece_scene(evaluator, motion, m, &pv, miss.time_s))
+}
+
+/// The diagnosis's first nearest miss: its segment's index, its start guide (`G3`, where
+/// places on the piece are measured from) and the miss; `None` without one.
+pub fn first_nearest_miss(report: &SolveReport) -> Option<(usize, &str, &NearestMiss)> {
+    report.diagnosis.as_ref()?.segments.iter().find_map(|d| {
+        let m = report
+            .segments
+            .iter()
+            .position(|s| s.segment == d.segment)?;
+        Some((m, d.from_guide.as_str(), d.nearest_misses.first()?))
+    })
 }
 
 /// The robot at `time_s` of the motion with the static equilibrium of PV `pv` of segment `m`
@@ -248,30 +255,53 @@ fn simulated_line(segment: &SegmentNodes) -> CableLine {
     }
 }
 
-/// The inter-link segments' critical poses, one per motion sample, named after every segment
-/// and reason that chose it: `critical pose 2: C1 joint_1 max, C3 joint_1 max (t = 1.250 s)`.
-fn critical_poses(report: &SolveReport) -> Vec<(String, usize)> {
-    let mut by_sample: std::collections::BTreeMap<usize, (f64, Vec<String>)> = Default::default();
+/// A critical pose of the inter-link segments: one motion sample, with every segment and
+/// reason that chose it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CriticalPose {
+    /// Index of the motion sample.
+    pub sample: usize,
+    /// Time of the sample in the motion (s).
+    pub time_s: f64,
+    /// `(segment, reason)` pairs, e.g. `("C1", "joint_1 max")`, segments in path order.
+    pub reasons: Vec<(String, String)>,
+}
+
+impl CriticalPose {
+    /// The scene's name of the `number`-th pose (from 1): `critical pose 2: C1 joint_1 max, C3
+    /// joint_1 max (t = 1.250 s)`.
+    fn scene_name(&self, number: usize) -> String {
+        let why: Vec<String> = self
+            .reasons
+            .iter()
+            .map(|(segment, reason)| format!("{segment} {reason}"))
+            .collect();
+        format!(
+            "critical pose {number}: {} (t = {:.3} s)",
+            why.join(", "),
+            self.time_s
+        )
+    }
+}
+
+/// The inter-link segments' critical poses, one per motion sample, in sample order: the
+/// scene's snapshots, in the same order.
+pub fn critical_poses(report: &SolveReport) -> Vec<CriticalPose> {
+    let mut by_sample: std::collections::BTreeMap<usize, CriticalPose> = Default::default();
     for segment in report.segments.iter().filter(|s| s.kind == "inter-link") {
         for pose in &segment.test_poses {
-            let entry = by_sample
+            by_sample
                 .entry(pose.sample)
-                .or_insert_with(|| (pose.time_s, Vec::new()));
-            entry.1.push(format!("{} {}", segment.segment, pose.reason));
+                .or_insert_with(|| CriticalPose {
+                    sample: pose.sample,
+                    time_s: pose.time_s,
+                    reasons: Vec::new(),
+                })
+                .reasons
+                .push((segment.segment.clone(), pose.reason.clone()));
         }
     }
-    by_sample
-        .into_iter()
-        .enumerate()
-        .map(|(i, (sample, (time_s, why)))| {
-            let name = format!(
-                "critical pose {}: {} (t = {time_s:.3} s)",
-                i + 1,
-                why.join(", ")
-            );
-            (name, sample)
-        })
-        .collect()
+    by_sample.into_values().collect()
 }
 
 /// Places the snapshots on a grid beside the main robot, far enough apart not to overlap.

@@ -60,6 +60,33 @@ pub fn to_glb(spec: &SceneSpec<'_>) -> Result<Vec<u8>, SceneError> {
     builder.finish(vec![root])
 }
 
+/// One collider as the vertices of the mesh [`to_glb`] draws for it, in the world frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ColliderPoints {
+    /// Index into `robot.links` of its link.
+    pub link: usize,
+    /// The tessellation's vertices in the world frame (m).
+    pub points_m: Vec<Point3<f64>>,
+}
+
+/// Every collider of `robot` with the links at `link_poses`, tessellated as in the scene,
+/// link by link: so that a drawing made from them shows the shapes the scene and the
+/// physics use.
+pub fn collider_points(robot: &Robot, link_poses: &[Pose]) -> Vec<ColliderPoints> {
+    let mut colliders = Vec::new();
+    for (link, (l, pose)) in robot.links.iter().zip(link_poses).enumerate() {
+        for collider in &l.colliders {
+            let to_world = pose * collider.origin;
+            let mesh = mesh::shape_mesh(&collider.shape);
+            colliders.push(ColliderPoints {
+                link,
+                points_m: mesh.positions.iter().map(|p| to_world * p).collect(),
+            });
+        }
+    }
+    colliders
+}
+
 /// What a scene shows, in the robot's world frame (metres, z up).
 #[derive(Debug, Clone)]
 pub struct SceneSpec<'a> {

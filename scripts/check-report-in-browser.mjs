@@ -1,0 +1,133 @@
+// Opens a report folder's index.html in headless Chromium and checks what an engineer would
+// see: the page loads with no console error, no uncaught exception and no failed request,
+// asks for nothing outside the folder, and every picture shows something.
+//
+//   node scripts/check-report-in-browser.mjs REPORT_DIR
+//
+// playwright-core is found in PLAYWRIGHT_CORE_DIR (a folder whose node_modules holds it, as
+// scripts/check-report-in-browser.sh sets up) or through the usual lookup; the browser is
+// CHROMIUM (default /usr/bin/chromium). Exit 0: all good; 1: a problem, each one printed;
+// 2: the check could not run.
+
+import { existsSync } from "node:fs";
+import { createRequire } from "node:module";
+import path from "node:path";
+import { pathToFileURL } from "node:url";
+
+// Share of a picture's pixels that must differ from its most common colour: a blank image, or
+// one with only a frame, has (almost) none.
+const MIN_DRAWN_SHARE = 0.01;
+
+function loadPlaywright() {
+  const dir = process.env.PLAYWRIGHT_CORE_DIR;
+  const base = dir ? path.join(path.resolve(dir), "package.json") : import.meta.url;
+  return createRequire(base)("playwright-core");
+}
+
+// Records console errors, page errors, failed requests and any request leaving file://.
+function watch(page, problems) {
+  page.on("console", (message) => {
+    if (message.type() === "error") problems.push(`console error: ${message.text()}`);
+  });
+  page.on("pageerror", (error) => problems.push(`uncaught exception: ${error.message}`));
+  page.on("requestfailed", (request) =>
+    problems.push(`failed request: ${request.url()} (${request.failure()?.errorText})`),
+  );
+  return page.route("**/*", (route) => {
+    const url = route.request().url();
+    if (url.startsWith("file:")) return route.continue();
+    problems.push(`request outside the folder: ${url}`);
+    return route.abort();
+  });
+}
+
+// Share of the PNG's pixels that differ from its most common colour, decoded in a blank page.
+async function drawnShare(blank, png) {
+  return blank.evaluate(async (base64) => {
+    const image = new Image();
+    image.src = `data:image/png;base64,${base64}`;
+    await image.decode();
+    const canvas = document.createElement("canvas");
+    canvas.width = image.naturalWidth;
+    canvas.height = image.naturalHeight;
+    const context = canvas.getContext("2d");
+    context.drawImage(image, 0, 0);
+    const { data } = context.getImageData(0, 0, canvas.width, canvas.height);
+    const counts = new Map();
+    for (let i = 0; i < data.length; i += 4) {
+      const key = (data[i] << 16) | (data[i + 1] << 8) | data[i + 2];
+      counts.set(key, (counts.get(key) ?? 0) + 1);
+    }
+    const pixels = data.length / 4;
+    return pixels ? 1 - Math.max(...counts.values()) / pixels : 0;
+  }, png.toString("base64"));
+}
+
+// naturalWidth, load state and drawn share of every <img>; problems for the bad ones.
+async function checkImages(page, blank, problems) {
+  const images = page.locator("img");
+  const count = await images.count();
+  if (count === 0) problems.push("the page shows no picture");
+  for (let i = 0; i < count; i++) {
+    const image = images.nth(i);
+    const src = await image.getAttribute("src");
+    const { complete, width } = await image.evaluate((img) => ({
+      complete: img.complete,
+      width: img.naturalWidth,
+    }));
+    if (!complete || width === 0) {
+      problems.push(`${src}: not loaded (naturalWidth ${width})`);
+      continue;
+    }
+    // Without the page's frame around images: only what the picture itself draws counts.
+    const png = await image.screenshot({ style: "img { border: 0 !important; }" });
+    const share = await drawnShare(blank, png);
+    const percent = (100 * share).toFixed(1);
+    if (share < MIN_DRAWN_SHARE) problems.push(`${src}: blank (${percent} % of it drawn)`);
+    console.log(`  ${src}: ${width} px wide, ${percent} % of its pixels drawn`);
+  }
+  return count;
+}
+
+async function main() {
+  const dir = process.argv[2];
+  const index = dir && path.resolve(dir, "index.html");
+  if (!index || !existsSync(index)) {
+    console.error(`usage: check-report-in-browser.mjs REPORT_DIR (with an index.html)`);
+    return 2;
+  }
+  const started = Date.now();
+  const { chromium } = loadPlaywright();
+  const browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
+    // Root in a container: Chromium's sandbox needs user namespaces it may not have.
+    args: ["--no-sandbox"],
+  });
+  try {
+    const page = await browser.newPage({ viewport: { width: 1200, height: 900 } });
+    const blank = await browser.newPage();
+    const problems = [];
+    await watch(page, problems);
+    await page.goto(pathToFileURL(index).href, { waitUntil: "load" });
+    console.log(`${index}:`);
+    const count = await checkImages(page, blank, problems);
+    const seconds = ((Date.now() - started) / 1000).toFixed(1);
+    for (const problem of problems) console.log(`PROBLEM ${problem}`);
+    console.log(
+      problems.length
+        ? `${problems.length} problem(s) (${seconds} s)`
+        : `ok: ${count} pictures loaded and drawn, no console error, no failed request (${seconds} s)`,
+    );
+    return problems.length ? 1 : 0;
+  } finally {
+    await browser.close();
+  }
+}
+
+main().then(
+  (code) => process.exit(code),
+  (error) => {
+    console.error(`could not check the page: ${error.stack ?? error}`);
+    process.exit(2);
+  },
+);

@@ -1,0 +1,537 @@
+//! Pictures of the cable on the robot for the report page: front, side and top views
+//! (orthographic, world frame, one scale for all) of the robot's collision shapes, the
+//! cable and its clamps, at each critical pose, at the worst moment of the motion test and,
+//! when no candidate path exists, at the nearest miss.
+//!
+//! Everything drawn comes from the scene [`views::solve_scene`] assembles for `scene.glb`
+//! (the same colliders, tessellated the same way, the same cable nodes, the same clamps), so
+//! the pictures cannot disagree with the 3D scene or the physics. Plain SVG, no script: the
+//! page stays a folder that works offline.
+
+mod projection;
+mod svg;
+
+use super::scene::{self, PoseScene, SceneSpec};
+use super::views::{self, CriticalPose};
+use crate::motion_test::{Constraint, MotionTestReport};
+use crate::setup::{Setup, Thresholds};
+use crate::solve::{SolveReport, Status};
+use nalgebra::Point3;
+use svg::{Drawing, Layout, picture_svg};
+
+/// One picture of the report folder.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Picture {
+    /// File name in the report folder, e.g. `pose-2.svg`.
+    pub file: String,
+    /// What it shows, one line for the summary's list of files.
+    pub what: String,
+    /// The caption under it on the page, in plain words.
+    pub caption: String,
+    /// The SVG document.
+    pub svg: String,
+}
+
+/// The pictures of a solve, drawn from `spec`, the scene [`views::solve_scene`] assembled
+/// for `report` with `setup`: one per critical pose (`pose-1.svg` …), one at the worst
+/// moment of the motion test when the test kept the cable's shapes (`worst-moment.svg`),
+/// and one of the nearest miss when there is no candidate path (`nearest-miss.svg`).
+pub fn pictures(setup: &Setup, report: &SolveReport, spec: &SceneSpec<'_>) -> Vec<Picture> {
+    let mut moments = critical_pose_moments(report, spec);
+    moments.extend(worst_moment(setup, report, spec));
+    moments.extend(nearest_miss_moment(setup, report, spec));
+    let drawings: Vec<Drawing> = moments.iter().map(|m| drawing(setup, spec, m)).collect();
+    let layout = Layout::around(&drawings, 2e3 * spec.cable_radius_m);
+    moments
+        .into_iter()
+        .zip(&drawings)
+        .map(|(moment, drawing)| Picture {
+            file: moment.file,
+            what: moment.what,
+            caption: moment.caption,
+            svg: picture_svg(drawing, &layout),
+        })
+        .collect()
+}
+
+/// One instant to draw and the words that go with it.
+struct Moment<'s> {
+    file: String,
+    heading: String,
+    what: String,
+    caption: String,
+    /// The robot and the cable then.
+    scene: &'s PoseScene,
+    /// Where to ring in red (world frame, m).
+    marker_m: Option<Point3<f64>>,
+}
+
+/// What is drawn of `moment`, in millimetres.
+fn drawing(setup: &Setup, spec: &SceneSpec<'_>, moment: &Moment<'_>) -> Drawing {
+    let mm = |p: &Point3<f64>| p * 1e3;
+    let scene = moment.scene;
+    let colliders = scene::collider_points(spec.robot, &scene.link_poses)
+        .into_iter()
+        .map(|c| c.points_m.iter().map(mm).collect())
+        .collect();
+    let cable = scene
+        .cable
+        .iter()
+        .map(|line| (line.name.clone(), line.nodes_m.iter().map(mm).collect()))
+        .collect();
+    let clamps = spec
+        .guides
+        .iter()
+        .zip(&setup.guides)
+        .filter_map(|(mark, guide)| {
+            let at = scene.link_poses.get(mark.link)? * mark.pose_in_link;
+            Some((guide.name.clone(), mm(&Point3::from(at.translation.vector))))
+        })
+        .collect();
+    Drawing {
+        heading: moment.heading.clone(),
+        colliders,
+        cable,
+        clamps,
+        marker: moment.marker_m.as_ref().map(mm),
+    }
+}
+
+/// One moment per critical pose, with the scene's snapshot of it.
+fn critical_pose_moments<'s>(report: &SolveReport, spec: &'s SceneSpec<'_>) -> Vec<Moment<'s>> {
+    let poses = views::critical_poses(report);
+    let count = poses.len();
+    let path = path_words(report);
+    poses
+        .iter()
+        .zip(&spec.snapshots)
+        .enumerate()
+        .map(|(i, (pose, snapshot))| {
+            let n = i + 1;
+            let shape = static_shape_words(report, &snapshot.scene);
+            Moment {
+                file: format!("pose-{n}.svg"),
+                heading: format!("Critical pose {n} of {count}, t = {:.2} s", pose.time_s),
+                what: format!(
+                    "the robot and the cable at critical pose {n} (t = {:.2} s), front, side and top",
+                    pose.time_s
+                ),
+                caption: format!(
+                    "Critical pose {n} of {count}, t = {:.2} s, tested for {}. {shape} {path}",
+                    pose.time_s,
+                    reasons_words(pose)
+                )
+                .trim_end()
+                .to_string(),
+                scene: &snapshot.scene,
+                marker_m: None,
+            }
+        })
+        .collect()
+}
+
+/// `cable piece C1: joint_4 max; cable piece C3: joint_6 min`.
+fn reasons_words(pose: &CriticalPose) -> String {
+    let reasons: Vec<String> = pose
+        .reasons
+        .iter()
+        .map(|(piece, reason)| format!("cable piece {piece}: {reason}"))
+        .collect();
+    reasons.join("; ")
+}
+
+/// What a critical pose's cable is, and which pieces have no static shape there.
+fn static_shape_words(report: &SolveReport, scene: &PoseScene) -> String {
+    if views::shown_candidate(report).is_none() {
+        return "No candidate path, so only the robot is drawn.".into();
+    }
+    let missing: Vec<&str> = report
+        .segments
+        .iter()
+        .map(|s| s.segment.as_str())
+        .filter(|piece| !scene.cable.iter().any(|line| line.name == *piece))
+        .collect();
+    let mut words = "The cable is drawn in its static shape at this pose.".to_string();
+    if !missing.is_empty() {
+        words += &format!(
+            " No static shape found for cable piece {}: not drawn.",
+            missing.join(", ")
+        );
+    }
+    words
+}
+
+/// Which path the pictures show, and whether it is a working one.
+fn path_words(report: &SolveReport) -> String {
+    let Some(c) = views::shown_candidate(report) else {
+        return String::new();
+    };
+    let length = c.total_length_mm;
+    match c.passed {
+        Some(true) => format!(
+            "Path drawn: the shortest path that passed the motion test, {length:.0} mm of cable."
+        ),
+        None => format!(
+            "Path drawn: the shortest candidate path, {length:.0} mm of cable, not tested over \
+             the motion."
+        ),
+        Some(false) => format!(
+            "Path drawn: candidate {} ({length:.0} mm of cable), the last one tried. It failed \
+             the motion test: this is the nearest miss, not a working path.",
+            c.rank
+        ),
+    }
+}
+
+/// The motion test's instant with the smallest margin to a limit, and where.
+#[derive(Debug, Clone, PartialEq)]
+struct SmallestMargin {
+    constraint: Constraint,
+    /// In the limit's unit (m, N or a ratio).
+    value: f64,
+    limit: f64,
+    time_s: f64,
+    /// Index of the cable piece (C1 = 0).
+    segment: usize,
+    position_m: Option<[f64; 3]>,
+    /// The test failed here (its first violation).
+    violated: bool,
+}
+
+/// Where the motion test failed; else the worst of clearance, stretch and bend radius,
+/// each relative to its limit as the diagnosis ranks its nearest misses (clearance over the
+/// cable's diameter, stretch over the allowed excess, bend radius over the minimum radius).
+/// `None` when nothing was measured.
+fn smallest_margin(
+    test: &MotionTestReport,
+    limits: &Thresholds,
+    cable_diameter_m: f64,
+) -> Option<SmallestMargin> {
+    if let Some(v) = &test.first_violation {
+        return Some(SmallestMargin {
+            constraint: v.constraint,
+            value: v.value,
+            limit: v.threshold,
+            time_s: v.time_s,
+            segment: v.segment,
+            position_m: v.place.position_m,
+            violated: true,
+        });
+    }
+    let worst = [
+        (
+            Constraint::Contact,
+            &test.worst_clearance,
+            limits.contact_clearance_m,
+        ),
+        (Constraint::Stretch, &test.worst_stretch, limits.stretch),
+        (
+            Constraint::BendRadius,
+            &test.worst_bend,
+            limits.min_bend_radius_m,
+        ),
+    ];
+    worst
+        .into_iter()
+        .filter_map(|(constraint, worst, limit)| {
+            let w = worst.as_ref()?;
+            let relative = match constraint {
+                Constraint::Contact => (w.value - limit) / cable_diameter_m,
+                Constraint::Stretch => (limit - w.value) / (limit - 1.0).max(1e-12),
+                _ => (w.value - limit) / limit,
+            };
+            let margin = SmallestMargin {
+                constraint,
+                value: w.value,
+                limit,
+                time_s: w.time_s,
+                segment: w.segment,
+                position_m: w.place.position_m,
+                violated: false,
+            };
+            Some((relative, margin))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, margin)| margin)
+}
+
+/// `clearance to the robot 5.4 mm (limit 0.0 mm)`.
+fn limit_words(constraint: Constraint, value: f64, limit: f64) -> String {
+    match constraint {
+        Constraint::Contact => format!(
+            "clearance to the robot {} (limit {})",
+            millimetres(value),
+            millimetres(limit)
+        ),
+        Constraint::ContactForce => format!("contact force on the robot {value:.2} N (limit 0 N)"),
+        Constraint::Stretch => format!("stretch {value:.4} (limit {limit:.4})"),
+        Constraint::BendRadius => format!(
+            "bend radius {} (limit {})",
+            millimetres(value),
+            millimetres(limit)
+        ),
+    }
+}
+
+/// `length_m` in mm to 0.1 mm, or to 0.01 mm when that would show a nonzero value as 0.0
+/// (a contact 0.03 mm deep).
+fn millimetres(length_m: f64) -> String {
+    let mm = length_m * 1e3;
+    if mm != 0.0 && mm.abs() < 0.05 {
+        format!("{mm:.2} mm")
+    } else {
+        format!("{mm:.1} mm")
+    }
+}
+
+/// The simulated cable at the kept shape nearest to the smallest margin of the motion test.
+fn worst_moment<'s>(
+    setup: &Setup,
+    report: &SolveReport,
+    spec: &'s SceneSpec<'_>,
+) -> Option<Moment<'s>> {
+    let test = report.motion_test.as_ref()?;
+    let frames = &spec.animation.as_ref()?.frames;
+    if frames.len() != test.shapes.len() {
+        return None;
+    }
+    let worst = smallest_margin(test, &setup.thresholds, setup.cable.diameter_m)?;
+    let (frame, shape) = test.shapes.iter().enumerate().min_by(|a, b| {
+        let off = |s: &crate::motion_test::ShapeFrame| (s.time_s - worst.time_s).abs();
+        off(a.1).total_cmp(&off(b.1))
+    })?;
+    let when = format!("t = {:.2} s", worst.time_s);
+    let (heading, what) = if worst.violated {
+        (
+            format!("Where the motion test failed, {when}"),
+            format!("The motion test failed at {when}:"),
+        )
+    } else {
+        (
+            format!("Worst moment of the motion test, {when}"),
+            format!("Worst moment of the motion test, {when}: the smallest margin to a limit is"),
+        )
+    };
+    let ring = if worst.position_m.is_some() {
+        ", ringed in red"
+    } else {
+        ""
+    };
+    let drawn_at = if (shape.time_s - worst.time_s).abs() < 0.005 {
+        "at that instant".to_string()
+    } else {
+        format!("at t = {:.2} s, the nearest kept shape", shape.time_s)
+    };
+    let caption = format!(
+        "{what} {} on cable piece C{}{ring}. The cable is drawn as simulated {drawn_at}. {}",
+        limit_words(worst.constraint, worst.value, worst.limit),
+        worst.segment + 1,
+        path_words(report)
+    )
+    .trim_end()
+    .to_string();
+    Some(Moment {
+        file: "worst-moment.svg".into(),
+        heading,
+        what: format!(
+            "the robot and the cable at the worst moment of the motion test ({when}), front, \
+             side and top"
+        ),
+        caption,
+        scene: &frames[frame],
+        marker_m: worst.position_m.map(Point3::from),
+    })
+}
+
+/// Without a candidate path: the robot and the nearest miss's piece where it fails (the
+/// scene's main view then), its failing place ringed.
+fn nearest_miss_moment<'s>(
+    setup: &Setup,
+    report: &SolveReport,
+    spec: &'s SceneSpec<'_>,
+) -> Option<Moment<'s>> {
+    if views::shown_candidate(report).is_some() || report.status != Status::NoChain {
+        return None;
+    }
+    let (m, from_guide, miss) = views::first_nearest_miss(report)?;
+    let piece = format!("C{}", m + 1);
+    let line = spec.main.cable.first();
+    let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+    let marker_m = line.zip(miss.from_start_clamp_mm).and_then(|(line, mm)| {
+        let node = (mm / pitch_mm).round();
+        (node >= 0.0)
+            .then(|| line.nodes_m.get(node as usize).copied())
+            .flatten()
+    });
+    let shape = if line.is_some() {
+        "The piece is drawn in its static shape there, the other pieces are not drawn."
+    } else {
+        "The piece has no static shape there: only the robot is drawn."
+    };
+    Some(Moment {
+        file: "nearest-miss.svg".into(),
+        heading: format!(
+            "No cable path: nearest miss of cable piece {piece}, t = {:.2} s",
+            miss.time_s
+        ),
+        what: format!("the robot and the nearest miss of cable piece {piece}, front, side and top"),
+        caption: format!(
+            "No cable path was found. Cable piece {piece} comes closest with {}. {shape}",
+            miss.describe(from_guide)
+        ),
+        scene: &spec.main,
+        marker_m,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::projection::{View, outline};
+    use super::*;
+    use crate::robot::Robot;
+    use std::f64::consts::FRAC_PI_2;
+    use std::path::Path;
+
+    /// A robot whose only collider is on its base, with the given `<collision>` geometry
+    /// and origin (a bare link on a revolute joint makes it a robot).
+    fn one_collider(geometry: &str, xyz: &str, rpy: &str) -> Robot {
+        let urdf = format!(
+            "<robot name=\"r\"><link name=\"base\"><collision><origin xyz=\"{xyz}\" \
+             rpy=\"{rpy}\"/><geometry>{geometry}</geometry></collision></link>\
+             <link name=\"tip\"/><joint name=\"j\" type=\"revolute\"><parent link=\"base\"/>\
+             <child link=\"tip\"/><axis xyz=\"0 0 1\"/>\
+             <limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint></robot>"
+        );
+        Robot::from_urdf_str(&urdf, Path::new("test.urdf")).expect("a valid URDF")
+    }
+
+    /// The outline of the robot's only collider with its link at `link_pose`, in mm,
+    /// rounded to 0.1 mm and sorted.
+    fn outline_mm(robot: &Robot, link_pose: crate::pose::Pose, view: View) -> Vec<[i64; 2]> {
+        let colliders = scene::collider_points(robot, &vec![link_pose; robot.links.len()]);
+        assert_eq!(colliders.len(), 1);
+        let mm: Vec<Point3<f64>> = colliders[0].points_m.iter().map(|p| p * 1e3).collect();
+        let mut corners: Vec<[i64; 2]> = outline(view, &mm)
+            .into_iter()
+            .map(|p| p.map(|v| (v * 10.0).round() as i64))
+            .collect();
+        corners.sort();
+        corners
+    }
+
+    /// Corners of the axis-aligned rectangle `[r0, r1] × [u0, u1]` (mm) in tenths of a mm,
+    /// sorted.
+    fn rectangle(r: [f64; 2], u: [f64; 2]) -> Vec<[i64; 2]> {
+        let tenths = |v: f64| (v * 10.0).round() as i64;
+        let mut corners: Vec<[i64; 2]> = r
+            .iter()
+            .flat_map(|&x| u.iter().map(move |&y| [tenths(x), tenths(y)]))
+            .collect();
+        corners.sort();
+        corners
+    }
+
+    #[test]
+    fn a_turned_box_at_a_known_pose_projects_to_its_rectangles() {
+        // 0.4 × 0.2 × 0.6 m box turned 90° about z in its link: it spans 0.2 m along x and
+        // 0.4 m along y. The link frame sits at (1, 2, 3) m, the collider 0.1 m up in it.
+        let robot = one_collider(
+            "<box size=\"0.4 0.2 0.6\"/>",
+            "0 0 0.1",
+            &format!("0 0 {FRAC_PI_2}"),
+        );
+        let link = crate::pose::pose_from_xyz_rpy([1.0, 2.0, 3.0], [0.0; 3]);
+        let (x, y, z) = ([900.0, 1100.0], [1800.0, 2200.0], [2800.0, 3400.0]);
+        assert_eq!(outline_mm(&robot, link, View::Front), rectangle(x, z));
+        assert_eq!(outline_mm(&robot, link, View::Side), rectangle(y, z));
+        assert_eq!(outline_mm(&robot, link, View::Top), rectangle(x, y));
+    }
+
+    #[test]
+    fn a_cylinder_along_x_is_a_rectangle_from_the_front_and_a_circle_from_the_side() {
+        // Radius 50 mm, 300 mm long, its axis (z) turned onto x by a pitch of 90°, centred
+        // at (0, 0, 500) mm.
+        let robot = one_collider(
+            "<cylinder radius=\"0.05\" length=\"0.3\"/>",
+            "0 0 0.5",
+            &format!("0 {FRAC_PI_2} 0"),
+        );
+        let link = crate::pose::Pose::identity();
+        let front = outline_mm(&robot, link, View::Front);
+        assert_eq!(front, rectangle([-150.0, 150.0], [450.0, 550.0]));
+        let top = outline_mm(&robot, link, View::Top);
+        assert_eq!(top, rectangle([-150.0, 150.0], [-50.0, 50.0]));
+        // From the side, the end faces' rims: every corner 50 mm from the axis, and the
+        // outline reaches the circle's extremes.
+        let side = outline_mm(&robot, link, View::Side);
+        assert!(side.len() >= 12, "{side:?}");
+        for [y, z] in &side {
+            let r = ((*y as f64).powi(2) + ((*z - 5000) as f64).powi(2)).sqrt() / 10.0;
+            assert!((r - 50.0).abs() < 0.15, "{y}, {z}: {r} mm from the axis");
+        }
+        for extreme in [[-500, 5000], [500, 5000], [0, 4500], [0, 5500]] {
+            assert!(side.contains(&extreme), "{extreme:?} not in {side:?}");
+        }
+    }
+
+    #[test]
+    fn the_smallest_margin_is_relative_to_each_limit() {
+        use crate::motion_test::{Place, Worst};
+        let worst = |value: f64, time_s: f64, segment: usize| Worst {
+            value,
+            unit: "m",
+            time_s,
+            segment,
+            place: Place::default(),
+        };
+        let limits = Thresholds {
+            contact_clearance_m: 0.0,
+            stretch: 1.02,
+            min_bend_radius_m: 0.048,
+            min_bend_radius_source: crate::setup::BendRadiusSource::Cable,
+            clamp_zone_m: 0.02,
+            static_bend_margin_m: 0.0,
+        };
+        // Clearance 4 mm of an 8 mm cable: 0.5. Stretch 1.015: 0.25 of the allowed 0.02 left.
+        // Bend 62 mm against 48 mm: 0.29.
+        let mut test = MotionTestReport {
+            passed: true,
+            failure: None,
+            first_violation: None,
+            worst_clearance: Some(worst(0.004, 1.0, 0)),
+            worst_stretch: Some(worst(1.015, 2.0, 1)),
+            worst_bend: Some(worst(0.062, 3.0, 2)),
+            worst_contact_force: None,
+            max_joint_gap_m: 0.0,
+            series: Vec::new(),
+            final_shape: Vec::new(),
+            shapes: Vec::new(),
+            motion_duration_s: 4.0,
+            steps: 960,
+            simulated_s: 4.0,
+            wall_time_s: 0.0,
+        };
+        let found = smallest_margin(&test, &limits, 0.008).expect("a margin");
+        assert_eq!((found.constraint, found.time_s), (Constraint::Stretch, 2.0));
+        test.worst_bend = Some(worst(0.050, 3.0, 2));
+        let found = smallest_margin(&test, &limits, 0.008).expect("a margin");
+        assert_eq!(
+            (found.constraint, found.segment),
+            (Constraint::BendRadius, 2)
+        );
+        assert!(!found.violated);
+        // A failed test is drawn where it failed, whatever the worst values were.
+        test.first_violation = Some(crate::motion_test::Violation {
+            constraint: Constraint::Contact,
+            value: -0.001,
+            threshold: 0.0,
+            unit: "m",
+            time_s: 1.5,
+            segment: 1,
+            place: Place::default(),
+        });
+        let found = smallest_margin(&test, &limits, 0.008).expect("a margin");
+        assert_eq!((found.constraint, found.time_s), (Constraint::Contact, 1.5));
+        assert!(found.violated);
+    }
+}
