@@ -7,6 +7,7 @@
 //! The modules follow the pipeline of the design brief:
 //!
 //! - [`atomic_file`]: replacing a file so that readers never see a torn one.
+//! - [`json`]: JSON output with numbers at 12 significant digits.
 //! - [`input`]: reading input files with their size bounded (devices, pipes, huge files refused).
 //! - [`pose`]: rigid poses and the URDF roll–pitch–yaw convention shared by every module.
 //! - [`progress`]: progress of long stages, reported to a sink a front end draws.
@@ -65,6 +66,7 @@ pub mod dictionary;
 pub mod dynamics;
 pub mod geometry;
 pub mod input;
+pub mod json;
 pub mod motion;
 pub mod motion_test;
 pub mod path;

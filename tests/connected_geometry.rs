@@ -1236,3 +1236,37 @@ fn random_guide_pairs_always_connect_or_report_too_short() {
     );
     assert!(failures.is_empty(), "{failures:#?}");
 }
+
+/// Two guides at one place, the cable leaving and arriving the same way, would need a full
+/// loop: refused by name, never a solver failure with a NaN residual (issue 18). Turned
+/// guides at one place still connect (`loops_and_coincident_guides_connect`).
+#[test]
+fn coincident_guides_facing_the_same_way_are_refused() {
+    let at = guide([0.1, 0.2, 0.3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    let tilted = guide([0.1, 0.2, 0.3], [0.3, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    for end in [at, tilted] {
+        let error = connect(&at, &end, 20, 0.01, &down()).expect_err("a full loop");
+        assert!(
+            matches!(&error, ConnectError::InvalidInput { what } if what.contains("at the same place")),
+            "{error}"
+        );
+    }
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_cable-dict"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args([
+            "segment",
+            "--cable",
+            "cables/smc_le_cp_3.toml",
+            "--length-mm",
+            "200",
+        ])
+        .args(["--start", "0,0,0,0,0,0", "--end", "0,0,0,0,0,0"])
+        .output()
+        .expect("runs");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("at the same place") && !stderr.contains("NaN"),
+        "{stderr}"
+    );
+}

@@ -252,9 +252,42 @@ fn export_scene_draws_a_candidate_at_a_pose() {
         "{}",
         String::from_utf8_lossy(&exported.stderr)
     );
-    // d̂ is robust at the first pose (an intra-link test pose of every segment).
+    // d̂ is robust at the first pose (an intra-link test pose of every segment); the first
+    // line says the motion test did not judge it.
     assert!(
-        stdout.starts_with("C1 ") && stdout.contains("holds the limits"),
+        stdout.starts_with("candidate 1 (")
+            && stdout
+                .lines()
+                .next()
+                .is_some_and(|l| l.ends_with("was not motion-tested"))
+            && stdout.contains("\nC1 ")
+            && stdout.contains("holds the limits at this pose"),
+        "{stdout}"
+    );
+    // A candidate the motion test failed says so first, with the failure, whatever the
+    // static check at this pose finds.
+    let mut failed = json.clone();
+    failed["candidates"][0]["passed"] = Value::Bool(false);
+    failed["candidates"][0]["failure"] = Value::from("contact at t = 1.20 s, segment C1");
+    let failed_file = dir.path().join("failed.json");
+    std::fs::write(&failed_file, failed.to_string()).expect("written");
+    let exported = run(&[
+        "export-scene",
+        "path",
+        "--setup",
+        SMALL,
+        "--result",
+        failed_file.to_str().expect("utf-8"),
+        "--joints-deg",
+        "0,0,0,0,0,0",
+        "-o",
+        glb_arg,
+    ]);
+    let stdout = String::from_utf8_lossy(&exported.stdout);
+    assert!(
+        stdout.lines().next().is_some_and(
+            |l| l.ends_with("FAILED the motion test: contact at t = 1.20 s, segment C1")
+        ),
         "{stdout}"
     );
     let scene = scene(&glb);

@@ -41,7 +41,8 @@ fn edit(built: &mut Built, data: &[u8]) {
             2 => h.directions.gravity_m_s2 = x,
             3 => h.directions.probes = v as u32,
             4 => {
-                if let Some(d) = built.directions.get_mut(index % built.directions.len().max(1)) {
+                let n = built.directions.len().max(1);
+                if let Some(d) = built.directions.get_mut(index % n) {
                     d[(v % 3) as usize] = x;
                 }
             }

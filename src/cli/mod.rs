@@ -130,7 +130,7 @@ fn init_logging(verbose: u8, quiet: bool) {
 
 /// Prints a value as pretty JSON on standard output.
 fn print_json(value: &impl serde::Serialize) -> Result<(), Failure> {
-    let text = serde_json::to_string_pretty(value)
+    let text = cable_dict::json::to_pretty_string(value)
         .map_err(|e| Failure::unsolved(anyhow::anyhow!("cannot encode the JSON output: {e}")))?;
     emit(&(text + "\n"))
 }

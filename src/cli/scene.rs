@@ -83,11 +83,12 @@ pub fn run(args: Args) -> Result<(), Failure> {
 
 fn run_path(args: PathArgs) -> Result<(), Failure> {
     let setup = Setup::from_file(&args.setup).map_err(Failure::input)?;
-    let path = chosen_path(&args, &setup)?;
+    let (path, motion_test) = chosen_path(&args, &setup)?;
     let joints = chosen_pose(&args, &setup)?;
     let spec = pose_scene(&setup, &path, &joints).map_err(Failure::input)?;
     write_scene(&args.output, &spec)?;
-    emit(&path_checks(&setup, &path, &spec.main.link_poses)?)
+    let checks = path_checks(&setup, &path, &spec.main.link_poses)?;
+    emit(&(motion_test.map_or(String::new(), |m| m + "\n") + &checks))
 }
 
 /// Writes `spec` as a `.glb` file; an unwritable file is a bad argument.
@@ -97,11 +98,12 @@ pub(super) fn write_scene(output: &Path, spec: &SceneSpec<'_>) -> Result<(), Fai
         .map_err(|e| Failure::input(anyhow::anyhow!("cannot write {}: {e}", output.display())))
 }
 
-/// The path of --result or of --lengths-mm / --configurations, checked against the setup.
-fn chosen_path(args: &PathArgs, setup: &Setup) -> Result<CablePath, Failure> {
-    let path = match (&args.result, &args.lengths_mm, &args.configurations) {
+/// The path of --result or of --lengths-mm / --configurations, checked against the setup,
+/// and (from a result) what the motion test said of it.
+fn chosen_path(args: &PathArgs, setup: &Setup) -> Result<(CablePath, Option<String>), Failure> {
+    let (path, motion_test) = match (&args.result, &args.lengths_mm, &args.configurations) {
         (Some(file), _, _) => path_from_result(file, args.candidate)?,
-        (None, Some(lengths), Some(names)) => path_from_names(setup, &lengths.0, names)?,
+        (None, Some(lengths), Some(names)) => (path_from_names(setup, &lengths.0, names)?, None),
         _ => {
             return Err(Failure::input(anyhow::anyhow!(
                 "give --result, or --lengths-mm with --configurations"
@@ -109,11 +111,16 @@ fn chosen_path(args: &PathArgs, setup: &Setup) -> Result<CablePath, Failure> {
         }
     };
     check_path(setup, &path)?;
-    Ok(path)
+    Ok((path, motion_test))
 }
 
-/// Candidate `rank` of a result JSON, or the one it passed (else its last).
-fn path_from_result(file: &Path, rank: Option<usize>) -> Result<CablePath, Failure> {
+/// Candidate `rank` of a result JSON, or the one it passed (else its last), and a line
+/// saying what the motion test found for it: a piece can hold its limits at one pose and
+/// still fail along the motion.
+fn path_from_result(
+    file: &Path,
+    rank: Option<usize>,
+) -> Result<(CablePath, Option<String>), Failure> {
     let fail = |what: String| Failure::input(anyhow::anyhow!("{}: {what}", file.display()));
     let text = cable_dict::input::read_text(file, cable_dict::input::RESULT).map_err(fail)?;
     let json: serde_json::Value =
@@ -151,10 +158,22 @@ fn path_from_result(file: &Path, rank: Option<usize>) -> Result<CablePath, Failu
                 ))
             })
     };
-    Ok(CablePath {
+    let path = CablePath {
         lengths: indices("lengths")?,
         configurations: indices("configurations")?,
-    })
+    };
+    let name = format!(
+        "candidate {} ({:.0} mm)",
+        chosen["rank"].as_u64().unwrap_or_default(),
+        chosen["total_length_mm"].as_f64().unwrap_or_default()
+    );
+    let motion_test = match (chosen["passed"].as_bool(), chosen["failure"].as_str()) {
+        (Some(true), _) => format!("{name} passed the motion test"),
+        (Some(false), Some(why)) => format!("{name} FAILED the motion test: {why}"),
+        (Some(false), None) => format!("{name} FAILED the motion test"),
+        (None, _) => format!("{name} was not motion-tested"),
+    };
+    Ok((path, Some(motion_test)))
 }
 
 /// The path of lengths (mm) and configuration names.
@@ -249,7 +268,8 @@ fn chosen_pose(args: &PathArgs, setup: &Setup) -> Result<Vec<f64>, Failure> {
     Ok(joints)
 }
 
-/// One line per segment: the attachment test's verdict on its PV at this pose.
+/// One line per segment: the attachment test's verdict on its piece at this pose (static
+/// equilibrium; the motion test is another matter).
 fn path_checks(
     setup: &Setup,
     path: &CablePath,
@@ -260,7 +280,7 @@ fn path_checks(
     for m in 0..path.segment_count() {
         let check = evaluator.check_at(m, &path.pv(m), link_poses);
         let verdict = match (&check.rejection, &check.detail) {
-            (None, _) => "holds the limits".to_string(),
+            (None, _) => "holds the limits at this pose".to_string(),
             (Some(r), Some(detail)) => format!("{}: {detail}", r.name()),
             (Some(r), None) => r.name().to_string(),
         };

@@ -143,7 +143,7 @@ pub fn run(args: Args) -> Result<(), Failure> {
     })?;
     report.inputs.motion_file = Some(args.motion.display().to_string());
     if let Some(path) = &args.output {
-        let text = serde_json::to_string_pretty(&report)
+        let text = cable_dict::json::to_pretty_string(&report)
             .map_err(|e| Failure::unsolved(anyhow::anyhow!("cannot encode the result: {e}")))?;
         write_atomically(path, (text + "\n").as_bytes())
             .map_err(|e| Failure::input(anyhow::anyhow!("cannot write {}: {e}", path.display())))?;

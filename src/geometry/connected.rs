@@ -146,13 +146,18 @@ pub fn reaches(
     Ok(())
 }
 
+/// Guides closer than this (m) are one place for [`connect`]: 1 µm, far below any clamp.
+/// A cable leaving and arriving there the same way is refused (a full loop); turned guides
+/// at one place are joined by a loop the curves can start from.
+pub const COINCIDENT_GUIDES_M: f64 = 1e-6;
+
 /// Connects the `start` guide to the `end` guide with `sub_segments` rigid sub-segments of
 /// `pitch_m` metres; `sag_direction` is where a slack cable should bow to (gravity, usually).
 /// See the module documentation for the algorithm.
 ///
 /// Returns [`ConnectError::TooShort`] when the guides are farther apart than `S·l` (beyond the
 /// 1e-12 m length tolerance); guides `S·l` apart give the straight cable, α = 0.
-/// [`ConnectError::InvalidInput`] for `S = 0`, `S > MAX_SUB_SEGMENTS`, a pitch that is not
+/// [`ConnectError::InvalidInput`] for guides at one place facing the same way, `S = 0`, `S > MAX_SUB_SEGMENTS`, a pitch that is not
 /// finite and positive, a non-finite pose or a zero or non-finite sag direction;
 /// [`ConnectError::NoSolution`] for a single sub-segment between guides not `l` apart, or if
 /// no candidate could be projected onto the rigid chain (the message names the residual).
@@ -172,6 +177,19 @@ pub fn connect(
     reaches(start, end, sub_segments, pitch_m)?;
     let natural = sub_segments as f64 * pitch_m;
     let distance = (guides.end_point - guides.start_point).norm();
+    if distance < COINCIDENT_GUIDES_M && guides.start_tangent.dot(&guides.end_tangent) > 0.0 {
+        // Leaving and entering one point in the same direction: only a full loop joins them,
+        // and the curves fold onto themselves (cusps the solver cannot start from).
+        return Err(ConnectError::InvalidInput {
+            what: format!(
+                "the two guides are at the same place ({:.3} mm apart) with the cable leaving \
+                 and arriving the same way: a {:.1} mm cable would have to make a full loop \
+                 (S = 0 joins coincident guides)",
+                distance * 1e3,
+                natural * 1e3
+            ),
+        });
+    }
     let tolerance = arc_length_tolerance(natural);
     let base = HermiteCurve::new(
         guides.start_point,

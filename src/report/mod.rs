@@ -147,7 +147,7 @@ pub fn write_report(
         written: Vec::new(),
         described: Vec::new(),
     };
-    let json = serde_json::to_string_pretty(report)? + "\n";
+    let json = crate::json::to_pretty_string(report)? + "\n";
     folder.put(
         "result.json",
         "the result JSON (as `solve --json`)",
