@@ -264,3 +264,37 @@ fn help_explains_every_subcommand() {
         assert!(help.contains(command), "{help}");
     }
 }
+
+/// The README's own segment example is a cable that holds its limits: its static
+/// equilibrium is judged ok, and the start shape (not a cable at rest) is not judged
+/// (issue 18: the example printed "TOO TIGHT").
+#[test]
+fn the_readme_segment_example_holds_its_limits() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).expect("README");
+    let start = readme
+        .find("cable-dict export-scene segment --cable")
+        .expect("the example");
+    let example = readme[start..].split(" -o ").next().expect("its options");
+    let words: Vec<&str> = example
+        .split_whitespace()
+        .filter(|w| *w != "\\")
+        .skip(3)
+        .collect();
+    let mut args = vec!["segment"];
+    args.extend(words);
+    let output = run(&args);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(output.status.success(), "{args:?}: {stdout}");
+    let (start_shape, equilibrium) = stdout
+        .split_once("static equilibrium")
+        .expect("both stages");
+    assert!(
+        !start_shape.contains(": ok") && !start_shape.contains("below"),
+        "{stdout}"
+    );
+    assert!(
+        equilibrium.contains("(cable minimum 48.0 mm: ok)"),
+        "{stdout}"
+    );
+}

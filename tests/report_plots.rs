@@ -899,3 +899,46 @@ fn sets_svg_turns_labels_wider_than_their_bar() {
         "labels that fit stay horizontal"
     );
 }
+
+/// Long joint names are shown whole: the legend widens the plot instead of running off its
+/// edge (issue 18). A legend label starts at its `x` and needs at least 8 px per character
+/// of 16 px text; it must end inside the picture.
+#[test]
+fn joints_svg_legend_fits_long_joint_names() {
+    let urdf = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/robots/viper_s850/viper_s850.urdf"
+    ))
+    .expect("bundled robot");
+    let long = |j: usize| format!("left_arm_assembly_shoulder_and_wrist_axis_{j}_joint");
+    let mut renamed = urdf.clone();
+    for j in 1..=6 {
+        renamed = renamed.replace(&format!("\"joint_{j}\""), &format!("\"{}\"", long(j)));
+    }
+    let robot = Robot::from_urdf_str(&renamed, std::path::Path::new("long.urdf")).expect("robot");
+    let times: Vec<f64> = (0..SAMPLES).map(time).collect();
+    let samples = times
+        .iter()
+        .map(|&t| (0..6).map(|j| joint_deg(j, t).to_radians()).collect())
+        .collect();
+    let motion = Motion::new(&robot, times, samples).expect("valid motion");
+    let svg = joints_svg(&motion, &[], "joint angles").expect("plot");
+    let elems = parse(&svg);
+    let width: f64 = named(&elems, "svg")[0]
+        .attr("width")
+        .trim_end_matches("px")
+        .parse()
+        .expect("width");
+    for j in 1..=6 {
+        let name = long(j);
+        let label = elems
+            .iter()
+            .find(|e| e.name == "text" && e.text == name)
+            .unwrap_or_else(|| panic!("{name} shown whole"));
+        let end = label.num("x") + 8.0 * name.chars().count() as f64;
+        assert!(
+            end <= width,
+            "{name} ends at {end} px, the picture is {width} px wide"
+        );
+    }
+}

@@ -94,6 +94,16 @@ enum Solver {
     Rapier,
 }
 
+impl Solver {
+    /// For people: `quasi-static`, `rapier rigid-chain`.
+    fn describe(self) -> &'static str {
+        match self {
+            Solver::QuasiStatic => "quasi-static",
+            Solver::Rapier => "rapier rigid-chain",
+        }
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, clap::ValueEnum)]
 enum Connect {
     /// Hermite curve + rotation-minimizing frames.

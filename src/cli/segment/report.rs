@@ -175,10 +175,14 @@ impl fmt::Display for SegmentReport {
         if let Some(twist) = self.twist_correction_deg {
             writeln!(f, "  twist correction  {twist:.3}°")?;
         }
-        write!(f, "{}", self.metrics)?;
+        match self.converged {
+            // The start shape is not a cable at rest: only the equilibrium is judged.
+            Some(_) => self.metrics.write(f, false)?,
+            None => self.metrics.write(f, true)?,
+        }
         let mut nodes = &self.nodes_mm;
         if let Some(c) = &self.converged {
-            writeln!(f, "converged geometry ({:?} solver)", c.solver)?;
+            writeln!(f, "static equilibrium ({} solver)", c.solver.describe())?;
             writeln!(
                 f,
                 "  iterations        {} (residual {:.1e} {}, {:.0} µs)",
@@ -187,7 +191,7 @@ impl fmt::Display for SegmentReport {
             if let Some(twist) = c.twist_deg {
                 writeln!(f, "  twist             {twist:.3}°")?;
             }
-            write!(f, "{}", c.metrics)?;
+            c.metrics.write(f, true)?;
             nodes = &c.nodes_mm;
         }
         writeln!(f, "  nodes (mm):")?;
@@ -198,18 +202,19 @@ impl fmt::Display for SegmentReport {
     }
 }
 
-impl fmt::Display for Metrics {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+impl Metrics {
+    /// The metrics, each against its limit when `judged`.
+    fn write(&self, f: &mut fmt::Formatter<'_>, judged: bool) -> fmt::Result {
         match self.min_bend_radius_mm {
             Some(r) => {
-                let verdict = if r >= self.cable_min_bend_radius_mm {
-                    "ok"
-                } else {
-                    "TOO TIGHT"
+                let verdict = match (judged, r >= self.cable_min_bend_radius_mm) {
+                    (false, _) => "",
+                    (true, true) => ": ok",
+                    (true, false) => ": bent below it",
                 };
                 writeln!(
                     f,
-                    "  min bend radius   {r:.1} mm at node {} (cable minimum {:.1} mm: {verdict})",
+                    "  min bend radius   {r:.1} mm at node {} (cable minimum {:.1} mm{verdict})",
                     self.min_bend_radius_node, self.cable_min_bend_radius_mm
                 )?;
             }
@@ -217,10 +222,14 @@ impl fmt::Display for Metrics {
         }
         writeln!(f, "  stretch           {:.6}", self.stretch)?;
         if let Some(c) = &self.contact {
-            let verdict = if c.violation { "CONTACT" } else { "ok" };
+            let verdict = match (judged, c.violation) {
+                (false, _) => "",
+                (true, false) => ": ok",
+                (true, true) => ": touches the robot",
+            };
             writeln!(
                 f,
-                "  min clearance     {:.1} mm to {} at sub-segment {} (threshold {:.1} mm: {verdict})",
+                "  min clearance     {:.1} mm to {} at sub-segment {} (threshold {:.1} mm{verdict})",
                 c.min_clearance_mm, c.link, c.sub_segment, c.threshold_mm
             )?;
         }

@@ -10,10 +10,15 @@ use crate::solve::SegmentReport;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
-/// Size of the plot (px).
-const SIZE: (u32, u32) = (1000, 600);
-/// Room right of the plotting area for the legend (px).
+/// Size of the plot without its legend (px).
+const SIZE: (u32, u32) = (850, 600);
+/// Least room right of the plotting area for the legend (px).
 const LEGEND_WIDTH_PX: u32 = 150;
+/// Width of a legend character (px): an upper estimate for 16 px sans-serif text, so
+/// that the longest name fits (the legend widens the plot, it never cuts a name).
+const LEGEND_CHAR_PX: u32 = 10;
+/// Legend labels longer than this are shortened in the middle (`shoulder…joint_1`).
+const LEGEND_MAX_CHARS: usize = 60;
 /// Radius of a test-pose marker (px).
 const MARKER_RADIUS_PX: i32 = 5;
 
@@ -80,7 +85,35 @@ pub fn joints_svg(
     } else {
         "joint value (deg; prismatic: mm)"
     };
-    render(SIZE, |root| draw(root, &curves, &marks, title, y_label))
+    let legend_px = legend_width_px(&curves, &marks);
+    let size = (SIZE.0 + legend_px, SIZE.1);
+    render(size, |root| {
+        draw(root, &curves, &marks, (title, y_label), legend_px)
+    })
+}
+
+/// Room for the legend: its glyph, gap and longest label.
+fn legend_width_px(curves: &[Curve], marks: &[Marks]) -> u32 {
+    let longest = curves
+        .iter()
+        .map(|c| &c.label)
+        .chain(marks.iter().map(|m| &m.label))
+        .map(|label| label.chars().count())
+        .max()
+        .unwrap_or(0);
+    LEGEND_WIDTH_PX.max(52 + LEGEND_CHAR_PX * longest as u32)
+}
+
+/// `label`, shortened in the middle to [`LEGEND_MAX_CHARS`] characters when longer.
+fn legend_label(label: &str) -> String {
+    let count = label.chars().count();
+    if count <= LEGEND_MAX_CHARS {
+        return label.to_string();
+    }
+    let half = (LEGEND_MAX_CHARS - 1) / 2;
+    let head: String = label.chars().take(half).collect();
+    let tail: String = label.chars().skip(count - half).collect();
+    format!("{head}…{tail}")
 }
 
 /// A joint value in plot units: degrees for a rotary joint (rad), mm for a prismatic one (m).
@@ -105,9 +138,9 @@ fn curves(motion: &Motion) -> Vec<Curve> {
                 .map(|(&t, q)| (t, plot_value(q[j], rotary)))
                 .collect();
             let label = if rotary {
-                names[j].clone()
+                legend_label(&names[j])
             } else {
-                format!("{} (mm)", names[j])
+                format!("{} (mm)", legend_label(&names[j]))
             };
             Curve { label, points }
         })
@@ -149,8 +182,8 @@ fn draw(
     root: &Root<'_>,
     curves: &[Curve],
     marks: &[Marks],
-    title: &str,
-    y_label: &str,
+    (title, y_label): (&str, &str),
+    legend_px: u32,
 ) -> Result<(), PlotError> {
     let all = curves.iter().flat_map(|c| &c.points);
     let (t0, t1) = finite_range(all.clone().map(|p| p.0)).ok_or(PlotError::Empty("no times"))?;
@@ -164,7 +197,7 @@ fn draw(
     let mut chart = ChartBuilder::on(root)
         .caption(title, font(26.0))
         .margin(15)
-        .margin_right(LEGEND_WIDTH_PX)
+        .margin_right(legend_px)
         .x_label_area_size(50)
         .y_label_area_size(75)
         .build_cartesian_2d(t0..t1, y0..y1)
