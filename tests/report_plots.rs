@@ -759,10 +759,10 @@ fn sets_svg_draws_log_scaled_bars_with_their_counts() {
         "C1",
         "C2",
         "C3",
-        "|D0|",
-        "|D'0|",
-        "|D1|",
-        "|D2|",
+        "candidates",
+        "after pruning",
+        "hold the limits",
+        "robust",
     ] {
         assert!(has_text(&elems, name), "no text {name:?}");
     }

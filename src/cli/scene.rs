@@ -21,7 +21,7 @@ pub struct Args {
 
 #[derive(Debug, clap::Subcommand)]
 enum What {
-    /// A whole cable path (ECPV) of a setup with the robot at one pose: each segment's
+    /// A whole cable path of a setup with the robot at one pose: each cable piece's
     /// static equilibrium, and whether it holds the limits there.
     Path(PathArgs),
     /// One segment, as `cable-dict segment` computes it (same options).

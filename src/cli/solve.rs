@@ -39,8 +39,8 @@ pub struct Args {
     /// (scene.glb) and index.html to open in a browser.
     #[arg(long, value_name = "DIR")]
     report: Option<PathBuf>,
-    /// 1: one guide per link (the paper's method 1: intra-link segments only at S = 0);
-    /// 2: as many as the setup declares (method 2).
+    /// 1: one clamp per link (two guides on one link must then coincide, length 0); 2: as
+    /// many clamps as the setup declares.
     #[arg(long, value_name = "1|2", value_parser = clap::value_parser!(u8).range(1..=2))]
     max_guides_per_link: Option<u8>,
     /// How the attachment test shapes a segment: `hermite` (Hermite curve + quasi-static
@@ -51,10 +51,10 @@ pub struct Args {
     /// Chains tried in the motion test, shortest first, before giving up.
     #[arg(long, value_name = "N", default_value_t = 50)]
     k_best: usize,
-    /// Skip the motion test: report the shortest chain of robust PVs (d̂).
+    /// Skip the motion test: report the shortest chain of robust cable pieces.
     #[arg(long)]
     no_motion_test: bool,
-    /// Skip the static sweep of each candidate's PVs over every motion pose before its
+    /// Skip the static sweep of each candidate's cable pieces over every motion pose before its
     /// dynamic motion test (the paper's pipeline: critical poses, then dynamics only).
     #[arg(long)]
     no_static_sweep: bool,

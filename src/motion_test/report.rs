@@ -240,7 +240,7 @@ impl fmt::Display for Violation {
         };
         write!(
             f,
-            "{}: {what} {value} {op} {limit} at t = {:.4} s, segment C{}",
+            "{}: {what} {value} {op} {limit} at t = {:.2} s, segment C{}",
             self.constraint,
             self.time_s,
             self.segment + 1
@@ -268,9 +268,13 @@ impl MotionTestReport {
                 } else {
                     format!(" ({place})")
                 };
+                // Stretch is a ratio near 1: four decimals; lengths to 0.1 mm.
+                let value = match unit {
+                    "mm" => format!("{:.1}", w.value * scale),
+                    _ => format!("{:.4}", w.value * scale),
+                };
                 format!(
-                    "{label} {:.4} {unit} at t = {:.4} s, C{}{place}",
-                    w.value * scale,
+                    "{label} {value} {unit} at t = {:.2} s, C{}{place}",
                     w.time_s,
                     w.segment + 1,
                 )
@@ -284,7 +288,7 @@ impl MotionTestReport {
             worst("min bend radius", &self.worst_bend, 1e3, "mm"),
             worst("max contact force", &self.worst_contact_force, 1.0, "N"),
             format!(
-                "{} steps, {:.3} s simulated in {:.3} s wall{}{}",
+                "{} steps, {:.2} s simulated in {:.2} s wall{}{}",
                 self.steps,
                 self.simulated_s,
                 self.wall_time_s,

@@ -280,7 +280,7 @@ fn write_plots(
         add(
             folder,
             "sets.svg",
-            "|D0|, |D'0|, |D1|, |D2| per segment",
+            "cable pieces per segment: candidates, after pruning, holding the limits, robust",
             svg,
         )?;
     }
@@ -291,7 +291,10 @@ fn write_plots(
 fn stress_title(report: &SolveReport) -> String {
     match views::shown_candidate(report) {
         Some(c) if c.passed == Some(true) => {
-            format!("Motion test of d* ({:.0} mm)", c.total_length_mm)
+            format!(
+                "Motion test of the path that passed it ({:.0} mm)",
+                c.total_length_mm
+            )
         }
         Some(c) => format!(
             "Motion test of candidate {} ({:.0} mm), which failed",

@@ -126,12 +126,16 @@ fn triple(v: &[f64; 3]) -> String {
 }
 
 fn sets_table(md: &mut String, report: &SolveReport) {
-    section(md, "Attachment test");
-    // Pipes inside a table cell must be escaped.
-    let sets = [r"\|D0\|", r"\|D'0\|", r"\|D1\|", r"\|D2\|"];
+    section(md, "Cable pieces tested (attachment test)");
+    let sets = [
+        "candidates",
+        "after pruning",
+        "hold the limits",
+        "robust to a length error",
+    ];
     header(
         md,
-        &[&["segment", "guides", "kind", "test poses"][..], &sets].concat(),
+        &[&["piece", "clamps", "kind", "test poses"][..], &sets].concat(),
     );
     for s in &report.segments {
         row(
@@ -148,11 +152,16 @@ fn sets_table(md: &mut String, report: &SolveReport) {
             ],
         );
     }
-    let _ = writeln!(md, "\n\\|D3\\| (chains of robust PVs): {}.", report.chains);
+    let _ = writeln!(
+        md,
+        "\nChains of robust pieces through the clamps: {}.",
+        report.chains
+    );
     if let Some(d) = &report.inputs.dictionary {
         let _ = writeln!(
             md,
-            "\nIntra-link sets from the dictionary `{}` ({} directions, radius {:.1}°).",
+            "\nIntra-link pieces from the dictionary `{}` ({} gravity directions, at most {:.1}° \
+             from any direction).",
             d.file, d.directions, d.covering_radius_deg
         );
     }
@@ -309,7 +318,7 @@ fn candidates_table(md: &mut String, report: &SolveReport) {
     if sweep.poses > 0 {
         let _ = writeln!(
             md,
-            "\nThe static sweep solved {} PVs at {} motion poses and dropped {}.",
+            "\nThe static sweep solved {} cable pieces at {} motion poses and dropped {}.",
             sweep.pvs_swept,
             sweep.poses,
             sweep.rejected.len()

@@ -90,7 +90,7 @@ impl SolveOptions {
             Some(1) => Ok(setup.inter_link_only()?),
             Some(2) | None => Ok(setup.clone()),
             Some(n) => Err(SolveError::Options(format!(
-                "max guides per link must be 1 (method 1) or 2 (method 2), got {n}"
+                "max guides per link must be 1 or 2, got {n}"
             ))),
         }
     }
@@ -178,7 +178,7 @@ fn solve_with(
     let search = chain_search(setup, &d2)?;
     let chain_s = clock.elapsed().as_secs_f64();
     log::info!(
-        "chain search: |D3| = {}, {chain_s:.3} s",
+        "chain search: {} chains of robust pieces, {chain_s:.3} s",
         search.chain_count()
     );
 
@@ -186,7 +186,7 @@ fn solve_with(
     let outcome = motion_tests(setup, motion, &d2, &search, options)?;
     let motion_test_s = clock.elapsed().as_secs_f64() - outcome.sweep_s;
     log::info!(
-        "static sweep: {} PVs dropped, {:.2} s; motion test: {} runs, {motion_test_s:.2} s",
+        "static sweep: {} cable pieces dropped, {:.2} s; motion test: {} runs, {motion_test_s:.2} s",
         outcome.dropped.len(),
         outcome.sweep_s,
         outcome.tried.len()
@@ -249,7 +249,8 @@ fn log_sets(sets: &[SegmentSets], lookup: Option<&MotionLookup<'_>>, attachment_
             _ => String::new(),
         };
         log::info!(
-            "attachment C{}: |D0| {} |D'0| {} |D1| {} |D2| {}, {:.2} s{source}",
+            "attachment C{}: {} candidates, {} after pruning, {} hold the limits, {} robust, \
+             {:.2} s{source}",
             m + 1,
             s.d0,
             s.d0_pruned,
@@ -349,7 +350,9 @@ fn motion_tests(
     let mut d2 = d2.to_vec();
     while outcome.tried.len() < options.k_best {
         let Some(path) = chain_search(setup, &d2)?.shortest() else {
-            return Ok(outcome.stopped("no chain is left of the robust PVs that did not fail it"));
+            return Ok(
+                outcome.stopped("no chain is left of the robust pieces that did not fail it")
+            );
         };
         if let Some(sweep) = sweep.as_mut() {
             let clock = Instant::now();

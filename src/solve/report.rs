@@ -41,12 +41,12 @@ impl Status {
         }
     }
 
-    /// For people, e.g. `unsolved: no chain of robust PVs`.
+    /// For people, e.g. `unsolved: no chain of robust cable pieces`.
     pub fn describe(self) -> &'static str {
         match self {
             Status::Solved => "solved",
             Status::Untested => "shortest chain found, not motion-tested",
-            Status::NoChain => "unsolved: no chain of robust PVs",
+            Status::NoChain => "unsolved: no chain of robust cable pieces",
             Status::NonePassedMotionTest => "unsolved: no chain tried passed the motion test",
         }
     }
@@ -508,7 +508,9 @@ fn explanation(
                 n - 1
             ),
         },
-        Status::Untested => "the shortest chain of robust PVs; the motion test was not run".into(),
+        Status::Untested => {
+            "the shortest chain of robust cable pieces; the motion test was not run".into()
+        }
         Status::NonePassedMotionTest if candidates.is_empty() => format!(
             "every chain of robust candidate pieces has a piece that fails the static sweep \
              over the motion{}",
@@ -536,20 +538,20 @@ fn explanation(
     }
 }
 
-/// `; the static sweep over the motion dropped N PVs (C1 n1, …)`, or nothing when it
+/// `; the static sweep over the motion dropped N cable pieces (C1 n1, …)`, or nothing when it
 /// dropped none.
 fn sweep_note(sweep: &SweepSummary) -> String {
     if sweep.rejected.is_empty() {
         return String::new();
     }
     format!(
-        "; the static sweep over the motion dropped {} PVs ({})",
+        "; the static sweep over the motion dropped {} cable pieces ({})",
         sweep.rejected.len(),
         dropped_per_segment(sweep)
     )
 }
 
-/// `C1 n1, C2 n2`: PVs the sweep dropped per segment.
+/// `C1 n1, C2 n2`: cable pieces the sweep dropped per segment.
 fn dropped_per_segment(sweep: &SweepSummary) -> String {
     let mut per_segment: BTreeMap<&str, usize> = BTreeMap::new();
     for r in &sweep.rejected {
@@ -603,7 +605,7 @@ fn unsolved_reason(sets: &[SegmentSets], setup: &Setup) -> String {
                 .unwrap_or_else(|| "no candidate left after adjacency pruning".into());
             let (a, b) = setup.segment_guides(m);
             format!(
-                "C{} ({} → {}) has no robust PV: |D1| = {}, {worst}",
+                "C{} ({} → {}) has no robust cable piece: {} hold the limits, {worst}",
                 m + 1,
                 setup.guides[a].name,
                 setup.guides[b].name,
@@ -612,7 +614,7 @@ fn unsolved_reason(sets: &[SegmentSets], setup: &Setup) -> String {
         })
         .collect();
     if empty.is_empty() {
-        "every segment has robust PVs, but none agree on their shared guides".into()
+        "every segment has robust cable pieces, but none agree on their shared clamps".into()
     } else {
         empty.join("; ")
     }
@@ -621,8 +623,8 @@ fn unsolved_reason(sets: &[SegmentSets], setup: &Setup) -> String {
 fn inputs(setup: &Setup, motion: &Motion, options: &SolveOptions) -> Inputs {
     let method = match (options.method, options.max_guides_per_link) {
         (ConnectMethod::Linear, _) => "previous method",
-        (ConnectMethod::Hermite, Some(1)) => "method 1",
-        (ConnectMethod::Hermite, _) => "method 2",
+        (ConnectMethod::Hermite, Some(1)) => "one clamp per link",
+        (ConnectMethod::Hermite, _) => "up to two clamps per link",
     };
     Inputs {
         setup_file: setup.source.display().to_string(),
@@ -851,7 +853,7 @@ impl fmt::Display for SolveReport {
             }
         }
         if let (Some(path), Some(total)) = (&self.optimal, self.optimal_length_mm) {
-            writeln!(f, "\noptimal cable path — total {total:.0} mm")?;
+            writeln!(f, "\ncable path — total {total:.0} mm")?;
             write_path(f, path)?;
         }
         write_sets(f, &self.segments, &self.chains)?;
@@ -866,7 +868,7 @@ impl fmt::Display for SolveReport {
             };
             writeln!(
                 f,
-                "\nstatic sweep: {} PVs solved at {} motion poses, {} dropped{per_segment}",
+                "\nstatic sweep: {} cable pieces solved at {} motion poses, {} dropped{per_segment}",
                 sweep.pvs_swept,
                 sweep.poses,
                 sweep.rejected.len(),
@@ -903,13 +905,13 @@ impl fmt::Display for SolveReport {
 fn write_path(f: &mut fmt::Formatter<'_>, path: &Ecpv) -> fmt::Result {
     writeln!(
         f,
-        "  {:<4} {:<9} {:<15} {:<10} {:>8}",
-        "seg", "guides", "links", "kind", "length"
+        "  {:<5} {:<9} {:<15} {:<10} {:>8}",
+        "piece", "clamps", "links", "kind", "length"
     )?;
     for s in &path.segments {
         writeln!(
             f,
-            "  {:<4} {:<9} {:<15} {:<10} {:>5} mm",
+            "  {:<5} {:<9} {:<15} {:<10} {:>5} mm",
             s.name,
             format!("{}→{}", s.from_guide, s.to_guide),
             format!("{}→{}", s.from_link, s.to_link),
@@ -919,8 +921,8 @@ fn write_path(f: &mut fmt::Formatter<'_>, path: &Ecpv) -> fmt::Result {
     }
     writeln!(
         f,
-        "  {:<4} {:<7} {:<28} {:>24} {:>22}",
-        "guide", "link", "configuration", "xyz (mm)", "rpy (deg)"
+        "  {:<5} {:<7} {:<28} {:>24} {:>22}",
+        "clamp", "link", "placement", "xyz (mm)", "rpy (deg)"
     )?;
     for g in &path.guides {
         let [x, y, z] = g.xyz_mm;
@@ -941,8 +943,8 @@ fn write_path(f: &mut fmt::Formatter<'_>, path: &Ecpv) -> fmt::Result {
 fn write_sets(f: &mut fmt::Formatter<'_>, segments: &[SegmentReport], chains: &str) -> fmt::Result {
     writeln!(
         f,
-        "\nsets   {:>7} {:>7} {:>7} {:>7}  rejected (first limit violated)",
-        "|D0|", "|D'0|", "|D1|", "|D2|"
+        "\ncable pieces  {:>10} {:>10} {:>10} {:>10}  rejected (first limit violated)",
+        "candidates", "pruned", "hold", "robust"
     )?;
     for s in segments {
         let rejected: Vec<String> = s
@@ -952,7 +954,7 @@ fn write_sets(f: &mut fmt::Formatter<'_>, segments: &[SegmentReport], chains: &s
             .collect();
         writeln!(
             f,
-            "  {:<4} {:>7} {:>7} {:>7} {:>7}  {}",
+            "  {:<11} {:>10} {:>10} {:>10} {:>10}  {}",
             s.segment,
             s.d0,
             s.d0_pruned,
@@ -961,7 +963,7 @@ fn write_sets(f: &mut fmt::Formatter<'_>, segments: &[SegmentReport], chains: &s
             rejected.join(", ")
         )?;
     }
-    writeln!(f, "  |D3| = {chains} chains")
+    writeln!(f, "  chains of robust pieces through the clamps: {chains}")
 }
 
 fn write_margins(f: &mut fmt::Formatter<'_>, margins: &[Margin]) -> fmt::Result {
@@ -970,15 +972,20 @@ fn write_margins(f: &mut fmt::Formatter<'_>, margins: &[Margin]) -> fmt::Result 
     }
     writeln!(f, "\nstatic margins at the binding test pose")?;
     for m in margins {
-        let (value, threshold, margin, unit) = if m.constraint == "stretch" {
-            (m.value, m.threshold, m.margin, "")
-        } else {
-            (m.value * 1e3, m.threshold * 1e3, m.margin * 1e3, " mm")
+        // A stretch ratio to 1e-4, lengths to 0.1 mm.
+        let (scale, digits, unit) = match m.constraint {
+            "stretch" => (1.0, 4, ""),
+            _ => (1e3, 1, " mm"),
         };
+        let (value, threshold, margin) = (m.value * scale, m.threshold * scale, m.margin * scale);
         writeln!(
             f,
-            "  {:<4} {:<12} {value:>8.3}{unit} (limit {threshold}{unit}, margin {margin:+.3}{unit}) at t = {:.2} s ({})",
-            m.segment, m.constraint, m.time_s, m.reason
+            "  {:<4} {:<12} {value:>8.digits$}{unit} (limit {threshold}{unit}, margin \
+             {margin:+.digits$}{unit}) at t = {:.2} s ({})",
+            m.segment,
+            m.constraint.replace('_', " "),
+            m.time_s,
+            m.reason
         )?;
     }
     Ok(())

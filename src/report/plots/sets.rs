@@ -14,7 +14,7 @@ const BASELINE: f64 = 0.5;
 /// Width of a group of four bars (x units: one segment is 1).
 const GROUP_WIDTH: f64 = 0.8;
 /// Set names, in bar order.
-const SET_NAMES: [&str; 4] = ["|D0|", "|D'0|", "|D1|", "|D2|"];
+const SET_NAMES: [&str; 4] = ["candidates", "after pruning", "hold the limits", "robust"];
 /// One colour per set.
 const SET_COLORS: [RGBColor; 4] = [
     RGBColor(150, 150, 150),
@@ -70,7 +70,7 @@ fn draw(root: &Root<'_>, segments: &[SegmentReport], title: &str) -> Result<(), 
         .disable_x_mesh()
         .x_labels(0)
         .x_desc("segment")
-        .y_desc("set size (PVs, log scale)")
+        .y_desc("cable pieces (log scale)")
         .y_label_formatter(&|v| format!("{v}"))
         .label_style(font(16.0))
         .axis_desc_style(font(18.0))
