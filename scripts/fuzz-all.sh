@@ -25,7 +25,7 @@ for target in parse_urdf parse_cable parse_setup parse_motion parse_waypoints re
   cargo +nightly fuzz run -O -s none "$target" "corpus/$target" -- -runs="$runs" -max_len=65536 \
       -rss_limit_mb=4096 -timeout=30 -print_final_stats=1 > "$log" 2>&1
   rc=$?
-  done_runs=$(grep -oE "Done [0-9]+ runs" "$log" | grep -oE "[0-9]+" | tail -1)
+  done_runs=$(grep -aoE "Done [0-9]+ runs" "$log" | grep -oE "[0-9]+" | tail -1)
   echo "$target: ${done_runs:-?} executions in $(( $(date +%s) - start )) s, $( [ $rc -eq 0 ] && echo 'no crash' || echo "CRASH (see $log)")"
   [ $rc -eq 0 ] || status=1
 done

@@ -185,7 +185,7 @@ fn method_one_leaves_intra_link_segments_at_zero_length() {
         ..SolveOptions::default()
     };
     let report = solve(&setup, &motion, &options).unwrap();
-    assert_eq!(report.inputs.method, "method 1");
+    assert_eq!(report.inputs.method, "one clamp per link");
     match report.optimal {
         Some(path) => assert_eq!(path.segments[1].sub_segments, 0),
         None => assert_eq!(report.status, Status::NoChain),

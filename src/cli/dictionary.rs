@@ -69,7 +69,7 @@ pub fn run_build(args: BuildArgs) -> Result<(), Failure> {
     .map_err(|problem| Failure::input(anyhow::anyhow!("{}: {problem}", args.setup.display())))?;
     write_dictionary(&args.output, &built).map_err(Failure::input)?;
     let mut text = format!(
-        "wrote {}: {} PVs × {} directions in {:.1} s",
+        "wrote {}: {} cable pieces × {} gravity directions in {:.1} s",
         args.output.display(),
         built.pvs.len(),
         built.directions.len(),
@@ -78,14 +78,14 @@ pub fn run_build(args: BuildArgs) -> Result<(), Failure> {
     if let Some(shard) = built.header.shard {
         let _ = write!(
             text,
-            " (shard {}/{}: PVs {}..{} of {})",
+            " (shard {}/{}: pieces {} to {} of {})",
             shard.index, shard.count, shard.first_pv, shard.end_pv, built.header.pv_total
         );
     }
     for e in &built.header.links {
         let _ = write!(
             text,
-            "; {} ({} clamps) |D1| {} |D2| {}",
+            "; {} ({} clamp places): {} pieces hold the limits at every direction, {} robust",
             e.link,
             e.clamps.len(),
             e.d1_all,
@@ -146,12 +146,14 @@ fn describe(info: &Info) -> String {
     }
     let _ = writeln!(
         text,
-        "\nlink        clamp places  lengths (S)        pieces  candidates  |D1| all  |D2| all"
+        "\nlink        clamp places  lengths (S)        pieces  candidates  hold at all  robust at all\n\
+         {:>79}",
+        "(every stored direction)"
     );
     for s in &info.links {
         let _ = writeln!(
             text,
-            "  {:<10} {:>12}  {:>3} to {:<3} ({:>2}) {:>9} {:>11} {:>9} {:>9}",
+            "  {:<10} {:>12}  {:>3} to {:<3} ({:>2}) {:>9} {:>11} {:>12} {:>13}",
             s.link,
             s.clamps,
             s.lengths[0],
@@ -212,7 +214,7 @@ fn recompute_arg(text: &str) -> Result<Recount, String> {
 pub fn run_verify(args: VerifyArgs) -> Result<(), Failure> {
     let dictionary = open_verified(&args.dict)?;
     let mut out = format!(
-        "{}: ok ({} bytes; every section checksum and {} PV records × {} directions verified; \
+        "{}: ok ({} bytes; every section checksum and {} piece records × {} directions verified; \
          the header is what a build of the embedded setup writes)\n",
         args.dict.display(),
         dictionary.file_len(),
@@ -264,7 +266,7 @@ pub fn run_merge(args: MergeArgs) -> Result<(), Failure> {
     let built = merge(&args.shards).map_err(Failure::input)?;
     write_dictionary(&args.output, &built).map_err(Failure::input)?;
     emit(&format!(
-        "wrote {}: {} shards merged, {} PVs × {} directions\n",
+        "wrote {}: {} shards merged, {} cable pieces × {} gravity directions\n",
         args.output.display(),
         args.shards.len(),
         built.pvs.len(),

@@ -33,7 +33,9 @@ pub const ALIGNMENT: usize = 16;
 /// 2: cables in EI/GJ, the `L D Lᵀ` Newton solver, retraction to 5e-13.
 /// 3: the end clamp turned by the installed cable's twist; lengths continued per direction.
 /// 4: lengths continued in fixed blocks ([`crate::attachment::CONTINUATION_BLOCK`]).
-pub const PHYSICS_VERSION: u32 = 4;
+/// 5: a cable leaving and re-entering one clamp place the same way is refused (a full loop
+/// from a clamp into itself), not solved ([`crate::geometry::COINCIDENT_GUIDES_M`]).
+pub const PHYSICS_VERSION: u32 = 5;
 /// Largest header accepted when decoding (the URDF text dominates it).
 pub const HEADER_LIMIT: usize = 64 << 20;
 

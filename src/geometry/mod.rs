@@ -20,7 +20,8 @@ pub mod hermite;
 pub mod rmf;
 
 pub use connected::{
-    ConnectError, ConnectedGeometry, CurveFamily, connect, reaches, sag_direction,
+    COINCIDENT_GUIDES_M, ConnectError, ConnectedGeometry, CurveFamily, connect, reaches,
+    sag_direction,
 };
 pub use hermite::{CurveParameter, HermiteCurve};
 pub use rmf::double_reflection;
