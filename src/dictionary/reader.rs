@@ -12,6 +12,7 @@ use crate::setup::Setup;
 use memmap2::Mmap;
 use std::fs::File;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 /// An open dictionary file.
 #[derive(Debug)]
@@ -19,6 +20,9 @@ pub struct Dictionary {
     path: PathBuf,
     map: Mmap,
     layout: Layout,
+    /// The embedded setup, loaded once (parsing the URDF and meshes is the costly part of
+    /// `verify` and of every caller that needs the setup).
+    embedded: OnceLock<Setup>,
 }
 
 impl Dictionary {
@@ -39,6 +43,7 @@ impl Dictionary {
             path: path.to_path_buf(),
             map,
             layout,
+            embedded: OnceLock::new(),
         })
     }
 
@@ -96,13 +101,24 @@ impl Dictionary {
         Some((self.pv_records().get(g)?, rows))
     }
 
-    /// Checks every section's checksum and that the records agree with the header: grid
-    /// positions, flags, margin records and the all-directions |D1| and |D2| counts.
+    /// Checks every section's checksum, that the records agree with the header (grid
+    /// positions, flags, margin records, the all-directions |D1| and |D2| counts, the error
+    /// bounds) and what the header means ([`check_meaning`]).
     pub fn verify(&self) -> Result<(), DictionaryError> {
         let error = |problem| DictionaryError::new(&self.path, problem);
         verify_sections(&self.map, &self.layout).map_err(error)?;
         check_records(self.header(), self.pv_records(), self.results()).map_err(error)?;
-        check_meaning(self.header(), self.directions()).map_err(error)
+        let setup = self.embedded().map_err(error)?;
+        check_setup_meaning(self.header(), self.directions(), setup).map_err(error)
+    }
+
+    /// The embedded setup, loaded on first use and checked against the header's hash.
+    pub(super) fn embedded(&self) -> Result<&Setup, Problem> {
+        if let Some(setup) = self.embedded.get() {
+            return Ok(setup);
+        }
+        let setup = embedded_setup(self.header())?;
+        Ok(self.embedded.get_or_init(|| setup))
     }
 
     /// The embedded setup, loaded and checked against the header's content hash; refuses a
@@ -116,9 +132,9 @@ impl Dictionary {
                 count: shard.count,
             }));
         }
-        let setup = embedded_setup(header).map_err(error)?;
+        let setup = self.embedded().map_err(error)?;
         check_physics_version(header).map_err(error)?;
-        Ok(setup)
+        Ok(setup.clone())
     }
 
     fn section(&self, kind: SectionKind) -> &[u8] {
@@ -244,9 +260,17 @@ fn check_alignment(bytes: &[u8], layout: &Layout) -> Result<(), Problem> {
 /// hash, the physics version is this program's, and the header and `directions` are what a
 /// build of that setup writes.
 pub(super) fn check_meaning(header: &Header, directions: &[[f64; 3]]) -> Result<(), Problem> {
-    let setup = embedded_setup(header)?;
+    check_setup_meaning(header, directions, &embedded_setup(header)?)
+}
+
+/// [`check_meaning`] with the embedded setup already loaded.
+fn check_setup_meaning(
+    header: &Header,
+    directions: &[[f64; 3]],
+    setup: &Setup,
+) -> Result<(), Problem> {
     check_physics_version(header)?;
-    check_derivation(header, directions, &setup)
+    check_derivation(header, directions, setup)
 }
 
 /// Margins of another physics version are not what this version would compute.

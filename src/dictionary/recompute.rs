@@ -8,7 +8,7 @@ use super::catalogue::link_catalogues;
 use super::directions::probe_directions;
 use super::error::{DictionaryError, Problem};
 use super::format::{MARGIN_UNITS, MarginRecord, PvRecord};
-use super::reader::{Dictionary, embedded_setup};
+use super::reader::Dictionary;
 use crate::attachment::{ConnectMethod, Evaluator};
 use crate::progress;
 use rayon::prelude::*;
@@ -78,9 +78,9 @@ impl Dictionary {
         self.verify()?;
         let error = |problem| DictionaryError::new(self.path(), problem);
         let header = self.header();
-        let setup = embedded_setup(header).map_err(error)?;
-        let (_, candidate_lengths) = catalogue_lengths(&setup);
-        let catalogues = link_catalogues(&setup, &candidate_lengths);
+        let setup = self.embedded().map_err(error)?;
+        let (_, candidate_lengths) = catalogue_lengths(setup);
+        let catalogues = link_catalogues(setup, &candidate_lengths);
         let evaluators = catalogues
             .iter()
             .map(|c| Evaluator::new(&c.setup, ConnectMethod::Hermite))
