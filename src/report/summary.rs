@@ -78,11 +78,8 @@ fn heading(md: &mut String, report: &SolveReport) {
 }
 
 fn path_tables(md: &mut String, path: &Ecpv, total_mm: f64) {
-    section(md, &format!("Optimal cable path ({total_mm:.0} mm)"));
-    header(
-        md,
-        &["segment", "from", "to", "links", "kind", "length (mm)"],
-    );
+    section(md, &format!("The cable path ({total_mm:.0} mm)"));
+    header(md, &["piece", "from", "to", "links", "kind", "length (mm)"]);
     for s in &path.segments {
         row(
             md,
@@ -100,9 +97,9 @@ fn path_tables(md: &mut String, path: &Ecpv, total_mm: f64) {
     header(
         md,
         &[
-            "guide",
+            "clamp",
             "link",
-            "configuration",
+            "placement",
             "x, y, z (mm)",
             "roll, pitch, yaw (deg)",
         ],
@@ -174,7 +171,7 @@ fn margins_table(md: &mut String, report: &SolveReport) {
     section(md, "Static margins at the binding test pose");
     header(
         md,
-        &["segment", "limit", "value", "threshold", "margin", "pose"],
+        &["piece", "limit", "value", "threshold", "margin", "pose"],
     );
     for m in &report.margins {
         let show = |v: f64| match m.constraint {
@@ -189,7 +186,7 @@ fn margins_table(md: &mut String, report: &SolveReport) {
                 show(m.value),
                 show(m.threshold),
                 show(m.margin),
-                format!("t = {:.3} s, {}", m.time_s, m.reason),
+                format!("t = {:.2} s, {}", m.time_s, m.reason),
             ],
         );
     }
@@ -289,7 +286,7 @@ fn place(w: &Worst) -> String {
     } else {
         format!(", {at}")
     };
-    format!("t = {:.3} s, C{}{at}", w.time_s, w.segment + 1)
+    format!("t = {:.2} s, C{}{at}", w.time_s, w.segment + 1)
 }
 
 fn candidates_table(md: &mut String, report: &SolveReport) {
@@ -358,7 +355,7 @@ fn inputs_table(md: &mut String, inputs: &[Hashed], report: &SolveReport) {
     let i = &report.inputs;
     let _ = writeln!(
         md,
-        "\nSetup content hash {} (FNV-1a of the loaded setup), cable {}, motion {:.3} s in {} samples.",
+        "\nSetup content hash {} (FNV-1a of the loaded setup), cable {}, motion {:.2} s in {} samples.",
         i.setup_hash, i.cable, i.motion_duration_s, i.motion_samples
     );
 }

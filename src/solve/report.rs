@@ -823,7 +823,7 @@ impl fmt::Display for SolveReport {
         writeln!(f, "{} — {}", self.status.describe(), self.explanation)?;
         writeln!(
             f,
-            "setup {} (hash {}), cable {}, {}, motion {}{:.3} s, {} samples",
+            "setup {} (hash {}), cable {}, {}, motion {}{:.2} s, {} samples",
             i.setup_file,
             i.setup_hash,
             i.cable,
