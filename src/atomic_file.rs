@@ -152,16 +152,20 @@ impl Drop for FolderReplacement {
 /// handler, just before the process exits.
 pub fn remove_temporaries() {
     let temporaries = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
-    for temp in temporaries.iter() {
-        match fs::symlink_metadata(temp) {
-            Ok(meta) if meta.is_dir() => {
-                let _ = fs::remove_dir_all(temp);
-            }
-            Ok(_) => {
-                let _ = fs::remove_file(temp);
-            }
-            Err(_) => {}
+    temporaries.iter().for_each(|temp| remove_entry(temp));
+}
+
+/// Removes the file, link or folder at `path`, best effort. A link is not followed: it is
+/// removed itself, never what it points to.
+fn remove_entry(path: &Path) {
+    match fs::symlink_metadata(path) {
+        Ok(meta) if meta.is_dir() => {
+            let _ = fs::remove_dir_all(path);
         }
+        Ok(_) => {
+            let _ = fs::remove_file(path);
+        }
+        Err(_) => {}
     }
 }
 
@@ -250,16 +254,7 @@ fn remove_stale_temporaries(dir: &Path, name: &str) {
         if pid.is_none() || running {
             continue;
         }
-        // Not followed: a link is removed itself, never what it points to.
-        match fs::symlink_metadata(entry.path()) {
-            Ok(meta) if meta.is_dir() => {
-                let _ = fs::remove_dir_all(entry.path());
-            }
-            Ok(_) => {
-                let _ = fs::remove_file(entry.path());
-            }
-            Err(_) => {}
-        }
+        remove_entry(&entry.path());
     }
 }
 

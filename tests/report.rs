@@ -232,20 +232,21 @@ fn export_scene_draws_a_candidate_at_a_pose() {
         result.to_str().expect("utf-8"),
         glb.to_str().expect("utf-8"),
     );
-    let exported = run(&[
-        "export-scene",
-        "path",
-        "--setup",
-        SMALL,
-        "--result",
-        result_arg,
-        "--motion",
-        MOTION,
-        "--time-s",
-        "0",
-        "-o",
-        glb_arg,
-    ]);
+    // `export-scene path` of the candidate in `result_file`, with `rest` (the pose, a rank).
+    let export = |result_file: &str, rest: &[&str]| {
+        let mut args = vec![
+            "export-scene",
+            "path",
+            "--setup",
+            SMALL,
+            "--result",
+            result_file,
+        ];
+        args.extend_from_slice(rest);
+        args.extend(["-o", glb_arg]);
+        run(&args)
+    };
+    let exported = export(result_arg, &["--motion", MOTION, "--time-s", "0"]);
     let stdout = String::from_utf8_lossy(&exported.stdout);
     assert!(
         exported.status.success(),
@@ -264,32 +265,6 @@ fn export_scene_draws_a_candidate_at_a_pose() {
             && stdout.contains("holds the limits at this pose"),
         "{stdout}"
     );
-    // A candidate the motion test failed says so first, with the failure, whatever the
-    // static check at this pose finds.
-    let mut failed = json.clone();
-    failed["candidates"][0]["passed"] = Value::Bool(false);
-    failed["candidates"][0]["failure"] = Value::from("contact at t = 1.20 s, segment C1");
-    let failed_file = dir.path().join("failed.json");
-    std::fs::write(&failed_file, failed.to_string()).expect("written");
-    let exported = run(&[
-        "export-scene",
-        "path",
-        "--setup",
-        SMALL,
-        "--result",
-        failed_file.to_str().expect("utf-8"),
-        "--joints-deg",
-        "0,0,0,0,0,0",
-        "-o",
-        glb_arg,
-    ]);
-    let stdout = String::from_utf8_lossy(&exported.stdout);
-    assert!(
-        stdout.lines().next().is_some_and(
-            |l| l.ends_with("FAILED the motion test: contact at t = 1.20 s, segment C1")
-        ),
-        "{stdout}"
-    );
     let scene = scene(&glb);
     assert_eq!(
         nodes_named(&scene, "C1 sub-segment").len() as u64,
@@ -297,24 +272,31 @@ fn export_scene_draws_a_candidate_at_a_pose() {
     );
     assert_eq!(scene.animations().count(), 0);
 
+    // A candidate the motion test failed says so first, with the failure, whatever the
+    // static check at this pose finds.
+    let mut failed = json.clone();
+    failed["candidates"][0]["passed"] = Value::Bool(false);
+    failed["candidates"][0]["failure"] = Value::from("contact at t = 1.20 s, segment C1");
+    let failed_file = dir.path().join("failed.json");
+    std::fs::write(&failed_file, failed.to_string()).expect("written");
+    let failed_arg = failed_file.to_str().expect("utf-8");
+    let exported = export(failed_arg, &["--joints-deg", "0,0,0,0,0,0"]);
+    let stdout = String::from_utf8_lossy(&exported.stdout);
+    assert!(
+        stdout.lines().next().is_some_and(
+            |l| l.ends_with("FAILED the motion test: contact at t = 1.20 s, segment C1")
+        ),
+        "{stdout}"
+    );
+
     for (args, message) in [
-        (vec!["--candidate", "7"], "no candidate of rank 7"),
+        (
+            vec!["--candidate", "7", "--joints-deg", "0,0,0,0,0,0"],
+            "no candidate of rank 7",
+        ),
         (vec!["--joints-deg", "0,0"], "joint"),
     ] {
-        let mut all = vec![
-            "export-scene",
-            "path",
-            "--setup",
-            SMALL,
-            "--result",
-            result_arg,
-        ];
-        all.extend(&args);
-        if !args.contains(&"--joints-deg") {
-            all.extend(["--joints-deg", "0,0,0,0,0,0"]);
-        }
-        all.extend(["-o", glb_arg]);
-        let refused = run(&all);
+        let refused = export(result_arg, &args);
         let stderr = String::from_utf8_lossy(&refused.stderr);
         assert_eq!(refused.status.code(), Some(2), "{args:?}: {stderr}");
         assert!(stderr.contains(message), "{args:?}: {stderr}");

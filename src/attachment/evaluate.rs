@@ -391,14 +391,12 @@ impl<'a> Evaluator<'a> {
         let turns = ClampTurns::new(setup, m, (start, end), lengths);
         let mut solver = StaticSolver::default();
         let mut metrics = vec![Err(Rejection::Diverged); lengths.len()];
-        let pitch = setup.cable.sub_segment_pitch_m;
-        let chains = continuation_chains(lengths.iter().copied(), reaching(&declared, pitch));
         self.continue_lengths(
             &mut solver,
             m,
             (&declared, &turns),
             &scene,
-            chains,
+            lengths.iter().copied(),
             |length, _, check| {
                 if let Ok(i) = lengths.binary_search(&length) {
                     metrics[i] = match (check.metrics, check.rejection) {
@@ -489,17 +487,16 @@ impl<'a> Evaluator<'a> {
             let turns = ClampTurns::new(self.setup, m, (start, end), lengths);
             for (p, pose) in poses.iter().enumerate() {
                 let (scene, declared) = self.at_pose(m, (start, end), pose.borrow());
-                let open_lengths = (0..lengths.len())
+                let open_lengths: Vec<usize> = (0..lengths.len())
                     .filter(|&i| open(&verdicts, i))
-                    .map(|i| lengths[i]);
-                let pitch = self.setup.cable.sub_segment_pitch_m;
-                let chains = continuation_chains(open_lengths, reaching(&declared, pitch));
+                    .map(|i| lengths[i])
+                    .collect();
                 self.continue_lengths(
                     &mut solver,
                     m,
                     (&declared, &turns),
                     &scene,
-                    chains,
+                    open_lengths.into_iter(),
                     |length, guides, check| {
                         if let Ok(i) = lengths.binary_search(&length)
                             && open(&verdicts, i)
@@ -531,19 +528,21 @@ impl<'a> Evaluator<'a> {
         verdicts
     }
 
-    /// Solves every length of `chains` between the `declared` clamp poses (the end clamp
-    /// turned by `turns`) in `scene`, each chain by continuation from the connected geometry
-    /// at its first length, and hands each length, its clamp poses and its check to `visit`.
+    /// Solves the `wanted` lengths (ascending, > 0) between the `declared` clamp poses (the
+    /// end clamp turned by `turns`) in `scene`, in the [`continuation_chains`] that cover
+    /// them, each chain by continuation from the connected geometry at its first length, and
+    /// hands every length solved (wanted or not), its clamp poses and its check to `visit`.
     fn continue_lengths(
         &self,
         solver: &mut StaticSolver,
         m: usize,
         (declared, turns): (&(Pose, Pose), &ClampTurns),
         scene: &Scene<'_>,
-        chains: Vec<Range<usize>>,
+        wanted: impl Iterator<Item = usize>,
         mut visit: impl FnMut(usize, &(Pose, Pose), &Check),
     ) {
-        for chain in chains {
+        let pitch = self.setup.cable.sub_segment_pitch_m;
+        for chain in continuation_chains(wanted, reaching(declared, pitch)) {
             let mut earlier: Vec<Solved> = Vec::with_capacity(3);
             for length in chain {
                 let guides = (declared.0, declared.1 * turns.at(self.setup, m, length));

@@ -4,7 +4,7 @@
 //! robot and cable, any subset of places, any guide count — can use it.
 
 use crate::pose::Pose;
-use crate::setup::{Guide, GuideConfiguration, Setup, same_place};
+use crate::setup::{Guide, GuideConfiguration, PoseIndex, Setup};
 use std::collections::BTreeSet;
 
 /// The clamp places of one link, as a setup the attachment test can solve.
@@ -46,12 +46,14 @@ pub fn link_catalogues(setup: &Setup, candidate_lengths: &[usize]) -> Vec<LinkCa
 /// The distinct clamp places of the guides on `body`, posed in the body's frame.
 fn clamps_on(setup: &Setup, body: usize) -> Vec<GuideConfiguration> {
     let mut clamps: Vec<GuideConfiguration> = Vec::new();
+    let mut places = PoseIndex::default();
     for guide in setup.guides.iter().filter(|g| g.body == body) {
         for (c, configuration) in guide.configurations.iter().enumerate() {
             let pose: Pose = guide.pose_in_body(c);
-            if clamps.iter().any(|k| same_place(&k.pose, &pose)) {
+            if places.find(&pose).is_some() {
                 continue;
             }
+            places.insert(&pose, clamps.len());
             let name = if configuration.name.contains('/') {
                 configuration.name.clone()
             } else {

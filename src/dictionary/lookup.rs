@@ -26,7 +26,7 @@ use crate::attachment::{
 };
 use crate::path::Pv;
 use crate::pose::Pose;
-use crate::setup::{Guide, Setup, same_place};
+use crate::setup::{Guide, PoseIndex, Setup};
 use nalgebra::{Quaternion, Translation3, UnitQuaternion, Vector3};
 
 /// The dictionary's answers for one motion.
@@ -291,8 +291,11 @@ impl Dictionary {
             .ok_or_else(|| fail(format!("{link} has no clamp catalogue in the dictionary")))?;
         let entry = &self.header().links[slot];
         let places: Vec<Pose> = entry.clamps.iter().map(clamp_pose).collect();
-        let start_clamps = place_indices(&places, &setup.guides[a], link).map_err(&fail)?;
-        let end_clamps = place_indices(&places, &setup.guides[b], link).map_err(&fail)?;
+        let places = PoseIndex::of(&places);
+        let start_clamps =
+            place_indices(&places, entry.clamps.len(), &setup.guides[a], link).map_err(&fail)?;
+        let end_clamps =
+            place_indices(&places, entry.clamps.len(), &setup.guides[b], link).map_err(&fail)?;
         let robustness = &setup.robustness;
         let candidates = admissible_pvs(setup, m);
         for needed in needed_pvs(&candidates, robustness.delta_s, robustness.range) {
@@ -314,23 +317,24 @@ impl Dictionary {
     }
 }
 
-/// The index among `places` (poses in the link's frame) of each configuration of `guide`;
-/// `Err` naming the first that is not one of them, with its position.
-fn place_indices(places: &[Pose], guide: &Guide, link: &str) -> Result<Vec<usize>, String> {
+/// The index among `places` (the catalogue's poses in the link's frame) of each
+/// configuration of `guide`; `Err` naming the first that is not one of them, with its
+/// position.
+fn place_indices(
+    places: &PoseIndex,
+    place_count: usize,
+    guide: &Guide,
+    link: &str,
+) -> Result<Vec<usize>, String> {
     (0..guide.configurations.len())
         .map(|c| {
             let pose = guide.pose_in_body(c);
-            places.iter().position(|p| same_place(p, &pose)).ok_or_else(|| {
+            places.find(&pose).ok_or_else(|| {
                 let mm = pose.translation.vector * 1e3;
                 format!(
                     "{} '{}' at ({:.1}, {:.1}, {:.1}) mm is not among the dictionary's {} clamp \
                      places on {link}",
-                    guide.name,
-                    guide.configurations[c].name,
-                    mm.x,
-                    mm.y,
-                    mm.z,
-                    places.len()
+                    guide.name, guide.configurations[c].name, mm.x, mm.y, mm.z, place_count
                 )
             })
         })

@@ -23,6 +23,9 @@ pub struct Dictionary {
     /// The embedded setup, loaded once (parsing the URDF and meshes is the costly part of
     /// `verify` and of every caller that needs the setup).
     embedded: OnceLock<Setup>,
+    /// Set once [`Dictionary::verify`] has passed: the file cannot change under the map, so
+    /// a second call (e.g. by [`Dictionary::recompute`] after the command line's) is free.
+    verified: OnceLock<()>,
 }
 
 impl Dictionary {
@@ -44,6 +47,7 @@ impl Dictionary {
             map,
             layout,
             embedded: OnceLock::new(),
+            verified: OnceLock::new(),
         })
     }
 
@@ -105,11 +109,16 @@ impl Dictionary {
     /// positions, flags, margin records, the all-directions |D1| and |D2| counts, the error
     /// bounds) and what the header means ([`check_meaning`]).
     pub fn verify(&self) -> Result<(), DictionaryError> {
+        if self.verified.get().is_some() {
+            return Ok(());
+        }
         let error = |problem| DictionaryError::new(&self.path, problem);
         verify_sections(&self.map, &self.layout).map_err(error)?;
         check_records(self.header(), self.pv_records(), self.results()).map_err(error)?;
         let setup = self.embedded().map_err(error)?;
-        check_setup_meaning(self.header(), self.directions(), setup).map_err(error)
+        check_setup_meaning(self.header(), self.directions(), setup).map_err(error)?;
+        let _ = self.verified.set(());
+        Ok(())
     }
 
     /// The embedded setup, loaded on first use and checked against the header's hash.

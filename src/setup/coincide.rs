@@ -26,10 +26,10 @@ pub(super) fn add_copies(guides: &mut [Guide], segments: &[SegmentSpec]) {
 /// already has; with `only_from_fixed`, only those declared by a fixed guide.
 fn copy(guides: &mut [Guide], from: usize, to: usize, only_from_fixed: bool) {
     let mut copies: Vec<GuideConfiguration> = Vec::new();
-    let mut known = PoseIndex::default();
-    for k in 0..guides[to].configurations.len() {
-        known.insert(&guides[to].pose_in_body(k), k);
-    }
+    let targets: Vec<_> = (0..guides[to].configurations.len())
+        .map(|k| guides[to].pose_in_body(k))
+        .collect();
+    let mut known = PoseIndex::of(&targets);
     for c in 0..guides[from].configurations.len() {
         let (root_guide, root_configuration) = root_of(from, c, &guides[from].configurations[c]);
         let declared_by = &guides[root_guide];

@@ -188,11 +188,12 @@ pub(super) fn same_pose(a: &Pose, b: &Pose) -> bool {
         && a.rotation.angle_to(&b.rotation) < super::COINCIDENCE_TOLERANCE_RAD
 }
 
-/// Poses found by position without comparing each with all others (a catalogue may hold
+/// Clamp poses found by pose without comparing each with all others (a catalogue may hold
 /// 10⁵ of them): a hash grid of cells wider than the coincidence tolerance, so that a pose
-/// [`same_pose`] as an indexed one lies in the same or a neighbouring cell.
-#[derive(Default)]
-pub(super) struct PoseIndex {
+/// that is the same place ([`super::same_place`]) as an indexed one lies in the same or a
+/// neighbouring cell.
+#[derive(Debug, Default)]
+pub struct PoseIndex {
     cells: HashMap<[i64; 3], Vec<(Pose, usize)>>,
 }
 
@@ -200,6 +201,15 @@ pub(super) struct PoseIndex {
 const CELL_M: f64 = 1e-6;
 
 impl PoseIndex {
+    /// `poses` indexed by their positions in the slice.
+    pub fn of(poses: &[Pose]) -> PoseIndex {
+        let mut index = PoseIndex::default();
+        for (k, pose) in poses.iter().enumerate() {
+            index.insert(pose, k);
+        }
+        index
+    }
+
     fn cell(pose: &Pose) -> [i64; 3] {
         // `as` saturates: far or non-finite positions share the edge cells, still correct.
         pose.translation

@@ -68,6 +68,7 @@ mod segments;
 mod sites;
 
 pub use error::SetupError;
+pub use guides::PoseIndex;
 
 /// True when two clamp poses in one frame are the same place: positions within
 /// [`COINCIDENCE_TOLERANCE_M`], orientations within [`COINCIDENCE_TOLERANCE_RAD`].
