@@ -410,7 +410,7 @@ fn a_mesh_cube_is_the_same_as_the_box() {
     let box_robot = urdf(r#"<box size="0.12 0.08 0.06"/>"#);
     let mesh_obstacles = Obstacles::from_robot(&mesh_robot).expect("mesh obstacles");
     assert_eq!(
-        mesh_obstacles.open_meshes().count(),
+        mesh_obstacles.winding_meshes().count(),
         0,
         "the cube is closed"
     );
@@ -493,7 +493,10 @@ fn a_mesh_cube_is_the_same_as_the_box() {
     .expect("write STL");
     let square = urdf(r#"<mesh filename="square.stl" scale="0.1 0.1 0.1"/>"#);
     let square_obstacles = Obstacles::from_robot(&square).expect("square obstacles");
-    assert_eq!(square_obstacles.open_meshes().collect::<Vec<_>>(), [(1, 0)]);
+    assert_eq!(
+        square_obstacles.winding_meshes().collect::<Vec<_>>(),
+        [(1, 0)]
+    );
     let nodes: Vec<Point3<f64>> = line([0.02, 0.01, -0.05], [0.02, 0.01, 0.05], 10)
         .iter()
         .map(|p| frame * p)
@@ -539,7 +542,7 @@ fn the_reported_link_collider_sub_segment_and_points_are_the_closest() {
         ),
     );
     let obstacles = Obstacles::from_robot(&robot).expect("obstacles");
-    assert_eq!((obstacles.link_count(), obstacles.collider_count()), (4, 4));
+    assert_eq!((obstacles.link_count(), obstacles.obstacle_count()), (4, 4));
     // link_2 turned 90° about z: its second sphere is at (−0.1, 0, 0.3).
     let poses = robot
         .link_poses(&[0.0, std::f64::consts::FRAC_PI_2, 0.0])

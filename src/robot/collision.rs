@@ -56,6 +56,13 @@ pub struct TriMesh {
     pub triangles: Vec<[u32; 3]>,
 }
 
+impl TriMesh {
+    /// The mesh's shells, wound and classified (see [`shells`](super::shells)).
+    pub fn shells(&self) -> super::shells::MeshShells {
+        super::shells::analyse(&self.vertices, &self.triangles)
+    }
+}
+
 impl Shape {
     /// One-line human description with dimensions in millimetres.
     pub fn describe(&self) -> String {

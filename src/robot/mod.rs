@@ -15,6 +15,7 @@ mod kinematics;
 mod load;
 mod locate;
 mod mesh;
+pub mod shells;
 
 pub use collision::{Collider, Shape, TriMesh};
 pub use error::{JointVectorError, RobotError};

@@ -21,9 +21,11 @@
 //! threshold — and it treats a triangle mesh as a hollow shell (a cable deep inside reports a
 //! positive distance to the surface).
 //!
-//! A *closed* mesh (every edge shared by two triangles in opposite directions) is a solid,
-//! inside decided by angle-weighted pseudo-normals, depth exact for convex meshes and a local
-//! maximum for others; any other mesh is a bare surface (see [`Obstacles::open_meshes`]).
+//! A mesh is the union of its shells' solids, whatever the file's shells, overlaps, winding
+//! or holes: one obstacle per closed shell, its inside decided by angle-weighted
+//! pseudo-normals, and one for all its loose shells, decided by the winding number (see
+//! `mesh` and [`crate::robot::shells`]). Depth is exact for convex shells and a local maximum
+//! for others; the clearance to a link is the minimum over its obstacles.
 //!
 //! Each query culls with enclosing capsules of the colliders and bounding spheres of chunks of
 //! the cable, nearest colliders first, so only the pairs that can still beat the best so far
@@ -39,7 +41,7 @@ mod tests;
 
 use crate::pose::Pose;
 use crate::robot::{Robot, Shape};
-use mesh::SolidMesh;
+use mesh::{SolidMesh, solids_of};
 use nalgebra::{Point3, Vector3};
 use primitives::{Projection, SegmentMin, segment_segment_distance};
 use std::path::PathBuf;
@@ -265,9 +267,9 @@ impl Obstacles {
     /// Converts every collider of every link.
     ///
     /// Refused, naming the link and the collider: non-finite origins or dimensions, and meshes
-    /// with invalid indices, non-finite vertices or no triangle of non-zero area. A closed mesh
-    /// (every edge shared by two opposite triangles) is a solid; any other mesh a bare surface
-    /// (never reports penetration deeper than the cable radius).
+    /// with invalid indices, non-finite vertices or no triangle of non-zero area. A mesh
+    /// becomes one obstacle per closed shell and one for its loose shells (see the module
+    /// documentation).
     pub fn from_robot(robot: &Robot) -> Result<Obstacles, ContactError> {
         let mut obstacles = Vec::new();
         for (li, link) in robot.links.iter().enumerate() {
@@ -283,8 +285,8 @@ impl Obstacles {
                 {
                     return Err(invalid("the origin is not finite".into()));
                 }
-                let geometry =
-                    geometry_of(&collider.shape).map_err(|problem| match &collider.shape {
+                let geometries =
+                    geometries_of(&collider.shape).map_err(|problem| match &collider.shape {
                         Shape::Mesh(mesh) => ContactError::DegenerateMesh {
                             link: link.name.clone(),
                             collider: ci + 1,
@@ -293,13 +295,13 @@ impl Obstacles {
                         },
                         _ => invalid(problem),
                     })?;
-                obstacles.push(Obstacle {
+                obstacles.extend(geometries.into_iter().map(|geometry| Obstacle {
                     link: li,
                     collider: ci,
                     origin: collider.origin,
                     bound: Bound::of(&geometry),
                     geometry,
-                });
+                }));
             }
         }
         Ok(Obstacles {
@@ -313,22 +315,24 @@ impl Obstacles {
         self.link_count
     }
 
-    /// Number of colliders over all links.
-    pub fn collider_count(&self) -> usize {
+    /// Number of obstacles over all links: one per primitive collider, one per part of a
+    /// mesh collider.
+    pub fn obstacle_count(&self) -> usize {
         self.obstacles.len()
     }
 
-    /// `(link, collider)` of every mesh that is not closed: a bare surface, so a cable
-    /// inside it is not seen as penetrating (worth a warning to the user).
-    pub fn open_meshes(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+    /// `(link, collider)` of every mesh with loose shells (open edges, edges of more than
+    /// two triangles, self-crossing), whose inside there is decided by the winding number.
+    pub fn winding_meshes(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
         self.obstacles.iter().filter_map(|ob| match &ob.geometry {
-            Geometry::Mesh(mesh) if !mesh.is_closed() => Some((ob.link, ob.collider)),
+            Geometry::Mesh(mesh) if !mesh.is_closed_shell() => Some((ob.link, ob.collider)),
             _ => None,
         })
     }
 }
 
-fn geometry_of(shape: &Shape) -> Result<Geometry, String> {
+/// The obstacles of one collider shape: one for a primitive, one per part of a mesh.
+fn geometries_of(shape: &Shape) -> Result<Vec<Geometry>, String> {
     let check = |what: &str, values: &[f64], allow_zero: bool| {
         if values
             .iter()
@@ -339,7 +343,7 @@ fn geometry_of(shape: &Shape) -> Result<Geometry, String> {
             Err(format!("{what} {values:?} must be finite and > 0"))
         }
     };
-    Ok(match shape {
+    Ok(vec![match shape {
         Shape::Box { half_extents_m } => {
             check("box half extents", half_extents_m.as_slice(), false)?;
             Geometry::Cuboid {
@@ -366,9 +370,12 @@ fn geometry_of(shape: &Shape) -> Result<Geometry, String> {
             }
         }
         Shape::Mesh(mesh) => {
-            Geometry::Mesh(Box::new(SolidMesh::new(&mesh.vertices, &mesh.triangles)?))
+            return Ok(solids_of(&mesh.vertices, &mesh.triangles)?
+                .into_iter()
+                .map(|part| Geometry::Mesh(Box::new(part)))
+                .collect());
         }
-    })
+    }])
 }
 
 /// Which end of the cable segment a guide sits at.
@@ -558,7 +565,7 @@ pub fn zone_sub_segments(nodes: &[Point3<f64>], end: GuideEnd, length_m: f64) ->
 const MAX_CHUNKS: usize = 16;
 
 /// Obstacles handled without a heap allocation (more fall back to a `Vec`).
-const INLINE_OBSTACLES: usize = 32;
+const INLINE_OBSTACLES: usize = 64;
 
 /// An obstacle to check, with its bounding capsule in the world frame.
 #[derive(Clone, Copy)]

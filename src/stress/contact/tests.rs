@@ -1,7 +1,7 @@
 //! The closed-form segment minima against a brute-force oracle on random segments, and the
 //! mesh solid against the equivalent box.
 
-use super::mesh::SolidMesh;
+use super::mesh::{SolidMesh, solids_of};
 use super::primitives::*;
 use nalgebra::{Point3, Vector3};
 
@@ -194,11 +194,41 @@ fn cube(h: &Vector3<f64>, c: Vector3<f64>, inward: bool) -> (Vec<Point3<f64>>, V
     (vertices, triangles)
 }
 
-fn cube_mesh(h: &Vector3<f64>, inward: bool) -> SolidMesh {
-    let (vertices, triangles) = cube(h, Vector3::zeros(), inward);
-    match SolidMesh::new(&vertices, &triangles) {
-        Ok(mesh) => mesh,
-        Err(e) => panic!("cube mesh refused: {e}"),
+/// A mesh's parts as the contact search combines them: the minimum over the parts.
+struct Union(Vec<SolidMesh>);
+
+impl Union {
+    fn new(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> Union {
+        match solids_of(vertices, triangles) {
+            Ok(parts) => Union(parts),
+            Err(e) => panic!("mesh refused: {e}"),
+        }
+    }
+
+    fn closed_parts(&self) -> usize {
+        self.0.iter().filter(|p| p.is_closed_shell()).count()
+    }
+
+    fn segment_min(&self, a: &Point3<f64>, b: &Point3<f64>, cutoff: f64) -> SegmentMin {
+        self.0
+            .iter()
+            .map(|part| part.segment_min(a, b, cutoff))
+            .reduce(SegmentMin::min)
+            .expect("a part")
+    }
+
+    fn signed_distance(&self, p: &Point3<f64>) -> f64 {
+        self.0
+            .iter()
+            .map(|part| {
+                let nearest = part.nearest(p);
+                if part.is_inside(p, &nearest) {
+                    -nearest.distance
+                } else {
+                    nearest.distance
+                }
+            })
+            .fold(f64::INFINITY, f64::min)
     }
 }
 
@@ -206,8 +236,9 @@ fn cube_mesh(h: &Vector3<f64>, inward: bool) -> SolidMesh {
 fn a_closed_cube_mesh_is_the_box() {
     let h = Vector3::new(0.1, 0.06, 0.04);
     for inward in [false, true] {
-        let mesh = cube_mesh(&h, inward);
-        assert!(mesh.is_closed());
+        let (vertices, triangles) = cube(&h, Vector3::zeros(), inward);
+        let mesh = Union::new(&vertices, &triangles);
+        assert_eq!((mesh.0.len(), mesh.closed_parts()), (1, 1));
         // From a point of the top face down to the centre (no crossing, touching at t = 0),
         // and lying in the top face.
         let top = Point3::new(0.01, 0.0, h.z);
@@ -234,32 +265,36 @@ fn a_closed_cube_mesh_is_the_box() {
                 "inward {inward} case {case}: a {a:?} b {b:?}: mesh {} box {want}",
                 got.sd
             );
-            let nearest = mesh.nearest(&a);
-            let signed = if mesh.is_inside(&a, &nearest) {
-                -nearest.distance
-            } else {
-                nearest.distance
-            };
-            assert!((signed - box_sd(&h, &a)).abs() < 1e-12, "case {case}");
+            assert!(
+                (mesh.signed_distance(&a) - box_sd(&h, &a)).abs() < 1e-12,
+                "case {case}"
+            );
         }
     }
 }
 
+/// Two boxes that overlap, in one mesh, the second wound inward as some vendor shells are:
+/// points inside the first box whose nearest face belongs to the second (inside the first)
+/// are inside, and the segment minimum is the lower of the two boxes' — the union.
 #[test]
-fn a_mesh_of_two_cubes_is_their_union() {
+fn a_mesh_of_two_overlapping_cubes_is_their_union() {
     let (ha, hb) = (
         Vector3::new(0.05, 0.04, 0.03),
         Vector3::new(0.02, 0.06, 0.05),
     );
-    let cb = Vector3::new(0.09, 0.01, -0.02);
+    let cb = Vector3::new(0.04, 0.01, -0.02);
     let (mut vertices, mut triangles) = cube(&ha, Vector3::zeros(), false);
-    let (vb, tb) = cube(&hb, cb, false);
+    let (vb, tb) = cube(&hb, cb, true);
     triangles.extend(tb.iter().map(|t| t.map(|v| v + 8)));
     vertices.extend(vb);
-    let mesh = SolidMesh::new(&vertices, &triangles).expect("valid");
-    assert!(mesh.is_closed());
+    let mesh = Union::new(&vertices, &triangles);
+    assert_eq!((mesh.0.len(), mesh.closed_parts()), (2, 2));
+    // Inside the first box, 5 mm from the second box's face x = 0.02 and 20 mm from the
+    // first box's nearest face.
+    let p = Point3::new(0.015, 0.0, 0.01);
+    assert!((mesh.signed_distance(&p) + 0.02).abs() < 1e-15);
     let mut rng = Rng(777);
-    let extent = Vector3::new(0.15, 0.1, 0.1);
+    let extent = Vector3::new(0.1, 0.1, 0.1);
     for case in 0..2000 {
         let a = rng.point(&extent, &[0.0]);
         let b = rng.point(&extent, &[0.0]);
@@ -282,6 +317,29 @@ fn a_mesh_of_two_cubes_is_their_union() {
     }
 }
 
+/// A box with one triangle missing on its +x face: a loose shell, its inside decided by the
+/// winding number — the box's away from the hole.
+#[test]
+fn a_cube_with_a_hole_is_still_a_solid_away_from_the_hole() {
+    let h = Vector3::new(0.1, 0.06, 0.04);
+    let (vertices, mut triangles) = cube(&h, Vector3::zeros(), false);
+    triangles.retain(|t| *t != [1, 3, 5]);
+    let mesh = Union::new(&vertices, &triangles);
+    assert_eq!((mesh.0.len(), mesh.closed_parts()), (1, 0));
+    let mut rng = Rng(4242);
+    for case in 0..2000 {
+        let p = rng.point(&(2.0 * h), &[0.0]);
+        if p.x > 0.0 && p.x.abs() > 0.5 * h.x {
+            continue; // near the hole
+        }
+        let (got, want) = (mesh.signed_distance(&p), box_sd(&h, &p));
+        assert!(
+            (got - want).abs() < 1e-12,
+            "case {case}: {p:?}: {got} vs box {want}"
+        );
+    }
+}
+
 #[test]
 fn an_open_mesh_is_a_bare_surface() {
     // One square, z = 0, |x|, |y| ≤ 1.
@@ -291,8 +349,8 @@ fn an_open_mesh_is_a_bare_surface() {
         Point3::new(1.0, 1.0, 0.0),
         Point3::new(-1.0, 1.0, 0.0),
     ];
-    let mesh = SolidMesh::new(&vertices, &[[0, 1, 2], [0, 2, 3]]).expect("valid");
-    assert!(!mesh.is_closed());
+    let mesh = Union::new(&vertices, &[[0, 1, 2], [0, 2, 3]]);
+    assert_eq!(mesh.closed_parts(), 0);
     let crossing = mesh.segment_min(
         &Point3::new(0.2, 0.1, -0.5),
         &Point3::new(0.2, 0.1, 0.5),
@@ -306,6 +364,7 @@ fn an_open_mesh_is_a_bare_surface() {
         1.0,
     );
     assert!((beside.sd - 0.5).abs() < 1e-15);
+    assert!((mesh.signed_distance(&Point3::new(0.0, 0.0, -0.01)) - 0.01).abs() < 1e-15);
 }
 
 #[test]
@@ -315,8 +374,8 @@ fn degenerate_meshes_are_refused() {
         Point3::new(1.0, 0.0, 0.0),
         Point3::new(2.0, 0.0, 0.0),
     ];
-    let err = SolidMesh::new(&line, &[[0, 1, 2]]).expect_err("zero area");
+    let err = solids_of(&line, &[[0, 1, 2]]).expect_err("zero area");
     assert!(err.contains("zero area"), "{err}");
-    let err = SolidMesh::new(&line, &[[0, 1, 3]]).expect_err("bad index");
+    let err = solids_of(&line, &[[0, 1, 3]]).expect_err("bad index");
     assert!(err.contains("vertex"), "{err}");
 }

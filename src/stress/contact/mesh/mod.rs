@@ -1,32 +1,53 @@
 //! Triangle meshes as obstacles: exact (f64) distances, with parry's BVH for culling.
 //!
-//! A mesh that is *closed* (every edge shared by exactly two triangles, traversed in opposite
-//! directions) is a solid: points inside have a negative signed distance, decided with
-//! angle-weighted pseudo-normals at the nearest feature (Bærentzen & Aanæs 2005), and its
-//! depth is the distance to the surface. Inward-facing closed meshes are turned outward (by
-//! the sign of their volume). Any other mesh is a surface without inside: its signed distance
-//! is the unsigned distance, never negative.
+//! A mesh collider is the union of its shells' solids (see [`crate::robot::shells`]). Each
+//! closed shell becomes one [`SolidMesh`] whose inside is decided by angle-weighted
+//! pseudo-normals at the nearest feature (Bærentzen & Aanæs 2005): exact for a closed,
+//! consistently wound surface, and cheap, since the nearest feature is found anyway. All
+//! loose shells together (open edges, edges of more than two triangles, self-crossing) become
+//! one more [`SolidMesh`] whose inside is where the winding number exceeds ½ — right for
+//! overlapping and touching pieces and for inconsistent winding, and a smooth guess across a
+//! hole. The contact module takes the minimum over the parts: the exact distance to the
+//! union's surface outside it, and inside minus the depth below the surface of the part the
+//! point is deepest in (the union's own depth is at least that).
 
-use super::primitives::{SegmentMin, closest_segment_segment};
+mod triangle;
+mod winding;
+
+use super::primitives::SegmentMin;
+use crate::robot::shells::{self, ShellKind};
 use nalgebra::{Point3, Vector3};
 use rapier3d::parry::bounding_volume::Aabb;
 use rapier3d::parry::math::Vector as GlamVector;
 use rapier3d::parry::partitioning::{Bvh, BvhBuildStrategy, BvhNode, TraversalAction};
 use std::collections::HashMap;
+use triangle::{Feature, closest_point_triangle, segment_triangle};
+use winding::WindingTree;
 
-/// A triangle mesh prepared for distance queries in its own frame (metres).
+/// How a part tells inside from outside.
+#[derive(Debug, Clone)]
+enum Side {
+    /// A closed shell: the pseudo-normal at the nearest feature.
+    PseudoNormals {
+        /// Pseudo-normal of edge k = (v_k, v_k+1) of each triangle.
+        edge_normals: Vec<[Vector3<f64>; 3]>,
+        /// Angle-weighted pseudo-normal of each vertex.
+        vertex_normals: Vec<Vector3<f64>>,
+    },
+    /// Loose shells: the winding number's magnitude above ½.
+    Winding(WindingTree),
+}
+
+/// One part of a mesh collider prepared for distance queries in its own frame (metres).
 #[derive(Clone)]
 pub(super) struct SolidMesh {
+    /// The part's own vertices (only those its triangles use).
     vertices: Vec<Point3<f64>>,
     /// Non-degenerate triangles only.
     triangles: Vec<[u32; 3]>,
-    /// Unit normals, outward for closed meshes.
+    /// Unit normals of the triangles' winding (outward for closed shells).
     face_normals: Vec<Vector3<f64>>,
-    /// Closed meshes: pseudo-normal of edge k = (v_k, v_k+1) of each triangle.
-    edge_normals: Vec<[Vector3<f64>; 3]>,
-    /// Closed meshes: angle-weighted pseudo-normal of each vertex.
-    vertex_normals: Vec<Vector3<f64>>,
-    closed: bool,
+    side: Side,
     /// Bounding box of the vertices.
     lo: Vector3<f64>,
     hi: Vector3<f64>,
@@ -38,22 +59,9 @@ impl std::fmt::Debug for SolidMesh {
         f.debug_struct("SolidMesh")
             .field("vertices", &self.vertices.len())
             .field("triangles", &self.triangles.len())
-            .field("closed", &self.closed)
+            .field("closed", &self.is_closed_shell())
             .finish()
     }
-}
-
-/// One triangle's use of an undirected edge: (triangle, edge slot, traversed low → high).
-type EdgeUse = (usize, usize, bool);
-
-/// The part of a triangle a nearest point lies on.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Feature {
-    /// Vertex k.
-    Vertex(usize),
-    /// Edge k, from vertex k to vertex (k + 1) mod 3.
-    Edge(usize),
-    Face,
 }
 
 /// The nearest surface point to a query point.
@@ -65,126 +73,105 @@ pub(super) struct Nearest {
     feature: Feature,
 }
 
+/// Splits a mesh into its parts: one per closed shell, then one for every loose shell
+/// together; the error text says what is wrong with the mesh.
+pub(super) fn solids_of(
+    vertices: &[Point3<f64>],
+    triangles: &[[u32; 3]],
+) -> Result<Vec<SolidMesh>, String> {
+    if let Some(i) = vertices
+        .iter()
+        .position(|p| !p.iter().all(|c| c.is_finite()))
+    {
+        return Err(format!("vertex {i} is not finite"));
+    }
+    if let Some((i, t)) = triangles
+        .iter()
+        .enumerate()
+        .find(|(_, t)| t.iter().any(|&v| v as usize >= vertices.len()))
+    {
+        return Err(format!(
+            "triangle {i} uses vertex {t:?} but the mesh has {} vertices",
+            vertices.len()
+        ));
+    }
+    let found = shells::analyse(vertices, triangles);
+    let mut parts: Vec<SolidMesh> = found
+        .shells
+        .iter()
+        .filter(|s| s.kind == ShellKind::Closed)
+        .filter_map(|s| SolidMesh::part(vertices, &s.triangles, true))
+        .collect();
+    let loose: Vec<[u32; 3]> = found
+        .loose()
+        .flat_map(|s| s.triangles.iter().copied())
+        .collect();
+    parts.extend(SolidMesh::part(vertices, &loose, false));
+    if parts.is_empty() {
+        return Err(format!("all {} triangles have zero area", triangles.len()));
+    }
+    Ok(parts)
+}
+
 impl SolidMesh {
-    /// Prepares a mesh; the error text says what is wrong with it.
-    pub fn new(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> Result<SolidMesh, String> {
-        if let Some(i) = vertices
-            .iter()
-            .position(|p| !p.iter().all(|c| c.is_finite()))
-        {
-            return Err(format!("vertex {i} is not finite"));
-        }
-        if let Some((i, t)) = triangles
-            .iter()
-            .enumerate()
-            .find(|(_, t)| t.iter().any(|&v| v as usize >= vertices.len()))
-        {
-            return Err(format!(
-                "triangle {i} uses vertex {t:?} but the mesh has {} vertices",
-                vertices.len()
-            ));
-        }
+    /// The part over `triangles` (indices into `vertices`, valid), with its own compact
+    /// vertex list; `None` when no triangle has an area. `closed`: a closed shell, wound
+    /// outward.
+    fn part(vertices: &[Point3<f64>], triangles: &[[u32; 3]], closed: bool) -> Option<SolidMesh> {
+        let mut index: HashMap<u32, u32> = HashMap::new();
+        let mut own = Vec::new();
         let mut kept = Vec::with_capacity(triangles.len());
         let mut face_normals = Vec::with_capacity(triangles.len());
         for t in triangles {
             let [a, b, c] = t.map(|v| vertices[v as usize]);
-            let cross = (b - a).cross(&(c - a));
-            let longest = (b - a)
-                .norm_squared()
-                .max((c - b).norm_squared())
-                .max((a - c).norm_squared());
-            // Zero-area (or needle) triangles add nothing a neighbour does not cover.
-            if cross.norm() > 1e-12 * longest {
-                kept.push(*t);
-                face_normals.push(cross.normalize());
+            // Zero-area triangles add nothing a neighbour does not cover (closed shells have
+            // none; see `shells`).
+            if shells::is_zero_area(&a, &b, &c) {
+                continue;
             }
+            kept.push(t.map(|v| {
+                *index.entry(v).or_insert_with(|| {
+                    own.push(vertices[v as usize]);
+                    (own.len() - 1) as u32
+                })
+            }));
+            face_normals.push((b - a).cross(&(c - a)).normalize());
         }
         if kept.is_empty() {
-            return Err(format!("all {} triangles have zero area", triangles.len()));
+            return None;
         }
-        let (lo, hi) = vertices.iter().fold(
+        let (lo, hi) = own.iter().fold(
             (
                 Vector3::repeat(f64::INFINITY),
                 Vector3::repeat(f64::NEG_INFINITY),
             ),
             |(lo, hi), p| (lo.inf(&p.coords), hi.sup(&p.coords)),
         );
-        let mut mesh = SolidMesh {
+        let side = if closed {
+            pseudo_normals(&own, &kept, &face_normals)
+        } else {
+            Side::Winding(WindingTree::new(&own, &kept))
+        };
+        Some(SolidMesh {
             lo,
             hi,
-            vertices: vertices.to_vec(),
-            bvh: build_bvh(vertices, &kept),
+            bvh: build_bvh(&own, &kept),
+            vertices: own,
             triangles: kept,
             face_normals,
-            edge_normals: Vec::new(),
-            vertex_normals: Vec::new(),
-            closed: false,
-        };
-        mesh.find_solid();
-        Ok(mesh)
+            side,
+        })
     }
 
-    /// Whether the mesh encloses a volume (signed distances can be negative).
-    pub fn is_closed(&self) -> bool {
-        self.closed
+    /// Whether this part is one closed shell (its inside told by pseudo-normals) rather than
+    /// the loose shells of a mesh (told by the winding number).
+    pub fn is_closed_shell(&self) -> bool {
+        matches!(self.side, Side::PseudoNormals { .. })
     }
 
-    /// The mesh vertices (m, mesh frame).
+    /// The part's vertices (m, mesh frame).
     pub fn vertices(&self) -> &[Point3<f64>] {
         &self.vertices
-    }
-
-    /// Checks closedness, orients outward and computes the pseudo-normals of a closed mesh.
-    fn find_solid(&mut self) {
-        let mut edges: HashMap<(u32, u32), Vec<EdgeUse>> = HashMap::new();
-        for (ti, t) in self.triangles.iter().enumerate() {
-            for k in 0..3 {
-                let (u, v) = (t[k], t[(k + 1) % 3]);
-                edges
-                    .entry((u.min(v), u.max(v)))
-                    .or_default()
-                    .push((ti, k, u < v));
-            }
-        }
-        let manifold = edges
-            .values()
-            .all(|uses| uses.len() == 2 && uses[0].2 != uses[1].2);
-        if !manifold {
-            return;
-        }
-        let volume6: f64 = self
-            .triangles
-            .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|v| self.vertices[v as usize].coords);
-                a.dot(&b.cross(&c))
-            })
-            .sum();
-        if volume6 == 0.0 {
-            return;
-        }
-        if volume6 < 0.0 {
-            self.face_normals.iter_mut().for_each(|n| *n = -*n);
-        }
-        let mut edge_normals = vec![[Vector3::zeros(); 3]; self.triangles.len()];
-        for uses in edges.values() {
-            let sum = self.face_normals[uses[0].0] + self.face_normals[uses[1].0];
-            for &(ti, k, _) in uses {
-                edge_normals[ti][k] = sum;
-            }
-        }
-        let mut vertex_normals = vec![Vector3::zeros(); self.vertices.len()];
-        for (t, n) in self.triangles.iter().zip(&self.face_normals) {
-            for k in 0..3 {
-                let p = self.vertices[t[k] as usize];
-                let u = self.vertices[t[(k + 1) % 3] as usize] - p;
-                let w = self.vertices[t[(k + 2) % 3] as usize] - p;
-                vertex_normals[t[k] as usize] += n * u.angle(&w);
-            }
-        }
-        self.edge_normals = edge_normals;
-        self.vertex_normals = vertex_normals;
-        self.closed = true;
     }
 
     fn corners(&self, triangle: usize) -> [Point3<f64>; 3] {
@@ -264,18 +251,36 @@ impl SolidMesh {
         best
     }
 
-    /// Whether `p`, whose nearest surface point is `nearest`, lies inside a closed mesh.
+    /// Whether `p`, whose nearest surface point is `nearest`, lies inside.
     pub fn is_inside(&self, p: &Point3<f64>, nearest: &Nearest) -> bool {
-        if !self.closed || nearest.distance == 0.0 {
+        if nearest.distance == 0.0 || self.outside_box(p) {
             return false;
         }
-        let t = nearest.triangle;
-        let normal = match nearest.feature {
-            Feature::Face => self.face_normals[t],
-            Feature::Edge(k) => self.edge_normals[t][k],
-            Feature::Vertex(k) => self.vertex_normals[self.triangles[t][k] as usize],
-        };
-        (p - nearest.q).dot(&normal) < 0.0
+        match &self.side {
+            Side::PseudoNormals {
+                edge_normals,
+                vertex_normals,
+            } => {
+                let t = nearest.triangle;
+                let normal = match nearest.feature {
+                    Feature::Face => self.face_normals[t],
+                    Feature::Edge(k) => edge_normals[t][k],
+                    Feature::Vertex(k) => vertex_normals[self.triangles[t][k] as usize],
+                };
+                (p - nearest.q).dot(&normal) < 0.0
+            }
+            Side::Winding(tree) => {
+                tree.winding_number(&self.vertices, &self.triangles, p)
+                    .abs()
+                    > 0.5
+            }
+        }
+    }
+
+    /// Whether `p` lies outside the bounding box (then outside the solid: a winding number
+    /// above ½ needs the surface on more than one side).
+    fn outside_box(&self, p: &Point3<f64>) -> bool {
+        (0..3).any(|i| p[i] < self.lo[i] || p[i] > self.hi[i])
     }
 
     /// Unit outward normal of the triangle `nearest` lies on.
@@ -289,7 +294,6 @@ impl SolidMesh {
     pub fn segment_min(&self, a: &Point3<f64>, b: &Point3<f64>, cutoff: f64) -> SegmentMin {
         let e = b - a;
         let length = e.norm();
-        let closed = self.closed;
         if cutoff.is_finite() {
             // The signed distance is 1-Lipschitz: within half the length of the midpoint's.
             let mid = a + e * 0.5;
@@ -330,7 +334,7 @@ impl SolidMesh {
             if let Some(leaf) = node.leaf_data() {
                 let tri = self.corners(leaf as usize);
                 let hit = segment_triangle(a, &e, &tri);
-                if let (true, Some(t)) = (closed, hit.cut) {
+                if let Some(t) = hit.cut {
                     cuts.push(t);
                 }
                 if hit.d2 < best_d2 || (hit.d2 == best_d2 && hit.t < best.t) {
@@ -341,11 +345,7 @@ impl SolidMesh {
             TraversalAction::Continue
         });
         best.sd = best_d2.sqrt();
-        if !closed {
-            return best;
-        }
-        let outside_box = |p: &Point3<f64>| (0..3).any(|i| p[i] < self.lo[i] || p[i] > self.hi[i]);
-        if cuts.is_empty() && (outside_box(a) || outside_box(b)) {
+        if cuts.is_empty() && (self.outside_box(a) || self.outside_box(b)) {
             // One side only, and an end is outside the bounding box: all outside.
             return best;
         }
@@ -491,6 +491,45 @@ impl SolidMesh {
     }
 }
 
+/// The pseudo-normals of a closed shell wound outward: of each edge the sum of its two
+/// triangles' normals, of each vertex the angle-weighted sum of its triangles' normals.
+fn pseudo_normals(
+    vertices: &[Point3<f64>],
+    triangles: &[[u32; 3]],
+    face_normals: &[Vector3<f64>],
+) -> Side {
+    let mut by_edge: HashMap<(u32, u32), Vec<(usize, usize)>> = HashMap::new();
+    for (ti, t) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (u, v) = (t[k], t[(k + 1) % 3]);
+            by_edge
+                .entry((u.min(v), u.max(v)))
+                .or_default()
+                .push((ti, k));
+        }
+    }
+    let mut edge_normals = vec![[Vector3::zeros(); 3]; triangles.len()];
+    for uses in by_edge.values() {
+        let sum: Vector3<f64> = uses.iter().map(|&(ti, _)| face_normals[ti]).sum();
+        for &(ti, k) in uses {
+            edge_normals[ti][k] = sum;
+        }
+    }
+    let mut vertex_normals = vec![Vector3::zeros(); vertices.len()];
+    for (t, n) in triangles.iter().zip(face_normals) {
+        for k in 0..3 {
+            let p = vertices[t[k] as usize];
+            let u = vertices[t[(k + 1) % 3] as usize] - p;
+            let w = vertices[t[(k + 2) % 3] as usize] - p;
+            vertex_normals[t[k] as usize] += n * u.angle(&w);
+        }
+    }
+    Side::PseudoNormals {
+        edge_normals,
+        vertex_normals,
+    }
+}
+
 /// BVH over the triangles' bounding boxes, rounded outward to f32 so they contain the f64
 /// triangles.
 fn build_bvh(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> Bvh {
@@ -537,110 +576,4 @@ fn aabb_aabb_distance2(node: &BvhNode, lo2: &Vector3<f64>, hi2: &Vector3<f64>) -
     (0..3)
         .map(|i| (lo[i] - hi2[i]).max(lo2[i] - hi[i]).max(0.0).powi(2))
         .sum()
-}
-
-/// Nearest point of triangle abc to `p` and the feature it lies on (Ericson, *Real-Time
-/// Collision Detection*, §5.1.5).
-fn closest_point_triangle(
-    p: &Point3<f64>,
-    a: &Point3<f64>,
-    b: &Point3<f64>,
-    c: &Point3<f64>,
-) -> (Point3<f64>, Feature) {
-    let ab = b - a;
-    let ac = c - a;
-    let ap = p - a;
-    let d1 = ab.dot(&ap);
-    let d2 = ac.dot(&ap);
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return (*a, Feature::Vertex(0));
-    }
-    let bp = p - b;
-    let d3 = ab.dot(&bp);
-    let d4 = ac.dot(&bp);
-    if d3 >= 0.0 && d4 <= d3 {
-        return (*b, Feature::Vertex(1));
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        let v = d1 / (d1 - d3);
-        return (a + ab * v, Feature::Edge(0));
-    }
-    let cp = p - c;
-    let d5 = ab.dot(&cp);
-    let d6 = ac.dot(&cp);
-    if d6 >= 0.0 && d5 <= d6 {
-        return (*c, Feature::Vertex(2));
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        let w = d2 / (d2 - d6);
-        return (a + ac * w, Feature::Edge(2));
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
-        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        return (b + (c - b) * w, Feature::Edge(1));
-    }
-    let denom = 1.0 / (va + vb + vc);
-    (a + ab * (vb * denom) + ac * (vc * denom), Feature::Face)
-}
-
-/// Closest approach of segment `a + t·e` to a triangle.
-struct SegmentTriangle {
-    /// Squared distance.
-    d2: f64,
-    /// Segment parameter of a closest point.
-    t: f64,
-    /// Where the segment crosses the triangle's plane, if that is on (or within rounding of)
-    /// the triangle.
-    cut: Option<f64>,
-}
-
-fn segment_triangle(a: &Point3<f64>, e: &Vector3<f64>, tri: &[Point3<f64>; 3]) -> SegmentTriangle {
-    let [p0, p1, p2] = tri;
-    let n = (p1 - p0).cross(&(p2 - p0));
-    let d0 = n.dot(&(a - p0));
-    let d1 = d0 + n.dot(e);
-    let mut cut = None;
-    if (d0 > 0.0 && d1 < 0.0) || (d0 < 0.0 && d1 > 0.0) {
-        let t = d0 / (d0 - d1);
-        let x = a + e * t;
-        // Edge functions, scaled by |n|²; a relative slack lets a crossing through a shared
-        // edge or vertex register on both sides instead of on neither.
-        let slack = -1e-9 * n.norm_squared();
-        let edge = |u: &Point3<f64>, v: &Point3<f64>| n.dot(&(v - u).cross(&(x - u)));
-        let (w0, w1, w2) = (edge(p0, p1), edge(p1, p2), edge(p2, p0));
-        if w0 >= slack && w1 >= slack && w2 >= slack {
-            cut = Some(t);
-            if w0 >= 0.0 && w1 >= 0.0 && w2 >= 0.0 {
-                return SegmentTriangle { d2: 0.0, t, cut };
-            }
-        }
-    }
-    // No crossing: a closest pair has an endpoint of the segment or a point on an edge.
-    let mut best = SegmentTriangle {
-        d2: f64::INFINITY,
-        t: 0.0,
-        cut,
-    };
-    let b = a + e;
-    for (t, p) in [(0.0, a), (1.0, &b)] {
-        let (q, _) = closest_point_triangle(p, p0, p1, p2);
-        let d2 = (p - q).norm_squared();
-        if d2 < best.d2 {
-            best.d2 = d2;
-            best.t = t;
-        }
-    }
-    for k in 0..3 {
-        let (u, v) = (tri[k], tri[(k + 1) % 3]);
-        let (s, w) = closest_segment_segment(a, e, &u, &(v - u));
-        let d2 = ((a + e * s) - (u + (v - u) * w)).norm_squared();
-        if d2 < best.d2 || (d2 == best.d2 && s < best.t) {
-            best.d2 = d2;
-            best.t = s;
-        }
-    }
-    best
 }
