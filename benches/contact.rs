@@ -63,16 +63,8 @@ fn bench_contact(c: &mut Criterion) {
         .map(|p| p + Vector3::new(0.0, 1.0, 0.5))
         .collect();
     let zones = [
-        ClampZone {
-            end: GuideEnd::Start,
-            link: link_3,
-            length_m: 0.03,
-        },
-        ClampZone {
-            end: GuideEnd::End,
-            link: link_4,
-            length_m: 0.03,
-        },
+        ClampZone::of_length(GuideEnd::Start, link_3, 0.03, PITCH_M),
+        ClampZone::of_length(GuideEnd::End, link_4, 0.03, PITCH_M),
     ];
     for (name, nodes) in [("near", &near), ("inside", &inside), ("far", &far)] {
         let found = min_clearance(&obstacles, &poses, nodes, RADIUS_M, &[]).expect("valid");

@@ -35,10 +35,7 @@ fn bench_motion_test(c: &mut Criterion) {
         full.samples()[..keep].to_vec(),
     )
     .expect("truncated motion");
-    let path = CablePath {
-        lengths: vec![54, 20, 40, 20],
-        configurations: vec![5, 1, 1, 2, 0],
-    };
+    let path = CablePath::through_every_guide(vec![54, 20, 40, 20], vec![5, 1, 1, 2, 0]);
     let mut group = c.benchmark_group("motion_test");
     group
         .sample_size(10)

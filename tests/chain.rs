@@ -118,10 +118,7 @@ fn outputs(search: &ChainSearch, guides: usize) -> (Option<CablePath>, u128, Vec
     let used: Vec<Vec<usize>> = (0..guides).map(|g| search.used_configurations(g)).collect();
     let mut all: Vec<CablePath> = search.k_best().collect();
     // Append the used configurations as a pseudo-path so one equality covers them too.
-    all.push(CablePath {
-        lengths: Vec::new(),
-        configurations: used.concat(),
-    });
+    all.push(CablePath::through_every_guide(Vec::new(), used.concat()));
     (search.shortest(), search.chain_count(), all)
 }
 
@@ -432,4 +429,156 @@ fn large_instance_count_and_first_chains() {
         .filter_map(|(_, pvs)| CablePath::from_pvs(pvs))
         .collect();
     assert_eq!(first, expected);
+}
+
+/// A random graph with skip pieces: guides 0…G, the consecutive pieces (g, g + 1) and some
+/// that jump over one or two guides, each with random PVs.
+/// Configuration counts per guide, each piece's (start, end) guides, each piece's PVs.
+type SkippingInstance = (Vec<usize>, Vec<(usize, usize)>, Vec<Vec<Pv>>);
+
+fn random_skipping_instance(rng: &mut Rng) -> SkippingInstance {
+    let guides = rng.range(3, 6);
+    let config_counts: Vec<usize> = (0..guides).map(|_| rng.range(1, 3)).collect();
+    let mut ends: Vec<(usize, usize)> = (0..guides - 1).map(|g| (g, g + 1)).collect();
+    for a in 0..guides {
+        for b in a + 2..guides.min(a + 4) {
+            if rng.range(0, 2) == 0 {
+                ends.push((a, b));
+            }
+        }
+    }
+    let pieces = ends
+        .iter()
+        .map(|&(a, b)| {
+            (0..rng.range(0, 6))
+                .map(|_| {
+                    let start = rng.range(0, config_counts[a] - 1);
+                    let end = rng.range(0, config_counts[b] - 1);
+                    pv(rng.range(0, 5), start, end)
+                })
+                .collect()
+        })
+        .collect();
+    (config_counts, ends, pieces)
+}
+
+/// Every chain of a graph with skip pieces, by depth-first enumeration of every route of
+/// pieces from guide 0 to the last guide and every agreeing choice of distinct PVs, sorted
+/// by (total length, sequence of (PV, piece)).
+fn brute_force_routes(last: usize, ends: &[(usize, usize)], pieces: &[Vec<Pv>]) -> Vec<CablePath> {
+    fn extend(
+        last: usize,
+        ends: &[(usize, usize)],
+        pieces: &[Vec<BTreeSet<Pv>>],
+        at: (usize, Option<usize>),
+        chain: &mut Vec<(Pv, usize)>,
+        found: &mut Vec<(usize, Vec<(Pv, usize)>)>,
+    ) {
+        let (guide, config) = at;
+        if guide == last {
+            let total = chain.iter().map(|(pv, _)| pv.sub_segments).sum();
+            found.push((total, chain.clone()));
+            return;
+        }
+        for (p, &(a, b)) in ends.iter().enumerate() {
+            if a != guide {
+                continue;
+            }
+            for pv in &pieces[p][0] {
+                if config.is_some_and(|c| c != pv.start) {
+                    continue;
+                }
+                chain.push((*pv, p));
+                extend(last, ends, pieces, (b, Some(pv.end)), chain, found);
+                chain.pop();
+            }
+        }
+    }
+    let distinct: Vec<Vec<BTreeSet<Pv>>> = pieces
+        .iter()
+        .map(|pvs| vec![pvs.iter().copied().collect()])
+        .collect();
+    let mut found = Vec::new();
+    extend(
+        last,
+        ends,
+        &distinct,
+        (0, None),
+        &mut Vec::new(),
+        &mut found,
+    );
+    found.sort();
+    found
+        .iter()
+        .map(|(_, chain)| {
+            let pieces: Vec<(usize, Pv)> = chain.iter().map(|&(pv, p)| (p, pv)).collect();
+            CablePath::from_pieces(&pieces).expect("agreeing pieces")
+        })
+        .collect()
+}
+
+/// With pieces that jump over guides (optional clamps left out), the shortest chain, the
+/// count, every chain in order and the used configurations equal a brute-force enumeration
+/// of every route.
+#[test]
+fn skip_pieces_match_brute_force_over_every_route() {
+    let mut skipping = 0;
+    for seed in 0..300 {
+        let mut rng = Rng(9000 + seed);
+        let (config_counts, ends, pieces) = random_skipping_instance(&mut rng);
+        let expected = brute_force_routes(config_counts.len() - 1, &ends, &pieces);
+        let search = match ChainSearch::over(&config_counts, &ends, &pieces) {
+            Ok(search) => search,
+            Err(e) => panic!("seed {seed}: refused: {e}"),
+        };
+        let context = format!("seed {seed}: {config_counts:?} {ends:?} {pieces:?}");
+        assert_eq!(search.shortest(), expected.first().cloned(), "{context}");
+        assert_eq!(search.chain_count(), expected.len() as u128, "{context}");
+        let all: Vec<CablePath> = search.k_best().collect();
+        assert_eq!(all, expected, "{context}");
+        for g in 0..config_counts.len() {
+            let used: BTreeSet<usize> = expected
+                .iter()
+                .flat_map(|path| {
+                    let guides = std::iter::once(0)
+                        .chain(path.segments.iter().map(|&p| ends[p].1))
+                        .collect::<Vec<_>>();
+                    guides
+                        .into_iter()
+                        .zip(path.configurations.clone())
+                        .filter(move |&(guide, _)| guide == g)
+                        .map(|(_, c)| c)
+                })
+                .collect();
+            let used: Vec<usize> = used.into_iter().collect();
+            assert_eq!(search.used_configurations(g), used, "{context}, guide {g}");
+        }
+        skipping += usize::from(
+            expected
+                .first()
+                .is_some_and(|p| p.segments.len() < config_counts.len() - 1),
+        );
+    }
+    assert!(
+        skipping > 30,
+        "only {skipping} shortest chains skip a guide"
+    );
+}
+
+#[test]
+fn a_skip_piece_must_run_forward_within_the_guides() {
+    let pieces = vec![vec![pv(1, 0, 0)], vec![pv(1, 0, 0)]];
+    for ends in [
+        vec![(0, 1), (1, 1)],
+        vec![(0, 1), (1, 3)],
+        vec![(0, 1), (2, 1)],
+    ] {
+        let error = ChainSearch::over(&[1, 1, 1], &ends, &pieces).expect_err("bad ends");
+        assert!(
+            matches!(error, ChainError::PieceEnds { piece: 1, .. }),
+            "{ends:?}: {error}"
+        );
+    }
+    let error = ChainSearch::over(&[1, 1, 1], &[(0, 2)], &pieces).expect_err("counts");
+    assert_eq!(error, ChainError::PieceCount { ends: 1, pieces: 2 });
 }

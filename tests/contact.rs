@@ -290,11 +290,8 @@ fn clamp_zones_exclude_only_their_own_link_near_their_guide() {
         .expect("valid")
         .expect("checked")
     };
-    let start = |length_m| ClampZone {
-        end: GuideEnd::Start,
-        link: 1,
-        length_m,
-    };
+    // The cable's pitch is 10 mm.
+    let start = |length_m| ClampZone::of_length(GuideEnd::Start, 1, length_m, 0.01);
     let own = Some(&[1usize][..]);
 
     // No zone: the cable lies on its link from the very first sub-segment.
@@ -317,21 +314,13 @@ fn clamp_zones_exclude_only_their_own_link_near_their_guide() {
     assert_eq!((c.link, c.collider, c.sub_segment), (2, 0, 1));
     assert!((c.point_on_link - Point3::new(0.015, 0.0, 0.001)).norm() < TOL);
     // A zone on the other link's guide does not exclude link_1.
-    let other = ClampZone {
-        end: GuideEnd::Start,
-        link: 2,
-        length_m: 0.1,
-    };
+    let other = ClampZone::of_length(GuideEnd::Start, 2, 0.1, 0.01);
     let c = run(&[other], None);
     assert_eq!((c.link, c.sub_segment), (1, 0));
 
     // The same from the end guide: reversed nodes, zones measured from node S.
     let reversed: Vec<_> = nodes.iter().rev().copied().collect();
-    let end = |length_m| ClampZone {
-        end: GuideEnd::End,
-        link: 1,
-        length_m,
-    };
+    let end = |length_m| ClampZone::of_length(GuideEnd::End, 1, length_m, 0.01);
     let run_rev = |zones: &[ClampZone]| {
         min_clearance_to_links(&obstacles, &poses, &reversed, R, zones, &[1])
             .expect("valid")
@@ -350,6 +339,25 @@ fn clamp_zones_exclude_only_their_own_link_near_their_guide() {
     // A zone covering the whole cable leaves nothing to check on that link.
     let none = min_clearance_to_links(&obstacles, &poses, &nodes, R, &[start(1.0)], &[1]);
     assert!(matches!(none, Ok(None)));
+
+    // The zone is a stretch of cable material: the same 30 mm zone on the cable stretched
+    // by 0.1 % or shortened by 0.1 % still covers sub-segments 0–2, so the clearance does
+    // not jump when the cable breathes in a simulation.
+    for factor in [0.999, 1.001] {
+        let scaled: Vec<Point3<f64>> = nodes
+            .iter()
+            .map(|p| Point3::new(p.x * factor, p.y, p.z))
+            .collect();
+        let c = min_clearance_to_links(&obstacles, &poses, &scaled, R, &[start(0.03)], &[1])
+            .expect("valid")
+            .expect("checked");
+        assert_eq!(c.sub_segment, 3, "scaled by {factor}");
+    }
+    let zone = |mm: f64| ClampZone::of_length(GuideEnd::Start, 1, mm * 1e-3, 0.01).sub_segments;
+    assert_eq!(
+        [zone(0.0), zone(20.0), zone(20.5), zone(25.0), zone(-1.0)],
+        [0, 2, 3, 3, 0]
+    );
 }
 
 /// A named cable line (ends in the collider frame) and its expected clearance, if closed-form.
@@ -542,7 +550,7 @@ fn the_reported_link_collider_sub_segment_and_points_are_the_closest() {
         ),
     );
     let obstacles = Obstacles::from_robot(&robot).expect("obstacles");
-    assert_eq!((obstacles.link_count(), obstacles.obstacle_count()), (4, 4));
+    assert_eq!((obstacles.link_count(), obstacles.collider_count()), (4, 4));
     // link_2 turned 90° about z: its second sphere is at (−0.1, 0, 0.3).
     let poses = robot
         .link_poses(&[0.0, std::f64::consts::FRAC_PI_2, 0.0])
@@ -643,11 +651,7 @@ fn invalid_queries_are_refused_and_empty_ones_give_none() {
     let err = min_clearance(&obstacles, &poses, &bad, R, &[]).expect_err("NaN node");
     assert!(err.to_string().contains("node 4"), "{err}");
     assert!(min_clearance(&obstacles, &poses, &nodes, -1.0, &[]).is_err());
-    let zone = ClampZone {
-        end: GuideEnd::Start,
-        link: 7,
-        length_m: 0.01,
-    };
+    let zone = ClampZone::of_length(GuideEnd::Start, 7, 0.01, 0.01);
     assert!(matches!(
         min_clearance(&obstacles, &poses, &nodes, R, &[zone]),
         Err(ContactError::LinkIndex { link: 7, count: 3 })

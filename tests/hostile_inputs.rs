@@ -214,3 +214,72 @@ fn a_report_folder_holding_other_files_is_left_alone() {
     );
     assert_eq!(std::fs::read_to_string(&precious).unwrap(), "years of work");
 }
+
+#[test]
+fn a_collision_mesh_the_tool_does_not_read_is_refused_naming_link_file_and_stl() {
+    let dir = tempfile::tempdir().unwrap();
+    let meshes = dir.path().join("meshes");
+    std::fs::create_dir(&meshes).unwrap();
+    let collada = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<COLLADA \
+                   xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n\
+                   </COLLADA>\n";
+    std::fs::write(meshes.join("arm.dae"), collada).unwrap();
+    std::fs::write(meshes.join("arm"), "no extension").unwrap();
+    // COLLADA under an STL name.
+    std::fs::write(meshes.join("arm.stl"), collada).unwrap();
+    let cases: [(&str, &[&str]); 4] = [
+        (
+            "meshes/arm.dae",
+            &["is a COLLADA (.dae) file", "only STL meshes are supported"],
+        ),
+        (
+            "meshes/arm",
+            &["has no file extension", "only STL meshes are supported"],
+        ),
+        (
+            "meshes/missing.obj",
+            &["Wavefront OBJ", "does not exist", "STL"],
+        ),
+        (
+            "meshes/arm.stl",
+            &[
+                "is not a readable STL file",
+                "COLLADA",
+                "binary or ASCII STL",
+            ],
+        ),
+    ];
+    for (filename, expected) in cases {
+        let urdf = dir.path().join("robot.urdf");
+        let text = format!(
+            "<robot name=\"r\">\n  <link name=\"base\"/>\n  <link name=\"arm\">\n    \
+             <collision><geometry><box size=\"0.1 0.1 0.1\"/></geometry></collision>\n    \
+             <collision><geometry><mesh filename=\"{filename}\"/></geometry></collision>\n  \
+             </link>\n  <joint name=\"j\" type=\"revolute\"><parent link=\"base\"/>\
+             <child link=\"arm\"/><axis xyz=\"0 0 1\"/>\
+             <limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>\n</robot>\n"
+        );
+        std::fs::write(&urdf, text).unwrap();
+        let (code, message) = refusal(&["robot-info", urdf.to_str().unwrap()]);
+        assert_eq!(code, 2, "{filename}: {message}");
+        let place = format!(
+            "{}:3: <link name=\"arm\">: <collision> #2: mesh '{filename}'",
+            urdf.display()
+        );
+        assert!(message.contains(&place), "{filename}: {message}");
+        if !filename.contains("missing") {
+            // The file the URI resolves to.
+            let resolved = dir.path().join(filename);
+            assert!(
+                message.contains(&resolved.display().to_string()),
+                "{filename}: {message}"
+            );
+        }
+        for expected in expected {
+            assert!(
+                message.contains(expected),
+                "{filename}: {expected}: {message}"
+            );
+        }
+    }
+}

@@ -451,6 +451,7 @@ fn worst(value: f64, unit: &'static str, time_s: f64, segment: usize) -> Option<
         unit,
         time_s,
         segment,
+        segment_name: format!("C{}", segment + 1),
         place: Place::default(),
     })
 }
@@ -503,6 +504,7 @@ fn failing_report(limit_mm: f64, constraint: Constraint) -> (MotionTestReport, u
         unit,
         time_s: series_time(i),
         segment: 2,
+        segment_name: "C3".into(),
         place: Place::default(),
     };
     report.passed = false;

@@ -2,11 +2,16 @@
 //! derived from the installed cable's route.
 
 mod common;
+mod reference;
 
 use cable_dict::motion::Motion;
-use cable_dict::robot::Shape;
-use cable_dict::setup::{ConfigurationOrigin, Setup};
-use nalgebra::{Point3, Vector3};
+use cable_dict::pose::Pose;
+use cable_dict::robot::{Robot, Shape};
+use cable_dict::setup::{ConfigurationOrigin, Guide, GuideConfiguration, Setup};
+use cable_dict::sites::reference::AxisRule;
+use cable_dict::sites::{FACING_TOLERANCE_DEG, GeneratedSites, Site, reference_axes};
+use nalgebra::{Matrix3, Point3, SymmetricEigen, Vector3};
+use reference::mesh_solid::ReferenceSolid;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
@@ -108,10 +113,11 @@ fn generated_sites_stand_off_their_link_by_the_cable_radius_plus_the_clamp() {
     }
 }
 
-/// Direction 0° runs along the link's z axis where the surface is parallel to it (the
-/// forearm tube of link_4): the four directions are +z, across, −z, across the other way.
+/// Direction 0° runs along the link's long axis where the surface is parallel to it: on
+/// link_4 (a forearm tube along z with the wrist fork beyond it) that is +z, so on the tube
+/// the four directions are +z, across, −z, across the other way.
 #[test]
-fn directions_are_measured_from_the_links_z_axis() {
+fn directions_are_measured_from_the_links_long_axis() {
     let setup = setup("pick_and_place.toml");
     let g2 = &setup.guides[1];
     let tube_sites: Vec<_> = g2
@@ -486,4 +492,534 @@ fn a_catalogue_too_large_to_search_is_refused_with_its_count() {
         "{message}"
     );
     assert!(message.contains("raise spacing_mm"), "{message}");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Issue 25: a robot-level setup on the real UR5 (STL meshes of several shells each).
+
+/// The UR5 setup of issue 25: sites on forearm_link, wrist_1_link, wrist_2_link (80 mm) and
+/// wrist_3_link, the flange (20 mm).
+fn ur5() -> Setup {
+    Setup::from_file(root().join("tests/data/ur5_sites_setup.toml"))
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Every generated guide of a setup with its sites.
+fn generated(setup: &Setup) -> Vec<(usize, GeneratedSites)> {
+    let sites = setup.generated_sites().unwrap_or_else(|e| panic!("{e}"));
+    sites
+        .into_iter()
+        .enumerate()
+        .filter_map(|(g, s)| s.map(|s| (g, s)))
+        .collect()
+}
+
+/// A mesh collider as the reference reads it from its STL file, with its world pose.
+struct Solid {
+    link: usize,
+    pose: Pose,
+    mesh: ReferenceSolid,
+}
+
+impl Solid {
+    fn local(&self, world: &Point3<f64>) -> [f64; 3] {
+        let p = self.pose.inverse() * world;
+        [p.x, p.y, p.z]
+    }
+}
+
+/// Every collider of the robot at `link_poses`, read by the reference (all UR5 colliders are
+/// meshes in metres).
+fn solids(robot: &Robot, link_poses: &[Pose]) -> Vec<Solid> {
+    let mut all = Vec::new();
+    for (l, link) in robot.links.iter().enumerate() {
+        for collider in &link.colliders {
+            let Shape::Mesh(mesh) = &collider.shape else {
+                panic!("{}: not a mesh", link.name);
+            };
+            all.push(Solid {
+                link: l,
+                pose: link_poses[l] * collider.origin,
+                mesh: ReferenceSolid::from_stl(&mesh.file, 1.0),
+            });
+        }
+    }
+    all
+}
+
+/// Every site of the UR5 setup has its cable axis outside every link's solid (ray parity per
+/// shell, the reference's union) and at least the standoff minus 0.1 mm from every link by
+/// the reference's brute-force distance at the installation pose; the point 0.2 mm above its
+/// surface point is outside every solid too (a surface point inside another shell or link is
+/// no site). The sites are those of the guides' configurations, in their order.
+#[test]
+fn ur5_sites_are_outside_every_link_by_the_reference() {
+    let setup = ur5();
+    let install = setup.installation.as_ref().expect("install pose");
+    let solids = solids(&setup.robot, &install.link_poses);
+    let standoff = 0.004 + 0.008;
+    let (mut checked, mut undecided) = (0, 0);
+    for (g, generated) in generated(&setup) {
+        let guide = &setup.guides[g];
+        for (k, site) in generated.sites.iter().enumerate() {
+            let c = first_configuration(guide, k);
+            assert_eq!(Point3::from(c.pose.translation.vector), site.position);
+            let to_world = install.link_poses[guide.link];
+            let axis = to_world * site.position;
+            let above = to_world * (site.surface_point + 2e-4 * site.normal.into_inner());
+            for solid in &solids {
+                let name = &setup.robot.links[solid.link].name;
+                for (what, p) in [("cable axis", axis), ("surface point + 0.2 mm", above)] {
+                    match solid.mesh.inside(solid.local(&p)) {
+                        Some(inside) => {
+                            assert!(!inside, "{} site {k}: {what} inside {name}", guide.name)
+                        }
+                        None => undecided += 1,
+                    }
+                }
+                let distance = solid.mesh.distance(solid.local(&axis));
+                assert!(
+                    distance >= standoff - 1e-4,
+                    "{} site {k}: {:.2} mm from {name}",
+                    guide.name,
+                    distance * 1e3
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked >= 7 * 60, "{checked} site-link pairs");
+    assert!(
+        undecided * 100 < checked,
+        "{undecided} undecided of {checked}"
+    );
+}
+
+/// The first configuration (direction) of generated site `k` of a guide.
+fn first_configuration(guide: &Guide, k: usize) -> &GuideConfiguration {
+    guide
+        .configurations
+        .iter()
+        .find(|c| matches!(c.origin, ConfigurationOrigin::Generated { site, .. } if site == k))
+        .unwrap_or_else(|| panic!("{}: no configuration of site {k}", guide.name))
+}
+
+/// Pairs of one guide's sites that are of one facing (normals within the tolerance) and
+/// closer than the spacing.
+fn crowded_pairs(sites: &[Site], spacing_m: f64) -> Vec<(usize, usize, f64)> {
+    let facing = FACING_TOLERANCE_DEG.to_radians().cos();
+    let mut pairs = Vec::new();
+    for (i, a) in sites.iter().enumerate() {
+        for (j, b) in sites.iter().enumerate().skip(i + 1) {
+            let distance = (a.surface_point - b.surface_point).norm();
+            if a.normal.dot(&b.normal) >= facing && distance < spacing_m * (1.0 - 1e-9) {
+                pairs.push((i, j, distance));
+            }
+        }
+    }
+    pairs
+}
+
+/// No two sites of one facing on one link are closer than the spacing: on every link of
+/// the UR5 setup and of the bundled Viper setups (boxes and cylinders).
+#[test]
+fn sites_of_one_facing_keep_the_spacing_on_every_link() {
+    let setups = [
+        ur5(),
+        setup("pick_and_place.toml"),
+        setup("inspection.toml"),
+    ];
+    for setup in &setups {
+        for (g, generated) in generated(setup) {
+            let crowded = crowded_pairs(&generated.sites, generated.spec.spacing_m);
+            assert!(
+                crowded.is_empty(),
+                "{} {}: {crowded:?}",
+                setup.source.display(),
+                setup.guides[g].name
+            );
+        }
+    }
+}
+
+/// The UR5 flange face (wrist_3_link, 75 mm across, its outward normal +z of the link) at
+/// 20 mm: its sites are at least 20 mm apart, about one per 20 × 20 mm of its area (the
+/// issue had 42 sites there, the closest pair 2.6 mm apart).
+#[test]
+fn the_ur5_flange_face_keeps_the_spacing() {
+    let setup = ur5();
+    let (_, flange) = generated(&setup)
+        .into_iter()
+        .find(|(g, _)| setup.guides[*g].name == "G4")
+        .expect("G4");
+    let face: Vec<Site> = flange
+        .sites
+        .iter()
+        .filter(|s| s.normal.z > 0.999)
+        .cloned()
+        .collect();
+    for (i, a) in face.iter().enumerate() {
+        for b in &face[i + 1..] {
+            let distance = (a.surface_point - b.surface_point).norm();
+            assert!(distance >= 0.02 - 1e-9, "{:.1} mm", distance * 1e3);
+        }
+    }
+    let area_per_site = PI * 0.0375 * 0.0375 / (0.02 * 0.02);
+    assert!(
+        (0.6 * area_per_site..=1.2 * area_per_site).contains(&(face.len() as f64)),
+        "{} face sites for {area_per_site:.1} spacing² of face",
+        face.len()
+    );
+}
+
+/// Generating the sites again gives the same sites in the same order, on one thread or
+/// several.
+#[test]
+fn sites_are_the_same_at_any_thread_count() {
+    let load = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap_or_else(|e| panic!("{e}"));
+        pool.install(|| {
+            let setup = ur5();
+            (setup.content_hash, generated(&setup))
+        })
+    };
+    let one = load(1);
+    assert_eq!(one, load(1));
+    assert_eq!(one, load(3));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The reference axis cable directions are measured from.
+
+/// A robot of one link with the given `<collision>` elements (and a second, empty link).
+fn one_link_robot(collisions: &str) -> Robot {
+    let urdf = format!(
+        r#"<robot name="probe">
+  <link name="base">{collisions}</link>
+  <link name="arm"/>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="arm"/><origin xyz="0 0 2"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/>
+  </joint>
+</robot>"#
+    );
+    Robot::from_urdf_str(&urdf, &root().join("probe.urdf")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn collision(xyz: &str, rpy: &str, geometry: &str) -> String {
+    format!(
+        r#"<collision><origin xyz="{xyz}" rpy="{rpy}"/><geometry>{geometry}</geometry></collision>"#
+    )
+}
+
+/// A long box along x has reference +x (from the link origin toward its centre); a disc-like
+/// cylinder has its axis (here tilted to y, its centroid on −y); a cube falls back to the
+/// link's z axis.
+#[test]
+fn the_reference_is_the_long_axis_the_disc_axis_or_z() {
+    let long = one_link_robot(&collision(
+        "0.1 0 0",
+        "0 0 0",
+        r#"<box size="0.4 0.1 0.08"/>"#,
+    ));
+    let axes = reference_axes(&long, 0, None);
+    assert_eq!(axes.rule, AxisRule::LongAxis);
+    assert!(
+        (axes.primary.into_inner() - Vector3::x()).norm() < 1e-9,
+        "{axes:?}"
+    );
+    let disc = one_link_robot(&collision(
+        "0 -0.02 0",
+        "1.5707963267948966 0 0",
+        r#"<cylinder radius="0.06" length="0.02"/>"#,
+    ));
+    let axes = reference_axes(&disc, 0, None);
+    assert_eq!(axes.rule, AxisRule::DiscAxis);
+    assert!(
+        (axes.primary.into_inner() + Vector3::y()).norm() < 1e-9,
+        "{axes:?}"
+    );
+    let cube = one_link_robot(&collision(
+        "0.3 0.2 0.1",
+        "0 0 0",
+        r#"<box size="0.1 0.1 0.1"/>"#,
+    ));
+    let axes = reference_axes(&cube, 0, None);
+    assert_eq!(axes.rule, AxisRule::LinkZ);
+    assert_eq!(axes.primary.into_inner(), Vector3::z());
+}
+
+/// A setup on a probe robot with one generator on `base`.
+fn probe_setup(collisions: &str, sites: &str) -> Result<Setup, String> {
+    let urdf = format!(
+        r#"<robot name="probe">
+  <link name="base">{collisions}</link>
+  <link name="arm"/>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="arm"/><origin xyz="0 0 2"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/>
+  </joint>
+</robot>"#
+    );
+    let cable = std::fs::read_to_string(root().join("cables/smc_le_cp_3.toml"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let text = format!(
+        r#"robot = "probe.urdf"
+cable = "cable.toml"
+gravity_m_s2 = [0.0, 0.0, -9.81]
+max_guides_per_link = 1
+install_joints_deg = [0.0]
+
+{LIMITS}
+[[guides]]
+name = "G1"
+link = "base"
+sites = {sites}
+
+[[guides]]
+name = "G2"
+link = "arm"
+fixed = {{ name = "end", position_mm = [0.0, 0.0, 0.0], rpy_deg = [0.0, 0.0, 0.0] }}
+
+[[segments]]
+from = "G1"
+to = "G2"
+lengths = {{ min = 30, max = 40, step = 1, allow_zero = false }}
+"#
+    );
+    Setup::from_texts(
+        &text,
+        &root().join("tests/data/probe.toml"),
+        &urdf,
+        &cable,
+        &[],
+    )
+    .map_err(|e| e.to_string())
+}
+
+/// `reference_axis` replaces the long axis: on a long box along x, `"z"` makes 0° run along
+/// z on the ±y faces, and `[0, 1, 1]` along (0, 1, 1) projected; a non-axis is refused with
+/// the key.
+#[test]
+fn a_reference_axis_in_the_setup_overrides_the_long_axis() {
+    let boxed = collision("0 0 0", "0 0 0", r#"<box size="0.4 0.1 0.08"/>"#);
+    let direction_at = |setup: &Setup, normal: Vector3<f64>| {
+        let c = setup.guides[0]
+            .configurations
+            .iter()
+            .find(|c| {
+                (c.pose.rotation * Vector3::x() - normal).norm() < 1e-9 && c.name.ends_with(" 0°")
+            })
+            .expect("a site on that face");
+        c.pose.rotation * Vector3::z()
+    };
+    let generator = |axis: &str| {
+        format!(
+            "{{ spacing_mm = 50.0, clamp_height_mm = 8.0, directions_deg = [0.0, 90.0]{axis} }}"
+        )
+    };
+    let long = probe_setup(&boxed, &generator("")).unwrap_or_else(|e| panic!("{e}"));
+    assert!((direction_at(&long, Vector3::y()) - Vector3::x()).norm() < 1e-9);
+    let z = probe_setup(&boxed, &generator(", reference_axis = \"z\""))
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!((direction_at(&z, Vector3::y()) - Vector3::z()).norm() < 1e-9);
+    // On the +z face the normal is the reference itself: the second axis, x (largest spread
+    // across z).
+    assert!((direction_at(&z, Vector3::z()) - Vector3::x()).norm() < 1e-9);
+    let tilted = probe_setup(&boxed, &generator(", reference_axis = [0, 1, 1]"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        (direction_at(&tilted, Vector3::x()) - Vector3::new(0.0, 1.0, 1.0).normalize()).norm()
+            < 1e-9
+    );
+    for bad in ["\"w\"", "[0, 0, 0]", "[1, 2]", "3"] {
+        let message = probe_setup(&boxed, &generator(&format!(", reference_axis = {bad}")))
+            .err()
+            .unwrap_or_else(|| panic!("{bad} accepted"));
+        assert!(
+            message.contains("guides[0].sites.reference_axis"),
+            "{message}"
+        );
+    }
+}
+
+/// The covariance of a link's surface (link frame), computed here from the reference's
+/// triangles with the edge-midpoint rule (exact for quadratics), and its centroid.
+fn surface_spread(solids: &[&Solid]) -> (Matrix3<f64>, Vector3<f64>) {
+    let (mut area, mut first, mut second) = (0.0, Vector3::zeros(), Matrix3::zeros());
+    for solid in solids {
+        for t in solid.mesh.triangles() {
+            let [a, b, c] = t.map(|v| solid.pose * Point3::from(v));
+            let weight = 0.5 * (b - a).cross(&(c - a)).norm();
+            for m in [a + (b - a) * 0.5, b + (c - b) * 0.5, c + (a - c) * 0.5] {
+                area += weight / 3.0;
+                first += weight / 3.0 * m.coords;
+                second += weight / 3.0 * m.coords * m.coords.transpose();
+            }
+        }
+    }
+    let centroid = first / area;
+    (second / area - centroid * centroid.transpose(), centroid)
+}
+
+/// On the UR5's wrist_1 and wrist_2 links the link's z axis is the joint axis, across the
+/// arm; the reference is the housing's long axis, which runs along the arm toward the next
+/// joint (its origin lies on that axis), not about the flange. It is the axis of largest
+/// spread of the link's surface computed here from the STL triangles, ≥ 1.2× the next,
+/// pointing toward the centroid; and a site on the housing's side has direction 0° along it.
+/// The flange (wrist_3_link) is disc-like: its reference is the flange axis, its z.
+#[test]
+fn on_the_ur5_wrist_links_the_reference_runs_along_the_arm() {
+    let setup = ur5();
+    let robot = &setup.robot;
+    let at_origin = vec![Pose::identity(); robot.links.len()];
+    let solids = solids(robot, &at_origin);
+    for (g, generated) in generated(&setup) {
+        let guide = &setup.guides[g];
+        let name = &robot.links[guide.link].name;
+        let own: Vec<&Solid> = solids.iter().filter(|s| s.link == guide.link).collect();
+        let (spread, centroid) = surface_spread(&own);
+        let eigen = SymmetricEigen::new(spread);
+        let mut order = [0, 1, 2];
+        order.sort_by(|&i, &j| eigen.eigenvalues[j].total_cmp(&eigen.eigenvalues[i]));
+        let value = |k: usize| eigen.eigenvalues[order[k]];
+        let vector = |k: usize| eigen.eigenvectors.column(order[k]).into_owned();
+        let axes = reference_axes(robot, guide.link, None);
+        let primary = axes.primary.into_inner();
+        match name.as_str() {
+            "wrist_1_link" | "wrist_2_link" => {
+                assert!(
+                    value(0) >= 1.2 * value(1),
+                    "{name}: {:?}",
+                    eigen.eigenvalues
+                );
+                assert_eq!(axes.rule, AxisRule::LongAxis);
+                assert!(primary.dot(&vector(0)).abs() > 0.9999, "{name}: {primary}");
+                assert!(primary.dot(&centroid) > 0.0, "{name}: {primary} {centroid}");
+                let child = robot
+                    .joints
+                    .iter()
+                    .find(|j| j.parent_link == guide.link)
+                    .expect("a child joint");
+                let towards_next = child.origin.translation.vector.normalize();
+                assert!(
+                    primary.dot(&towards_next).abs() > 0.99,
+                    "{name}: {primary} {towards_next}"
+                );
+                assert!(primary.z.abs() < 0.1, "{name}: {primary}");
+                let mut along = 0;
+                for (k, site) in generated.sites.iter().enumerate() {
+                    if site.normal.dot(&primary).abs() > 0.5 {
+                        continue;
+                    }
+                    let zero = first_configuration(guide, k);
+                    let cable = zero.pose.rotation * Vector3::z();
+                    assert!(cable.dot(&primary) > 0.85, "{name} site {k}: {cable}");
+                    along += 1;
+                }
+                assert!(along >= 3, "{name}: {along} sites on the housing's side");
+            }
+            "wrist_3_link" => {
+                assert_eq!(
+                    axes.rule,
+                    AxisRule::DiscAxis,
+                    "{name}: {:?}",
+                    eigen.eigenvalues
+                );
+                assert!(primary.dot(&vector(2)).abs() > 0.9999, "{name}: {primary}");
+                assert!(primary.z.abs() > 0.999, "{name}: {primary}");
+            }
+            "forearm_link" => {
+                assert_eq!(axes.rule, AxisRule::LongAxis);
+                assert!(primary.dot(&vector(0)).abs() > 0.9999, "{name}: {primary}");
+            }
+            other => panic!("{other}"),
+        }
+    }
+}
+
+/// `cable-dict sites --json` on the UR5 setup: every guide; per generated site its link,
+/// collider, cable axis point 12 mm out from its surface point along its unit normal, its
+/// reference axis and per direction the angle, a unit vector in the surface that is the
+/// reference turned by that angle about the normal, and the index and name of the
+/// configuration the search uses; the hand-written connector with its position and rpy, and
+/// its coincident copy.
+#[test]
+fn the_sites_command_writes_every_site_as_json() {
+    let setup = ur5();
+    let output = common::run(&["sites", "tests/data/ur5_sites_setup.toml", "--json"]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let json: serde_json::Value =
+        serde_json::from_slice(&output.stdout).unwrap_or_else(|e| panic!("{e}"));
+    let vector = |v: &serde_json::Value| {
+        let a: Vec<f64> = v
+            .as_array()
+            .expect("array")
+            .iter()
+            .map(|x| x.as_f64().expect("number"))
+            .collect();
+        Vector3::new(a[0], a[1], a[2])
+    };
+    let guides = json["guides"].as_array().expect("guides");
+    assert_eq!(guides.len(), setup.guides.len());
+    let generated = generated(&setup);
+    for (guide, report) in setup.guides.iter().zip(guides) {
+        assert_eq!(report["name"], guide.name.as_str());
+        let configurations = report["configurations"].as_array().expect("configurations");
+        assert_eq!(configurations.len(), guide.configurations.len());
+        let Some((_, sites)) = generated
+            .iter()
+            .find(|(g, _)| setup.guides[*g].name == guide.name)
+        else {
+            assert_eq!(report["kind"], "fixed");
+            let c = &configurations[0];
+            assert_eq!(vector(&c["position_mm"]), Vector3::new(50.0, 0.0, 60.0));
+            assert_eq!(vector(&c["rpy_deg"]), Vector3::zeros());
+            assert_eq!(c["origin"], "declared");
+            continue;
+        };
+        assert_eq!(report["kind"], "sites");
+        let listed = report["sites"].as_array().expect("sites");
+        assert_eq!(listed.len(), sites.sites.len());
+        for (k, (site, expected)) in listed.iter().zip(&sites.sites).enumerate() {
+            assert_eq!(site["site"], k);
+            assert_eq!(site["link"], setup.robot.links[expected.link].name.as_str());
+            assert_eq!(site["collider"], expected.collider);
+            let n = vector(&site["normal"]);
+            let axis = vector(&site["reference_axis"]);
+            assert!((n.norm() - 1.0).abs() < 1e-6 && (axis.norm() - 1.0).abs() < 1e-6);
+            let position = vector(&site["position_mm"]);
+            let out = position - vector(&site["surface_point_mm"]);
+            assert!((out - 12.0 * n).norm() < 1e-6, "{k}: {out}");
+            let zero = (axis - axis.dot(&n) * n).normalize();
+            for d in site["directions"].as_array().expect("directions") {
+                let angle = d["angle_deg"].as_f64().expect("angle").to_radians();
+                let direction = vector(&d["direction"]);
+                let turned = angle.cos() * zero + angle.sin() * n.cross(&zero);
+                assert!(
+                    (direction - turned).norm() < 1e-6,
+                    "{k}: {direction} {turned}"
+                );
+                let c = &configurations[d["configuration"].as_u64().expect("index") as usize];
+                assert_eq!(c["name"], d["name"]);
+                assert_eq!(c["site"], k);
+                assert!((vector(&c["position_mm"]) - position).norm() < 1e-6);
+            }
+        }
+    }
+    let g4 = &guides[3]["configurations"];
+    let copy = g4
+        .as_array()
+        .expect("configurations")
+        .iter()
+        .find(|c| c["origin"] == "coincident")
+        .expect("the connector's copy");
+    assert_eq!(copy["copy_of"], "G5/connector");
 }

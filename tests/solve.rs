@@ -85,8 +85,8 @@ fn the_result_json_has_the_documented_fields_with_the_setups_values() {
     let written = [
         ("left", [-90.0, 82.0, 100.0], [0.0, 0.0, 90.0]),
         ("right", [-90.0, -82.0, 100.0], [0.0, 0.0, -90.0]),
-        ("left z250", [0.0, 72.0, 250.0], [0.0, 0.0, 90.0]),
-        ("right z250", [0.0, -72.0, 250.0], [0.0, 0.0, -90.0]),
+        ("left z250", [0.0, 80.0, 250.0], [0.0, 0.0, 90.0]),
+        ("right z250", [0.0, -80.0, 250.0], [0.0, 0.0, -90.0]),
     ];
     let guides = result["ecpv"]["guides"].as_array().expect("guides");
     assert_eq!(guides.len(), 2);

@@ -389,3 +389,68 @@ fn a_urdf_that_uses_xacro_is_still_refused_naming_the_file_and_the_element() {
         "{message}"
     );
 }
+
+/// A URDF of a base and one moving link `arm` whose collision is the mesh `filename`.
+fn one_mesh_urdf(filename: &str) -> String {
+    format!(
+        "<robot name=\"r\">\n  <link name=\"base\"/>\n  <link name=\"arm\">\n    \
+         <collision><geometry><mesh filename=\"{filename}\"/></geometry></collision>\n  \
+         </link>\n  <joint name=\"j\" type=\"revolute\"><parent link=\"base\"/>\
+         <child link=\"arm\"/><axis xyz=\"0 0 1\"/>\
+         <limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>\n</robot>\n"
+    )
+}
+
+/// The four triangles of the tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1) (metres).
+const TETRAHEDRON: [[[f32; 3]; 3]; 4] = [
+    [[0., 0., 0.], [0., 1., 0.], [1., 0., 0.]],
+    [[0., 0., 0.], [1., 0., 0.], [0., 0., 1.]],
+    [[0., 0., 0.], [0., 0., 1.], [0., 1., 0.]],
+    [[1., 0., 0.], [0., 1., 0.], [0., 0., 1.]],
+];
+
+#[test]
+fn stl_files_some_exporters_write_load_a_binary_one_headed_solid_and_an_ascii_one_unnamed() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    // Binary, its 80-byte header beginning with "solid" and a line break (as some CAD
+    // exporters write it): taken for ASCII by its first line, it is binary by its length.
+    let mut binary = b"solid part\n".to_vec();
+    binary.resize(80, b' ');
+    binary.extend_from_slice(&(TETRAHEDRON.len() as u32).to_le_bytes());
+    for triangle in TETRAHEDRON {
+        binary.extend_from_slice(&[0u8; 12]);
+        for v in triangle.iter().flatten() {
+            binary.extend_from_slice(&v.to_le_bytes());
+        }
+        binary.extend_from_slice(&[0u8; 2]);
+    }
+    std::fs::write(dir.path().join("binary.stl"), &binary).expect("written");
+    // ASCII whose "solid" line has no name.
+    let mut ascii = String::from("solid\n");
+    for triangle in TETRAHEDRON {
+        ascii += "facet normal 0 0 0\nouter loop\n";
+        for v in triangle {
+            ascii += &format!("vertex {} {} {}\n", v[0], v[1], v[2]);
+        }
+        ascii += "endloop\nendfacet\n";
+    }
+    ascii += "endsolid\n";
+    std::fs::write(dir.path().join("ascii.stl"), ascii).expect("written");
+    for file in ["binary.stl", "ascii.stl"] {
+        let urdf = dir.path().join("robot.urdf");
+        std::fs::write(&urdf, one_mesh_urdf(file)).expect("written");
+        let robot = Robot::from_urdf_file(&urdf).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let Shape::Mesh(mesh) = &robot.links[robot.link_index("arm").unwrap()].colliders[0].shape
+        else {
+            panic!("{file}: not a mesh")
+        };
+        assert_eq!(mesh.triangles.len(), 4, "{file}");
+        assert_eq!(mesh.vertices.len(), 4, "{file}");
+        let shells = mesh.shells();
+        assert_eq!(shells.shells.len(), 1, "{file}");
+        assert!(
+            (shells.shells[0].volume_m3 - 1.0 / 6.0).abs() < 1e-12,
+            "{file}"
+        );
+    }
+}

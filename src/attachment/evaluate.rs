@@ -11,7 +11,7 @@ use crate::rigid_chain::{
 use crate::setup::{Setup, Thresholds};
 use crate::statics::{FarEnd, RodParameters, SolverOptions, StaticSolver, continuation};
 use crate::stress::contact::{
-    ClampZone, ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
+    ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
 };
 use crate::stress::{BendRadius, min_bend_radius, stretch};
 use nalgebra::{Point3, Vector3};
@@ -826,8 +826,8 @@ impl<'a> Evaluator<'a> {
         let pitch = setup.cable.sub_segment_pitch_m;
         let (a, b) = setup.segment_guides(m);
         let zones = [
-            clamp_zone(GuideEnd::Start, setup.guides[a].link, setup),
-            clamp_zone(GuideEnd::End, setup.guides[b].link, setup),
+            setup.clamp_zone(GuideEnd::Start, setup.guides[a].link),
+            setup.clamp_zone(GuideEnd::End, setup.guides[b].link),
         ];
         let radius = 0.5 * setup.cable.diameter_m;
         let clearance = match scene.clearance_link {
@@ -999,14 +999,6 @@ fn static_margin_note(limits: &Thresholds) -> String {
         )
     } else {
         String::new()
-    }
-}
-
-fn clamp_zone(end: GuideEnd, link: usize, setup: &Setup) -> ClampZone {
-    ClampZone {
-        end,
-        link,
-        length_m: setup.thresholds.clamp_zone_m,
     }
 }
 

@@ -86,7 +86,7 @@ pub fn check_size(setup: &Setup) -> Result<(), String> {
     let listed: Vec<String> = per_segment
         .iter()
         .enumerate()
-        .map(|(m, n)| format!("C{} {n}", m + 1))
+        .map(|(m, n)| format!("{} {n}", setup.segment_name(m)))
         .collect();
     Err(format!(
         "{total} candidate pieces ({}), at most {MAX_CANDIDATE_PIECES} (about 150 bytes and \
@@ -141,8 +141,9 @@ pub fn attachment_test_with(
         });
     }
     for m in (0..count).filter(|&m| !setup.is_intra_link(m)) {
-        let allowed_start = neighbour_configurations(&sets, m.checked_sub(1), |pv| pv.end);
-        let allowed_end = neighbour_configurations(&sets, Some(m + 1), |pv| pv.start);
+        let (a, b) = setup.segment_guides(m);
+        let allowed_start = neighbour_configurations(&sets, setup.segments_into(a), |pv| pv.end);
+        let allowed_end = neighbour_configurations(&sets, setup.segments_from(b), |pv| pv.start);
         let d0 = admissible_pvs(setup, m);
         let d0_count = d0.len();
         let candidates: Vec<Pv> = d0
@@ -282,15 +283,22 @@ fn looked_up(
         .collect()
 }
 
-/// The configurations of the shared guide used by the D2 of neighbour `n`, when `n` is an
-/// intra-link segment already tested; `None` (no pruning) otherwise.
+/// The configurations of the shared guide used by the D2 of its neighbours (the segments
+/// that end, or start, there), when every neighbour has been tested already; `None` (no
+/// pruning) when one has not, or there is none.
 fn neighbour_configurations(
     sets: &[Option<SegmentSets>],
-    n: Option<usize>,
+    neighbours: impl Iterator<Item = usize>,
     shared: impl Fn(&Pv) -> usize,
 ) -> Option<BTreeSet<usize>> {
-    let tested = sets.get(n?)?.as_ref()?;
-    Some(tested.d2.iter().map(shared).collect())
+    let mut used = BTreeSet::new();
+    let mut any = false;
+    for n in neighbours {
+        let tested = sets.get(n)?.as_ref()?;
+        used.extend(tested.d2.iter().map(&shared));
+        any = true;
+    }
+    any.then_some(used)
 }
 
 /// D0 of segment `m`: every admissible PV, sorted.
@@ -337,7 +345,10 @@ fn test_segment(
             .push(pv.sub_segments);
     }
     let pairs: Vec<((usize, usize), Vec<usize>)> = pairs.into_iter().collect();
-    progress::begin(&format!("attachment C{}", m + 1), needed.len() as u64);
+    progress::begin(
+        &format!("attachment {}", setup.segment_name(m)),
+        needed.len() as u64,
+    );
     let results: Vec<Vec<Option<Miss>>> = pairs
         .par_iter()
         .map(|(guides, lengths)| {

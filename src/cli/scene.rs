@@ -40,10 +40,12 @@ struct PathArgs {
     /// that passed, else the last one tried.
     #[arg(long, value_name = "RANK", requires = "result")]
     candidate: Option<usize>,
-    /// The path's segment lengths, C1 first (mm).
+    /// The path's piece lengths from the base end (mm): one per segment, or one per span
+    /// where optional guides are left out.
     #[arg(long, value_name = "L1,L2,…", requires = "configurations", allow_hyphen_values = true, value_parser = args::number_list_arg)]
     lengths_mm: Option<args::NumberList>,
-    /// The path's guide configurations by name, G1 first (comma-separated).
+    /// The path's guide configurations by name, G1 first (comma-separated); `-` for an
+    /// optional guide the path leaves out.
     #[arg(
         long,
         value_name = "NAME,NAME,…",
@@ -158,8 +160,15 @@ fn path_from_result(
                 ))
             })
     };
+    let lengths = indices("lengths")?;
+    // Results written before spans existed list no segments: one per guide pair.
+    let segments = match chosen["path"].get("segments") {
+        Some(_) => indices("segments")?,
+        None => (0..lengths.len()).collect(),
+    };
     let path = CablePath {
-        lengths: indices("lengths")?,
+        segments,
+        lengths,
         configurations: indices("configurations")?,
     };
     let name = format!(
@@ -194,52 +203,69 @@ fn path_from_names(
             })
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let configurations = setup
-        .guides
-        .iter()
-        .zip(names)
-        .map(|(guide, name)| {
-            guide.configuration_index(name).ok_or_else(|| {
-                let known: Vec<&str> = guide
-                    .configurations
-                    .iter()
-                    .map(|c| c.name.as_str())
-                    .collect();
-                Failure::input(anyhow::anyhow!(
-                    "--configurations: {} has no configuration '{name}' (it has {})",
-                    guide.name,
-                    known.join(", ")
-                ))
-            })
+    if names.len() != setup.guides.len() {
+        return Err(Failure::input(anyhow::anyhow!(
+            "--configurations: {} names for the {} guides of {} (`-` for a guide left out)",
+            names.len(),
+            setup.guides.len(),
+            setup.source.display()
+        )));
+    }
+    let mut mounted: Vec<(usize, usize)> = Vec::new();
+    for (g, (guide, name)) in setup.guides.iter().zip(names).enumerate() {
+        if name == "-" {
+            if !guide.optional {
+                return Err(Failure::input(anyhow::anyhow!(
+                    "--configurations: {} is not optional, it needs a configuration",
+                    guide.name
+                )));
+            }
+            continue;
+        }
+        let c = guide.configuration_index(name).ok_or_else(|| {
+            let known: Vec<&str> = guide
+                .configurations
+                .iter()
+                .map(|c| c.name.as_str())
+                .collect();
+            Failure::input(anyhow::anyhow!(
+                "--configurations: {} has no configuration '{name}' (it has {})",
+                guide.name,
+                known.join(", ")
+            ))
+        })?;
+        mounted.push((g, c));
+    }
+    let segments = mounted
+        .windows(2)
+        .map(|pair| {
+            let ends = (pair[0].0, pair[1].0);
+            (0..setup.segment_count())
+                .find(|&m| setup.segment_guides(m) == ends)
+                .ok_or_else(|| {
+                    Failure::input(anyhow::anyhow!(
+                        "--configurations: no segment joins {} and {}",
+                        setup.guides[ends.0].name,
+                        setup.guides[ends.1].name
+                    ))
+                })
         })
         .collect::<Result<Vec<_>, _>>()?;
     Ok(CablePath {
+        segments,
         lengths,
-        configurations,
+        configurations: mounted.into_iter().map(|(_, c)| c).collect(),
     })
 }
 
 /// Refuses a path whose counts or indices do not fit the setup.
 fn check_path(setup: &Setup, path: &CablePath) -> Result<(), Failure> {
-    let (segments, guides) = (setup.segment_count(), setup.guides.len());
-    if path.lengths.len() != segments || path.configurations.len() != guides {
-        return Err(Failure::input(anyhow::anyhow!(
-            "the path has {} lengths and {} configurations; {} has {segments} segments and {guides} guides",
-            path.lengths.len(),
-            path.configurations.len(),
+    path.check(setup).map_err(|e| {
+        Failure::input(anyhow::anyhow!(
+            "the path does not fit {}: {e}",
             setup.source.display()
-        )));
-    }
-    for (guide, &c) in setup.guides.iter().zip(&path.configurations) {
-        if c >= guide.configurations.len() {
-            return Err(Failure::input(anyhow::anyhow!(
-                "configuration {c} of {} does not exist (it has {})",
-                guide.name,
-                guide.configurations.len()
-            )));
-        }
-    }
-    Ok(())
+        ))
+    })
 }
 
 /// The joint vector (rad / m) of --joints-deg or of --motion at --time-s (its first sample
@@ -277,8 +303,8 @@ fn path_checks(
 ) -> Result<String, Failure> {
     let evaluator = Evaluator::new(setup, ConnectMethod::Hermite).map_err(Failure::input)?;
     let mut text = String::new();
-    for m in 0..path.segment_count() {
-        let check = evaluator.check_at(m, &path.pv(m), link_poses);
+    for (i, (m, pv)) in path.pieces().enumerate() {
+        let check = evaluator.check_at(m, &pv, link_poses);
         let verdict = match (&check.rejection, &check.detail) {
             (None, _) => "holds the limits at this pose".to_string(),
             (Some(r), Some(detail)) => format!("{}: {detail}", r.name()),
@@ -296,9 +322,9 @@ fn path_checks(
         });
         let _ = writeln!(
             text,
-            "C{} {:.0} mm: {verdict}{metrics}",
-            m + 1,
-            path.lengths[m] as f64 * setup.cable.sub_segment_pitch_m * 1e3
+            "{} {:.0} mm: {verdict}{metrics}",
+            setup.segment_name(m),
+            path.lengths[i] as f64 * setup.cable.sub_segment_pitch_m * 1e3
         );
     }
     Ok(text)

@@ -229,7 +229,7 @@ pub fn run_critical(args: CriticalArgs) -> Result<(), Failure> {
         .map(|m| {
             let (guides, links) = guide_names(&setup, m);
             SegmentPosesJson {
-                segment: format!("C{}", m + 1),
+                segment: setup.segment_name(m),
                 guides,
                 links,
                 intra_link: setup.is_intra_link(m),

@@ -83,13 +83,16 @@ fn as_setup(
         body,
         link_in_body: Pose::identity(),
         fixed: false,
+        optional: false,
         configurations: clamps.clone(),
     };
     let mut catalogue = setup.clone();
     catalogue.guides = vec![guide("from"), guide("to")];
     let mut segment = setup.segments[0].clone();
+    segment.guides = (0, 1);
     segment.lengths = lengths.to_vec();
     segment.intra_link = true;
     catalogue.segments = vec![segment];
+    catalogue.declared_segments = 1;
     catalogue
 }

@@ -35,7 +35,9 @@ pub const ALIGNMENT: usize = 16;
 /// 4: lengths continued in fixed blocks ([`crate::attachment::CONTINUATION_BLOCK`]).
 /// 5: a cable leaving and re-entering one clamp place the same way is refused (a full loop
 /// from a clamp into itself), not solved ([`crate::geometry::COINCIDENT_GUIDES_M`]).
-pub const PHYSICS_VERSION: u32 = 5;
+/// 6: clamp zones counted in the cable's sub-segments, not along its current shape
+/// ([`crate::stress::ClampZone`]); a mesh is the union of its shells' solids.
+pub const PHYSICS_VERSION: u32 = 6;
 /// Largest header accepted when decoding (the URDF text dominates it).
 pub const HEADER_LIMIT: usize = 64 << 20;
 

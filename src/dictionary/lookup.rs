@@ -285,7 +285,8 @@ impl Dictionary {
     ) -> Result<StoredSegment, DictionaryError> {
         let (a, b) = setup.segment_guides(m);
         let link = &setup.robot.links[setup.guides[a].body].name;
-        let fail = |detail: String| mismatch(self, format!("segment C{}: {detail}", m + 1));
+        let fail =
+            |detail: String| mismatch(self, format!("segment {}: {detail}", setup.segment_name(m)));
         let slot = self
             .link_slot(link)
             .ok_or_else(|| fail(format!("{link} has no clamp catalogue in the dictionary")))?;

@@ -1,9 +1,8 @@
 //! The contact metric of the motion test: the exact signed clearance of each simulated
 //! segment to the robot's links, clamp zones excluded ([`min_clearance`]).
 
-use super::MotionTestError;
 use crate::pose::Pose;
-use crate::stress::{ClampZone, Clearance, Obstacles, min_clearance};
+use crate::stress::{ClampZone, Clearance, ContactError, Obstacles, min_clearance};
 use nalgebra::Point3;
 
 /// The robot's obstacles and each simulated segment's clamp zones, prepared once.
@@ -28,22 +27,14 @@ impl ClearanceQuery {
         &self.zones
     }
 
-    /// Lowest clearance of simulated segment `j` (setup index `segment`, for messages) with
-    /// `nodes` at `time_s`, the links at `link_poses`.
+    /// Lowest clearance of simulated segment `j` with `nodes`, the links at `link_poses`.
     pub fn segment(
         &self,
         link_poses: &[Pose],
         j: usize,
         nodes: &[Point3<f64>],
-        (segment, time_s): (usize, f64),
-    ) -> Result<Option<Clearance>, MotionTestError> {
+    ) -> Result<Option<Clearance>, ContactError> {
         let zones = self.zones.get(j).map(Vec::as_slice).unwrap_or_default();
-        min_clearance(&self.obstacles, link_poses, nodes, self.radius_m, zones).map_err(|source| {
-            MotionTestError::Clearance {
-                segment,
-                time_s,
-                source,
-            }
-        })
+        min_clearance(&self.obstacles, link_poses, nodes, self.radius_m, zones)
     }
 }

@@ -10,7 +10,7 @@ use crate::pose::Pose;
 use crate::rigid_chain::{CableWorld, ContactSummary, DynamicsError, SegmentShape};
 use crate::setup::Setup;
 use crate::statics::{Equilibrium, FarEnd, RodParameters};
-use crate::stress::{ClampZone, GuideEnd, zone_sub_segments};
+use crate::stress::{ClampZone, GuideEnd};
 use nalgebra::Point3;
 use rayon::prelude::*;
 
@@ -50,7 +50,8 @@ pub(super) enum Cable {
     },
     RigidChain {
         world: Box<CableWorld>,
-        zone_m: f64,
+        /// Sub-segments at each end left out of the contact force summary.
+        zone_sub_segments: usize,
     },
 }
 
@@ -103,7 +104,7 @@ impl Cable {
                     .map_err(MotionTestError::Dynamics)?;
                 Ok(Ok(Cable::RigidChain {
                     world,
-                    zone_m: setup.thresholds.clamp_zone_m,
+                    zone_sub_segments: setup.clamp_zone(GuideEnd::Start, 0).sub_segments,
                 }))
             }
         }
@@ -151,7 +152,10 @@ impl Cable {
                     })
                     .collect()))
             }
-            Cable::RigidChain { world, zone_m } => {
+            Cable::RigidChain {
+                world,
+                zone_sub_segments,
+            } => {
                 world
                     .move_guides(guides)
                     .and_then(|()| world.move_robot(links))
@@ -173,7 +177,7 @@ impl Cable {
                     .map(|(j, rec)| {
                         let nodes = world.segment_nodes(j).unwrap_or_default();
                         SegmentState {
-                            contact: force_outside_zones(&rec.contact, &nodes, *zone_m),
+                            contact: force_outside_zones(&rec.contact, *zone_sub_segments),
                             max_joint_gap_m: rec.max_joint_gap_m,
                             nodes,
                         }
@@ -207,7 +211,7 @@ fn rigid_world(
     for (j, (zones, eq)) in zones.iter().zip(shapes).enumerate() {
         let sub_segments = eq.nodes.len() - 1;
         for zone in zones {
-            let n = zone_sub_segments(&eq.nodes, zone.end, zone.length_m);
+            let n = zone.sub_segments.min(sub_segments);
             let range = match zone.end {
                 GuideEnd::Start => 0..n,
                 GuideEnd::End => sub_segments - n..sub_segments,
@@ -218,22 +222,16 @@ fn rigid_world(
     Ok(world)
 }
 
-/// The sub-segment with the largest contact force among those outside `zone_m` of cable
-/// (arc length along `nodes`) from either guide; `None` without any force there. Inside a
+/// The sub-segment with the largest contact force among those outside the first and last
+/// `zone_sub_segments`; `None` without any force there. Inside a
 /// zone the cable legitimately touches its guide's link, and the summary does not say which
 /// link a force comes from (only for the most loaded sub-segment), so zones are left out
 /// whole; the clearance still checks them against the other links.
-fn force_outside_zones(
-    contact: &ContactSummary,
-    nodes: &[Point3<f64>],
-    zone_m: f64,
-) -> Option<ForceAt> {
+fn force_outside_zones(contact: &ContactSummary, zone_sub_segments: usize) -> Option<ForceAt> {
     let forces = &contact.per_sub_segment_n;
     let (first, last) = (
-        zone_sub_segments(nodes, GuideEnd::Start, zone_m),
-        forces
-            .len()
-            .saturating_sub(zone_sub_segments(nodes, GuideEnd::End, zone_m)),
+        zone_sub_segments,
+        forces.len().saturating_sub(zone_sub_segments),
     );
     let (sub_segment, force_n) = (first..last)
         .filter_map(|k| forces.get(k).map(|&f| (k, f)))

@@ -40,8 +40,8 @@ pub(super) fn equilibria(
             failure: Failure {
                 cause,
                 reason: format!(
-                    "segment C{} at the first pose (t = {time_s} s): {problem}",
-                    segment + 1
+                    "segment {} at the first pose (t = {time_s} s): {problem}",
+                    setup.segment_name(segment)
                 ),
                 segment: Some(segment),
             },
@@ -50,7 +50,10 @@ pub(super) fn equilibria(
         let geometry = match connect(start, end, planned.sub_segments, pitch, &sag) {
             Ok(geometry) => geometry,
             Err(source @ ConnectError::InvalidInput { .. }) => {
-                return Err(MotionTestError::Geometry { segment, source });
+                return Err(MotionTestError::Geometry {
+                    segment: setup.segment_name(segment),
+                    source,
+                });
             }
             Err(
                 e @ ConnectError::TooShort {
@@ -83,7 +86,10 @@ pub(super) fn equilibria(
         match solved {
             Ok(equilibrium) => shapes.push(equilibrium),
             Err(source @ StaticsError::InvalidInput { .. }) => {
-                return Err(MotionTestError::Statics { segment, source });
+                return Err(MotionTestError::Statics {
+                    segment: setup.segment_name(segment),
+                    source,
+                });
             }
             Err(e @ StaticsError::NotConverged { .. }) => {
                 let problem = format!("no static equilibrium: {e}");

@@ -28,7 +28,8 @@
 //!    nodes exactly as the attachment test measures a static shape:
 //!    - *contact*: the exact signed clearance to every link collider
 //!      ([`min_clearance`](crate::stress::min_clearance), f64, capsules of the cable radius),
-//!      excluding `thresholds.clamp_zone_m` of cable at each guide against the guide's own
+//!      excluding `thresholds.clamp_zone_m` of cable at each guide (counted in the cable's
+//!      sub-segments, see [`ClampZone`](crate::stress::ClampZone)) against the guide's own
 //!      link (and the link that one is fixed to); violated when below
 //!      `thresholds.contact_clearance_m` (≥ 0: the first touch already fails, so the
 //!      implicit engine needs no contact forces); with the rigid chain also rapier's contact
@@ -99,7 +100,7 @@ pub fn run(
     plan::check_motion(setup, motion)?;
     let plan = Plan::new(setup, path)?;
     let obstacles = Obstacles::from_robot(&setup.robot).map_err(MotionTestError::Obstacles)?;
-    let zones = plan.clamp_zones(setup, setup.thresholds.clamp_zone_m);
+    let zones = plan.clamp_zones(setup);
     let context = Context {
         setup,
         plan,

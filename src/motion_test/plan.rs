@@ -1,5 +1,6 @@
-//! The simulated cable of a path: its non-zero segments, with the guides of every S = 0
-//! segment merged into one clamp.
+//! The simulated cable of a path: its non-zero segments (declared ones, and spans where
+//! optional clamps are left out), with the guides of every S = 0 segment merged into one
+//! clamp.
 
 use super::MotionTestError;
 use crate::motion::Motion;
@@ -8,7 +9,8 @@ use crate::pose::Pose;
 use crate::setup::{Setup, turn_about_axis};
 use crate::stress::{ClampZone, GuideEnd};
 
-/// One simulated segment: a segment of the setup with S > 0.
+/// One simulated segment: a segment of the setup (declared, or a span over optional guides)
+/// with S > 0.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct PlannedSegment {
     /// Index into the setup's segments.
@@ -32,22 +34,19 @@ pub(super) struct Plan {
 }
 
 impl Plan {
-    /// Checks `path` against `setup` and drops its S = 0 segments: their two guides coincide,
-    /// so the segments on either side share that clamp.
+    /// Checks `path` against `setup` ([`CablePath::check`]) and drops its S = 0 segments:
+    /// their two guides coincide, so the segments on either side share that clamp.
     pub fn new(setup: &Setup, path: &CablePath) -> Result<Plan, MotionTestError> {
-        check_counts(setup, path)?;
+        path.check(setup)?;
         let mut segments = Vec::new();
-        for m in 0..setup.segment_count() {
-            check_admissible(setup, path, m)?;
-            let sub_segments = path.lengths[m];
-            if sub_segments > 0 {
-                segments.push(PlannedSegment {
-                    setup_index: m,
-                    sub_segments,
-                    start: (m, path.configurations[m]),
-                    end: (m + 1, path.configurations[m + 1]),
-                });
-            }
+        for (m, pv) in path.pieces().filter(|(_, pv)| pv.sub_segments > 0) {
+            let (a, b) = setup.segment_guides(m);
+            segments.push(PlannedSegment {
+                setup_index: m,
+                sub_segments: pv.sub_segments,
+                start: (a, pv.start),
+                end: (b, pv.end),
+            });
         }
         if segments.is_empty() {
             return Err(MotionTestError::NoCable);
@@ -79,21 +78,20 @@ impl Plan {
             .collect()
     }
 
-    /// Clamp zones of every simulated segment: `length_m` of cable at each end is not checked
-    /// against the link its guide is screwed onto, nor against the link that one is fixed to
-    /// (a guide on a fixed child frame such as a flange sits on the parent's collider).
-    pub fn clamp_zones(&self, setup: &Setup, length_m: f64) -> Vec<Vec<ClampZone>> {
+    /// Clamp zones of every simulated segment: the setup's clamp zone at each end is not
+    /// checked against the link its guide is screwed onto, nor against the link that one is
+    /// fixed to (a guide on a fixed child frame such as a flange sits on the parent's
+    /// collider).
+    pub fn clamp_zones(&self, setup: &Setup) -> Vec<Vec<ClampZone>> {
         let zones = |g: usize, end: GuideEnd| {
             let guide = &setup.guides[g];
             let mut links = vec![guide.link];
             if guide.body != guide.link {
                 links.push(guide.body);
             }
-            links.into_iter().map(move |link| ClampZone {
-                end,
-                link,
-                length_m,
-            })
+            links
+                .into_iter()
+                .map(move |link| setup.clamp_zone(end, link))
         };
         self.segments
             .iter()
@@ -104,61 +102,6 @@ impl Plan {
             })
             .collect()
     }
-}
-
-/// One length per segment, one configuration per guide, each in range.
-fn check_counts(setup: &Setup, path: &CablePath) -> Result<(), MotionTestError> {
-    if path.lengths.len() != setup.segment_count() {
-        return Err(MotionTestError::SegmentCount {
-            expected: setup.segment_count(),
-            got: path.lengths.len(),
-        });
-    }
-    if path.configurations.len() != setup.guides.len() {
-        return Err(MotionTestError::GuideCount {
-            expected: setup.guides.len(),
-            got: path.configurations.len(),
-        });
-    }
-    for (g, (&index, guide)) in path.configurations.iter().zip(&setup.guides).enumerate() {
-        if index >= guide.configurations.len() {
-            return Err(MotionTestError::ConfigurationIndex {
-                guide: g,
-                name: guide.name.clone(),
-                index,
-                count: guide.configurations.len(),
-            });
-        }
-    }
-    Ok(())
-}
-
-/// S = 0 exactly when the segment's two configurations are one place
-/// ([`Setup::is_admissible`]). Lengths outside the segment's candidate list are accepted:
-/// the simulation does not need them to be candidates.
-fn check_admissible(setup: &Setup, path: &CablePath, m: usize) -> Result<(), MotionTestError> {
-    let pv = path.pv(m);
-    if setup.is_admissible(m, pv.sub_segments, pv.start, pv.end) {
-        return Ok(());
-    }
-    let (a, b) = setup.segment_guides(m);
-    let names = format!(
-        "{} \"{}\" and {} \"{}\"",
-        setup.guides[a].name,
-        setup.guides[a].configurations[pv.start].name,
-        setup.guides[b].name,
-        setup.guides[b].configurations[pv.end].name
-    );
-    let problem = if pv.sub_segments == 0 {
-        format!("length 0 needs coincident guides, but {names} are different places")
-    } else {
-        format!("{names} coincide (one clamp), so the length must be 0")
-    };
-    Err(MotionTestError::Inadmissible {
-        segment: m,
-        sub_segments: pv.sub_segments,
-        problem,
-    })
 }
 
 /// The motion must drive the setup's robot: same actuated joints, same order.

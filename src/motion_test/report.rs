@@ -108,6 +108,8 @@ pub struct Worst {
     pub time_s: f64,
     /// Index into the setup's segments (C1 = 0).
     pub segment: usize,
+    /// The segment's name (`C2`, or `C2–C3` for a span over optional guides).
+    pub segment_name: String,
     /// Where on the segment.
     pub place: Place,
 }
@@ -142,6 +144,8 @@ pub struct Violation {
     pub time_s: f64,
     /// Index into the setup's segments (C1 = 0).
     pub segment: usize,
+    /// The segment's name (`C2`, or `C2–C3` for a span over optional guides).
+    pub segment_name: String,
     /// Where on the segment.
     pub place: Place,
 }
@@ -240,10 +244,8 @@ impl fmt::Display for Violation {
         };
         write!(
             f,
-            "{}: {what} {value} {op} {limit} at t = {:.2} s, segment C{}",
-            self.constraint,
-            self.time_s,
-            self.segment + 1
+            "{}: {what} {value} {op} {limit} at t = {:.2} s, segment {}",
+            self.constraint, self.time_s, self.segment_name
         )?;
         let place = self.place.to_string();
         if !place.is_empty() {
@@ -274,9 +276,8 @@ impl MotionTestReport {
                     _ => format!("{:.4}", w.value * scale),
                 };
                 format!(
-                    "{label} {value} {unit} at t = {:.2} s, C{}{place}",
-                    w.time_s,
-                    w.segment + 1,
+                    "{label} {value} {unit} at t = {:.2} s, {}{place}",
+                    w.time_s, w.segment_name,
                 )
             }
             None => format!("{label} -"),

@@ -133,9 +133,13 @@ impl Context<'_> {
             let natural = planned.sub_segments as f64 * pitch;
             measures.push(SegmentMeasure {
                 segment,
-                clearance: self
-                    .clearance
-                    .segment(links, j, &nodes, (segment, time_s))?,
+                clearance: self.clearance.segment(links, j, &nodes).map_err(|source| {
+                    MotionTestError::Clearance {
+                        segment: self.setup.segment_name(segment),
+                        time_s,
+                        source,
+                    }
+                })?,
                 stretch: stretch(&nodes, natural),
                 bend: min_bend_radius(&nodes, &axis(&guides[j]), &axis(&guides[j + 1]), pitch),
                 contact: state.contact,
@@ -149,7 +153,9 @@ impl Context<'_> {
     /// The failure of a diverging simulation at `time_s`, naming the setup's segment.
     fn diverged(&self, simulated: Option<usize>, detail: &str, time_s: f64) -> Failure {
         let segment = simulated.and_then(|j| self.plan.segments.get(j).map(|s| s.setup_index));
-        let place = segment.map_or(String::new(), |m| format!("segment C{}: ", m + 1));
+        let place = segment.map_or(String::new(), |m| {
+            format!("segment {}: ", self.setup.segment_name(m))
+        });
         Failure {
             cause: FailureCause::Diverged,
             reason: format!("simulation diverged at t = {time_s:.4} s ({place}{detail})"),

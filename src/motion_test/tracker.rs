@@ -181,6 +181,7 @@ impl<'a> Tracker<'a> {
             unit: "m",
             time_s,
             segment,
+            segment_name: self.setup.segment_name(segment),
             place,
         };
         if c.clearance_m < t.contact_clearance_m {
@@ -195,6 +196,7 @@ impl<'a> Tracker<'a> {
             unit: "1",
             time_s,
             segment,
+            segment_name: self.setup.segment_name(segment),
             place: Place::default(),
         };
         if stretch > t.stretch {
@@ -214,6 +216,7 @@ impl<'a> Tracker<'a> {
             unit: "m",
             time_s,
             segment,
+            segment_name: self.setup.segment_name(segment),
             place,
         };
         if m.bend.radius_m < t.min_bend_radius_m {
@@ -245,6 +248,7 @@ impl<'a> Tracker<'a> {
             unit: "N",
             time_s,
             segment,
+            segment_name: self.setup.segment_name(segment),
             place,
         };
         if self.force_is_violation && contact.force_n > 0.0 {
@@ -263,6 +267,7 @@ impl<'a> Tracker<'a> {
                 unit: at.unit,
                 time_s: at.time_s,
                 segment: at.segment,
+                segment_name: at.segment_name.clone(),
                 place: at.place.clone(),
             });
         }

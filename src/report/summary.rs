@@ -116,6 +116,13 @@ fn path_tables(md: &mut String, path: &Ecpv, total_mm: f64) {
             ],
         );
     }
+    if !path.left_out.is_empty() {
+        let _ = writeln!(
+            md,
+            "\nOptional clamps this path leaves out: {}.",
+            path.left_out.join(", ")
+        );
+    }
 }
 
 fn triple(v: &[f64; 3]) -> String {
@@ -286,7 +293,7 @@ fn place(w: &Worst) -> String {
     } else {
         format!(", {at}")
     };
-    format!("t = {:.2} s, C{}{at}", w.time_s, w.segment + 1)
+    format!("t = {:.2} s, {}{at}", w.time_s, w.segment_name)
 }
 
 fn candidates_table(md: &mut String, report: &SolveReport) {

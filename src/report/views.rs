@@ -42,26 +42,28 @@ fn static_cable(evaluator: &Evaluator<'_>, path: &CablePath, link_poses: &[Pose]
         lines: Vec::new(),
         problems: Vec::new(),
     };
-    for m in 0..path.segment_count() {
-        match evaluator.equilibrium_nodes(m, &path.pv(m), link_poses) {
+    let setup = evaluator.setup();
+    for (m, pv) in path.pieces() {
+        match evaluator.equilibrium_nodes(m, &pv, link_poses) {
             Ok(nodes) if nodes.len() >= 2 => cable.lines.push(CableLine {
-                name: segment_name(m),
+                name: setup.segment_name(m),
                 nodes_m: nodes,
             }),
             Ok(_) => {}
-            Err(why) => cable.problems.push(format!("{}: {why}", segment_name(m))),
+            Err(why) => cable
+                .problems
+                .push(format!("{}: {why}", setup.segment_name(m))),
         }
     }
     cable
 }
 
-/// The guides of `path`, each at the configuration the path uses.
+/// The clamps of `path`, each at the configuration the path uses.
 pub fn guide_marks(setup: &Setup, path: &CablePath) -> Vec<GuideMark> {
-    setup
-        .guides
-        .iter()
+    path.guides(setup)
         .zip(&path.configurations)
-        .map(|(guide, &c)| {
+        .map(|(g, &c)| {
+            let guide = &setup.guides[g];
             let configuration = &guide.configurations[c];
             GuideMark {
                 name: format!("{} ({})", guide.name, configuration.name),
@@ -208,7 +210,7 @@ fn piece_scene(
         .ok()
         .filter(|nodes| nodes.len() >= 2)
         .map(|nodes| CableLine {
-            name: format!("{} nearest miss", segment_name(m)),
+            name: format!("{} nearest miss", evaluator.setup().segment_name(m)),
             nodes_m: nodes,
         });
     Ok(PoseScene {
@@ -244,13 +246,17 @@ fn motion_test_animation(
 fn frame_scene(setup: &Setup, motion: &Motion, frame: &ShapeFrame) -> Result<PoseScene, ViewError> {
     Ok(PoseScene {
         link_poses: setup.robot.link_poses(&motion.joints_at(frame.time_s))?,
-        cable: frame.segments.iter().map(simulated_line).collect(),
+        cable: frame
+            .segments
+            .iter()
+            .map(|s| simulated_line(setup, s))
+            .collect(),
     })
 }
 
-fn simulated_line(segment: &SegmentNodes) -> CableLine {
+fn simulated_line(setup: &Setup, segment: &SegmentNodes) -> CableLine {
     CableLine {
-        name: segment_name(segment.segment),
+        name: setup.segment_name(segment.segment),
         nodes_m: segment.nodes_m.iter().map(|&p| Point3::from(p)).collect(),
     }
 }
@@ -325,9 +331,4 @@ fn lay_out_snapshots(spec: &mut SceneSpec<'_>) {
         let centred = column as f64 - 0.5 * (SNAPSHOTS_PER_ROW - 1) as f64;
         snapshot.offset_m = Vector3::new(centred * spacing, (row + 1) as f64 * spacing, 0.0);
     }
-}
-
-/// `C1` for segment 0.
-fn segment_name(m: usize) -> String {
-    format!("C{}", m + 1)
 }

@@ -130,6 +130,7 @@ mod tests {
                 radius_m: 0.05,
                 length_m: 0.4,
             },
+            attached: None,
         };
         let built = collider_builder(&collider, 0, 0.5).unwrap().build();
         let aabb = built.compute_aabb();

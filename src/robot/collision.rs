@@ -12,6 +12,9 @@ pub struct Collider {
     pub origin: Pose,
     /// The shape in its own frame.
     pub shape: Shape,
+    /// `None` for the URDF's own collision shapes; the name of the body a setup attached to
+    /// the link (a tool, a camera: an obstacle for the cable, not a surface for clamps).
+    pub attached: Option<String>,
 }
 
 /// A collision shape in its own frame, URDF conventions (metres).
@@ -121,6 +124,7 @@ pub(super) fn colliders_of_link(
             Ok(Collider {
                 origin: pose_from_xyz_rpy(xyz, rpy),
                 shape,
+                attached: None,
             })
         })
         .collect()

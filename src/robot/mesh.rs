@@ -36,9 +36,7 @@ pub(super) fn load_mesh(
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("stl"));
     if !is_stl {
-        return Err(format!(
-            "mesh '{uri}': only STL meshes are supported; convert it or use primitive shapes"
-        ));
+        return Err(unsupported_format(uri, source));
     }
     let (file, bytes) = match source {
         MeshSource::Files(base_dir) => {
@@ -54,9 +52,9 @@ pub(super) fn load_mesh(
             (PathBuf::from(uri), embedded.bytes.clone())
         }
     };
-    let stl = stl_io::read_stl(&mut std::io::Cursor::new(&bytes)).map_err(|e| {
+    let stl = read_stl(&bytes).map_err(|why| {
         format!(
-            "mesh '{uri}': {} is not a readable STL file: {e}",
+            "mesh '{uri}': {} is not a readable STL file: {why}; {READABLE}",
             file.display()
         )
     })?;
@@ -97,12 +95,106 @@ pub(super) fn load_mesh(
     ))
 }
 
+/// The mesh formats the tool reads, for error messages.
+const READABLE: &str = "only STL meshes are supported (binary or ASCII STL, file extension \
+     .stl in any case): convert the mesh to STL or use primitive shapes";
+
+/// Why the mesh `uri` is not read: its extension is not `.stl`. Names the format when the
+/// extension tells it and the file the URI resolves to when it can be found.
+fn unsupported_format(uri: &str, source: MeshSource<'_>) -> String {
+    let extension = Path::new(uri)
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let format = match extension.as_deref() {
+        Some("dae") => "COLLADA (.dae)".to_string(),
+        Some("obj") => "Wavefront OBJ (.obj)".to_string(),
+        Some("ply") => "PLY (.ply)".to_string(),
+        Some("gltf" | "glb") => "glTF".to_string(),
+        Some(other) => format!(".{other}"),
+        None => String::new(),
+    };
+    let what = if format.is_empty() {
+        "has no file extension, so it is not read as STL".to_string()
+    } else {
+        format!("is a {format} file, which the tool does not read")
+    };
+    let (found, missing) = match source {
+        MeshSource::Files(base_dir) => match locate(uri, base_dir) {
+            Ok(file) => (format!(" ({})", file.display()), String::new()),
+            Err(problem) => (String::new(), format!(" (besides, {problem})")),
+        },
+        MeshSource::Embedded(_) => (String::new(), String::new()),
+    };
+    format!("mesh '{uri}'{found} {what}; {READABLE}{missing}")
+}
+
+/// Reads binary or ASCII STL bytes; the error says what the bytes are instead.
+///
+/// Bytes whose length is exactly 84 + 50 n, n being the triangle count in bytes 80..84, are
+/// binary STL even when their header begins with "solid" (some exporters write that, and
+/// `stl_io` would take them for ASCII); an ASCII file whose first line is a bare "solid" (no
+/// name) is read as ASCII (`stl_io` wants "solid " and would take it for binary).
+fn read_stl(bytes: &[u8]) -> Result<stl_io::IndexedMesh, String> {
+    let announced = (bytes.len() >= 84)
+        .then(|| u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize);
+    let binary_size = announced.and_then(|n| n.checked_mul(50)?.checked_add(84));
+    let is_binary = binary_size == Some(bytes.len());
+    let read = |bytes: &[u8]| stl_io::read_stl(&mut std::io::Cursor::new(bytes));
+    let result = if is_binary && bytes.starts_with(b"solid") {
+        let mut copy = bytes.to_vec();
+        copy[..80].fill(0);
+        read(&copy)
+    } else if !is_binary && (bytes.starts_with(b"solid\n") || bytes.starts_with(b"solid\r")) {
+        let mut copy = b"solid ".to_vec();
+        copy.extend_from_slice(&bytes[5..]);
+        read(&copy)
+    } else {
+        read(bytes)
+    };
+    result.map_err(|e| {
+        let text = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+        let text = &text[text.iter().take_while(|b| b.is_ascii_whitespace()).count()..];
+        let head = &text[..text.len().min(1024)];
+        let contains = |word: &[u8]| head.windows(word.len()).any(|w| w == word);
+        if bytes.is_empty() {
+            "the file is empty".to_string()
+        } else if contains(b"<COLLADA") {
+            "it is a COLLADA (XML) file, not STL".to_string()
+        } else if text.starts_with(b"<") {
+            "it is XML text, not STL".to_string()
+        } else if text.starts_with(b"ply") {
+            "it is a PLY file, not STL".to_string()
+        } else if text.starts_with(b"glTF") || text.starts_with(b"{") {
+            "it looks like glTF, not STL".to_string()
+        } else if text.starts_with(b"solid") {
+            format!("as ASCII STL: {e}")
+        } else if let (Some(n), Some(size)) = (announced, binary_size) {
+            format!(
+                "as binary STL its header announces {n} triangles ({size} bytes), but the file \
+                 has {} bytes; as ASCII STL it does not begin with \"solid\"",
+                bytes.len()
+            )
+        } else {
+            format!(
+                "{} bytes are too few for binary STL (84 bytes before the first triangle) and \
+                 as ASCII STL it does not begin with \"solid\"",
+                bytes.len()
+            )
+        }
+    })
+}
+
 /// Resolves a URDF mesh filename to a file that exists.
 ///
 /// `package://name/rest` is found by walking up from `base_dir` for a folder that is called
 /// `name` or contains a folder `name`, so a robot description works from a plain checkout
 /// without a ROS installation.
 fn resolve_mesh_uri(uri: &str, base_dir: &Path) -> Result<PathBuf, String> {
+    locate(uri, base_dir).map_err(|problem| format!("mesh '{uri}': {problem}"))
+}
+
+/// [`resolve_mesh_uri`] without the URI in front of the problem.
+fn locate(uri: &str, base_dir: &Path) -> Result<PathBuf, String> {
     let path = if let Some(rest) = uri.strip_prefix("package://") {
         let (package, relative) = rest.split_once('/').unwrap_or((rest, ""));
         // Walking up needs the absolute folder: the parent of `robot.urdf` is "" and that of
@@ -113,7 +205,7 @@ fn resolve_mesh_uri(uri: &str, base_dir: &Path) -> Result<PathBuf, String> {
         find_package(package, &start)
             .ok_or_else(|| {
                 format!(
-                    "mesh '{uri}': no folder named '{package}' found in {} or any folder above it",
+                    "no folder named '{package}' found in {} or any folder above it",
                     start.display()
                 )
             })?
@@ -126,10 +218,7 @@ fn resolve_mesh_uri(uri: &str, base_dir: &Path) -> Result<PathBuf, String> {
     if path.is_file() {
         Ok(path)
     } else {
-        Err(format!(
-            "mesh '{uri}': file {} does not exist",
-            path.display()
-        ))
+        Err(format!("file {} does not exist", path.display()))
     }
 }
 

@@ -222,6 +222,37 @@ impl Robot {
         (link, link_in_body)
     }
 
+    /// Adds `shape`, posed at `origin` in `link`'s frame, to the link's colliders as the body
+    /// `name` a setup attaches (a tool, a camera): an obstacle like the link's own shapes.
+    pub fn attach_body(&mut self, link: usize, name: &str, origin: Pose, shape: Shape) {
+        self.links[link].colliders.push(Collider {
+            origin,
+            shape,
+            attached: Some(name.to_string()),
+        });
+    }
+
+    /// Reads the STL mesh `uri` of an attached body, scaled: a file relative to `folder`, or
+    /// the file of that URI among `embedded` (a dictionary's). The file joins
+    /// [`Robot::mesh_files`] so that a dictionary embeds it with the URDF's meshes.
+    pub fn read_body_mesh(
+        &mut self,
+        uri: &str,
+        scale: Vector3<f64>,
+        folder: &std::path::Path,
+        embedded: Option<&[MeshFile]>,
+    ) -> Result<TriMesh, String> {
+        let source = match embedded {
+            Some(files) => mesh::MeshSource::Embedded(files),
+            None => mesh::MeshSource::Files(folder),
+        };
+        let (mesh, file) = mesh::load_mesh(uri, scale, source)?;
+        if !self.mesh_files.iter().any(|f| f.uri == file.uri) {
+            self.mesh_files.push(file);
+        }
+        Ok(mesh)
+    }
+
     /// Index into the joint vector of the actuated joint called `name`.
     pub fn actuated_index(&self, name: &str) -> Option<usize> {
         self.actuated

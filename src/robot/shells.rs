@@ -30,6 +30,20 @@ pub enum ShellKind {
     Loose,
 }
 
+/// Whether a shell's surface passes through itself.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SelfCrossing {
+    /// Not looked for: the shell is loose anyway (open, non-manifold, no consistent winding or
+    /// zero-area triangles).
+    NotChecked,
+    /// No two triangles that share no corner cross.
+    No,
+    /// Two triangles that share no corner cross.
+    Yes,
+    /// More candidate pairs than the work limit: given up, the shell treated as loose.
+    GivenUp,
+}
+
 /// One connected piece of a mesh.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Shell {
@@ -50,9 +64,8 @@ pub struct Shell {
     pub inverted: bool,
     /// Triangles of zero area (three distinct but collinear corners).
     pub zero_area_triangles: usize,
-    /// Whether two of its triangles that share no corner cross each other; `None` when the
-    /// check was given up (more candidate pairs than the work limit).
-    pub self_intersecting: Option<bool>,
+    /// Whether two of its triangles that share no corner cross each other.
+    pub self_crossing: SelfCrossing,
     /// Enclosed volume after winding (m³); meaningful for closed shells.
     pub volume_m3: f64,
     /// Bounding box of its vertices (m).
@@ -89,13 +102,15 @@ impl MeshShells {
         let open = self.open_edges();
         let non_orientable = self.shells.iter().filter(|s| s.non_orientable).count();
         let mut reasons = Vec::new();
-        if open > 0 {
-            reasons.push(format!("{open} open edges (holes in its surface)"));
+        match open {
+            0 => {}
+            1 => reasons.push("an open edge (a hole in its surface)".into()),
+            n => reasons.push(format!("{n} open edges (holes in its surface)")),
         }
-        if non_orientable > 0 {
-            reasons.push(format!(
-                "{non_orientable} shells with no consistent winding"
-            ));
+        match non_orientable {
+            0 => {}
+            1 => reasons.push("a shell with no consistent winding".into()),
+            n => reasons.push(format!("{n} shells with no consistent winding")),
         }
         (!reasons.is_empty()).then(|| reasons.join(" and "))
     }
@@ -237,17 +252,12 @@ fn shell(vertices: &[Point3<f64>], all: &[[u32; 3]], members: &[usize]) -> Shell
             is_zero_area(&a, &b, &c)
         })
         .count();
-    let self_intersecting = if closed && !winding.conflict && zero_area_triangles == 0 {
+    let self_crossing = if closed && !winding.conflict && zero_area_triangles == 0 {
         crossing_pair(vertices, &triangles)
     } else {
-        None
+        SelfCrossing::NotChecked
     };
-    let kind = if closed
-        && !winding.conflict
-        && zero_area_triangles == 0
-        && self_intersecting == Some(false)
-        && volume > 0.0
-    {
+    let kind = if self_crossing == SelfCrossing::No && volume > 0.0 {
         ShellKind::Closed
     } else {
         ShellKind::Loose
@@ -261,7 +271,7 @@ fn shell(vertices: &[Point3<f64>], all: &[[u32; 3]], members: &[usize]) -> Shell
         non_orientable: winding.conflict,
         inverted,
         zero_area_triangles,
-        self_intersecting,
+        self_crossing,
         volume_m3: volume,
         min,
         max,
@@ -357,12 +367,11 @@ fn bounds(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> (Point3<f64>, Poi
 }
 
 /// Whether two triangles that share no corner cross each other: a sweep over the
-/// triangles' extents along the longest axis, then an exact-sign test on each overlapping
-/// pair. `None` when the candidate pairs exceed the work limit.
-fn crossing_pair(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> Option<bool> {
+/// triangles' extents along the axis where they overlap least, then an exact-sign test on
+/// each overlapping pair; given up when the candidate pairs exceed the work limit.
+fn crossing_pair(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> SelfCrossing {
     let corners = |t: &[u32; 3]| t.map(|v| vertices[v as usize]);
     let (lo, hi) = bounds(vertices, triangles);
-    let axis = (hi - lo).imax();
     let boxes: Vec<(Vector3<f64>, Vector3<f64>)> = triangles
         .iter()
         .map(|t| {
@@ -373,6 +382,14 @@ fn crossing_pair(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> Option<boo
             )
         })
         .collect();
+    // The triangles' summed extent along an axis over the mesh's: how many neighbours a
+    // triangle meets in a sweep along it (a tube's long triangles all overlap along its axis).
+    let crowding = |k: usize| {
+        boxes.iter().map(|(a, b)| b[k] - a[k]).sum::<f64>() / (hi[k] - lo[k]).max(f64::MIN_POSITIVE)
+    };
+    let axis = (0..3)
+        .min_by(|&i, &j| crowding(i).total_cmp(&crowding(j)))
+        .unwrap_or(0);
     let mut order: Vec<usize> = (0..triangles.len()).collect();
     order.sort_unstable_by(|&i, &j| {
         boxes[i].0[axis]
@@ -394,14 +411,14 @@ fn crossing_pair(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> Option<boo
             }
             pairs += 1;
             if pairs > budget {
-                return None;
+                return SelfCrossing::GivenUp;
             }
             if triangles_cross(&corners(ti), &corners(tj)) {
-                return Some(true);
+                return SelfCrossing::Yes;
             }
         }
     }
-    Some(false)
+    SelfCrossing::No
 }
 
 /// Whether an edge of either triangle passes strictly through the other (touching and
@@ -549,7 +566,7 @@ mod tests {
         let (mut v, t) = cube([0.0; 3], 1.0);
         v[4] = Point3::new(0.3, 0.6, -1.0);
         let shell = &analyse(&v, &t).shells[0];
-        assert_eq!(shell.self_intersecting, Some(true));
+        assert_eq!(shell.self_crossing, SelfCrossing::Yes);
         assert_eq!(shell.kind, ShellKind::Loose);
 
         let s = [

@@ -42,6 +42,7 @@ pub(super) fn build(
         guides.push(guide);
     }
     check_order(src, robot, raw, &guides)?;
+    check_optional_ends(src, raw, &guides)?;
     check_per_link(src, robot, raw, &guides, max_per_link)?;
     Ok(guides)
 }
@@ -81,6 +82,7 @@ fn guide(
         body,
         link_in_body,
         fixed,
+        optional: raw.optional.as_ref().is_some_and(|o| *o.get_ref()),
         configurations,
     })
 }
@@ -302,6 +304,26 @@ fn check_order(
                     robot.links[before.link].name,
                     robot.links[after.body].name,
                     robot.links[before.body].name,
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The first and the last guide are where the cable's design starts and ends: neither may be
+/// left out.
+fn check_optional_ends(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result<(), SetupError> {
+    for g in [0, guides.len() - 1] {
+        if let (true, Some(optional)) = (guides[g].optional, &raw.get_ref()[g].get_ref().optional) {
+            return Err(src.error(
+                optional.span(),
+                format!("guides[{g}].optional"),
+                format!(
+                    "{} is the {} guide, where the cable path {}: it cannot be left out",
+                    guides[g].name,
+                    if g == 0 { "first" } else { "last" },
+                    if g == 0 { "starts" } else { "ends" }
                 ),
             ));
         }

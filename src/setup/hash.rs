@@ -9,7 +9,8 @@
 //! vertices and triangles, joints with kinds, origins, axes, limits and drives), the cable
 //! spec, gravity, `max_guides_per_link`, thresholds, robustness, guides (name, links, fixed,
 //! every configuration: name, position mm, rpy deg, pose, origin) and segments (range and
-//! candidate list), then the installation pose when there is one. Integers are u64 little-endian; floats are their IEEE-754 bit patterns,
+//! candidate list), then the installation pose when there is one, then which guides are
+//! optional when any is. Integers are u64 little-endian; floats are their IEEE-754 bit patterns,
 //! little-endian, with −0.0 written as +0.0; strings and lists are prefixed by their length.
 //! Paths, comments, whitespace and key order never enter it.
 
@@ -51,6 +52,11 @@ pub(super) fn canonical_bytes(setup: &Setup) -> Vec<u8> {
     if let Some(installation) = &setup.installation {
         out.str("installation");
         out.floats(&installation.joints);
+    }
+    // Likewise the optional guides.
+    if setup.guides.iter().any(|g| g.optional) {
+        out.str("optional");
+        setup.guides.iter().for_each(|g| out.bool(g.optional));
     }
     out.0
 }
@@ -140,6 +146,11 @@ fn drive(out: &mut Canon, drive: &JointDrive) {
 }
 
 fn collider(out: &mut Canon, collider: &Collider) {
+    // Written only for a body a setup attached, so that robots without any keep their hash.
+    if let Some(name) = &collider.attached {
+        out.str("attached");
+        out.str(name);
+    }
     out.pose(&collider.origin);
     match &collider.shape {
         Shape::Box { half_extents_m } => {
@@ -219,9 +230,11 @@ fn guides(out: &mut Canon, setup: &Setup) {
     }
 }
 
+/// The declared segments; the spans follow from them and the optional guides.
 fn segments(out: &mut Canon, setup: &Setup) {
-    out.usize(setup.segments.len());
-    for segment in &setup.segments {
+    let declared = &setup.segments[..setup.declared_segments];
+    out.usize(declared.len());
+    for segment in declared {
         let r = &segment.range;
         out.usize(r.min);
         out.usize(r.max);

@@ -5,7 +5,7 @@ use super::raw::{BendRadiusSetting, RawRobustness, RawSetup, RawThresholds};
 use super::sites::SiteContext;
 use super::{
     BendRadiusSource, Installation, MAX_SUB_SEGMENTS, Robustness, Setup, SetupError, Thresholds,
-    coincide, guides, hash, segments,
+    bodies, coincide, guides, hash, segments,
 };
 use crate::cable::CableSpec;
 use crate::input::{self, FileKind};
@@ -40,7 +40,10 @@ pub(super) fn from_str(
     let raw: RawSetup = toml::from_str(text).map_err(|e| src.toml_error(&e))?;
     let folder = path.parent().unwrap_or(Path::new(""));
     let given_robot = given.map(|(urdf, _, meshes)| (urdf, meshes));
-    let (robot_path, robot_text, robot) = load_robot(src, folder, &raw.robot, given_robot)?;
+    let (robot_path, robot_text, mut robot) = load_robot(src, folder, &raw.robot, given_robot)?;
+    if let Some(bodies) = &raw.bodies {
+        bodies::attach(src, &mut robot, bodies, folder, given.map(|g| g.2))?;
+    }
     let (cable_path, cable_text, cable) = load_cable(src, folder, &raw.cable, given.map(|g| g.1))?;
     let gravity_m_s2 = gravity(src, &raw.gravity_m_s2)?;
     let max_guides_per_link = at_least_one(src, &raw.max_guides_per_link, "max_guides_per_link")?;
@@ -52,8 +55,15 @@ pub(super) fn from_str(
     };
     let sites = SiteContext::new(0.5 * cable.diameter_m, installation.as_ref());
     let mut guides = guides::build(src, &robot, &raw.guides, max_guides_per_link, &sites)?;
-    let segments = segments::build(src, &guides, &raw.segments, robustness.delta_s)?;
+    let mut segments = segments::build(src, &guides, &raw.segments, robustness.delta_s)?;
     coincide::add_copies(&mut guides, &segments);
+    let declared_segments = segments.len();
+    segments.extend(segments::spans(
+        src,
+        &guides,
+        raw.guides.get_ref(),
+        &segments,
+    )?);
     let mut setup = Setup {
         source: path.to_path_buf(),
         text: text.to_string(),
@@ -67,6 +77,7 @@ pub(super) fn from_str(
         max_guides_per_link,
         guides,
         segments,
+        declared_segments,
         thresholds,
         robustness,
         installation,

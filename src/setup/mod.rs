@@ -57,6 +57,7 @@
 //! so comments, whitespace, key order and file locations do not change it; see
 //! [`Setup::canonical_bytes`].
 
+mod bodies;
 mod coincide;
 mod error;
 mod guides;
@@ -81,6 +82,7 @@ pub use install::{Installation, turn_about_axis};
 use crate::cable::CableSpec;
 use crate::pose::Pose;
 use crate::robot::Robot;
+use crate::stress::{ClampZone, GuideEnd};
 use nalgebra::Vector3;
 use std::path::{Path, PathBuf};
 
@@ -114,8 +116,14 @@ pub struct Setup {
     pub max_guides_per_link: usize,
     /// Guides G1 … G(M+1), from the base end of the cable to the tool end.
     pub guides: Vec<Guide>,
-    /// Segments C1 … CM; segment `m` runs from `guides[m]` to `guides[m + 1]`.
+    /// The pieces of cable the search considers: first the declared segments C1 … CM
+    /// (segment `m` runs from `guides[m]` to `guides[m + 1]`), then one *span* for every pair
+    /// of guides with only optional guides between them (from `guides[a]` to `guides[b]`,
+    /// `b > a + 1`: the cable when those clamps are left out). See
+    /// [`SegmentSpec::guides`].
     pub segments: Vec<SegmentSpec>,
+    /// M, the number of declared segments (the first entries of `segments`).
+    pub declared_segments: usize,
     /// Stress limits.
     pub thresholds: Thresholds,
     /// Robustness test parameters.
@@ -142,6 +150,10 @@ pub struct Guide {
     pub link_in_body: Pose,
     /// True for a guide with a single, given configuration (`fixed = {…}`), e.g. a connector.
     pub fixed: bool,
+    /// True when the search may leave this clamp out (`optional = true`): the cable then
+    /// runs from the previous mounted clamp to the next one (a span, see
+    /// [`Setup::segments`]).
+    pub optional: bool,
     /// Candidate configurations: the declared ones first, then coincident copies.
     pub configurations: Vec<GuideConfiguration>,
 }
@@ -193,11 +205,16 @@ pub enum ConfigurationOrigin {
 /// bound here keeps every length sum and product far from overflow.
 pub const MAX_SUB_SEGMENTS: usize = 10_000;
 
-/// Candidate lengths of one segment.
+/// Candidate lengths of one segment (or span).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SegmentSpec {
+    /// Indices into [`Setup::guides`] of its start and end guides: `(m, m + 1)` for declared
+    /// segment `m`, `(a, b)` with only optional guides between for a span.
+    pub guides: (usize, usize),
     /// Candidate sub-segment counts S, ascending: `0` first when allowed, then
-    /// `min, min + step, …, max`. Natural length = S · `sub_segment_pitch_m`.
+    /// `min, min + step, …, max`. Natural length = S · `sub_segment_pitch_m`. A span's range
+    /// runs from the sum of its segments' `min` to the sum of their `max`, in steps of the
+    /// greatest common divisor of their steps.
     pub lengths: Vec<usize>,
     /// True when both guides are on one link (same [`Guide::body`]).
     pub intra_link: bool,
@@ -288,14 +305,47 @@ impl Setup {
         load::from_str(text, source, Some((robot_text, cable_text, meshes)))
     }
 
-    /// Number of segments M.
+    /// The clamp zone at `end` of a segment whose guide there is screwed onto `link`:
+    /// `thresholds.clamp_zone_m` of cable, counted in the cable's sub-segments.
+    pub fn clamp_zone(&self, end: GuideEnd, link: usize) -> ClampZone {
+        ClampZone::of_length(
+            end,
+            link,
+            self.thresholds.clamp_zone_m,
+            self.cable.sub_segment_pitch_m,
+        )
+    }
+
+    /// Number of segments the search considers: the declared ones and the spans.
     pub fn segment_count(&self) -> usize {
         self.segments.len()
     }
 
-    /// Indices into [`Setup::guides`] of segment `m`'s start and end guides: `(m, m + 1)`.
+    /// Indices into [`Setup::guides`] of segment `m`'s start and end guides: `(m, m + 1)`
+    /// for a declared segment, the guides a span joins for a span.
     pub fn segment_guides(&self, m: usize) -> (usize, usize) {
-        (m, m + 1)
+        self.segments[m].guides
+    }
+
+    /// How people call segment `m`: `C3` for a declared segment, `C2–C3` for the span that
+    /// takes the place of C2 and C3 (their shared clamp left out).
+    pub fn segment_name(&self, m: usize) -> String {
+        let (a, b) = self.segment_guides(m);
+        if b == a + 1 {
+            format!("C{b}")
+        } else {
+            format!("C{}–C{b}", a + 1)
+        }
+    }
+
+    /// The segments (declared and spans) that start at guide `g`.
+    pub fn segments_from(&self, g: usize) -> impl Iterator<Item = usize> + '_ {
+        (0..self.segments.len()).filter(move |&m| self.segments[m].guides.0 == g)
+    }
+
+    /// The segments (declared and spans) that end at guide `g`.
+    pub fn segments_into(&self, g: usize) -> impl Iterator<Item = usize> + '_ {
+        (0..self.segments.len()).filter(move |&m| self.segments[m].guides.1 == g)
     }
 
     /// True when segment `m`'s guides are on one link.

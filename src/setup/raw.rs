@@ -19,6 +19,36 @@ pub(super) struct RawSetup {
     pub robustness: RawRobustness,
     pub guides: Spanned<Vec<Spanned<RawGuide>>>,
     pub segments: Spanned<Vec<Spanned<RawSegment>>>,
+    #[serde(default)]
+    pub bodies: Option<Spanned<Vec<Spanned<RawBody>>>>,
+}
+
+/// One `[[bodies]]` entry: a shape a link carries (see `bodies.rs`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawBody {
+    pub name: Spanned<String>,
+    pub link: Spanned<String>,
+    pub position_mm: Spanned<[f64; 3]>,
+    pub rpy_deg: Spanned<[f64; 3]>,
+    #[serde(default)]
+    pub box_mm: Option<Spanned<[f64; 3]>>,
+    #[serde(default)]
+    pub cylinder_mm: Option<Spanned<RawCylinder>>,
+    #[serde(default)]
+    pub sphere_radius_mm: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub mesh: Option<Spanned<String>>,
+    #[serde(default)]
+    pub mesh_scale: Option<Spanned<[f64; 3]>>,
+}
+
+/// `cylinder_mm = { radius, length }` (axis along the body's z).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawCylinder {
+    pub radius: f64,
+    pub length: f64,
 }
 
 /// `[thresholds]`.
@@ -50,9 +80,12 @@ pub(super) struct RawGuide {
     pub configurations: Option<Spanned<Vec<Spanned<RawConfiguration>>>>,
     pub fixed: Option<Spanned<RawConfiguration>>,
     pub sites: Option<Spanned<RawSites>>,
+    /// The search may leave this clamp out.
+    pub optional: Option<Spanned<bool>>,
 }
 
-/// `sites = { spacing_mm, clamp_height_mm, directions_deg, region }`: a site generator.
+/// `sites = { spacing_mm, clamp_height_mm, directions_deg, region, reference_axis }`: a site
+/// generator.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawSites {
@@ -61,6 +94,9 @@ pub(super) struct RawSites {
     pub directions_deg: Spanned<Vec<f64>>,
     #[serde(default)]
     pub region: Option<Spanned<RawRegion>>,
+    /// `"x" | "y" | "z" | [x, y, z]`, checked in `sites.rs`.
+    #[serde(default)]
+    pub reference_axis: Option<Spanned<toml::Value>>,
 }
 
 /// `region = { min_mm, max_mm }` (a box) or `region = { z_mm = [low, high] }` (link frame).

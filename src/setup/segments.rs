@@ -2,7 +2,7 @@
 
 use super::error::Source;
 use super::guides::same_pose;
-use super::raw::{RawLengths, RawSegment};
+use super::raw::{RawGuide, RawLengths, RawSegment};
 use super::{Guide, LengthRange, MAX_SUB_SEGMENTS, SegmentSpec, SetupError};
 use toml::Spanned;
 
@@ -52,10 +52,74 @@ fn segment(
     let zero = range.allow_zero.then_some(0);
     let series = (range.min..=range.max).step_by(range.step);
     Ok(SegmentSpec {
+        guides: (m, m + 1),
         lengths: zero.into_iter().chain(series).collect(),
         intra_link,
         range,
     })
+}
+
+/// The spans over optional guides: for every pair of guides `a < b − 1` with only optional
+/// guides between them, the piece of cable from `a` to `b` when those clamps are left out,
+/// its lengths the sums of the skipped segments' ranges (in steps of their steps' greatest
+/// common divisor, which divides ΔS as each of them does). Refused, at the optional guide:
+/// a span whose ends are on one link (that is S = 0 of an intra-link segment), or longer than
+/// [`MAX_SUB_SEGMENTS`].
+pub(super) fn spans(
+    src: Source,
+    guides: &[Guide],
+    raw_guides: &[Spanned<RawGuide>],
+    declared: &[SegmentSpec],
+) -> Result<Vec<SegmentSpec>, SetupError> {
+    let mut spans = Vec::new();
+    for a in 0..guides.len() {
+        // Every guide strictly between a and b is optional.
+        for b in a + 2..guides.len() {
+            let skipped = b - 1;
+            if !guides[skipped].optional {
+                break;
+            }
+            let fail = |problem: String| {
+                let optional = raw_guides[skipped].get_ref().optional.as_ref();
+                let span = optional.map_or(0..0, Spanned::span);
+                src.error(span, format!("guides[{skipped}].optional"), problem)
+            };
+            if guides[a].body == guides[b].body {
+                return Err(fail(format!(
+                    "leaving {} out joins {} and {}, both on one link: a clamp that may be \
+                     left out within one link is S = 0 of its segment (`allow_zero = true`)",
+                    guides[skipped].name, guides[a].name, guides[b].name
+                )));
+            }
+            let ranges = || declared[a..b].iter().map(|s| s.range);
+            let min: usize = ranges().map(|r| r.min).sum();
+            let max: usize = ranges().map(|r| r.max).sum();
+            if max > MAX_SUB_SEGMENTS {
+                return Err(fail(format!(
+                    "the cable from {} to {} without the clamps between could be {max} \
+                     sub-segments long, more than the {MAX_SUB_SEGMENTS} a piece may have",
+                    guides[a].name, guides[b].name
+                )));
+            }
+            let step = ranges().map(|r| r.step).fold(0, gcd);
+            spans.push(SegmentSpec {
+                guides: (a, b),
+                lengths: (min..=max).step_by(step).collect(),
+                intra_link: false,
+                range: LengthRange {
+                    min,
+                    max,
+                    step,
+                    allow_zero: false,
+                },
+            });
+        }
+    }
+    Ok(spans)
+}
+
+fn gcd(a: usize, b: usize) -> usize {
+    if b == 0 { a } else { gcd(b, a % b) }
 }
 
 /// `from` / `to` must name the guides the segment's position implies.

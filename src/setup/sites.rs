@@ -1,13 +1,13 @@
 //! `sites = {…}`: a guide whose candidate configurations are generated on its link's
 //! collision surfaces (see [`crate::sites`]).
 
-use super::error::Source;
-use super::raw::{RawRegion, RawSites};
+use super::error::{Source, newline_offsets};
+use super::raw::{RawRegion, RawSetup, RawSites};
 use super::{ConfigurationOrigin, GuideConfiguration, Installation, SetupError};
 use crate::robot::Robot;
-use crate::sites::{MIN_SPACING_M, Region, SiteSpec, generate, site_frame};
+use crate::sites::{GeneratedSites, MIN_SPACING_M, Region, Site, SiteSpec, generate, site_frame};
 use crate::stress::contact::Obstacles;
-use nalgebra::Point3;
+use nalgebra::{Point3, Unit, Vector3};
 use std::cell::OnceCell;
 use toml::Spanned;
 
@@ -40,6 +40,30 @@ impl<'a> SiteContext<'a> {
         key: &str,
         raw: &Spanned<RawSites>,
     ) -> Result<Vec<GuideConfiguration>, SetupError> {
+        let generated = self.sites(src, robot, link, key, raw)?;
+        let line = src.line_of(raw.span().start);
+        let directions = &generated.spec.directions_rad;
+        Ok(generated
+            .sites
+            .iter()
+            .enumerate()
+            .flat_map(|(k, site)| {
+                directions
+                    .iter()
+                    .map(move |&angle| configuration(site, k, angle, line))
+            })
+            .collect())
+    }
+
+    /// The sites of a generator and the spec they were made with.
+    fn sites(
+        &self,
+        src: Source,
+        robot: &Robot,
+        link: usize,
+        key: &str,
+        raw: &Spanned<RawSites>,
+    ) -> Result<GeneratedSites, SetupError> {
         let fail = |problem: String| src.error(raw.span(), key, problem);
         let installation = self.installation.ok_or_else(|| {
             fail(
@@ -64,32 +88,62 @@ impl<'a> SiteContext<'a> {
             &installation.link_poses,
         )
         .map_err(|e| fail(e.to_string()))?;
-        let line = src.line_of(raw.span().start);
-        let mut list = Vec::with_capacity(sites.len() * spec.directions_rad.len());
-        for (k, site) in sites.iter().enumerate() {
-            for &angle in &spec.directions_rad {
-                let pose = site_frame(site, angle);
-                // + 0.0 writes −0 as 0, in the numbers and in the rounded name.
-                let position_mm =
-                    [site.position.x, site.position.y, site.position.z].map(|v| v * 1e3 + 0.0);
-                let (r, p, y) = pose.rotation.euler_angles();
-                list.push(GuideConfiguration {
-                    name: format!(
-                        "site {} [{} {} {}] {}°",
-                        k + 1,
-                        position_mm[0].round() + 0.0,
-                        position_mm[1].round() + 0.0,
-                        position_mm[2].round() + 0.0,
-                        angle.to_degrees().round() + 0.0
-                    ),
-                    pose,
-                    position_mm,
-                    rpy_deg: [r, p, y].map(f64::to_degrees),
-                    origin: ConfigurationOrigin::Generated { line, site: k },
-                });
-            }
-        }
-        Ok(list)
+        Ok(GeneratedSites { spec, sites })
+    }
+}
+
+/// The configuration of site `k` (0-based) in the direction `angle` (rad), named
+/// `site <k + 1> [x y z] <angle>°` (mm, deg, rounded).
+fn configuration(site: &Site, k: usize, angle: f64, line: usize) -> GuideConfiguration {
+    let pose = site_frame(site, angle);
+    // + 0.0 writes −0 as 0, in the numbers and in the rounded name.
+    let position_mm = [site.position.x, site.position.y, site.position.z].map(|v| v * 1e3 + 0.0);
+    let (r, p, y) = pose.rotation.euler_angles();
+    let rounded = position_mm.map(|v| v.round() + 0.0);
+    GuideConfiguration {
+        name: format!(
+            "site {} [{} {} {}] {}°",
+            k + 1,
+            rounded[0],
+            rounded[1],
+            rounded[2],
+            angle.to_degrees().round() + 0.0
+        ),
+        pose,
+        position_mm,
+        rpy_deg: [r, p, y].map(f64::to_degrees),
+        origin: ConfigurationOrigin::Generated { line, site: k },
+    }
+}
+
+impl super::Setup {
+    /// The generated sites of every guide (`None` for a guide with written configurations),
+    /// made again from the setup's text: the same sites in the same order as the guide's
+    /// configurations were made from, which `ConfigurationOrigin::Generated { site }` indexes.
+    pub fn generated_sites(&self) -> Result<Vec<Option<GeneratedSites>>, SetupError> {
+        let newlines = newline_offsets(&self.text);
+        let src = Source {
+            file: &self.source,
+            text: &self.text,
+            newlines: &newlines,
+        };
+        let raw: RawSetup = toml::from_str(&self.text).map_err(|e| src.toml_error(&e))?;
+        let context = SiteContext::new(0.5 * self.cable.diameter_m, self.installation.as_ref());
+        raw.guides
+            .get_ref()
+            .iter()
+            .zip(&self.guides)
+            .enumerate()
+            .map(|(g, (entry, guide))| {
+                let key = format!("guides[{g}].sites");
+                entry
+                    .get_ref()
+                    .sites
+                    .as_ref()
+                    .map(|raw| context.sites(src, &self.robot, guide.link, &key, raw))
+                    .transpose()
+            })
+            .collect()
     }
 }
 
@@ -121,7 +175,53 @@ fn spec(src: Source, key: &str, raw: &RawSites) -> Result<SiteSpec, SetupError> 
             Some(region) => self::region(src, key, region)?,
             None => Region::Everywhere,
         },
+        reference_axis: match &raw.reference_axis {
+            Some(axis) => Some(reference_axis(src, key, axis)?),
+            None => None,
+        },
     })
+}
+
+/// `reference_axis = "x" | "y" | "z" | [x, y, z]` (link frame; a vector need not be unit).
+fn reference_axis(
+    src: Source,
+    key: &str,
+    raw: &Spanned<toml::Value>,
+) -> Result<Unit<Vector3<f64>>, SetupError> {
+    let fail = || {
+        src.error(
+            raw.span(),
+            format!("{key}.reference_axis"),
+            format!(
+                "{} is not an axis: give \"x\", \"y\", \"z\" or a non-zero [x, y, z] \
+                 (link frame)",
+                raw.get_ref()
+            ),
+        )
+    };
+    let number = |v: &toml::Value| match v {
+        toml::Value::Float(x) => Some(*x),
+        toml::Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    };
+    let vector = match raw.get_ref() {
+        toml::Value::String(name) => match name.as_str() {
+            "x" => Vector3::x(),
+            "y" => Vector3::y(),
+            "z" => Vector3::z(),
+            _ => return Err(fail()),
+        },
+        toml::Value::Array(items) if items.len() == 3 => {
+            let values: Option<Vec<f64>> = items.iter().map(number).collect();
+            Vector3::from_iterator(values.ok_or_else(fail)?)
+        }
+        _ => return Err(fail()),
+    };
+    let finite = vector.iter().all(|v| v.is_finite());
+    finite
+        .then(|| Unit::try_new(vector, 1e-12))
+        .flatten()
+        .ok_or_else(fail)
 }
 
 fn directions(src: Source, key: &str, raw: &Spanned<Vec<f64>>) -> Result<Vec<f64>, SetupError> {

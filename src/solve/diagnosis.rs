@@ -182,7 +182,7 @@ fn attachment_diagnosis(
         .collect();
     let suggestions = attachment_suggestions(setup, m, sets, &nearest_misses);
     SegmentDiagnosis {
-        segment: format!("C{}", m + 1),
+        segment: setup.segment_name(m),
         from_guide: setup.guides[a].name.clone(),
         problem,
         nearest_misses,
@@ -197,11 +197,12 @@ fn pruning_note(setup: &Setup, m: usize, sets: &SegmentSets) -> String {
     if sets.d0_pruned == sets.d0 {
         return String::new();
     }
-    let neighbours: Vec<String> = [m.checked_sub(1), Some(m + 1)]
-        .into_iter()
-        .flatten()
-        .filter(|&n| n < setup.segment_count() && setup.is_intra_link(n))
-        .map(|n| format!("C{}", n + 1))
+    let (a, b) = setup.segment_guides(m);
+    let neighbours: Vec<String> = setup
+        .segments_into(a)
+        .chain(setup.segments_from(b))
+        .filter(|&n| setup.is_intra_link(n))
+        .map(|n| setup.segment_name(n))
         .collect();
     format!(
         " (of {}: only those on the clamp configurations the robust pieces of {} use; widen \
@@ -345,7 +346,7 @@ fn motion_diagnosis(
                     .collect()
             };
             SegmentDiagnosis {
-                segment: format!("C{}", m + 1),
+                segment: setup.segment_name(m),
                 from_guide: setup.guides[a].name.clone(),
                 problem: match (dynamic[m].len(), swept[m].len()) {
                     (0, n) => format!(

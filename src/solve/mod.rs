@@ -171,7 +171,7 @@ fn solve_with(
     };
     let sets = attachment_test_with(&evaluator, &poses, lookup.is_some().then_some(&answer));
     let attachment_s = clock.elapsed().as_secs_f64();
-    log_sets(&sets, lookup.as_ref(), attachment_s);
+    log_sets(setup, &sets, lookup.as_ref(), attachment_s);
 
     let clock = Instant::now();
     let d2: Vec<Vec<Pv>> = sets.iter().map(|s| s.d2.clone()).collect();
@@ -208,13 +208,13 @@ fn solve_with(
         setup, motion, options, &evaluator, &poses, &sets, &search, outcome, timings,
     );
     if let Some(lookup) = &lookup {
-        report.inputs.dictionary = Some(dictionary_use(lookup, &sets));
+        report.inputs.dictionary = Some(dictionary_use(setup, lookup, &sets));
     }
     Ok(report)
 }
 
 /// What the report says of the dictionary a solve used.
-fn dictionary_use(lookup: &MotionLookup<'_>, sets: &[SegmentSets]) -> DictionaryUse {
+fn dictionary_use(setup: &Setup, lookup: &MotionLookup<'_>, sets: &[SegmentSets]) -> DictionaryUse {
     let dictionary = lookup.dictionary();
     let header = dictionary.header();
     DictionaryUse {
@@ -226,7 +226,7 @@ fn dictionary_use(lookup: &MotionLookup<'_>, sets: &[SegmentSets]) -> Dictionary
             .enumerate()
             .filter_map(|(m, s)| {
                 Some(DictionarySegmentUse {
-                    segment: format!("C{}", m + 1),
+                    segment: setup.segment_name(m),
                     gravity_directions: lookup.direction_count(m),
                     pieces: s.looked_up?,
                 })
@@ -236,7 +236,12 @@ fn dictionary_use(lookup: &MotionLookup<'_>, sets: &[SegmentSets]) -> Dictionary
 }
 
 /// One `info` line per segment: its set sizes, and where intra-link verdicts came from.
-fn log_sets(sets: &[SegmentSets], lookup: Option<&MotionLookup<'_>>, attachment_s: f64) {
+fn log_sets(
+    setup: &Setup,
+    sets: &[SegmentSets],
+    lookup: Option<&MotionLookup<'_>>,
+    attachment_s: f64,
+) {
     for (m, s) in sets.iter().enumerate() {
         let source = match (lookup, s.looked_up) {
             (Some(l), Some(p)) => format!(
@@ -249,9 +254,9 @@ fn log_sets(sets: &[SegmentSets], lookup: Option<&MotionLookup<'_>>, attachment_
             _ => String::new(),
         };
         log::info!(
-            "attachment C{}: {} candidates, {} after pruning, {} hold the limits, {} robust, \
+            "attachment {}: {} candidates, {} after pruning, {} hold the limits, {} robust, \
              {:.2} s{source}",
-            m + 1,
+            setup.segment_name(m),
             s.d0,
             s.d0_pruned,
             s.d1,
@@ -262,14 +267,17 @@ fn log_sets(sets: &[SegmentSets], lookup: Option<&MotionLookup<'_>>, attachment_
     log::info!("attachment test: {attachment_s:.2} s");
 }
 
-/// The chain search over the sets `d2`, one per segment.
+/// The chain search over the sets `d2`, one per segment (declared ones and spans).
 fn chain_search(setup: &Setup, d2: &[Vec<Pv>]) -> Result<ChainSearch, SolveError> {
     let counts: Vec<usize> = setup
         .guides
         .iter()
         .map(|g| g.configurations.len())
         .collect();
-    Ok(ChainSearch::new(&counts, d2)?)
+    let ends: Vec<(usize, usize)> = (0..setup.segment_count())
+        .map(|m| setup.segment_guides(m))
+        .collect();
+    Ok(ChainSearch::over(&counts, &ends, d2)?)
 }
 
 /// One chain put to the motion test (`None`: not tested).
@@ -361,7 +369,11 @@ fn motion_tests(
             outcome.swept = sweep.swept();
             if !failed.is_empty() {
                 for (m, pv, failure) in &failed {
-                    log::debug!("static sweep drops C{} {pv:?}: {}", m + 1, failure.detail);
+                    log::debug!(
+                        "static sweep drops {} {pv:?}: {}",
+                        setup.segment_name(*m),
+                        failure.detail
+                    );
                     d2[*m].retain(|kept| kept != pv);
                 }
                 outcome.dropped.extend(failed);
@@ -388,8 +400,10 @@ fn motion_tests(
         let Some(m) = failed_segment else {
             return Ok(outcome.stopped("the last failure belongs to no single segment"));
         };
-        let failed = path.pv(m);
-        d2[m].retain(|pv| *pv != failed);
+        let failed = path.pieces().filter(|&(segment, _)| segment == m);
+        for (_, failed) in failed {
+            d2[m].retain(|pv| *pv != failed);
+        }
     }
     let budget = options.k_best;
     Ok(outcome.stopped(format!(
@@ -397,9 +411,9 @@ fn motion_tests(
     )))
 }
 
-/// The PVs of `path` that fail the static sweep, segment by segment.
+/// The PVs of `path` that fail the static sweep, piece by piece.
 fn sweep_chain(sweep: &mut MotionSweep<'_, '_>, path: &CablePath) -> Vec<Dropped> {
-    let pvs: Vec<(usize, Pv)> = (0..path.segment_count()).map(|m| (m, path.pv(m))).collect();
+    let pvs: Vec<(usize, Pv)> = path.pieces().collect();
     pvs.iter()
         .zip(sweep.check_all(&pvs))
         .filter_map(|(&(m, pv), failure)| Some((m, pv, failure?)))

@@ -82,16 +82,19 @@ pub struct Timings {
 /// A cable path as built: the paper's ECPV, with names.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Ecpv {
-    /// Segment by segment, C1 first.
+    /// Piece by piece from the base end: declared segments, or spans where optional guides
+    /// are left out.
     pub segments: Vec<PathSegment>,
-    /// Every guide with the configuration the path uses, G1 first.
+    /// Every clamp the path mounts with its configuration, from the base end.
     pub guides: Vec<PathGuide>,
+    /// The optional guides the path leaves out.
+    pub left_out: Vec<String>,
 }
 
 /// One segment of a cable path.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PathSegment {
-    /// `C1`, `C2`, …
+    /// `C1`, `C2`, …; `C2–C3` for a span over optional guides.
     pub name: String,
     /// Start guide.
     pub from_guide: String,
@@ -572,7 +575,7 @@ fn sweep_summary(setup: &Setup, outcome: &MotionSearch) -> SweepSummary {
         .map(|(m, pv, failure)| {
             let (a, b) = setup.segment_guides(*m);
             SweepRejection {
-                segment: format!("C{}", m + 1),
+                segment: setup.segment_name(*m),
                 sub_segments: pv.sub_segments,
                 from_configuration: setup.guides[a].configurations[pv.start].name.clone(),
                 to_configuration: setup.guides[b].configurations[pv.end].name.clone(),
@@ -605,8 +608,8 @@ fn unsolved_reason(sets: &[SegmentSets], setup: &Setup) -> String {
                 .unwrap_or_else(|| "no candidate left after adjacency pruning".into());
             let (a, b) = setup.segment_guides(m);
             format!(
-                "C{} ({} → {}) has no robust cable piece: {} hold the limits, {worst}",
-                m + 1,
+                "{} ({} → {}) has no robust cable piece: {} hold the limits, {worst}",
+                setup.segment_name(m),
                 setup.guides[a].name,
                 setup.guides[b].name,
                 s.d1
@@ -677,15 +680,16 @@ fn segment_kind(setup: &Setup, m: usize) -> &'static str {
     }
 }
 
-/// The path with names: segment by segment, and every guide's configuration.
+/// The path with names: piece by piece, and every mounted clamp's configuration.
 pub fn ecpv(setup: &Setup, path: &CablePath) -> Ecpv {
     let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
-    let segments = (0..path.segment_count())
-        .map(|m| {
-            let sub_segments = path.lengths[m];
+    let segments = path
+        .pieces()
+        .map(|(m, pv)| {
+            let sub_segments = pv.sub_segments;
             let ([from_guide, to_guide], [from_link, to_link]) = guide_names(setup, m);
             PathSegment {
-                name: format!("C{}", m + 1),
+                name: setup.segment_name(m),
                 from_guide,
                 to_guide,
                 from_link,
@@ -696,11 +700,12 @@ pub fn ecpv(setup: &Setup, path: &CablePath) -> Ecpv {
             }
         })
         .collect();
-    let guides = setup
-        .guides
+    let mounted: Vec<usize> = path.guides(setup).collect();
+    let guides = mounted
         .iter()
         .zip(&path.configurations)
-        .map(|(guide, &c)| {
+        .map(|(&g, &c)| {
+            let guide = &setup.guides[g];
             let configuration = &guide.configurations[c];
             PathGuide {
                 name: guide.name.clone(),
@@ -711,7 +716,15 @@ pub fn ecpv(setup: &Setup, path: &CablePath) -> Ecpv {
             }
         })
         .collect();
-    Ecpv { segments, guides }
+    let left_out = (0..setup.guides.len())
+        .filter(|g| !mounted.contains(g))
+        .map(|g| setup.guides[g].name.clone())
+        .collect();
+    Ecpv {
+        segments,
+        guides,
+        left_out,
+    }
 }
 
 fn segment_reports(
@@ -725,7 +738,7 @@ fn segment_reports(
         .map(|(m, s)| {
             let ([from_guide, to_guide], _) = guide_names(setup, m);
             SegmentReport {
-                segment: format!("C{}", m + 1),
+                segment: setup.segment_name(m),
                 from_guide,
                 to_guide,
                 kind: segment_kind(setup, m),
@@ -770,10 +783,10 @@ type LimitOf = (&'static str, f64, fn(&Metrics) -> Option<f64>, f64);
 
 /// The smallest margin of each limit over the test poses, for every segment with a cable.
 fn margins(evaluator: &Evaluator<'_>, poses: &SegmentPoses, path: &CablePath) -> Vec<Margin> {
-    let limits = &evaluator.setup().thresholds;
+    let setup = evaluator.setup();
+    let limits = &setup.thresholds;
     let mut margins = Vec::new();
-    for m in 0..path.segment_count() {
-        let pv = path.pv(m);
+    for (m, pv) in path.pieces() {
         let checked: Vec<(&TestPose, Metrics)> = poses.poses[m]
             .iter()
             .filter_map(|pose| Some((pose, evaluator.check(m, &pv, pose).metrics?)))
@@ -802,7 +815,7 @@ fn margins(evaluator: &Evaluator<'_>, poses: &SegmentPoses, path: &CablePath) ->
                 .min_by(|a, b| a.2.total_cmp(&b.2));
             if let Some((pose, value, margin)) = binding {
                 margins.push(Margin {
-                    segment: format!("C{}", m + 1),
+                    segment: setup.segment_name(m),
                     constraint,
                     value,
                     threshold,
@@ -936,6 +949,9 @@ fn write_path(f: &mut fmt::Formatter<'_>, path: &Ecpv) -> fmt::Result {
             format!("({x:.1}, {y:.1}, {z:.1})"),
             format!("({r:.1}, {p:.1}, {w:.1})"),
         )?;
+    }
+    if !path.left_out.is_empty() {
+        writeln!(f, "  left out (optional): {}", path.left_out.join(", "))?;
     }
     Ok(())
 }

@@ -10,6 +10,5 @@ mod stretch;
 pub use bend::{BendRadius, min_bend_radius};
 pub use contact::{
     ClampZone, Clearance, ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
-    zone_sub_segments,
 };
 pub use stretch::stretch;

@@ -6,4 +6,5 @@
 #![allow(dead_code)]
 
 pub mod elastica;
+pub mod mesh_solid;
 pub mod vibration;

@@ -68,11 +68,12 @@ impl Scene {
                         robot.source.display()
                     ))
                 })?;
-                clamp_zones.push(ClampZone {
+                clamp_zones.push(ClampZone::of_length(
                     end,
                     link,
-                    length_m: args.clamp_zone_mm * 1e-3,
-                });
+                    args.clamp_zone_mm * 1e-3,
+                    cable.sub_segment_pitch_m,
+                ));
             }
         }
         Ok(Some(Scene {

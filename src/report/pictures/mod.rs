@@ -323,9 +323,9 @@ fn worst_moment<'s>(
         format!("at t = {:.2} s, the nearest kept shape", shape.time_s)
     };
     let caption = format!(
-        "{what} {} on cable piece C{}{ring}. The cable is drawn as simulated {drawn_at}. {}",
+        "{what} {} on cable piece {}{ring}. The cable is drawn as simulated {drawn_at}. {}",
         limit_words(worst.constraint, worst.value, worst.limit),
-        worst.segment + 1,
+        setup.segment_name(worst.segment),
         path_words(report)
     )
     .trim_end()
@@ -354,7 +354,7 @@ fn nearest_miss_moment<'s>(
         return None;
     }
     let (m, from_guide, miss) = views::first_nearest_miss(report)?;
-    let piece = format!("C{}", m + 1);
+    let piece = setup.segment_name(m);
     let line = spec.main.cable.first();
     let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
     let marker_m = line.zip(miss.from_start_clamp_mm).and_then(|(line, mm)| {
@@ -482,6 +482,7 @@ mod tests {
             unit: "m",
             time_s,
             segment,
+            segment_name: format!("C{}", segment + 1),
             place: Place::default(),
         };
         let limits = Thresholds {
@@ -528,6 +529,7 @@ mod tests {
             unit: "m",
             time_s: 1.5,
             segment: 1,
+            segment_name: "C2".into(),
             place: Place::default(),
         });
         let found = smallest_margin(&test, &limits, 0.008).expect("a margin");

@@ -165,10 +165,10 @@ fn worst(
     let w = worst.as_ref()?;
     let v = w.value * scale;
     let label = format!(
-        "worst {} at {:.3} s (C{})",
+        "worst {} at {:.3} s ({})",
         value(v),
         w.time_s,
-        w.segment + 1
+        w.segment_name
     );
     Some((w.time_s, v.min(cap), label))
 }
@@ -181,10 +181,8 @@ fn violation_label(v: &Violation) -> String {
         _ => format!("{:.4}", v.value),
     };
     format!(
-        "violation: {} {value} at {:.3} s (C{})",
-        v.constraint,
-        v.time_s,
-        v.segment + 1
+        "violation: {} {value} at {:.3} s ({})",
+        v.constraint, v.time_s, v.segment_name
     )
 }
 

@@ -22,10 +22,10 @@
 //! positive distance to the surface).
 //!
 //! A mesh is the union of its shells' solids, whatever the file's shells, overlaps, winding
-//! or holes: one obstacle per closed shell, its inside decided by angle-weighted
-//! pseudo-normals, and one for all its loose shells, decided by the winding number (see
-//! `mesh` and [`crate::robot::shells`]). Depth is exact for convex shells and a local maximum
-//! for others; the clearance to a link is the minimum over its obstacles.
+//! or holes: a part per closed shell, its inside decided by angle-weighted pseudo-normals, and
+//! one for all its loose shells, decided by the winding number (see `mesh` and
+//! [`crate::robot::shells`]); its signed distance is the minimum over the parts. Depth is
+//! exact for convex shells and a local maximum for others.
 //!
 //! Each query culls with enclosing capsules of the colliders and bounding spheres of chunks of
 //! the cable, nearest colliders first, so only the pairs that can still beat the best so far
@@ -41,7 +41,7 @@ mod tests;
 
 use crate::pose::Pose;
 use crate::robot::{Robot, Shape};
-use mesh::{SolidMesh, solids_of};
+use mesh::MeshSolid;
 use nalgebra::{Point3, Vector3};
 use primitives::{Projection, SegmentMin, segment_segment_distance};
 use std::path::PathBuf;
@@ -104,9 +104,6 @@ pub enum ContactError {
     /// A negative or non-finite cable radius.
     #[error("cable radius {0} m must be finite and ≥ 0")]
     Radius(f64),
-    /// A negative or non-finite clamp-zone length.
-    #[error("clamp zone length {0} m must be finite and ≥ 0")]
-    ClampLength(f64),
 }
 
 /// A collider shape in its own frame, ready for exact distance queries (metres).
@@ -116,7 +113,7 @@ enum Geometry {
     Capsule { radius: f64, half_length: f64 },
     Cuboid { half: Vector3<f64> },
     Cylinder { radius: f64, half_length: f64 },
-    Mesh(Box<SolidMesh>),
+    Mesh(Box<MeshSolid>),
 }
 
 impl Geometry {
@@ -151,29 +148,7 @@ impl Geometry {
                 radius,
                 half_length,
             } => primitives::cylinder_project(*radius, *half_length, p),
-            Geometry::Mesh(mesh) => {
-                let nearest = mesh.nearest(p);
-                let u = nearest.distance;
-                if u == 0.0 {
-                    Projection {
-                        sd: 0.0,
-                        q: nearest.q,
-                        n: mesh.face_normal(&nearest),
-                    }
-                } else if inside {
-                    Projection {
-                        sd: -u,
-                        q: nearest.q,
-                        n: (nearest.q - p) / u,
-                    }
-                } else {
-                    Projection {
-                        sd: u,
-                        q: nearest.q,
-                        n: (p - nearest.q) / u,
-                    }
-                }
-            }
+            Geometry::Mesh(mesh) => mesh.project(p, inside),
         }
     }
 }
@@ -267,9 +242,8 @@ impl Obstacles {
     /// Converts every collider of every link.
     ///
     /// Refused, naming the link and the collider: non-finite origins or dimensions, and meshes
-    /// with invalid indices, non-finite vertices or no triangle of non-zero area. A mesh
-    /// becomes one obstacle per closed shell and one for its loose shells (see the module
-    /// documentation).
+    /// with invalid indices, non-finite vertices or no triangle of non-zero area. A mesh is the
+    /// union of its closed shells and its loose shells (see the module documentation).
     pub fn from_robot(robot: &Robot) -> Result<Obstacles, ContactError> {
         let mut obstacles = Vec::new();
         for (li, link) in robot.links.iter().enumerate() {
@@ -285,8 +259,8 @@ impl Obstacles {
                 {
                     return Err(invalid("the origin is not finite".into()));
                 }
-                let geometries =
-                    geometries_of(&collider.shape).map_err(|problem| match &collider.shape {
+                let geometry =
+                    geometry_of(&collider.shape).map_err(|problem| match &collider.shape {
                         Shape::Mesh(mesh) => ContactError::DegenerateMesh {
                             link: link.name.clone(),
                             collider: ci + 1,
@@ -295,13 +269,13 @@ impl Obstacles {
                         },
                         _ => invalid(problem),
                     })?;
-                obstacles.extend(geometries.into_iter().map(|geometry| Obstacle {
+                obstacles.push(Obstacle {
                     link: li,
                     collider: ci,
                     origin: collider.origin,
                     bound: Bound::of(&geometry),
                     geometry,
-                }));
+                });
             }
         }
         Ok(Obstacles {
@@ -315,9 +289,8 @@ impl Obstacles {
         self.link_count
     }
 
-    /// Number of obstacles over all links: one per primitive collider, one per part of a
-    /// mesh collider.
-    pub fn obstacle_count(&self) -> usize {
+    /// Number of colliders over all links.
+    pub fn collider_count(&self) -> usize {
         self.obstacles.len()
     }
 
@@ -325,14 +298,13 @@ impl Obstacles {
     /// two triangles, self-crossing), whose inside there is decided by the winding number.
     pub fn winding_meshes(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
         self.obstacles.iter().filter_map(|ob| match &ob.geometry {
-            Geometry::Mesh(mesh) if !mesh.is_closed_shell() => Some((ob.link, ob.collider)),
+            Geometry::Mesh(mesh) if mesh.has_loose_part() => Some((ob.link, ob.collider)),
             _ => None,
         })
     }
 }
 
-/// The obstacles of one collider shape: one for a primitive, one per part of a mesh.
-fn geometries_of(shape: &Shape) -> Result<Vec<Geometry>, String> {
+fn geometry_of(shape: &Shape) -> Result<Geometry, String> {
     let check = |what: &str, values: &[f64], allow_zero: bool| {
         if values
             .iter()
@@ -343,7 +315,7 @@ fn geometries_of(shape: &Shape) -> Result<Vec<Geometry>, String> {
             Err(format!("{what} {values:?} must be finite and > 0"))
         }
     };
-    Ok(vec![match shape {
+    Ok(match shape {
         Shape::Box { half_extents_m } => {
             check("box half extents", half_extents_m.as_slice(), false)?;
             Geometry::Cuboid {
@@ -370,12 +342,9 @@ fn geometries_of(shape: &Shape) -> Result<Vec<Geometry>, String> {
             }
         }
         Shape::Mesh(mesh) => {
-            return Ok(solids_of(&mesh.vertices, &mesh.triangles)?
-                .into_iter()
-                .map(|part| Geometry::Mesh(Box::new(part)))
-                .collect());
+            Geometry::Mesh(Box::new(MeshSolid::new(&mesh.vertices, &mesh.triangles)?))
         }
-    }])
+    })
 }
 
 /// Which end of the cable segment a guide sits at.
@@ -390,23 +359,42 @@ pub enum GuideEnd {
 /// Where a guide clamps the cable onto its own link: near it, contact with that link is
 /// expected and not checked.
 ///
-/// Sub-segment `k` is in the zone when its near end lies less than `length_m` of cable (arc
-/// length along the nodes) from the guide — node `k` for the start guide, node `k + 1` for the
-/// end guide — with 1 nm of slack, so a zone of `n·l_ss` covers exactly `n` sub-segments.
-/// Sub-segments in the zone are not checked against `link`, but still against every other link.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The zone is a stretch of the cable's material — its first `sub_segments` sub-segments
+/// counted from the guide — not a distance along its current shape: a zone measured along
+/// the shape would gain or lose a sub-segment whenever the cable stretches or shortens by a
+/// hair, and the clearance would jump with it. Sub-segments in the zone are not checked
+/// against `link`, but still against every other link.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ClampZone {
     /// The guide's end of the segment.
     pub end: GuideEnd,
     /// Index into `robot.links` of the link the guide is screwed onto.
     pub link: usize,
-    /// Length of cable from the guide (m) not checked against `link`.
-    pub length_m: f64,
+    /// Sub-segments from the guide not checked against `link`.
+    pub sub_segments: usize,
 }
 
-/// Slack on clamp-zone lengths (m) so that rounding in the node positions does not add or drop
-/// a sub-segment.
+/// Slack on clamp-zone lengths (m) so that a zone of exactly `n` pitches covers `n`
+/// sub-segments despite rounding.
 const CLAMP_SLACK_M: f64 = 1e-9;
+
+impl ClampZone {
+    /// The zone of the first `length_m` of cable from the guide, for sub-segments of natural
+    /// length `pitch_m`: sub-segment `k` (counted from the guide) is in it when its near end
+    /// lies less than `length_m` of cable from the guide, `k·pitch_m < length_m` (with 1 nm of
+    /// slack, so a zone of `n` pitches covers exactly `n` sub-segments). A length that is not
+    /// positive (or NaN) gives an empty zone.
+    pub fn of_length(end: GuideEnd, link: usize, length_m: f64, pitch_m: f64) -> ClampZone {
+        let count = ((length_m - CLAMP_SLACK_M) / pitch_m).ceil();
+        ClampZone {
+            end,
+            link,
+            // `as` saturates: NaN and negative counts give 0, an infinite one every
+            // sub-segment.
+            sub_segments: count.max(0.0) as usize,
+        }
+    }
+}
 
 /// The closest approach of a cable shape to the robot.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -534,38 +522,15 @@ fn validate(
                 count: obstacles.link_count,
             });
         }
-        if !(zone.length_m.is_finite() && zone.length_m >= 0.0) {
-            return Err(ContactError::ClampLength(zone.length_m));
-        }
     }
     Ok(())
-}
-
-/// Number of sub-segments of the cable through `nodes` whose near end is less than `length_m`
-/// of cable (arc length) from the guide at `end`: the sub-segments of a clamp zone, counted
-/// from that end, with the same slack as [`min_clearance`] so that a zone of `n` pitches
-/// covers exactly `n` sub-segments.
-pub fn zone_sub_segments(nodes: &[Point3<f64>], end: GuideEnd, length_m: f64) -> usize {
-    let sub_segments = nodes.len().saturating_sub(1);
-    let limit = length_m - CLAMP_SLACK_M;
-    let mut arc = 0.0;
-    for k in 0..sub_segments {
-        if arc >= limit {
-            return k;
-        }
-        arc += match end {
-            GuideEnd::Start => (nodes[k + 1] - nodes[k]).norm(),
-            GuideEnd::End => (nodes[sub_segments - k] - nodes[sub_segments - k - 1]).norm(),
-        };
-    }
-    sub_segments
 }
 
 /// The cable is culled in chunks of consecutive sub-segments, at most this many chunks.
 const MAX_CHUNKS: usize = 16;
 
 /// Obstacles handled without a heap allocation (more fall back to a `Vec`).
-const INLINE_OBSTACLES: usize = 64;
+const INLINE_OBSTACLES: usize = 32;
 
 /// An obstacle to check, with its bounding capsule in the world frame.
 #[derive(Clone, Copy)]
@@ -660,7 +625,7 @@ fn search(
         }
         let (mut skip_start, mut skip_end) = (0, 0);
         for zone in clamp_zones.iter().filter(|z| z.link == ob.link) {
-            let n = zone_sub_segments(nodes, zone.end, zone.length_m);
+            let n = zone.sub_segments.min(sub_segments);
             match zone.end {
                 GuideEnd::Start => skip_start = skip_start.max(n),
                 GuideEnd::End => skip_end = skip_end.max(n),

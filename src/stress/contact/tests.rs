@@ -1,7 +1,7 @@
 //! The closed-form segment minima against a brute-force oracle on random segments, and the
 //! mesh solid against the equivalent box.
 
-use super::mesh::{SolidMesh, solids_of};
+use super::mesh::{MeshSolid, SolidMesh, solids_of};
 use super::primitives::*;
 use nalgebra::{Point3, Vector3};
 
@@ -194,14 +194,17 @@ fn cube(h: &Vector3<f64>, c: Vector3<f64>, inward: bool) -> (Vec<Point3<f64>>, V
     (vertices, triangles)
 }
 
-/// A mesh's parts as the contact search combines them: the minimum over the parts.
-struct Union(Vec<SolidMesh>);
+/// A mesh's parts, and the mesh solid that combines them for the contact search.
+struct Union(Vec<SolidMesh>, MeshSolid);
 
 impl Union {
     fn new(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> Union {
-        match solids_of(vertices, triangles) {
-            Ok(parts) => Union(parts),
-            Err(e) => panic!("mesh refused: {e}"),
+        match (
+            solids_of(vertices, triangles),
+            MeshSolid::new(vertices, triangles),
+        ) {
+            (Ok(parts), Ok(solid)) => Union(parts, solid),
+            (Err(e), _) | (_, Err(e)) => panic!("mesh refused: {e}"),
         }
     }
 
@@ -210,11 +213,7 @@ impl Union {
     }
 
     fn segment_min(&self, a: &Point3<f64>, b: &Point3<f64>, cutoff: f64) -> SegmentMin {
-        self.0
-            .iter()
-            .map(|part| part.segment_min(a, b, cutoff))
-            .reduce(SegmentMin::min)
-            .expect("a part")
+        self.1.segment_min(a, b, cutoff)
     }
 
     fn signed_distance(&self, p: &Point3<f64>) -> f64 {
