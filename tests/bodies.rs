@@ -224,11 +224,11 @@ fn bad_bodies_are_refused_naming_the_key_and_bodies_change_the_hash() {
                 "box_mm = [44.0, 40.0, 100.0]",
                 "sphere_radius_mm = 5.0\nbox_mm = [1.0, 1.0, 1.0]",
             ),
-            "exactly one shape",
+            "exactly one",
         ),
         (
             GRIPPER.replace("box_mm = [44.0, 40.0, 100.0]", ""),
-            "exactly one shape",
+            "exactly one",
         ),
         (
             GRIPPER.replace("box_mm = [44.0, 40.0, 100.0]", "mesh = \"no_such.stl\""),
@@ -286,4 +286,47 @@ fn cube_stl(size: [f64; 3]) -> String {
         out.push_str(" endloop\nendfacet\n");
     }
     out + "endsolid box\n"
+}
+
+/// A connector written inside the gripper's body (an easy slip once the tool is modelled) is
+/// named in a warning when the setup is read: every piece into it would touch the body.
+#[test]
+fn a_clamp_inside_a_body_is_warned_about_naming_the_body() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = setup_text(GRIPPER)
+        .replace(
+            "robots/viper_s850/viper_s850.urdf",
+            &root()
+                .join("robots/viper_s850/viper_s850.urdf")
+                .display()
+                .to_string(),
+        )
+        .replace(
+            "cables/smc_le_cp_3.toml",
+            &root().join("cables/smc_le_cp_3.toml").display().to_string(),
+        );
+    let path = dir.path().join("setup.toml");
+    let run = |text: &str| {
+        std::fs::write(&path, text).unwrap();
+        std::process::Command::new(env!("CARGO_BIN_EXE_cable-dict"))
+            .args(["sites", path.to_str().unwrap()])
+            .output()
+            .unwrap()
+    };
+    let clear = run(&text);
+    assert!(clear.status.success());
+    assert!(!String::from_utf8_lossy(&clear.stderr).contains("inside"));
+    // The connector 20 mm off the flange axis, 30 mm beyond the flange: inside the 44 × 40 mm
+    // box, 20 mm from its nearest face (the box is turned 30° about z).
+    let buried = run(&text.replace(
+        "position_mm = [60.0, 0.0, 85.0]",
+        "position_mm = [0.0, 0.0, 30.0]",
+    ));
+    let stderr = String::from_utf8_lossy(&buried.stderr);
+    assert!(buried.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("G2 \"connector\"")
+            && stderr.contains("20.0 mm inside body \"gripper\" on link_6"),
+        "{stderr}"
+    );
 }

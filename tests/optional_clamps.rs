@@ -89,6 +89,22 @@ fn leaving_the_wrist_clamp_out_is_shorter_and_the_search_does_it() {
     );
     let dynamics = optional.motion_test.as_ref().unwrap();
     assert!(dynamics.passed);
+
+    // The report's pictures name the clamps the path mounts (G1 and G3), not G2.
+    let folder = tempfile::tempdir().unwrap();
+    let dir = folder.path().join("report");
+    cable_dict::report::write_report(&dir, &setup, &ur5_motion(&setup), &optional)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let picture = std::fs::read_to_string(dir.join("pose-1.svg")).unwrap();
+    let clamps = &picture[picture.find("class=\"clamps\"").expect("clamps drawn")..];
+    assert!(
+        clamps.contains(">G1<") && clamps.contains(">G3<"),
+        "{clamps}"
+    );
+    assert!(
+        !clamps.contains(">G2<"),
+        "the left-out clamp is drawn: {clamps}"
+    );
 }
 
 #[test]

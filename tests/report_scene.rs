@@ -92,11 +92,13 @@ fn spec(robot: &Robot) -> SceneSpec<'_> {
         guides: vec![
             GuideMark {
                 name: "G1 (link_2/side)".into(),
+                clamp: "G1".into(),
                 link: link(robot, "link_2"),
                 pose_in_link: pose_from_mm_deg([100.0, 0.0, 100.0], [0.0, 90.0, 0.0]),
             },
             GuideMark {
                 name: "G2 (link_4/top)".into(),
+                clamp: "G2".into(),
                 link: link(robot, "link_4"),
                 pose_in_link: pose_from_mm_deg([0.0, 80.0, 50.0], [-90.0, 0.0, 30.0]),
             },

@@ -67,6 +67,7 @@ fn marks(setup: &Setup) -> Vec<GuideMark> {
         .flat_map(|guide| {
             guide.configurations.iter().map(|c| GuideMark {
                 name: format!("{} ({})", guide.name, c.name),
+                clamp: guide.name.clone(),
                 link: guide.link,
                 pose_in_link: c.pose,
             })
@@ -226,6 +227,8 @@ struct GuideReport {
     link: String,
     /// `sites`, `configurations` or `fixed`.
     kind: &'static str,
+    /// The search may leave this clamp out.
+    optional: bool,
     /// The axes directions are measured from (generated sites only).
     reference: Option<ReferenceReport>,
     /// Every configuration the search tries, in index order.
@@ -290,9 +293,12 @@ struct DirectionReport {
 
 #[derive(Serialize)]
 struct SegmentReport {
+    /// `C2`, or `C2–C3` for a span where optional clamps are left out.
     name: String,
     from: String,
     to: String,
+    /// A span over optional guides rather than a declared segment.
+    span: bool,
     lengths: usize,
     candidate_pieces: u64,
     real_cable_pieces: u64,
@@ -310,9 +316,10 @@ fn report(setup: &Setup) -> Result<SitesReport, Failure> {
         .map(|m| {
             let (a, b) = setup.segment_guides(m);
             SegmentReport {
-                name: format!("C{}", m + 1),
+                name: setup.segment_name(m),
                 from: setup.guides[a].name.clone(),
                 to: setup.guides[b].name.clone(),
+                span: m >= setup.declared_segments,
                 lengths: setup.segments[m].lengths.len(),
                 candidate_pieces: setup.pv_count(m) as u64,
                 real_cable_pieces: setup.admissible_pv_count(m) as u64,
@@ -363,6 +370,7 @@ fn guide_report(setup: &Setup, guide: &Guide, generated: Option<&GeneratedSites>
         name: guide.name.clone(),
         link: setup.robot.links[guide.link].name.clone(),
         kind,
+        optional: guide.optional,
         reference,
         configurations,
         sites,

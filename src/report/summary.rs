@@ -70,8 +70,11 @@ fn heading(md: &mut String, report: &SolveReport) {
     if let Some(total) = report.optimal_length_mm {
         let _ = writeln!(
             md,
-            "Total cable length **{total:.0} mm**, {} segments, {}.",
-            report.segments.len(),
+            "Total cable length **{total:.0} mm**, {} cable pieces, {}.",
+            report
+                .optimal
+                .as_ref()
+                .map_or(0, |path| path.segments.len()),
             report.inputs.method
         );
     }

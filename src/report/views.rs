@@ -67,6 +67,7 @@ pub fn guide_marks(setup: &Setup, path: &CablePath) -> Vec<GuideMark> {
             let configuration = &guide.configurations[c];
             GuideMark {
                 name: format!("{} ({})", guide.name, configuration.name),
+                clamp: guide.name.clone(),
                 link: guide.link,
                 pose_in_link: configuration.pose,
             }

@@ -49,13 +49,15 @@ pub(super) fn attach(
         }
         names.push(name);
         let link = robot.link_index(body.link.get_ref()).ok_or_else(|| {
+            let known: Vec<&str> = robot.links.iter().map(|l| l.name.as_str()).collect();
             src.error(
                 body.link.span(),
                 key("link"),
                 format!(
-                    "link \"{}\" is not in the robot {}",
+                    "link \"{}\" is not in the robot {} (links: {})",
                     body.link.get_ref(),
-                    robot.source.display()
+                    robot.source.display(),
+                    known.join(", ")
                 ),
             )
         })?;
@@ -130,11 +132,28 @@ fn shape(
                 .map_err(|problem| src.error(uri.span(), key("mesh"), problem))?;
             Ok(Shape::Mesh(mesh))
         }
-        _ => Err(src.error(
-            body.name.span(),
-            key("name"),
-            "give exactly one shape: box_mm = [x, y, z], cylinder_mm = { radius, length }, \
-             sphere_radius_mm or mesh = \"file.stl\"",
-        )),
+        _ => {
+            let given: Vec<&str> = [
+                (body.box_mm.is_some(), "box_mm"),
+                (body.cylinder_mm.is_some(), "cylinder_mm"),
+                (body.sphere_radius_mm.is_some(), "sphere_radius_mm"),
+                (body.mesh.is_some(), "mesh"),
+            ]
+            .into_iter()
+            .filter_map(|(present, key)| present.then_some(key))
+            .collect();
+            let what = match given.as_slice() {
+                [] => "no shape".to_string(),
+                keys => format!("{} shapes ({})", keys.len(), keys.join(", ")),
+            };
+            Err(src.error(
+                body.name.span(),
+                key("").trim_end_matches('.').to_string(),
+                format!(
+                    "{what} given; give exactly one: box_mm = [x, y, z], cylinder_mm = \
+                     {{ radius, length }}, sphere_radius_mm or mesh = \"file.stl\""
+                ),
+            ))
+        }
     }
 }

@@ -361,3 +361,52 @@ fn check_per_link(
     }
     Ok(())
 }
+
+/// Warns (the run goes on) about every written clamp configuration whose cable axis lies
+/// inside a solid of its own link — the link's shapes, a body the setup attached, the links
+/// fixed to it: a connector placed inside the tool's body, say. The cable cannot leave such
+/// a clamp without touching, so every piece there fails; the warning says why up front.
+/// Generated sites are checked when they are generated.
+pub(super) fn warn_buried_clamps(src: Source, robot: &Robot, guides: &[Guide]) {
+    let Ok(obstacles) = crate::stress::Obstacles::from_robot(robot) else {
+        return; // the contact stages refuse such a robot with the message
+    };
+    let Ok(poses) = robot.link_poses(&vec![0.0; robot.dof()]) else {
+        return;
+    };
+    for guide in guides {
+        let rigid: Vec<usize> = (0..robot.links.len())
+            .filter(|&l| robot.moving_body(l).0 == guide.body)
+            .collect();
+        for c in &guide.configurations {
+            if !matches!(c.origin, ConfigurationOrigin::Declared { .. }) {
+                continue;
+            }
+            let at = poses[guide.link] * nalgebra::Point3::from(c.pose.translation.vector);
+            let found = crate::stress::min_clearance_to_links(
+                &obstacles,
+                &poses,
+                &[at, at],
+                0.0,
+                &[],
+                &rigid,
+            );
+            let Ok(Some(nearest)) = found else { continue };
+            if nearest.clearance_m < -1e-6 {
+                let link = &robot.links[nearest.link];
+                let what = match &link.colliders[nearest.collider].attached {
+                    Some(body) => format!("body \"{body}\" on {}", link.name),
+                    None => format!("{}'s collision shape #{}", link.name, nearest.collider + 1),
+                };
+                log::warn!(
+                    "{}: guide {} \"{}\": its clamp's cable axis lies {:.1} mm inside {what}; \
+                     the cable cannot leave it without touching — move the clamp out",
+                    src.file.display(),
+                    guide.name,
+                    c.name,
+                    -nearest.clearance_m * 1e3
+                );
+            }
+        }
+    }
+}

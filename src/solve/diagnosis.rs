@@ -197,11 +197,13 @@ fn pruning_note(setup: &Setup, m: usize, sets: &SegmentSets) -> String {
     if sets.d0_pruned == sets.d0 {
         return String::new();
     }
+    // The neighbours tested before it (intra-link segments first, then the others in order),
+    // whose robust pieces pruned it.
     let (a, b) = setup.segment_guides(m);
     let neighbours: Vec<String> = setup
         .segments_into(a)
         .chain(setup.segments_from(b))
-        .filter(|&n| setup.is_intra_link(n))
+        .filter(|&n| setup.is_intra_link(n) || n < m)
         .map(|n| setup.segment_name(n))
         .collect();
     format!(

@@ -158,6 +158,7 @@ fn write_scene(
     let base = link_poses[0];
     let guide = |name: &str, frame: &Pose| GuideMark {
         name: name.into(),
+        clamp: name.into(),
         link: 0,
         pose_in_link: base.inverse() * frame,
     };

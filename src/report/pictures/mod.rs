@@ -40,7 +40,7 @@ pub fn pictures(setup: &Setup, report: &SolveReport, spec: &SceneSpec<'_>) -> Ve
     let mut moments = critical_pose_moments(report, spec);
     moments.extend(worst_moment(setup, report, spec));
     moments.extend(nearest_miss_moment(setup, report, spec));
-    let drawings: Vec<Drawing> = moments.iter().map(|m| drawing(setup, spec, m)).collect();
+    let drawings: Vec<Drawing> = moments.iter().map(|m| drawing(spec, m)).collect();
     let layout = Layout::around(&drawings, 2e3 * spec.cable_radius_m);
     moments
         .into_iter()
@@ -67,7 +67,7 @@ struct Moment<'s> {
 }
 
 /// What is drawn of `moment`, in millimetres.
-fn drawing(setup: &Setup, spec: &SceneSpec<'_>, moment: &Moment<'_>) -> Drawing {
+fn drawing(spec: &SceneSpec<'_>, moment: &Moment<'_>) -> Drawing {
     let mm = |p: &Point3<f64>| p * 1e3;
     let scene = moment.scene;
     let colliders = scene::collider_points(spec.robot, &scene.link_poses)
@@ -82,10 +82,9 @@ fn drawing(setup: &Setup, spec: &SceneSpec<'_>, moment: &Moment<'_>) -> Drawing 
     let clamps = spec
         .guides
         .iter()
-        .zip(&setup.guides)
-        .filter_map(|(mark, guide)| {
+        .filter_map(|mark| {
             let at = scene.link_poses.get(mark.link)? * mark.pose_in_link;
-            Some((guide.name.clone(), mm(&Point3::from(at.translation.vector))))
+            Some((mark.clamp.clone(), mm(&Point3::from(at.translation.vector))))
         })
         .collect();
     Drawing {

@@ -127,6 +127,8 @@ pub struct CableLine {
 pub struct GuideMark {
     /// E.g. `G3 (link_3/top_40)`.
     pub name: String,
+    /// The clamp's short label in pictures, e.g. `G3`.
+    pub clamp: String,
     /// Index into `robot.links` of the link it moves with.
     pub link: usize,
     /// The guide's frame in the link frame; its +z axis is the cable direction.
