@@ -500,7 +500,7 @@ fn a_catalogue_too_large_to_search_is_refused_with_its_count() {
 /// The UR5 setup of issue 25: sites on forearm_link, wrist_1_link, wrist_2_link (80 mm) and
 /// wrist_3_link, the flange (20 mm).
 fn ur5() -> Setup {
-    Setup::from_file(root().join("tests/data/ur5_sites_setup.toml"))
+    Setup::from_file(root().join("tests/data/ur5/sites_setup.toml"))
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -950,7 +950,7 @@ fn on_the_ur5_wrist_links_the_reference_runs_along_the_arm() {
 #[test]
 fn the_sites_command_writes_every_site_as_json() {
     let setup = ur5();
-    let output = common::run(&["sites", "tests/data/ur5_sites_setup.toml", "--json"]);
+    let output = common::run(&["sites", "tests/data/ur5/sites_setup.toml", "--json"]);
     assert!(
         output.status.success(),
         "{}",

@@ -18,7 +18,6 @@
 
 use super::SetupError;
 use super::error::Source;
-use super::load::finite3;
 use super::raw::RawBody;
 use crate::pose::pose_from_mm_deg;
 use crate::robot::{MeshFile, Robot, Shape};
@@ -61,8 +60,8 @@ pub(super) fn attach(
                 ),
             )
         })?;
-        let position = finite3(src, &body.position_mm, key("position_mm"))?;
-        let rpy = finite3(src, &body.rpy_deg, key("rpy_deg"))?;
+        let position = src.finite3(&body.position_mm, key("position_mm"))?;
+        let rpy = src.finite3(&body.rpy_deg, key("rpy_deg"))?;
         let shape = shape(src, robot, body, &key, folder, embedded)?;
         robot.attach_body(link, name, pose_from_mm_deg(position, rpy), shape);
     }

@@ -2,6 +2,7 @@
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
+use toml::Spanned;
 
 /// A setup file that cannot be used.
 ///
@@ -45,6 +46,24 @@ pub(super) fn newline_offsets(text: &str) -> Vec<usize> {
 }
 
 impl Source<'_> {
+    /// The three numbers of `value`, refused (at `key`) unless all are finite.
+    pub fn finite3(
+        &self,
+        value: &Spanned<[f64; 3]>,
+        key: impl Into<String>,
+    ) -> Result<[f64; 3], SetupError> {
+        let v = *value.get_ref();
+        if v.iter().all(|x| x.is_finite()) {
+            Ok(v)
+        } else {
+            Err(self.error(
+                value.span(),
+                key,
+                format!("{v:?} must be three finite numbers"),
+            ))
+        }
+    }
+
     /// An error at the value whose byte span is `span`.
     pub fn error(
         &self,

@@ -1,7 +1,6 @@
 //! Guides: their links, their declared configurations, their order and count per link.
 
 use super::error::Source;
-use super::load::finite3;
 use super::raw::{RawConfiguration, RawGuide};
 use super::sites::SiteContext;
 use super::{ConfigurationOrigin, Guide, GuideConfiguration, SetupError};
@@ -171,8 +170,8 @@ fn configuration(
 ) -> Result<GuideConfiguration, SetupError> {
     let raw = entry.get_ref();
     let name = checked_name(src, &raw.name, &format!("{key}.name"))?;
-    let position_mm = finite3(src, &raw.position_mm, format!("{key}.position_mm"))?;
-    let rpy_deg = finite3(src, &raw.rpy_deg, format!("{key}.rpy_deg"))?;
+    let position_mm = src.finite3(&raw.position_mm, format!("{key}.position_mm"))?;
+    let rpy_deg = src.finite3(&raw.rpy_deg, format!("{key}.rpy_deg"))?;
     Ok(GuideConfiguration {
         name,
         pose: pose_from_mm_deg(position_mm, rpy_deg),

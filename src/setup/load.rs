@@ -132,24 +132,6 @@ fn read_or_given(path: &Path, given: Option<&str>, kind: FileKind) -> Result<Str
     }
 }
 
-/// Three finite numbers, or an error naming `key`.
-pub(super) fn finite3(
-    src: Source,
-    value: &Spanned<[f64; 3]>,
-    key: impl Into<String>,
-) -> Result<[f64; 3], SetupError> {
-    let v = *value.get_ref();
-    if v.iter().all(|x| x.is_finite()) {
-        Ok(v)
-    } else {
-        Err(src.error(
-            value.span(),
-            key,
-            format!("{v:?} must be three finite numbers"),
-        ))
-    }
-}
-
 /// `install_joints_deg`: a joint vector in degrees (millimetres for prismatic joints) within
 /// the limits, and the link poses there.
 fn installation(
@@ -179,7 +161,7 @@ fn installation(
 }
 
 fn gravity(src: Source, value: &Spanned<[f64; 3]>) -> Result<Vector3<f64>, SetupError> {
-    let g = Vector3::from(finite3(src, value, "gravity_m_s2")?);
+    let g = Vector3::from(src.finite3(value, "gravity_m_s2")?);
     if g.norm() > 0.0 {
         Ok(g)
     } else {
