@@ -506,11 +506,11 @@ fn ur5() -> Setup {
 
 /// Every generated guide of a setup with its sites.
 fn generated(setup: &Setup) -> Vec<(usize, GeneratedSites)> {
-    let sites = setup.generated_sites().unwrap_or_else(|e| panic!("{e}"));
-    sites
-        .into_iter()
+    setup
+        .guides
+        .iter()
         .enumerate()
-        .filter_map(|(g, s)| s.map(|s| (g, s)))
+        .filter_map(|(g, guide)| guide.generated.clone().map(|s| (g, s)))
         .collect()
 }
 

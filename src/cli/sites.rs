@@ -305,12 +305,10 @@ struct SegmentReport {
 }
 
 fn report(setup: &Setup) -> Result<SitesReport, Failure> {
-    let generated = setup.generated_sites().map_err(Failure::input)?;
     let guides = setup
         .guides
         .iter()
-        .zip(&generated)
-        .map(|(guide, sites)| guide_report(setup, guide, sites.as_ref()))
+        .map(|guide| guide_report(setup, guide, guide.generated.as_ref()))
         .collect();
     let segments = (0..setup.segment_count())
         .map(|m| {

@@ -85,6 +85,7 @@ fn as_setup(
         fixed: false,
         optional: false,
         configurations: clamps.clone(),
+        generated: None,
     };
     let mut catalogue = setup.clone();
     catalogue.guides = vec![guide("from"), guide("to")];

@@ -253,6 +253,15 @@ impl Robot {
         Ok(mesh)
     }
 
+    /// `link` and the links joined to it through fixed joints (parents and children): the
+    /// links that move as one body.
+    pub fn rigidly_attached(&self, link: usize) -> Vec<usize> {
+        let body = self.moving_body(link).0;
+        (0..self.links.len())
+            .filter(|&l| self.moving_body(l).0 == body)
+            .collect()
+    }
+
     /// Index into the joint vector of the actuated joint called `name`.
     pub fn actuated_index(&self, name: &str) -> Option<usize> {
         self.actuated

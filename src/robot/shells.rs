@@ -145,43 +145,47 @@ pub fn analyse(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> MeshShells {
 
 /// One use of an undirected edge by a triangle.
 #[derive(Debug, Clone, Copy)]
-struct EdgeUse {
+pub(crate) struct EdgeUse {
     /// The edge as (lower, higher) vertex index.
-    key: (u32, u32),
+    pub key: (u32, u32),
     /// Index of the triangle.
-    triangle: usize,
+    pub triangle: usize,
+    /// Which of the triangle's edges: from its corner `slot` to corner `(slot + 1) % 3`.
+    pub slot: usize,
     /// Whether the triangle traverses it from the lower to the higher vertex.
-    forward: bool,
+    pub forward: bool,
 }
 
 /// Every edge use of a set of triangles, grouped by edge (sorted: deterministic and without
 /// hashing).
-struct EdgeTable {
+pub(crate) struct EdgeTable {
     uses: Vec<EdgeUse>,
 }
 
 impl EdgeTable {
-    fn new(triangles: &[[u32; 3]]) -> EdgeTable {
+    /// The uses of every edge of `triangles`.
+    pub fn new(triangles: &[[u32; 3]]) -> EdgeTable {
         let mut uses: Vec<EdgeUse> = triangles
             .iter()
             .enumerate()
             .flat_map(|(triangle, t)| {
-                (0..3).map(move |k| {
-                    let (u, v) = (t[k], t[(k + 1) % 3]);
+                (0..3).map(move |slot| {
+                    let (u, v) = (t[slot], t[(slot + 1) % 3]);
                     EdgeUse {
                         key: (u.min(v), u.max(v)),
                         triangle,
+                        slot,
                         forward: u < v,
                     }
                 })
             })
             .collect();
-        uses.sort_unstable_by_key(|e| (e.key, e.triangle, e.forward));
+        uses.sort_unstable_by_key(|e| (e.key, e.triangle, e.slot));
         EdgeTable { uses }
     }
 
     /// The uses of each edge, edge by edge.
-    fn groups(&self) -> impl Iterator<Item = &[EdgeUse]> {
+    pub fn groups(&self) -> impl Iterator<Item = &[EdgeUse]> {
         self.uses.chunk_by(|a, b| a.key == b.key)
     }
 }

@@ -18,6 +18,7 @@
 
 use super::SetupError;
 use super::error::Source;
+use super::guides::link_named;
 use super::raw::RawBody;
 use crate::pose::pose_from_mm_deg;
 use crate::robot::{MeshFile, Robot, Shape};
@@ -47,22 +48,10 @@ pub(super) fn attach(
             ));
         }
         names.push(name);
-        let link = robot.link_index(body.link.get_ref()).ok_or_else(|| {
-            let known: Vec<&str> = robot.links.iter().map(|l| l.name.as_str()).collect();
-            src.error(
-                body.link.span(),
-                key("link"),
-                format!(
-                    "link \"{}\" is not in the robot {} (links: {})",
-                    body.link.get_ref(),
-                    robot.source.display(),
-                    known.join(", ")
-                ),
-            )
-        })?;
+        let link = link_named(src, robot, &body.link, key("link"))?;
         let position = src.finite3(&body.position_mm, key("position_mm"))?;
         let rpy = src.finite3(&body.rpy_deg, key("rpy_deg"))?;
-        let shape = shape(src, robot, body, &key, folder, embedded)?;
+        let shape = shape(src, robot, body, b, folder, embedded)?;
         robot.attach_body(link, name, pose_from_mm_deg(position, rpy), shape);
     }
     Ok(())
@@ -73,10 +62,11 @@ fn shape(
     src: Source,
     robot: &mut Robot,
     body: &RawBody,
-    key: &dyn Fn(&str) -> String,
+    b: usize,
     folder: &Path,
     embedded: Option<&[MeshFile]>,
 ) -> Result<Shape, SetupError> {
+    let key = |field: &str| format!("bodies[{b}].{field}");
     let positive = |span: std::ops::Range<usize>, field: &str, values: &[f64]| {
         if values.iter().all(|v| v.is_finite() && *v > 0.0) {
             Ok(())
@@ -147,7 +137,7 @@ fn shape(
             };
             Err(src.error(
                 body.name.span(),
-                key("").trim_end_matches('.').to_string(),
+                format!("bodies[{b}]"),
                 format!(
                     "{what} given; give exactly one: box_mm = [x, y, z], cylinder_mm = \
                      {{ radius, length }}, sphere_radius_mm or mesh = \"file.stl\""

@@ -54,26 +54,20 @@ fn guide(
     sites: &SiteContext,
 ) -> Result<Guide, SetupError> {
     let name = checked_name(src, &raw.name, &format!("guides[{g}].name"))?;
-    let link = robot.link_index(raw.link.get_ref()).ok_or_else(|| {
-        let known: Vec<&str> = robot.links.iter().map(|l| l.name.as_str()).collect();
-        src.error(
-            raw.link.span(),
-            format!("guides[{g}].link"),
-            format!(
-                "link \"{}\" is not in the robot {} (links: {})",
-                raw.link.get_ref(),
-                robot.source.display(),
-                known.join(", ")
-            ),
-        )
-    })?;
+    let link = link_named(src, robot, &raw.link, format!("guides[{g}].link"))?;
     let (body, link_in_body) = robot.moving_body(link);
     let fixed = raw.fixed.is_some();
-    let configurations = match &raw.sites {
+    let (generated, configurations) = match &raw.sites {
         Some(generator) if raw.configurations.is_none() && !fixed => {
-            sites.configurations(src, robot, link, &format!("guides[{g}].sites"), generator)?
+            let key = format!("guides[{g}].sites");
+            let (generated, configurations) =
+                sites.configurations(src, robot, link, &key, generator)?;
+            (Some(generated), configurations)
         }
-        _ => configurations(src, &configuration_entries(src, g, raw)?)?,
+        _ => (
+            None,
+            configurations(src, &configuration_entries(src, g, raw)?)?,
+        ),
     };
     Ok(Guide {
         name,
@@ -83,6 +77,30 @@ fn guide(
         fixed,
         optional: raw.optional.as_ref().is_some_and(|o| *o.get_ref()),
         configurations,
+        generated,
+    })
+}
+
+/// The index of the link `name` names, refused at `key` with the robot's links when it has
+/// none of that name.
+pub(super) fn link_named(
+    src: Source,
+    robot: &Robot,
+    name: &Spanned<String>,
+    key: String,
+) -> Result<usize, SetupError> {
+    robot.link_index(name.get_ref()).ok_or_else(|| {
+        let known: Vec<&str> = robot.links.iter().map(|l| l.name.as_str()).collect();
+        src.error(
+            name.span(),
+            key,
+            format!(
+                "link \"{}\" is not in the robot {} (links: {})",
+                name.get_ref(),
+                robot.source.display(),
+                known.join(", ")
+            ),
+        )
     })
 }
 
@@ -366,24 +384,27 @@ fn check_per_link(
 /// fixed to it: a connector placed inside the tool's body, say. The cable cannot leave such
 /// a clamp without touching, so every piece there fails; the warning says why up front.
 /// Generated sites are checked when they are generated.
-pub(super) fn warn_buried_clamps(src: Source, robot: &Robot, guides: &[Guide]) {
-    let Ok(obstacles) = crate::stress::Obstacles::from_robot(robot) else {
+pub(super) fn warn_buried_clamps(
+    src: Source,
+    robot: &Robot,
+    guides: &[Guide],
+    sites: &SiteContext,
+) {
+    let Ok(obstacles) = sites.obstacles(robot) else {
         return; // the contact stages refuse such a robot with the message
     };
     let Ok(poses) = robot.link_poses(&vec![0.0; robot.dof()]) else {
         return;
     };
     for guide in guides {
-        let rigid: Vec<usize> = (0..robot.links.len())
-            .filter(|&l| robot.moving_body(l).0 == guide.body)
-            .collect();
+        let rigid = robot.rigidly_attached(guide.link);
         for c in &guide.configurations {
             if !matches!(c.origin, ConfigurationOrigin::Declared { .. }) {
                 continue;
             }
             let at = poses[guide.link] * nalgebra::Point3::from(c.pose.translation.vector);
             let found = crate::stress::min_clearance_to_links(
-                &obstacles,
+                obstacles,
                 &poses,
                 &[at, at],
                 0.0,

@@ -56,7 +56,7 @@ pub(super) fn from_str(
     let sites = SiteContext::new(0.5 * cable.diameter_m, installation.as_ref());
     let mut guides = guides::build(src, &robot, &raw.guides, max_guides_per_link, &sites)?;
     let mut segments = segments::build(src, &guides, &raw.segments, robustness.delta_s)?;
-    guides::warn_buried_clamps(src, &robot, &guides);
+    guides::warn_buried_clamps(src, &robot, &guides, &sites);
     coincide::add_copies(&mut guides, &segments);
     let declared_segments = segments.len();
     segments.extend(segments::spans(

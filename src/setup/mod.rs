@@ -156,6 +156,9 @@ pub struct Guide {
     pub optional: bool,
     /// Candidate configurations: the declared ones first, then coincident copies.
     pub configurations: Vec<GuideConfiguration>,
+    /// For a guide with a site generator, its sites (with their surface points and normals)
+    /// in the order `ConfigurationOrigin::Generated { site }` indexes; `None` otherwise.
+    pub generated: Option<crate::sites::GeneratedSites>,
 }
 
 /// One candidate pose of a guide.

@@ -1,8 +1,8 @@
 //! `sites = {…}`: a guide whose candidate configurations are generated on its link's
 //! collision surfaces (see [`crate::sites`]).
 
-use super::error::{Source, newline_offsets};
-use super::raw::{RawRegion, RawSetup, RawSites};
+use super::error::Source;
+use super::raw::{RawRegion, RawSites};
 use super::{ConfigurationOrigin, GuideConfiguration, Installation, SetupError};
 use crate::robot::Robot;
 use crate::sites::{GeneratedSites, MIN_SPACING_M, Region, Site, SiteSpec, generate, site_frame};
@@ -15,7 +15,8 @@ use toml::Spanned;
 const MAX_DIRECTIONS: usize = 36;
 
 /// What generating sites needs besides the generator itself: the cable radius, the
-/// installation pose and, built on first use, the robot's collision geometry.
+/// installation pose and, built on first use, the robot's collision geometry (which the
+/// check of written clamps shares, so that loading a setup builds it once).
 pub(super) struct SiteContext<'a> {
     pub cable_radius_m: f64,
     pub installation: Option<&'a Installation>,
@@ -31,7 +32,15 @@ impl<'a> SiteContext<'a> {
         }
     }
 
-    /// The configurations of a generator: every site in every direction, in site order.
+    /// The robot's collision geometry, built on first use; the error says why it cannot be.
+    pub fn obstacles(&self, robot: &Robot) -> Result<&Obstacles, &String> {
+        self.obstacles
+            .get_or_init(|| Obstacles::from_robot(robot).map_err(|e| e.to_string()))
+            .as_ref()
+    }
+
+    /// The sites of a generator, and its configurations: every site in every direction, in
+    /// site order.
     pub fn configurations(
         &self,
         src: Source,
@@ -39,11 +48,11 @@ impl<'a> SiteContext<'a> {
         link: usize,
         key: &str,
         raw: &Spanned<RawSites>,
-    ) -> Result<Vec<GuideConfiguration>, SetupError> {
+    ) -> Result<(GeneratedSites, Vec<GuideConfiguration>), SetupError> {
         let generated = self.sites(src, robot, link, key, raw)?;
         let line = src.line_of(raw.span().start);
         let directions = &generated.spec.directions_rad;
-        Ok(generated
+        let configurations = generated
             .sites
             .iter()
             .enumerate()
@@ -52,7 +61,8 @@ impl<'a> SiteContext<'a> {
                     .iter()
                     .map(move |&angle| configuration(site, k, angle, line))
             })
-            .collect())
+            .collect();
+        Ok((generated, configurations))
     }
 
     /// The sites of a generator and the spec they were made with.
@@ -74,11 +84,7 @@ impl<'a> SiteContext<'a> {
             )
         })?;
         let spec = spec(src, key, raw.get_ref())?;
-        let obstacles = self
-            .obstacles
-            .get_or_init(|| Obstacles::from_robot(robot).map_err(|e| e.to_string()))
-            .as_ref()
-            .map_err(|e| fail(e.clone()))?;
+        let obstacles = self.obstacles(robot).map_err(|e| fail(e.clone()))?;
         let sites = generate(
             robot,
             obstacles,
@@ -113,37 +119,6 @@ fn configuration(site: &Site, k: usize, angle: f64, line: usize) -> GuideConfigu
         position_mm,
         rpy_deg: [r, p, y].map(f64::to_degrees),
         origin: ConfigurationOrigin::Generated { line, site: k },
-    }
-}
-
-impl super::Setup {
-    /// The generated sites of every guide (`None` for a guide with written configurations),
-    /// made again from the setup's text: the same sites in the same order as the guide's
-    /// configurations were made from, which `ConfigurationOrigin::Generated { site }` indexes.
-    pub fn generated_sites(&self) -> Result<Vec<Option<GeneratedSites>>, SetupError> {
-        let newlines = newline_offsets(&self.text);
-        let src = Source {
-            file: &self.source,
-            text: &self.text,
-            newlines: &newlines,
-        };
-        let raw: RawSetup = toml::from_str(&self.text).map_err(|e| src.toml_error(&e))?;
-        let context = SiteContext::new(0.5 * self.cable.diameter_m, self.installation.as_ref());
-        raw.guides
-            .get_ref()
-            .iter()
-            .zip(&self.guides)
-            .enumerate()
-            .map(|(g, (entry, guide))| {
-                let key = format!("guides[{g}].sites");
-                entry
-                    .get_ref()
-                    .sites
-                    .as_ref()
-                    .map(|raw| context.sites(src, &self.robot, guide.link, &key, raw))
-                    .transpose()
-            })
-            .collect()
     }
 }
 

@@ -343,17 +343,10 @@ fn empty(robot: &Robot, link: usize, in_region: usize, standoff: f64) -> SiteErr
 fn rigid_frames(robot: &Robot, link: usize) -> Vec<(usize, Pose)> {
     let (_, link_in_body) = robot.moving_body(link);
     let body_to_link = link_in_body.inverse();
-    rigidly_attached(robot, link)
+    robot
+        .rigidly_attached(link)
         .into_iter()
         .map(|l| (l, body_to_link * robot.moving_body(l).1))
-        .collect()
-}
-
-/// `link` and the links joined to it through fixed joints (parents and children).
-fn rigidly_attached(robot: &Robot, link: usize) -> Vec<usize> {
-    let root = robot.moving_body(link).0;
-    (0..robot.links.len())
-        .filter(|&l| robot.moving_body(l).0 == root)
         .collect()
 }
 

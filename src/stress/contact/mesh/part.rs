@@ -464,21 +464,11 @@ fn pseudo_normals(
     triangles: &[[u32; 3]],
     face_normals: &[Vector3<f64>],
 ) -> Side {
-    let mut by_edge: HashMap<(u32, u32), Vec<(usize, usize)>> = HashMap::new();
-    for (ti, t) in triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (u, v) = (t[k], t[(k + 1) % 3]);
-            by_edge
-                .entry((u.min(v), u.max(v)))
-                .or_default()
-                .push((ti, k));
-        }
-    }
     let mut edge_normals = vec![[Vector3::zeros(); 3]; triangles.len()];
-    for uses in by_edge.values() {
-        let sum: Vector3<f64> = uses.iter().map(|&(ti, _)| face_normals[ti]).sum();
-        for &(ti, k) in uses {
-            edge_normals[ti][k] = sum;
+    for uses in shells::EdgeTable::new(triangles).groups() {
+        let sum: Vector3<f64> = uses.iter().map(|e| face_normals[e.triangle]).sum();
+        for e in uses {
+            edge_normals[e.triangle][e.slot] = sum;
         }
     }
     let mut vertex_normals = vec![Vector3::zeros(); vertices.len()];
