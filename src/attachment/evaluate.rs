@@ -2,14 +2,12 @@
 //! equilibrium and the three stress metrics against the setup's limits.
 
 use super::TestPose;
-use crate::geometry::{ConnectError, connect, reaches, sag_direction};
+use super::continuation::{ClampTurns, Solved, Warm};
+use super::verdict::{Check, Metrics, Miss, Rejection, verdict};
 use crate::path::Pv;
 use crate::pose::Pose;
-use crate::rigid_chain::{
-    ConvergenceWindow, DynamicsSettings, LinearConnect, SegmentShape, connect_linear, relax,
-};
-use crate::setup::{Setup, Thresholds};
-use crate::statics::{FarEnd, RodParameters, SolverOptions, StaticSolver, continuation};
+use crate::setup::Setup;
+use crate::statics::{RodParameters, SolverOptions, StaticSolver};
 use crate::stress::contact::{
     ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
 };
@@ -17,7 +15,6 @@ use crate::stress::{BendRadius, min_bend_radius, stretch};
 use nalgebra::{Point3, Vector3};
 use serde::Serialize;
 use std::borrow::Borrow;
-use std::ops::Range;
 
 /// How the start shape of a segment is obtained, and which solver finds its equilibrium.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -30,276 +27,15 @@ pub enum ConnectMethod {
     Linear,
 }
 
-/// The stress limit a PV violates first (in the order contact, stretch, bend), or why it
-/// could not be evaluated.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Rejection {
-    /// The cable is shorter than the distance between its guides.
-    TooShort,
-    /// The connected geometry or the static solver failed (reported, not fatal).
-    Diverged,
-    /// Clearance to the robot below the contact threshold.
-    Contact,
-    /// Centreline length / natural length above the stretch threshold.
-    Stretch,
-    /// Bend radius below the minimum.
-    Bend,
-}
-
-impl Rejection {
-    /// Every kind, in report order.
-    pub const ALL: [Rejection; 5] = [
-        Rejection::TooShort,
-        Rejection::Diverged,
-        Rejection::Contact,
-        Rejection::Stretch,
-        Rejection::Bend,
-    ];
-
-    /// Short name for people.
-    pub fn name(self) -> &'static str {
-        match self {
-            Rejection::TooShort => "too short",
-            Rejection::Diverged => "solver failed",
-            Rejection::Contact => "contact",
-            Rejection::Stretch => "stretch",
-            Rejection::Bend => "bend radius",
-        }
-    }
-}
-
-/// How a PV failed the attachment test: which limit, how far past it, where on the cable and
-/// at which test pose — what a diagnosis of "no path" ranks its nearest misses by.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Miss {
-    /// The first limit violated.
-    pub rejection: Rejection,
-    /// How far past the limit, relative to it: contact, the clearance deficit over the
-    /// cable's diameter; stretch (and a cable too short for its clamps), the excess stretch
-    /// over the allowed excess; bend, the radius deficit over the minimum radius. Infinite
-    /// when nothing was measured (a failed solve, a verdict read from a dictionary).
-    pub severity: f64,
-    /// The measured value: clearance (m), stretch ratio, or bend radius (m); NaN when not
-    /// measured.
-    pub value: f64,
-    /// Index of the test pose where it failed first.
-    pub pose: usize,
-    /// Where along the piece (m of cable from its start clamp); NaN for the whole piece.
-    pub at_m: f64,
-}
-
-impl Miss {
-    /// A verdict without measurements (e.g. from a dictionary).
-    pub fn unmeasured(rejection: Rejection) -> Miss {
-        Miss {
-            rejection,
-            severity: f64::INFINITY,
-            value: f64::NAN,
-            pose: 0,
-            at_m: f64::NAN,
-        }
-    }
-
-    /// The miss of a limit a lookup found violated at test pose `pose`, from the looked-up
-    /// margins `[clearance mm, stretch, curvature 1/m]` (unmeasured without them). The
-    /// place on the cable is not known.
-    pub fn looked_up(
-        setup: &Setup,
-        rejection: Rejection,
-        margins: Option<[f64; 3]>,
-        pose: usize,
-    ) -> Miss {
-        let limits = &setup.thresholds;
-        let unmeasured = Miss {
-            pose,
-            ..Miss::unmeasured(rejection)
-        };
-        let Some([clearance_mm, stretch, curvature]) = margins else {
-            return unmeasured;
-        };
-        let (severity, value) = match rejection {
-            Rejection::Contact => (
-                -clearance_mm * 1e-3 / setup.cable.diameter_m,
-                limits.contact_clearance_m + clearance_mm * 1e-3,
-            ),
-            Rejection::Stretch => {
-                let value = limits.stretch - stretch;
-                (
-                    (value - 1.0) / (limits.stretch - 1.0).max(1e-12) - 1.0,
-                    value,
-                )
-            }
-            Rejection::Bend => {
-                let limit = limits.static_min_bend_radius_m();
-                let radius = 1.0 / (1.0 / limit - curvature);
-                ((limit - radius) / limit, radius)
-            }
-            Rejection::TooShort | Rejection::Diverged => return unmeasured,
-        };
-        Miss {
-            rejection,
-            severity: severity.max(0.0),
-            value,
-            pose,
-            at_m: f64::NAN,
-        }
-    }
-
-    /// The miss of a failed `check` at test pose `pose`; `None` when it passed.
-    fn of(
-        check: &Check,
-        setup: &Setup,
-        pose: usize,
-        guides: &(Pose, Pose),
-        sub_segments: usize,
-    ) -> Option<Miss> {
-        let rejection = check.rejection?;
-        let limits = &setup.thresholds;
-        let pitch = setup.cable.sub_segment_pitch_m;
-        let excess = |stretch: f64| (stretch - 1.0) / (limits.stretch - 1.0).max(1e-12) - 1.0;
-        let measured = |severity: f64, value: f64, at_m: f64| Miss {
-            rejection,
-            severity: severity.max(0.0),
-            value,
-            pose,
-            at_m,
-        };
-        Some(match (rejection, check.metrics) {
-            (Rejection::TooShort, _) => {
-                let distance = (guides.1.translation.vector - guides.0.translation.vector).norm();
-                let stretch = distance / (sub_segments as f64 * pitch);
-                measured(excess(stretch), stretch, f64::NAN)
-            }
-            (Rejection::Contact, Some(m)) => {
-                let clearance = m.clearance_m.unwrap_or(f64::NAN);
-                let deficit = limits.contact_clearance_m - clearance;
-                let at = m
-                    .clearance_sub_segment
-                    .map_or(f64::NAN, |k| (k as f64 + 0.5) * pitch);
-                measured(deficit / setup.cable.diameter_m, clearance, at)
-            }
-            (Rejection::Stretch, Some(m)) => measured(excess(m.stretch), m.stretch, f64::NAN),
-            (Rejection::Bend, Some(m)) => {
-                let limit = limits.static_min_bend_radius_m();
-                let at = m.min_bend_node as f64 * pitch;
-                measured(
-                    (limit - m.min_bend_radius_m) / limit,
-                    m.min_bend_radius_m,
-                    at,
-                )
-            }
-            _ => Miss {
-                pose,
-                ..Miss::unmeasured(rejection)
-            },
-        })
-    }
-}
-
-/// The stress metrics of one equilibrium shape.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Metrics {
-    /// Lowest signed clearance to the robot (m), clamp zones excluded; `None` when nothing
-    /// was checked.
-    pub clearance_m: Option<f64>,
-    /// Link of the lowest clearance (index into `robot.links`).
-    pub clearance_link: Option<usize>,
-    /// Sub-segment of the lowest clearance.
-    pub clearance_sub_segment: Option<usize>,
-    /// Centreline length / natural length.
-    pub stretch: f64,
-    /// Smallest bend radius (m); infinite for a straight cable.
-    pub min_bend_radius_m: f64,
-    /// Node of the smallest bend radius (0 = start guide).
-    pub min_bend_node: usize,
-}
-
-/// How far an equilibrium is from each limit, positive when the limit holds: what a
-/// dictionary stores per PV and direction ([`crate::dictionary::format::MarginRecord`]).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Margins {
-    /// Clearance − contact limit (mm); infinite when no clearance was measured.
-    pub clearance_mm: f64,
-    /// Stretch limit − stretch.
-    pub stretch: f64,
-    /// 1/(minimum bend radius) − 1/(bend radius) (1/m): curvature, so that a straight cable
-    /// has a finite margin and the value changes smoothly with the shape.
-    pub curvature_per_m: f64,
-}
-
-impl Margins {
-    /// The margins of `metrics` against `limits` (the static bend radius, margin included).
-    pub fn of(metrics: &Metrics, limits: &Thresholds) -> Margins {
-        Margins {
-            clearance_mm: metrics
-                .clearance_m
-                .map_or(f64::INFINITY, |c| (c - limits.contact_clearance_m) * 1e3),
-            stretch: limits.stretch - metrics.stretch,
-            curvature_per_m: 1.0 / limits.static_min_bend_radius_m()
-                - 1.0 / metrics.min_bend_radius_m,
-        }
-    }
-
-    /// `[clearance_mm, stretch, curvature_per_m]`.
-    pub fn to_array(self) -> [f64; 3] {
-        [self.clearance_mm, self.stretch, self.curvature_per_m]
-    }
-
-    /// The limit `[clearance, stretch, curvature]` margins violate first, in the order of
-    /// [`Evaluator::check`] (contact, stretch, bend); `None` when all are non-negative.
-    pub fn first_violation(margins: [f64; 3]) -> Option<Rejection> {
-        let kinds = [Rejection::Contact, Rejection::Stretch, Rejection::Bend];
-        kinds
-            .into_iter()
-            .zip(margins)
-            .find(|(_, m)| *m < 0.0)
-            .map(|(k, _)| k)
-    }
-}
-
-/// The outcome of one PV at one pose.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Check {
-    /// The metrics, when an equilibrium was found (and the segment has a cable).
-    pub metrics: Option<Metrics>,
-    /// The first violated limit, `None` when all three hold.
-    pub rejection: Option<Rejection>,
-    /// Why, for people (only for a rejection).
-    pub detail: Option<String>,
-}
-
-impl Check {
-    fn pass(metrics: Option<Metrics>) -> Check {
-        Check {
-            metrics,
-            rejection: None,
-            detail: None,
-        }
-    }
-
-    fn fail(rejection: Rejection, detail: String, metrics: Option<Metrics>) -> Check {
-        Check {
-            metrics,
-            rejection: Some(rejection),
-            detail: Some(detail),
-        }
-    }
-
-    /// True when all three limits hold.
-    pub fn passed(&self) -> bool {
-        self.rejection.is_none()
-    }
-}
 
 /// Everything a PV evaluation needs besides the PV and the pose, prepared once per run.
 #[derive(Debug, Clone)]
 pub struct Evaluator<'a> {
-    setup: &'a Setup,
+    pub(super) setup: &'a Setup,
     obstacles: Obstacles,
-    rod: RodParameters,
-    solver: SolverOptions,
-    method: ConnectMethod,
+    pub(super) rod: RodParameters,
+    pub(super) solver: SolverOptions,
+    pub(super) method: ConnectMethod,
     /// Every link at the identity: the frame of an intra-link segment's own link.
     link_frame_poses: Vec<Pose>,
 }
@@ -528,29 +264,6 @@ impl<'a> Evaluator<'a> {
         verdicts
     }
 
-    /// Solves the `wanted` lengths (ascending, > 0) between the `declared` clamp poses (the
-    /// end clamp turned by `turns`) in `scene`, in the [`continuation_chains`] that cover
-    /// them, each chain by continuation from the connected geometry at its first length, and
-    /// hands every length solved (wanted or not), its clamp poses and its check to `visit`.
-    fn continue_lengths(
-        &self,
-        solver: &mut StaticSolver,
-        m: usize,
-        (declared, turns): (&(Pose, Pose), &ClampTurns),
-        scene: &Scene<'_>,
-        wanted: impl Iterator<Item = usize>,
-        mut visit: impl FnMut(usize, &(Pose, Pose), &Check),
-    ) {
-        let pitch = self.setup.cable.sub_segment_pitch_m;
-        for chain in continuation_chains(wanted, reaching(declared, pitch)) {
-            let mut earlier: Vec<Solved> = Vec::with_capacity(3);
-            for length in chain {
-                let guides = (declared.0, declared.1 * turns.at(self.setup, m, length));
-                let check = self.next_length(solver, &mut earlier, m, &guides, length, scene);
-                visit(length, &guides, &check);
-            }
-        }
-    }
 
     /// The first pose of `poses` (in their order) where PV `pv` of segment `m` violates a
     /// limit, with its check; `None` when it holds them all. Each pose's equilibrium starts
@@ -602,38 +315,6 @@ impl<'a> Evaluator<'a> {
         None
     }
 
-    /// Checks the next length of a continuation over lengths at one pose: solved from
-    /// `earlier` (the last solutions, the nearest first), which it then joins; from the
-    /// connected geometry when that fails.
-    fn next_length(
-        &self,
-        solver: &mut StaticSolver,
-        earlier: &mut Vec<Solved>,
-        m: usize,
-        guides: &(Pose, Pose),
-        length: usize,
-        scene: &Scene<'_>,
-    ) -> Check {
-        let mut solved = self.solve_warm(solver, guides, length, scene, Warm::Length(earlier));
-        // A start shape carried over from other lengths can lead Newton astray where the
-        // connected geometry would not: a failed warm solve is retried from it.
-        let diverged = |r: &Result<Solved, Check>| {
-            r.as_ref()
-                .is_err_and(|c| c.rejection == Some(Rejection::Diverged))
-        };
-        if diverged(&solved) && !earlier.is_empty() {
-            solved = self.solve_warm(solver, guides, length, scene, Warm::Length(&[]));
-        }
-        match solved {
-            Ok(solved) => {
-                let check = self.judge(m, &guides.0, &guides.1, &solved.nodes, length, scene);
-                earlier.insert(0, solved);
-                earlier.truncate(EXTRAPOLATION_POINTS);
-                check
-            }
-            Err(check) => check,
-        }
-    }
 
     /// The scene of `pose` (all links, the setup's gravity) and the world poses of segment
     /// `m`'s guides in the configurations `(start, end)` as declared (the end clamp's twist
@@ -653,105 +334,6 @@ impl<'a> Evaluator<'a> {
         (scene, guides)
     }
 
-    /// The equilibrium between `guides` with `sub_segments`, started from a neighbouring
-    /// solution when `warm` has one (else from the connected geometry); the linear method
-    /// always relaxes from scratch.
-    fn solve_warm(
-        &self,
-        solver: &mut StaticSolver,
-        guides: &(Pose, Pose),
-        sub_segments: usize,
-        scene: &Scene<'_>,
-        warm: Warm<'_>,
-    ) -> Result<Solved, Check> {
-        if self.method == ConnectMethod::Linear {
-            let nodes = self.relaxed(&guides.0, &guides.1, sub_segments, scene.gravity_m_s2)?;
-            return Ok(Solved {
-                nodes,
-                connected: Vec::new(),
-                twist_rad: 0.0,
-            });
-        }
-        let pitch = self.setup.cable.sub_segment_pitch_m;
-        let (start_nodes, connected, twist) = match warm {
-            Warm::Poses([(last, at), (second, second_at), ..]) => {
-                let nodes = continuation::follow_guides_extrapolated(
-                    (&last.nodes, (&at.0, &at.1)),
-                    (&second.nodes, (&second_at.0, &second_at.1)),
-                    (&guides.0, &guides.1),
-                    pitch,
-                );
-                (nodes, Vec::new(), last.twist_rad)
-            }
-            Warm::Poses([(last, at)]) => {
-                let nodes = continuation::follow_guides(
-                    &last.nodes,
-                    (&at.0, &at.1),
-                    (&guides.0, &guides.1),
-                    pitch,
-                );
-                (nodes, Vec::new(), last.twist_rad)
-            }
-            Warm::Length(earlier @ [nearest, _, ..]) => {
-                reaches(&guides.0, &guides.1, sub_segments, pitch).map_err(connect_failure)?;
-                let shapes: Vec<&[Point3<f64>]> = earlier
-                    .iter()
-                    .map(|solved| solved.nodes.as_slice())
-                    .collect();
-                let nodes = continuation::extrapolate_length(&shapes, sub_segments, pitch);
-                (nodes, Vec::new(), nearest.twist_rad)
-            }
-            Warm::Length(earlier) => {
-                let sag = sag_direction(&scene.gravity_m_s2);
-                let connected = connect(&guides.0, &guides.1, sub_segments, pitch, &sag)
-                    .map_err(connect_failure)?;
-                match earlier
-                    .first()
-                    .filter(|nearest| !nearest.connected.is_empty())
-                {
-                    Some(nearest) => {
-                        let nodes = continuation::change_length(
-                            &nearest.nodes,
-                            &nearest.connected,
-                            &connected.nodes,
-                            pitch,
-                        );
-                        (nodes, connected.nodes, nearest.twist_rad)
-                    }
-                    None => (
-                        connected.nodes.clone(),
-                        connected.nodes,
-                        connected.twist_correction_rad,
-                    ),
-                }
-            }
-            Warm::Poses([]) => {
-                let sag = sag_direction(&scene.gravity_m_s2);
-                let connected = connect(&guides.0, &guides.1, sub_segments, pitch, &sag)
-                    .map_err(connect_failure)?;
-                (connected.nodes, Vec::new(), connected.twist_correction_rad)
-            }
-        };
-        let rod = RodParameters {
-            gravity_m_s2: scene.gravity_m_s2,
-            ..self.rod
-        };
-        let solved = solver
-            .solve(
-                &rod,
-                &guides.0,
-                &FarEnd::Clamped(guides.1),
-                &start_nodes,
-                Some(twist),
-                &self.solver,
-            )
-            .map_err(|e| Check::fail(Rejection::Diverged, e.to_string(), None))?;
-        Ok(Solved {
-            nodes: solved.nodes,
-            connected,
-            twist_rad: solved.twist_rad,
-        })
-    }
 
     /// Equilibrium nodes between two guide poses, or the failed check.
     fn equilibrium(
@@ -777,43 +359,9 @@ impl<'a> Evaluator<'a> {
         .map(|solved| solved.nodes)
     }
 
-    fn relaxed(
-        &self,
-        start: &Pose,
-        end: &Pose,
-        sub_segments: usize,
-        gravity_m_s2: Vector3<f64>,
-    ) -> Result<Vec<Point3<f64>>, Check> {
-        let cable = &self.setup.cable;
-        let settings = DynamicsSettings::relaxation(gravity_m_s2);
-        if let Some(check) = too_short(start, end, sub_segments, cable.sub_segment_pitch_m) {
-            return Err(check);
-        }
-        let diverged = |e: crate::rigid_chain::DynamicsError| {
-            Check::fail(Rejection::Diverged, e.to_string(), None)
-        };
-        let linear = connect_linear(
-            cable,
-            start,
-            end,
-            sub_segments,
-            &settings,
-            &LinearConnect::default(),
-        )
-        .map_err(diverged)?;
-        let shape = SegmentShape {
-            start_guide: *start,
-            end_guide: *end,
-            nodes: &linear.nodes,
-            frames: &linear.frames,
-        };
-        let relaxed =
-            relax(cable, &shape, &settings, &ConvergenceWindow::default()).map_err(diverged)?;
-        Ok(relaxed.nodes)
-    }
 
     /// The three metrics of an equilibrium shape against the thresholds.
-    fn judge(
+    pub(super) fn judge(
         &self,
         m: usize,
         start: &Pose,
@@ -863,161 +411,15 @@ impl<'a> Evaluator<'a> {
     }
 }
 
-/// Earlier lengths a start shape is extrapolated from: linearly through two. Measured on
-/// the bundled pick-and-place attachment test, a quadratic through three took as many Newton
-/// steps (3.16 per solve on average).
-const EXTRAPOLATION_POINTS: usize = 2;
-
-/// Intra-link lengths are continued in blocks of this many sub-segments, `[32k, 32k + 32)`,
-/// each started from the connected geometry at its first length that reaches between the
-/// clamps: a piece's equilibrium then depends on its clamps, its length and gravity only —
-/// not on which other lengths are asked for — so a dictionary built from any setup that
-/// offers the clamps stores the equilibrium `solve --setup` finds. Measured on the
-/// robot-level pick-and-place attachment test (one run each, on-the-fly intra-link part):
-/// blocks of 8 27.3 s, 16 27.6 s, 32 23.5 s; one chain from the shortest length asked for
-/// (not history-free) 26.3 s. Nearly taut lengths are slow to solve: blocks of 64 from
-/// length 1 made the design-space tests 15 % slower than blocks of 32.
-pub const CONTINUATION_BLOCK: usize = 32;
-
-/// The continuation chains covering the `wanted` lengths (ascending, > 0) between clamps
-/// that the shortest cable of `reaching` sub-segments reaches: each shorter (too short)
-/// length alone; then per block of [`CONTINUATION_BLOCK`] that holds one, every length from
-/// the block's start (at least `reaching`) up to its longest wanted one.
-fn continuation_chains(wanted: impl Iterator<Item = usize>, reaching: usize) -> Vec<Range<usize>> {
-    let mut chains: Vec<Range<usize>> = Vec::new();
-    for length in wanted {
-        if length < reaching {
-            chains.push(length..length + 1);
-            continue;
-        }
-        let start = (length / CONTINUATION_BLOCK * CONTINUATION_BLOCK).max(reaching);
-        match chains.last_mut() {
-            Some(chain) if chain.start == start => chain.end = chain.end.max(length + 1),
-            _ => chains.push(start..length + 1),
-        }
-    }
-    chains
-}
-
-/// The shortest cable (sub-segments) that reaches between clamps at `guides`.
-fn reaching(guides: &(Pose, Pose), pitch_m: f64) -> usize {
-    let distance = (guides.1.translation.vector - guides.0.translation.vector).norm();
-    (distance / pitch_m).ceil().max(1.0) as usize
-}
-
-/// The end clamp's installed-twist turn of every length up to the longest a pair's chains
-/// visit, computed once per pair of clamps (it does not depend on the pose).
-struct ClampTurns {
-    pair: (usize, usize),
-    turns: Vec<Pose>,
-}
-
-impl ClampTurns {
-    /// The turns of `pair` of segment `m` for the lengths 1 ..= the longest of `lengths`
-    /// (ascending).
-    fn new(setup: &Setup, m: usize, pair: (usize, usize), lengths: &[usize]) -> ClampTurns {
-        let last = lengths.last().copied().unwrap_or(0);
-        ClampTurns {
-            pair,
-            turns: (1..=last)
-                .map(|s| setup.end_clamp_turn(m, s, pair))
-                .collect(),
-        }
-    }
-
-    /// The turn of `length` (computed on the spot outside the precomputed range).
-    fn at(&self, setup: &Setup, m: usize, length: usize) -> Pose {
-        match length.checked_sub(1).and_then(|k| self.turns.get(k)) {
-            Some(turn) => *turn,
-            None => setup.end_clamp_turn(m, length, self.pair),
-        }
-    }
-}
-
-/// A solved segment: its nodes, its total twist, and (when solved from it) the connected
-/// geometry it started from, for the next length's start shape.
-struct Solved {
-    nodes: Vec<Point3<f64>>,
-    connected: Vec<Point3<f64>>,
-    twist_rad: f64,
-}
-
-/// The neighbouring solution a solve starts from, if any.
-enum Warm<'a> {
-    /// The same pose, shorter lengths, the nearest first (none: the connected geometry).
-    Length(&'a [Solved]),
-    /// The previous poses of a sweep and their guides, the last first (none: the connected
-    /// geometry).
-    Poses(&'a [(Solved, (Pose, Pose))]),
-}
 
 /// Where a PV is checked: the links' poses, gravity in the same frame, and the one link
 /// that counts for clearance (`None`: all).
-struct Scene<'p> {
-    link_poses: &'p [Pose],
-    gravity_m_s2: Vector3<f64>,
-    clearance_link: Option<usize>,
+pub(super) struct Scene<'p> {
+    pub(super) link_poses: &'p [Pose],
+    pub(super) gravity_m_s2: Vector3<f64>,
+    pub(super) clearance_link: Option<usize>,
 }
 
-/// The first limit `metrics` violates, in the order contact, stretch, bend.
-fn verdict(setup: &Setup, metrics: Metrics) -> Check {
-    let limits = &setup.thresholds;
-    if let (Some(clearance), Some(link)) = (metrics.clearance_m, metrics.clearance_link)
-        && clearance < limits.contact_clearance_m
-    {
-        let detail = format!(
-            "clearance {:.1} mm to {} (limit {:.1} mm)",
-            clearance * 1e3,
-            setup.robot.links[link].name,
-            limits.contact_clearance_m * 1e3
-        );
-        return Check::fail(Rejection::Contact, detail, Some(metrics));
-    }
-    if metrics.stretch > limits.stretch {
-        let detail = format!("stretch {:.4} (limit {})", metrics.stretch, limits.stretch);
-        return Check::fail(Rejection::Stretch, detail, Some(metrics));
-    }
-    if metrics.min_bend_radius_m < limits.static_min_bend_radius_m() {
-        let detail = format!(
-            "bend radius {:.1} mm at node {} (limit {:.1} mm{})",
-            metrics.min_bend_radius_m * 1e3,
-            metrics.min_bend_node,
-            limits.static_min_bend_radius_m() * 1e3,
-            static_margin_note(limits)
-        );
-        return Check::fail(Rejection::Bend, detail, Some(metrics));
-    }
-    Check::pass(Some(metrics))
-}
 
-/// " incl. a 4.0 mm static margin" when the setup asks for one.
-fn static_margin_note(limits: &Thresholds) -> String {
-    if limits.static_bend_margin_m > 0.0 {
-        format!(
-            " incl. a {:.1} mm static margin",
-            limits.static_bend_margin_m * 1e3
-        )
-    } else {
-        String::new()
-    }
-}
 
-fn connect_failure(error: ConnectError) -> Check {
-    match error {
-        ConnectError::TooShort { .. } => Check::fail(Rejection::TooShort, error.to_string(), None),
-        _ => Check::fail(Rejection::Diverged, error.to_string(), None),
-    }
-}
 
-/// The too-short check of [`connect`] for the linear method, which has no such test.
-fn too_short(start: &Pose, end: &Pose, sub_segments: usize, pitch: f64) -> Option<Check> {
-    let distance = (end.translation.vector - start.translation.vector).norm();
-    let natural = sub_segments as f64 * pitch;
-    (distance >= natural).then(|| {
-        connect_failure(ConnectError::TooShort {
-            distance_m: distance,
-            natural_length_m: natural,
-            required_stretch: distance / natural,
-        })
-    })
-}

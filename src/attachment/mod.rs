@@ -21,13 +21,16 @@
 //! collected in a fixed order, so the sets do not depend on the thread count. A failed
 //! solve rejects that PV (counted as "solver failed") and the run goes on.
 
+mod baseline;
+mod continuation;
 mod evaluate;
 mod poses;
 mod sweep;
+mod verdict;
 
-pub use evaluate::{
-    CONTINUATION_BLOCK, Check, ConnectMethod, Evaluator, Margins, Metrics, Miss, Rejection,
-};
+pub use continuation::CONTINUATION_BLOCK;
+pub use evaluate::{ConnectMethod, Evaluator};
+pub use verdict::{Check, Margins, Metrics, Miss, Rejection};
 pub use poses::{GRAVITY_RESOLUTION_DEG, IntraLinkCriterion, SegmentPoses, TestPose};
 pub use sweep::{MotionSweep, SweepFailure};
 

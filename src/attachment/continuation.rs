@@ -1,0 +1,261 @@
+//! How a piece's equilibrium is started: from the connected geometry, from the same clamps'
+//! shorter lengths at the same pose (continuation over lengths), or from the previous poses
+//! of a sweep. The warm start decides which equilibrium Newton finds where a piece has two, so
+//! its rules are what keeps a verdict independent of what else is asked
+//! (docs/architecture.md, "Attachment test").
+
+use super::evaluate::{ConnectMethod, Evaluator, Scene};
+use super::verdict::{Check, Rejection, connect_failure};
+use crate::geometry::{connect, reaches, sag_direction};
+use crate::pose::Pose;
+use crate::setup::Setup;
+use crate::statics::{FarEnd, RodParameters, StaticSolver, continuation};
+use nalgebra::Point3;
+use std::ops::Range;
+
+impl Evaluator<'_> {
+    /// Solves the `wanted` lengths (ascending, > 0) between the `declared` clamp poses (the
+    /// end clamp turned by `turns`) in `scene`, in the [`continuation_chains`] that cover
+    /// them, each chain by continuation from the connected geometry at its first length, and
+    /// hands every length solved (wanted or not), its clamp poses and its check to `visit`.
+    pub(super) fn continue_lengths(
+        &self,
+        solver: &mut StaticSolver,
+        m: usize,
+        (declared, turns): (&(Pose, Pose), &ClampTurns),
+        scene: &Scene<'_>,
+        wanted: impl Iterator<Item = usize>,
+        mut visit: impl FnMut(usize, &(Pose, Pose), &Check),
+    ) {
+        let pitch = self.setup.cable.sub_segment_pitch_m;
+        for chain in continuation_chains(wanted, reaching(declared, pitch)) {
+            let mut earlier: Vec<Solved> = Vec::with_capacity(3);
+            for length in chain {
+                let guides = (declared.0, declared.1 * turns.at(self.setup, m, length));
+                let check = self.next_length(solver, &mut earlier, m, &guides, length, scene);
+                visit(length, &guides, &check);
+            }
+        }
+    }
+
+    /// Checks the next length of a continuation over lengths at one pose: solved from
+    /// `earlier` (the last solutions, the nearest first), which it then joins; from the
+    /// connected geometry when that fails.
+    pub(super) fn next_length(
+        &self,
+        solver: &mut StaticSolver,
+        earlier: &mut Vec<Solved>,
+        m: usize,
+        guides: &(Pose, Pose),
+        length: usize,
+        scene: &Scene<'_>,
+    ) -> Check {
+        let mut solved = self.solve_warm(solver, guides, length, scene, Warm::Length(earlier));
+        // A start shape carried over from other lengths can lead Newton astray where the
+        // connected geometry would not: a failed warm solve is retried from it.
+        let diverged = |r: &Result<Solved, Check>| {
+            r.as_ref()
+                .is_err_and(|c| c.rejection == Some(Rejection::Diverged))
+        };
+        if diverged(&solved) && !earlier.is_empty() {
+            solved = self.solve_warm(solver, guides, length, scene, Warm::Length(&[]));
+        }
+        match solved {
+            Ok(solved) => {
+                let check = self.judge(m, &guides.0, &guides.1, &solved.nodes, length, scene);
+                earlier.insert(0, solved);
+                earlier.truncate(EXTRAPOLATION_POINTS);
+                check
+            }
+            Err(check) => check,
+        }
+    }
+
+    /// The equilibrium between `guides` with `sub_segments`, started from a neighbouring
+    /// solution when `warm` has one (else from the connected geometry); the linear method
+    /// always relaxes from scratch.
+    pub(super) fn solve_warm(
+        &self,
+        solver: &mut StaticSolver,
+        guides: &(Pose, Pose),
+        sub_segments: usize,
+        scene: &Scene<'_>,
+        warm: Warm<'_>,
+    ) -> Result<Solved, Check> {
+        if self.method == ConnectMethod::Linear {
+            let nodes = self.relaxed(&guides.0, &guides.1, sub_segments, scene.gravity_m_s2)?;
+            return Ok(Solved {
+                nodes,
+                connected: Vec::new(),
+                twist_rad: 0.0,
+            });
+        }
+        let pitch = self.setup.cable.sub_segment_pitch_m;
+        let (start_nodes, connected, twist) = match warm {
+            Warm::Poses([(last, at), (second, second_at), ..]) => {
+                let nodes = continuation::follow_guides_extrapolated(
+                    (&last.nodes, (&at.0, &at.1)),
+                    (&second.nodes, (&second_at.0, &second_at.1)),
+                    (&guides.0, &guides.1),
+                    pitch,
+                );
+                (nodes, Vec::new(), last.twist_rad)
+            }
+            Warm::Poses([(last, at)]) => {
+                let nodes = continuation::follow_guides(
+                    &last.nodes,
+                    (&at.0, &at.1),
+                    (&guides.0, &guides.1),
+                    pitch,
+                );
+                (nodes, Vec::new(), last.twist_rad)
+            }
+            Warm::Length(earlier @ [nearest, _, ..]) => {
+                reaches(&guides.0, &guides.1, sub_segments, pitch).map_err(connect_failure)?;
+                let shapes: Vec<&[Point3<f64>]> = earlier
+                    .iter()
+                    .map(|solved| solved.nodes.as_slice())
+                    .collect();
+                let nodes = continuation::extrapolate_length(&shapes, sub_segments, pitch);
+                (nodes, Vec::new(), nearest.twist_rad)
+            }
+            Warm::Length(earlier) => {
+                let sag = sag_direction(&scene.gravity_m_s2);
+                let connected = connect(&guides.0, &guides.1, sub_segments, pitch, &sag)
+                    .map_err(connect_failure)?;
+                match earlier
+                    .first()
+                    .filter(|nearest| !nearest.connected.is_empty())
+                {
+                    Some(nearest) => {
+                        let nodes = continuation::change_length(
+                            &nearest.nodes,
+                            &nearest.connected,
+                            &connected.nodes,
+                            pitch,
+                        );
+                        (nodes, connected.nodes, nearest.twist_rad)
+                    }
+                    None => (
+                        connected.nodes.clone(),
+                        connected.nodes,
+                        connected.twist_correction_rad,
+                    ),
+                }
+            }
+            Warm::Poses([]) => {
+                let sag = sag_direction(&scene.gravity_m_s2);
+                let connected = connect(&guides.0, &guides.1, sub_segments, pitch, &sag)
+                    .map_err(connect_failure)?;
+                (connected.nodes, Vec::new(), connected.twist_correction_rad)
+            }
+        };
+        let rod = RodParameters {
+            gravity_m_s2: scene.gravity_m_s2,
+            ..self.rod
+        };
+        let solved = solver
+            .solve(
+                &rod,
+                &guides.0,
+                &FarEnd::Clamped(guides.1),
+                &start_nodes,
+                Some(twist),
+                &self.solver,
+            )
+            .map_err(|e| Check::fail(Rejection::Diverged, e.to_string(), None))?;
+        Ok(Solved {
+            nodes: solved.nodes,
+            connected,
+            twist_rad: solved.twist_rad,
+        })
+    }
+}
+
+/// Earlier lengths a start shape is extrapolated from: linearly through two. Measured on
+/// the bundled pick-and-place attachment test, a quadratic through three took as many Newton
+/// steps (3.16 per solve on average).
+pub(super) const EXTRAPOLATION_POINTS: usize = 2;
+
+/// Intra-link lengths are continued in blocks of this many sub-segments, `[32k, 32k + 32)`,
+/// each started from the connected geometry at its first length that reaches between the
+/// clamps: a piece's equilibrium then depends on its clamps, its length and gravity only —
+/// not on which other lengths are asked for — so a dictionary built from any setup that
+/// offers the clamps stores the equilibrium `solve --setup` finds. Measured on the
+/// robot-level pick-and-place attachment test (one run each, on-the-fly intra-link part):
+/// blocks of 8 27.3 s, 16 27.6 s, 32 23.5 s; one chain from the shortest length asked for
+/// (not history-free) 26.3 s. Nearly taut lengths are slow to solve: blocks of 64 from
+/// length 1 made the design-space tests 15 % slower than blocks of 32.
+pub const CONTINUATION_BLOCK: usize = 32;
+
+/// The continuation chains covering the `wanted` lengths (ascending, > 0) between clamps
+/// that the shortest cable of `reaching` sub-segments reaches: each shorter (too short)
+/// length alone; then per block of [`CONTINUATION_BLOCK`] that holds one, every length from
+/// the block's start (at least `reaching`) up to its longest wanted one.
+fn continuation_chains(wanted: impl Iterator<Item = usize>, reaching: usize) -> Vec<Range<usize>> {
+    let mut chains: Vec<Range<usize>> = Vec::new();
+    for length in wanted {
+        if length < reaching {
+            chains.push(length..length + 1);
+            continue;
+        }
+        let start = (length / CONTINUATION_BLOCK * CONTINUATION_BLOCK).max(reaching);
+        match chains.last_mut() {
+            Some(chain) if chain.start == start => chain.end = chain.end.max(length + 1),
+            _ => chains.push(start..length + 1),
+        }
+    }
+    chains
+}
+
+/// The shortest cable (sub-segments) that reaches between clamps at `guides`.
+fn reaching(guides: &(Pose, Pose), pitch_m: f64) -> usize {
+    let distance = (guides.1.translation.vector - guides.0.translation.vector).norm();
+    (distance / pitch_m).ceil().max(1.0) as usize
+}
+
+/// The end clamp's installed-twist turn of every length up to the longest a pair's chains
+/// visit, computed once per pair of clamps (it does not depend on the pose).
+pub(super) struct ClampTurns {
+    pair: (usize, usize),
+    turns: Vec<Pose>,
+}
+
+impl ClampTurns {
+    /// The turns of `pair` of segment `m` for the lengths 1 ..= the longest of `lengths`
+    /// (ascending).
+    pub(super) fn new(setup: &Setup, m: usize, pair: (usize, usize), lengths: &[usize]) -> ClampTurns {
+        let last = lengths.last().copied().unwrap_or(0);
+        ClampTurns {
+            pair,
+            turns: (1..=last)
+                .map(|s| setup.end_clamp_turn(m, s, pair))
+                .collect(),
+        }
+    }
+
+    /// The turn of `length` (computed on the spot outside the precomputed range).
+    pub(super) fn at(&self, setup: &Setup, m: usize, length: usize) -> Pose {
+        match length.checked_sub(1).and_then(|k| self.turns.get(k)) {
+            Some(turn) => *turn,
+            None => setup.end_clamp_turn(m, length, self.pair),
+        }
+    }
+}
+
+/// A solved segment: its nodes, its total twist, and (when solved from it) the connected
+/// geometry it started from, for the next length's start shape.
+pub(super) struct Solved {
+    pub(super) nodes: Vec<Point3<f64>>,
+    connected: Vec<Point3<f64>>,
+    twist_rad: f64,
+}
+
+/// The neighbouring solution a solve starts from, if any.
+pub(super) enum Warm<'a> {
+    /// The same pose, shorter lengths, the nearest first (none: the connected geometry).
+    Length(&'a [Solved]),
+    /// The previous poses of a sweep and their guides, the last first (none: the connected
+    /// geometry).
+    Poses(&'a [(Solved, (Pose, Pose))]),
+}

@@ -1,0 +1,319 @@
+//! What one piece at one pose comes to: the limit it violates first, how far past it, and its
+//! margins — the words of every verdict the attachment test, a dictionary and a diagnosis give.
+
+use crate::geometry::ConnectError;
+use crate::pose::Pose;
+use crate::setup::{Setup, Thresholds};
+use serde::Serialize;
+
+/// The stress limit a PV violates first (in the order contact, stretch, bend), or why it
+/// could not be evaluated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Rejection {
+    /// The cable is shorter than the distance between its guides.
+    TooShort,
+    /// The connected geometry or the static solver failed (reported, not fatal).
+    Diverged,
+    /// Clearance to the robot below the contact threshold.
+    Contact,
+    /// Centreline length / natural length above the stretch threshold.
+    Stretch,
+    /// Bend radius below the minimum.
+    Bend,
+}
+
+impl Rejection {
+    /// Every kind, in report order.
+    pub const ALL: [Rejection; 5] = [
+        Rejection::TooShort,
+        Rejection::Diverged,
+        Rejection::Contact,
+        Rejection::Stretch,
+        Rejection::Bend,
+    ];
+
+    /// Short name for people.
+    pub fn name(self) -> &'static str {
+        match self {
+            Rejection::TooShort => "too short",
+            Rejection::Diverged => "solver failed",
+            Rejection::Contact => "contact",
+            Rejection::Stretch => "stretch",
+            Rejection::Bend => "bend radius",
+        }
+    }
+}
+
+/// How a PV failed the attachment test: which limit, how far past it, where on the cable and
+/// at which test pose — what a diagnosis of "no path" ranks its nearest misses by.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Miss {
+    /// The first limit violated.
+    pub rejection: Rejection,
+    /// How far past the limit, relative to it: contact, the clearance deficit over the
+    /// cable's diameter; stretch (and a cable too short for its clamps), the excess stretch
+    /// over the allowed excess; bend, the radius deficit over the minimum radius. Infinite
+    /// when nothing was measured (a failed solve, a verdict read from a dictionary).
+    pub severity: f64,
+    /// The measured value: clearance (m), stretch ratio, or bend radius (m); NaN when not
+    /// measured.
+    pub value: f64,
+    /// Index of the test pose where it failed first.
+    pub pose: usize,
+    /// Where along the piece (m of cable from its start clamp); NaN for the whole piece.
+    pub at_m: f64,
+}
+
+impl Miss {
+    /// A verdict without measurements (e.g. from a dictionary).
+    pub fn unmeasured(rejection: Rejection) -> Miss {
+        Miss {
+            rejection,
+            severity: f64::INFINITY,
+            value: f64::NAN,
+            pose: 0,
+            at_m: f64::NAN,
+        }
+    }
+
+    /// The miss of a limit a lookup found violated at test pose `pose`, from the looked-up
+    /// margins `[clearance mm, stretch, curvature 1/m]` (unmeasured without them). The
+    /// place on the cable is not known.
+    pub fn looked_up(
+        setup: &Setup,
+        rejection: Rejection,
+        margins: Option<[f64; 3]>,
+        pose: usize,
+    ) -> Miss {
+        let limits = &setup.thresholds;
+        let unmeasured = Miss {
+            pose,
+            ..Miss::unmeasured(rejection)
+        };
+        let Some([clearance_mm, stretch, curvature]) = margins else {
+            return unmeasured;
+        };
+        let (severity, value) = match rejection {
+            Rejection::Contact => (
+                -clearance_mm * 1e-3 / setup.cable.diameter_m,
+                limits.contact_clearance_m + clearance_mm * 1e-3,
+            ),
+            Rejection::Stretch => {
+                let value = limits.stretch - stretch;
+                (
+                    (value - 1.0) / (limits.stretch - 1.0).max(1e-12) - 1.0,
+                    value,
+                )
+            }
+            Rejection::Bend => {
+                let limit = limits.static_min_bend_radius_m();
+                let radius = 1.0 / (1.0 / limit - curvature);
+                ((limit - radius) / limit, radius)
+            }
+            Rejection::TooShort | Rejection::Diverged => return unmeasured,
+        };
+        Miss {
+            rejection,
+            severity: severity.max(0.0),
+            value,
+            pose,
+            at_m: f64::NAN,
+        }
+    }
+
+    /// The miss of a failed `check` at test pose `pose`; `None` when it passed.
+    pub(super) fn of(
+        check: &Check,
+        setup: &Setup,
+        pose: usize,
+        guides: &(Pose, Pose),
+        sub_segments: usize,
+    ) -> Option<Miss> {
+        let rejection = check.rejection?;
+        let limits = &setup.thresholds;
+        let pitch = setup.cable.sub_segment_pitch_m;
+        let excess = |stretch: f64| (stretch - 1.0) / (limits.stretch - 1.0).max(1e-12) - 1.0;
+        let measured = |severity: f64, value: f64, at_m: f64| Miss {
+            rejection,
+            severity: severity.max(0.0),
+            value,
+            pose,
+            at_m,
+        };
+        Some(match (rejection, check.metrics) {
+            (Rejection::TooShort, _) => {
+                let distance = (guides.1.translation.vector - guides.0.translation.vector).norm();
+                let stretch = distance / (sub_segments as f64 * pitch);
+                measured(excess(stretch), stretch, f64::NAN)
+            }
+            (Rejection::Contact, Some(m)) => {
+                let clearance = m.clearance_m.unwrap_or(f64::NAN);
+                let deficit = limits.contact_clearance_m - clearance;
+                let at = m
+                    .clearance_sub_segment
+                    .map_or(f64::NAN, |k| (k as f64 + 0.5) * pitch);
+                measured(deficit / setup.cable.diameter_m, clearance, at)
+            }
+            (Rejection::Stretch, Some(m)) => measured(excess(m.stretch), m.stretch, f64::NAN),
+            (Rejection::Bend, Some(m)) => {
+                let limit = limits.static_min_bend_radius_m();
+                let at = m.min_bend_node as f64 * pitch;
+                measured(
+                    (limit - m.min_bend_radius_m) / limit,
+                    m.min_bend_radius_m,
+                    at,
+                )
+            }
+            _ => Miss {
+                pose,
+                ..Miss::unmeasured(rejection)
+            },
+        })
+    }
+}
+
+/// The stress metrics of one equilibrium shape.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Metrics {
+    /// Lowest signed clearance to the robot (m), clamp zones excluded; `None` when nothing
+    /// was checked.
+    pub clearance_m: Option<f64>,
+    /// Link of the lowest clearance (index into `robot.links`).
+    pub clearance_link: Option<usize>,
+    /// Sub-segment of the lowest clearance.
+    pub clearance_sub_segment: Option<usize>,
+    /// Centreline length / natural length.
+    pub stretch: f64,
+    /// Smallest bend radius (m); infinite for a straight cable.
+    pub min_bend_radius_m: f64,
+    /// Node of the smallest bend radius (0 = start guide).
+    pub min_bend_node: usize,
+}
+
+/// How far an equilibrium is from each limit, positive when the limit holds: what a
+/// dictionary stores per PV and direction ([`crate::dictionary::format::MarginRecord`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Margins {
+    /// Clearance − contact limit (mm); infinite when no clearance was measured.
+    pub clearance_mm: f64,
+    /// Stretch limit − stretch.
+    pub stretch: f64,
+    /// 1/(minimum bend radius) − 1/(bend radius) (1/m): curvature, so that a straight cable
+    /// has a finite margin and the value changes smoothly with the shape.
+    pub curvature_per_m: f64,
+}
+
+impl Margins {
+    /// The margins of `metrics` against `limits` (the static bend radius, margin included).
+    pub fn of(metrics: &Metrics, limits: &Thresholds) -> Margins {
+        Margins {
+            clearance_mm: metrics
+                .clearance_m
+                .map_or(f64::INFINITY, |c| (c - limits.contact_clearance_m) * 1e3),
+            stretch: limits.stretch - metrics.stretch,
+            curvature_per_m: 1.0 / limits.static_min_bend_radius_m()
+                - 1.0 / metrics.min_bend_radius_m,
+        }
+    }
+
+    /// `[clearance_mm, stretch, curvature_per_m]`.
+    pub fn to_array(self) -> [f64; 3] {
+        [self.clearance_mm, self.stretch, self.curvature_per_m]
+    }
+
+    /// The limit `[clearance, stretch, curvature]` margins violate first, in the order of
+    /// [`Evaluator::check`] (contact, stretch, bend); `None` when all are non-negative.
+    pub fn first_violation(margins: [f64; 3]) -> Option<Rejection> {
+        let kinds = [Rejection::Contact, Rejection::Stretch, Rejection::Bend];
+        kinds
+            .into_iter()
+            .zip(margins)
+            .find(|(_, m)| *m < 0.0)
+            .map(|(k, _)| k)
+    }
+}
+
+/// The outcome of one PV at one pose.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Check {
+    /// The metrics, when an equilibrium was found (and the segment has a cable).
+    pub metrics: Option<Metrics>,
+    /// The first violated limit, `None` when all three hold.
+    pub rejection: Option<Rejection>,
+    /// Why, for people (only for a rejection).
+    pub detail: Option<String>,
+}
+
+impl Check {
+    pub(super) fn pass(metrics: Option<Metrics>) -> Check {
+        Check {
+            metrics,
+            rejection: None,
+            detail: None,
+        }
+    }
+
+    pub(super) fn fail(rejection: Rejection, detail: String, metrics: Option<Metrics>) -> Check {
+        Check {
+            metrics,
+            rejection: Some(rejection),
+            detail: Some(detail),
+        }
+    }
+
+    /// True when all three limits hold.
+    pub fn passed(&self) -> bool {
+        self.rejection.is_none()
+    }
+}
+
+/// The first limit `metrics` violates, in the order contact, stretch, bend.
+pub(super) fn verdict(setup: &Setup, metrics: Metrics) -> Check {
+    let limits = &setup.thresholds;
+    if let (Some(clearance), Some(link)) = (metrics.clearance_m, metrics.clearance_link)
+        && clearance < limits.contact_clearance_m
+    {
+        let detail = format!(
+            "clearance {:.1} mm to {} (limit {:.1} mm)",
+            clearance * 1e3,
+            setup.robot.links[link].name,
+            limits.contact_clearance_m * 1e3
+        );
+        return Check::fail(Rejection::Contact, detail, Some(metrics));
+    }
+    if metrics.stretch > limits.stretch {
+        let detail = format!("stretch {:.4} (limit {})", metrics.stretch, limits.stretch);
+        return Check::fail(Rejection::Stretch, detail, Some(metrics));
+    }
+    if metrics.min_bend_radius_m < limits.static_min_bend_radius_m() {
+        let detail = format!(
+            "bend radius {:.1} mm at node {} (limit {:.1} mm{})",
+            metrics.min_bend_radius_m * 1e3,
+            metrics.min_bend_node,
+            limits.static_min_bend_radius_m() * 1e3,
+            static_margin_note(limits)
+        );
+        return Check::fail(Rejection::Bend, detail, Some(metrics));
+    }
+    Check::pass(Some(metrics))
+}
+
+/// " incl. a 4.0 mm static margin" when the setup asks for one.
+fn static_margin_note(limits: &Thresholds) -> String {
+    if limits.static_bend_margin_m > 0.0 {
+        format!(
+            " incl. a {:.1} mm static margin",
+            limits.static_bend_margin_m * 1e3
+        )
+    } else {
+        String::new()
+    }
+}
+
+pub(super) fn connect_failure(error: ConnectError) -> Check {
+    match error {
+        ConnectError::TooShort { .. } => Check::fail(Rejection::TooShort, error.to_string(), None),
+        _ => Check::fail(Rejection::Diverged, error.to_string(), None),
+    }
+}
