@@ -28,7 +28,12 @@ impl Evaluator<'_> {
         mut visit: impl FnMut(usize, &(Pose, Pose), &Check),
     ) {
         let pitch = self.setup.cable.sub_segment_pitch_m;
-        for chain in continuation_chains(wanted, reaching(declared, pitch)) {
+        let chains = match self.method {
+            // The rapier baseline relaxes every length from scratch: no chain to follow.
+            ConnectMethod::Linear => wanted.map(|length| length..length + 1).collect(),
+            ConnectMethod::Hermite => continuation_chains(wanted, reaching(declared, pitch)),
+        };
+        for chain in chains {
             let mut earlier: Vec<Solved> = Vec::with_capacity(3);
             for length in chain {
                 let guides = (declared.0, declared.1 * turns.at(self.setup, m, length));
@@ -50,7 +55,7 @@ impl Evaluator<'_> {
         length: usize,
         scene: &Scene<'_>,
     ) -> Check {
-        let mut solved = self.solve_warm(solver, guides, length, scene, Warm::Length(earlier));
+        let mut solved = self.solve_warm(solver, m, guides, length, scene, Warm::Length(earlier));
         // A start shape carried over from other lengths can lead Newton astray where the
         // connected geometry would not: a failed warm solve is retried from it.
         let diverged = |r: &Result<Solved, Check>| {
@@ -58,7 +63,7 @@ impl Evaluator<'_> {
                 .is_err_and(|c| c.rejection == Some(Rejection::Diverged))
         };
         if diverged(&solved) && !earlier.is_empty() {
-            solved = self.solve_warm(solver, guides, length, scene, Warm::Length(&[]));
+            solved = self.solve_warm(solver, m, guides, length, scene, Warm::Length(&[]));
         }
         match solved {
             Ok(solved) => {
@@ -77,12 +82,14 @@ impl Evaluator<'_> {
     pub(super) fn solve_warm(
         &self,
         solver: &mut StaticSolver,
+        m: usize,
         guides: &(Pose, Pose),
         sub_segments: usize,
         scene: &Scene<'_>,
         warm: Warm<'_>,
     ) -> Result<Solved, Check> {
         if self.method == ConnectMethod::Linear {
+            self.count_static_solve(m);
             let nodes = self.relaxed(&guides.0, &guides.1, sub_segments, scene.gravity_m_s2)?;
             return Ok(Solved {
                 nodes,
@@ -154,6 +161,7 @@ impl Evaluator<'_> {
             gravity_m_s2: scene.gravity_m_s2,
             ..self.rod
         };
+        self.count_static_solve(m);
         let solved = solver
             .solve(
                 &rod,

@@ -15,6 +15,7 @@ use crate::stress::{BendRadius, min_bend_radius, stretch};
 use nalgebra::{Point3, Vector3};
 use serde::Serialize;
 use std::borrow::Borrow;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// How the start shape of a segment is obtained, and which solver finds its equilibrium.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -38,6 +39,8 @@ pub struct Evaluator<'a> {
     pub(super) method: ConnectMethod,
     /// Every link at the identity: the frame of an intra-link segment's own link.
     link_frame_poses: Vec<Pose>,
+    /// Newton solves (relaxations for the linear method) started, per segment.
+    static_solves: StaticSolves,
 }
 
 impl<'a> Evaluator<'a> {
@@ -50,7 +53,20 @@ impl<'a> Evaluator<'a> {
             solver: SolverOptions::STRESS_CHECK,
             method,
             link_frame_poses: vec![Pose::identity(); setup.robot.links.len()],
+            static_solves: StaticSolves::new(setup.segment_count()),
         })
+    }
+
+    /// Static solves (Newton's, or the baseline's relaxations) this evaluator has started for
+    /// segment `m` so far: the machine-independent measure of its work.
+    pub fn static_solves(&self, m: usize) -> usize {
+        self.static_solves.0.get(m).map_or(0, |n| n.load(Ordering::Relaxed))
+    }
+
+    pub(super) fn count_static_solve(&self, m: usize) {
+        if let Some(n) = self.static_solves.0.get(m) {
+            n.fetch_add(1, Ordering::Relaxed);
+        }
     }
 
     /// The setup this evaluator checks against.
@@ -160,7 +176,7 @@ impl<'a> Evaluator<'a> {
         let (start, end) =
             self.setup
                 .clamp_poses(link_poses, m, pv.sub_segments, (pv.start, pv.end));
-        self.equilibrium(&start, &end, pv.sub_segments, self.rod.gravity_m_s2)
+        self.equilibrium(m, &start, &end, pv.sub_segments, self.rod.gravity_m_s2)
             .map_err(|check| check.detail.unwrap_or_else(|| "no equilibrium".into()))
     }
 
@@ -171,7 +187,7 @@ impl<'a> Evaluator<'a> {
         let (start, end) =
             self.setup
                 .clamp_poses(scene.link_poses, m, pv.sub_segments, (pv.start, pv.end));
-        let nodes = match self.equilibrium(&start, &end, pv.sub_segments, scene.gravity_m_s2) {
+        let nodes = match self.equilibrium(m, &start, &end, pv.sub_segments, scene.gravity_m_s2) {
             Ok(nodes) => nodes,
             Err(check) => return check,
         };
@@ -187,14 +203,18 @@ impl<'a> Evaluator<'a> {
     /// the others extrapolated from the last two ([`continuation::extrapolate_length`]). The
     /// linear method relaxes every PV from scratch.
     ///
-    /// For an intra-link segment the lengths are continued in fixed blocks
-    /// ([`CONTINUATION_BLOCK`]): in each block that holds a length still open, every length
-    /// from the block's start up to the longest open one, also lengths not asked for and
-    /// those that failed at an earlier pose. A length's shape then depends only on the pose,
-    /// its clamps and its length — not on which other lengths are asked for — exactly as in
-    /// a dictionary's build ([`Evaluator::link_frame_metrics`]), so that a piece with two
-    /// equilibria (a loop that can hang on either side of its link) lands on the same one
-    /// in a dictionary built from any setup that offers its clamps.
+    /// The lengths are continued in fixed blocks ([`CONTINUATION_BLOCK`]): in each block that
+    /// holds a length still open, every length from the block's start up to the longest open
+    /// one, also lengths not asked for and those that failed at an earlier pose. A length's
+    /// verdict then depends only on the poses, its clamps and its length — not on which other
+    /// lengths are asked for, nor in which order or batches — so a search that asks for a
+    /// few lengths at a time gets the verdicts of one that asks for all, and a dictionary's
+    /// build ([`Evaluator::link_frame_metrics`]) lands a piece with two equilibria (a loop
+    /// that can hang on either side of its link) on the same one as `solve --setup`.
+    ///
+    /// [`continuation::change_length`]: crate::statics::continuation::change_length
+    /// [`continuation::extrapolate_length`]: crate::statics::continuation::extrapolate_length
+    /// [`CONTINUATION_BLOCK`]: super::CONTINUATION_BLOCK
     pub fn first_rejections<P: Borrow<TestPose>>(
         &self,
         m: usize,
@@ -219,51 +239,33 @@ impl<'a> Evaluator<'a> {
         let mut verdicts: Vec<Option<Miss>> = vec![None; lengths.len()];
         let mut solver = StaticSolver::default();
         let open = |verdicts: &[Option<Miss>], i: usize| wanted[i] && verdicts[i].is_none();
-        if self.setup.is_intra_link(m) {
-            let turns = ClampTurns::new(self.setup, m, (start, end), lengths);
-            for (p, pose) in poses.iter().enumerate() {
-                let (scene, declared) = self.at_pose(m, (start, end), pose.borrow());
-                let open_lengths: Vec<usize> = (0..lengths.len())
-                    .filter(|&i| open(&verdicts, i))
-                    .map(|i| lengths[i])
-                    .collect();
-                self.continue_lengths(
-                    &mut solver,
-                    m,
-                    (&declared, &turns),
-                    &scene,
-                    open_lengths.into_iter(),
-                    |length, guides, check| {
-                        if let Ok(i) = lengths.binary_search(&length)
-                            && open(&verdicts, i)
-                        {
-                            verdicts[i] = Miss::of(check, self.setup, p, guides, length);
-                        }
-                    },
-                );
-            }
-            return verdicts;
-        }
-        let turns: Vec<Pose> = lengths
-            .iter()
-            .map(|&s| self.setup.end_clamp_turn(m, s, (start, end)))
-            .collect();
+        let turns = ClampTurns::new(self.setup, m, (start, end), lengths);
         for (p, pose) in poses.iter().enumerate() {
-            let (scene, declared) = self.at_pose(m, (start, end), pose.borrow());
-            // The last two solutions at this pose, the nearest first.
-            let mut earlier: Vec<Solved> = Vec::with_capacity(3);
-            for (i, (&length, turn)) in lengths.iter().zip(&turns).enumerate() {
-                if !open(&verdicts, i) {
-                    continue;
-                }
-                let guides = (declared.0, declared.1 * turn);
-                let check = self.next_length(&mut solver, &mut earlier, m, &guides, length, &scene);
-                verdicts[i] = Miss::of(&check, self.setup, p, &guides, length);
+            let open_lengths: Vec<usize> = (0..lengths.len())
+                .filter(|&i| open(&verdicts, i))
+                .map(|i| lengths[i])
+                .collect();
+            if open_lengths.is_empty() {
+                break;
             }
+            let (scene, declared) = self.at_pose(m, (start, end), pose.borrow());
+            self.continue_lengths(
+                &mut solver,
+                m,
+                (&declared, &turns),
+                &scene,
+                open_lengths.into_iter(),
+                |length, guides, check| {
+                    if let Ok(i) = lengths.binary_search(&length)
+                        && open(&verdicts, i)
+                    {
+                        verdicts[i] = Miss::of(check, self.setup, p, guides, length);
+                    }
+                },
+            );
         }
         verdicts
     }
-
 
     /// The first pose of `poses` (in their order) where PV `pv` of segment `m` violates a
     /// limit, with its check; `None` when it holds them all. Each pose's equilibrium starts
@@ -289,7 +291,7 @@ impl<'a> Evaluator<'a> {
             let (scene, declared) = self.at_pose(m, (pv.start, pv.end), pose);
             let guides = (declared.0, declared.1 * turn);
             let warm = Warm::Poses(&earlier);
-            let check = match self.solve_warm(&mut solver, &guides, pv.sub_segments, &scene, warm) {
+            let check = match self.solve_warm(&mut solver, m, &guides, pv.sub_segments, &scene, warm) {
                 Ok(solved) => {
                     let check = self.judge(
                         m,
@@ -316,6 +318,13 @@ impl<'a> Evaluator<'a> {
     }
 
 
+    /// The distance between the clamps of configurations `pair` of segment `m` at `pose`
+    /// (m): what the shortest cable between them must reach.
+    pub fn clamp_distance_m(&self, m: usize, pair: (usize, usize), pose: &TestPose) -> f64 {
+        let (_, (start, end)) = self.at_pose(m, pair, pose);
+        (end.translation.vector - start.translation.vector).norm()
+    }
+
     /// The scene of `pose` (all links, the setup's gravity) and the world poses of segment
     /// `m`'s guides in the configurations `(start, end)` as declared (the end clamp's twist
     /// reference not yet turned: it depends on the length, see [`Setup::clamp_poses`]).
@@ -338,6 +347,7 @@ impl<'a> Evaluator<'a> {
     /// Equilibrium nodes between two guide poses, or the failed check.
     fn equilibrium(
         &self,
+        m: usize,
         start: &Pose,
         end: &Pose,
         sub_segments: usize,
@@ -351,6 +361,7 @@ impl<'a> Evaluator<'a> {
         let mut solver = StaticSolver::default();
         self.solve_warm(
             &mut solver,
+            m,
             &(*start, *end),
             sub_segments,
             &scene,
@@ -358,7 +369,6 @@ impl<'a> Evaluator<'a> {
         )
         .map(|solved| solved.nodes)
     }
-
 
     /// The three metrics of an equilibrium shape against the thresholds.
     pub(super) fn judge(
@@ -411,6 +421,27 @@ impl<'a> Evaluator<'a> {
     }
 }
 
+
+/// A counter per segment, shared by the threads of a run.
+#[derive(Debug)]
+struct StaticSolves(Vec<AtomicUsize>);
+
+impl StaticSolves {
+    fn new(segments: usize) -> StaticSolves {
+        StaticSolves((0..segments).map(|_| AtomicUsize::new(0)).collect())
+    }
+}
+
+impl Clone for StaticSolves {
+    fn clone(&self) -> StaticSolves {
+        StaticSolves(
+            self.0
+                .iter()
+                .map(|n| AtomicUsize::new(n.load(Ordering::Relaxed)))
+                .collect(),
+        )
+    }
+}
 
 /// Where a PV is checked: the links' poses, gravity in the same frame, and the one link
 /// that counts for clearance (`None`: all).

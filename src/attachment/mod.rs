@@ -24,12 +24,14 @@
 mod baseline;
 mod continuation;
 mod evaluate;
+mod lazy;
 mod poses;
 mod sweep;
 mod verdict;
 
 pub use continuation::CONTINUATION_BLOCK;
 pub use evaluate::{ConnectMethod, Evaluator};
+pub use lazy::LazyAttachment;
 pub use verdict::{Check, Margins, Metrics, Miss, Rejection};
 pub use poses::{GRAVITY_RESOLUTION_DEG, IntraLinkCriterion, SegmentPoses, TestPose};
 pub use sweep::{MotionSweep, SweepFailure};
@@ -62,6 +64,8 @@ pub struct SegmentSets {
     pub nearest_misses: Vec<(Pv, Miss)>,
     /// (guides, length) combinations evaluated, robustness lengths included.
     pub evaluations: usize,
+    /// Static solves (Newton's) started for them, at every test pose.
+    pub static_solves: usize,
     /// How a lookup answered them (intra-link segments solved with a dictionary).
     pub looked_up: Option<LookedUp>,
     /// Wall time of this segment's test (s).
@@ -160,7 +164,11 @@ pub fn attachment_test_with(
         tested.d0 = d0_count;
         sets[m] = Some(tested);
     }
-    sets.into_iter().flatten().collect()
+    let mut sets: Vec<SegmentSets> = sets.into_iter().flatten().collect();
+    for (m, s) in sets.iter_mut().enumerate() {
+        s.static_solves = evaluator.static_solves(m);
+    }
+    sets
 }
 
 /// A lookup's answer for one piece of an intra-link segment over the segment's test poses
@@ -200,7 +208,7 @@ pub struct LookedUp {
 }
 
 /// [`LookedUp`] counted from parallel workers.
-#[derive(Default)]
+#[derive(Default, Debug)]
 struct LookupCounts([AtomicUsize; 4]);
 
 impl LookupCounts {
@@ -340,75 +348,148 @@ fn test_segment(
     let timer = Instant::now();
     let robustness = &setup.robustness;
     let needed = needed_pvs(&candidates, robustness.delta_s, robustness.range);
-    let mut pairs: BTreeMap<(usize, usize), Vec<usize>> = BTreeMap::new();
-    for pv in needed.iter().filter(|pv| pv.sub_segments > 0) {
-        pairs
-            .entry((pv.start, pv.end))
-            .or_default()
-            .push(pv.sub_segments);
-    }
-    let pairs: Vec<((usize, usize), Vec<usize>)> = pairs.into_iter().collect();
-    progress::begin(
-        &format!("attachment {}", setup.segment_name(m)),
-        needed.len() as u64,
+    let jobs = pair_jobs(needed.iter().map(|pv| (m, *pv)));
+    let mut verdicts = Verdicts::new();
+    verdicts.extend(
+        &jobs,
+        evaluate_jobs(&format!("attachment {}", setup.segment_name(m)), &jobs, |job| {
+            verdicts_of(job.pair, &job.lengths)
+        }),
     );
-    let results: Vec<Vec<Option<Miss>>> = pairs
+    let mut sets = verdicts.sets(setup, &candidates);
+    sets.time_s = timer.elapsed().as_secs_f64();
+    sets
+}
+
+/// The lengths of one pair of guide configurations of one segment to evaluate together.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct PairJob {
+    /// The segment.
+    pub segment: usize,
+    /// Its start and end guide configurations.
+    pub pair: (usize, usize),
+    /// The lengths (sorted, > 0).
+    pub lengths: Vec<usize>,
+}
+
+/// The pieces `(segment, PV)` grouped by segment and pair, lengths ascending; zero-length
+/// pieces (nothing to evaluate) left out.
+pub(crate) fn pair_jobs(pieces: impl Iterator<Item = (usize, Pv)>) -> Vec<PairJob> {
+    let mut pairs: BTreeMap<(usize, (usize, usize)), BTreeSet<usize>> = BTreeMap::new();
+    for (m, pv) in pieces.filter(|(_, pv)| pv.sub_segments > 0) {
+        pairs
+            .entry((m, (pv.start, pv.end)))
+            .or_default()
+            .insert(pv.sub_segments);
+    }
+    pairs
+        .into_iter()
+        .map(|((segment, pair), lengths)| PairJob {
+            segment,
+            pair,
+            lengths: lengths.into_iter().collect(),
+        })
+        .collect()
+}
+
+/// Every job's verdicts, evaluated in parallel (one job per worker at a time), in the
+/// order of `jobs`, with a progress stage named `stage`.
+pub(crate) fn evaluate_jobs<T: Send>(
+    stage: &str,
+    jobs: &[PairJob],
+    verdicts_of: impl Fn(&PairJob) -> T + Sync,
+) -> Vec<T> {
+    let total: usize = jobs.iter().map(|job| job.lengths.len()).sum();
+    progress::begin(stage, total as u64);
+    let results = jobs
         .par_iter()
-        .map(|(guides, lengths)| {
-            let result = verdicts_of(*guides, lengths);
-            progress::advance(lengths.len() as u64);
+        .map(|job| {
+            let result = verdicts_of(job);
+            progress::advance(job.lengths.len() as u64);
             result
         })
         .collect();
     progress::end();
-    // Zero-length PVs (one clamp) have no cable and pass.
-    let mut verdicts: BTreeMap<Pv, Option<Miss>> = needed
-        .iter()
-        .filter(|pv| pv.sub_segments == 0)
-        .map(|pv| (*pv, None))
-        .collect();
-    for (((start, end), lengths), result) in pairs.iter().zip(results) {
-        for (&sub_segments, verdict) in lengths.iter().zip(result) {
-            let pv = Pv {
-                sub_segments,
-                start: *start,
-                end: *end,
-            };
-            verdicts.insert(pv, verdict);
-        }
+    results
+}
+
+/// The verdicts of one segment's evaluated pieces (`None`: the piece holds every limit at
+/// every test pose).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Verdicts(BTreeMap<Pv, Option<Miss>>);
+
+impl Verdicts {
+    pub(crate) fn new() -> Verdicts {
+        Verdicts::default()
     }
-    let passes = |pv: &Pv| matches!(verdicts.get(pv), Some(None));
-    let mut rejections = BTreeMap::new();
-    let mut misses: Vec<(Pv, Miss)> = Vec::new();
-    for pv in &candidates {
-        if let Some(Some(miss)) = verdicts.get(pv) {
-            *rejections.entry(miss.rejection).or_insert(0) += 1;
-            if miss.severity.is_finite() {
-                misses.push((*pv, *miss));
+
+    /// Records the results of `jobs` (all of one segment).
+    pub(crate) fn extend(&mut self, jobs: &[PairJob], results: Vec<Vec<Option<Miss>>>) {
+        for (job, result) in jobs.iter().zip(results) {
+            for (&sub_segments, verdict) in job.lengths.iter().zip(result) {
+                self.0
+                    .insert(Pv::new(sub_segments, job.pair.0, job.pair.1), verdict);
             }
         }
     }
-    let misses = nearest_misses(misses);
-    let d1: Vec<&Pv> = candidates.iter().filter(|pv| passes(pv)).collect();
-    let mut d2: Vec<Pv> = d1
-        .iter()
-        .filter(|pv| {
-            robust_neighbours(pv, robustness.delta_s, robustness.range)
-                .is_some_and(|neighbours| neighbours.iter().all(&passes))
-        })
-        .map(|pv| **pv)
-        .collect();
-    d2.sort();
-    SegmentSets {
-        d0: candidates.len(),
-        d0_pruned: candidates.len(),
-        d1: d1.len(),
-        d2,
-        rejections,
-        nearest_misses: misses,
-        evaluations: verdicts.len(),
-        looked_up: None,
-        time_s: timer.elapsed().as_secs_f64(),
+
+    /// The verdict of `pv`: `Some(None)` it holds (zero-length pieces always do),
+    /// `Some(Some(miss))` it fails, `None` not evaluated.
+    pub(crate) fn get(&self, pv: &Pv) -> Option<Option<Miss>> {
+        if pv.sub_segments == 0 {
+            return Some(None);
+        }
+        self.0.get(pv).copied()
+    }
+
+    /// Whether `pv` was evaluated and holds.
+    pub(crate) fn holds(&self, pv: &Pv) -> bool {
+        matches!(self.get(pv), Some(None))
+    }
+
+    /// Whether candidate `pv` is robust: it and every robustness neighbour hold.
+    pub(crate) fn robust(&self, pv: &Pv, robustness: &crate::setup::Robustness) -> bool {
+        self.holds(pv)
+            && robust_neighbours(pv, robustness.delta_s, robustness.range)
+                .is_some_and(|neighbours| neighbours.iter().all(|n| self.holds(n)))
+    }
+
+    /// Pieces evaluated (zero-length ones not counted).
+    pub(crate) fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// The sets of a segment whose `candidates` were all decided with these verdicts.
+    pub(crate) fn sets(&self, setup: &Setup, candidates: &[Pv]) -> SegmentSets {
+        let mut rejections = BTreeMap::new();
+        let mut misses: Vec<(Pv, Miss)> = Vec::new();
+        for pv in candidates {
+            if let Some(Some(miss)) = self.get(pv) {
+                *rejections.entry(miss.rejection).or_insert(0) += 1;
+                if miss.severity.is_finite() {
+                    misses.push((*pv, miss));
+                }
+            }
+        }
+        let d1 = candidates.iter().filter(|pv| self.holds(pv)).count();
+        let mut d2: Vec<Pv> = candidates
+            .iter()
+            .filter(|pv| self.robust(pv, &setup.robustness))
+            .copied()
+            .collect();
+        d2.sort();
+        SegmentSets {
+            d0: candidates.len(),
+            d0_pruned: candidates.len(),
+            d1,
+            d2,
+            rejections,
+            nearest_misses: nearest_misses(misses),
+            evaluations: self.len() + candidates.iter().filter(|pv| pv.sub_segments == 0).count(),
+            static_solves: 0,
+            looked_up: None,
+            time_s: 0.0,
+        }
     }
 }
 

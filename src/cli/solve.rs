@@ -10,7 +10,7 @@ use cable_dict::motion_test::EngineKind;
 use cable_dict::report::{ReportError, check_report_folder, write_report};
 use cable_dict::setup::Setup;
 use cable_dict::solve::{
-    SolveError, SolveOptions, SolveReport, guide_names, solve, solve_with_dictionary,
+    SearchKind, SolveError, SolveOptions, SolveReport, guide_names, solve, solve_with_dictionary,
 };
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -58,6 +58,11 @@ pub struct Args {
     /// dynamic motion test (the paper's pipeline: critical poses, then dynamics only).
     #[arg(long)]
     no_static_sweep: bool,
+    /// Test every candidate cable piece before searching the chains (the paper's order),
+    /// instead of only the pieces a chain shorter than the answer could use: the same path,
+    /// slower; the reference the default search is checked against
+    #[arg(long)]
+    exhaustive: bool,
     /// What simulates the cable in the motion test: `implicit` (the statics' cable model
     /// integrated in time; at rest it is the static equilibrium) or `rigid-chain` (rapier3d
     /// rigid bodies, the paper's baseline; slower, and it drifts from the static shape for
@@ -119,6 +124,11 @@ pub fn run(args: Args) -> Result<(), Failure> {
         k_best: args.k_best,
         motion_test: !args.no_motion_test,
         static_sweep: !args.no_static_sweep,
+        search: if args.exhaustive {
+            SearchKind::Exhaustive
+        } else {
+            SearchKind::Lazy
+        },
         shape_interval_s: args.report.is_some().then_some(SCENE_FRAME_INTERVAL_S),
         engine: match args.motion_engine {
             MotionEngine::Implicit => EngineKind::Implicit,

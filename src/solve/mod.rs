@@ -26,8 +26,8 @@ pub use report::{
 };
 
 use crate::attachment::{
-    ConnectMethod, Evaluator, IntraLinkCriterion, LookupAnswer, MotionSweep, SegmentPoses,
-    SegmentSets, SweepFailure, attachment_test_with, check_size,
+    ConnectMethod, Evaluator, IntraLinkAnswer, IntraLinkCriterion, LazyAttachment, LookupAnswer,
+    MotionSweep, SegmentPoses, SegmentSets, SweepFailure, attachment_test_with, check_size,
 };
 use crate::chain::{ChainError, ChainSearch};
 use crate::dictionary::{Dictionary, LookupError, MotionLookup};
@@ -62,6 +62,22 @@ pub struct SolveOptions {
     /// Which poses the intra-link segments are tested at (the dictionary's criterion, or
     /// the paper's one pose).
     pub intra_link: IntraLinkCriterion,
+    /// How much of the attachment test runs: only the pieces a chain shorter than the
+    /// answer could use (the default), or every candidate first (the reference the lazy
+    /// search is tested against; same path, slower).
+    pub search: SearchKind,
+}
+
+/// How the attachment test and the chain search work together.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SearchKind {
+    /// Pieces are evaluated as the search for the shortest chain needs them
+    /// ([`LazyAttachment`]).
+    #[default]
+    Lazy,
+    /// Every candidate piece is evaluated, then the chains are searched (the paper's order).
+    Exhaustive,
 }
 
 impl Default for SolveOptions {
@@ -75,6 +91,7 @@ impl Default for SolveOptions {
             shape_interval_s: None,
             engine: EngineKind::Implicit,
             intra_link: IntraLinkCriterion::GravityDirections,
+            search: SearchKind::Lazy,
         }
     }
 }
@@ -160,7 +177,6 @@ fn solve_with(
     let critical_poses_s = clock.elapsed().as_secs_f64();
     log::info!("critical poses: {critical_poses_s:.3} s");
 
-    let clock = Instant::now();
     let evaluator = Evaluator::new(setup, options.method)?;
     let lookup = dictionary
         .map(|d| MotionLookup::new(d, setup, &poses))
@@ -169,22 +185,47 @@ fn solve_with(
         Some(lookup) => lookup.answer(m, pv),
         None => LookupAnswer::Undecided(Vec::new()),
     };
-    let sets = attachment_test_with(&evaluator, &poses, lookup.is_some().then_some(&answer));
-    let attachment_s = clock.elapsed().as_secs_f64();
+    let intra_link: Option<&IntraLinkAnswer<'_>> = lookup.is_some().then_some(&answer);
+    let (sets, outcome, attachment_s) = match options.search {
+        SearchKind::Exhaustive => {
+            let clock = Instant::now();
+            let sets = attachment_test_with(&evaluator, &poses, intra_link);
+            let attachment_s = clock.elapsed().as_secs_f64();
+            let d2: Vec<Vec<Pv>> = sets.iter().map(|s| s.d2.clone()).collect();
+            let mut chains = Decided { setup, d2 };
+            let outcome = motion_tests(setup, motion, &mut chains, options)?;
+            (sets, outcome, attachment_s)
+        }
+        SearchKind::Lazy => {
+            let mut chains = Lazy {
+                setup,
+                attachment: LazyAttachment::new(&evaluator, &poses, intra_link),
+            };
+            let outcome = motion_tests(setup, motion, &mut chains, options)?;
+            if outcome.tried.is_empty() {
+                // No chain: the diagnosis wants every piece's verdict, as without the search.
+                chains.attachment.decide_all();
+            }
+            let attachment = chains.attachment;
+            let attachment_s = attachment.time_s();
+            let outcome = MotionSearch {
+                chain_s: (outcome.chain_s - attachment_s).max(0.0),
+                ..outcome
+            };
+            (attachment.sets(), outcome, attachment_s)
+        }
+    };
     log_sets(setup, &sets, lookup.as_ref(), attachment_s);
 
     let clock = Instant::now();
     let d2: Vec<Vec<Pv>> = sets.iter().map(|s| s.d2.clone()).collect();
     let search = chain_search(setup, &d2)?;
-    let chain_s = clock.elapsed().as_secs_f64();
+    let chain_s = clock.elapsed().as_secs_f64() + outcome.chain_s;
     log::info!(
         "chain search: {} chains of robust pieces, {chain_s:.3} s",
         search.chain_count()
     );
-
-    let clock = Instant::now();
-    let outcome = motion_tests(setup, motion, &d2, &search, options)?;
-    let motion_test_s = clock.elapsed().as_secs_f64() - outcome.sweep_s;
+    let motion_test_s = outcome.motion_test_s;
     log::info!(
         "static sweep: {} cable pieces dropped, {:.2} s; motion test: {} runs, {motion_test_s:.2} s",
         outcome.dropped.len(),
@@ -255,12 +296,14 @@ fn log_sets(
         };
         log::info!(
             "attachment {}: {} candidates, {} after pruning, {} hold the limits, {} robust, \
-             {:.2} s{source}",
+             {} evaluations, {} static solves, {:.2} s{source}",
             setup.segment_name(m),
             s.d0,
             s.d0_pruned,
             s.d1,
             s.d2.len(),
+            s.evaluations,
+            s.static_solves,
             s.time_s
         );
     }
@@ -278,6 +321,103 @@ fn chain_search(setup: &Setup, d2: &[Vec<Pv>]) -> Result<ChainSearch, SolveError
         .map(|m| setup.segment_guides(m))
         .collect();
     Ok(ChainSearch::over(&counts, &ends, d2)?)
+}
+
+/// Where the search for d* takes its chains from.
+trait Chains {
+    /// The shortest chain of robust pieces not dropped (ties broken as [`ChainSearch`]
+    /// does); `None` when there is none.
+    fn shortest(&mut self) -> Result<Option<CablePath>, SolveError>;
+    /// Takes piece `pv` of segment `m` out of every later chain.
+    fn drop_piece(&mut self, m: usize, pv: &Pv);
+}
+
+/// The chains of fully decided sets (the exhaustive attachment test).
+struct Decided<'s> {
+    setup: &'s Setup,
+    d2: Vec<Vec<Pv>>,
+}
+
+impl Chains for Decided<'_> {
+    fn shortest(&mut self) -> Result<Option<CablePath>, SolveError> {
+        Ok(chain_search(self.setup, &self.d2)?.shortest())
+    }
+
+    fn drop_piece(&mut self, m: usize, pv: &Pv) {
+        self.d2[m].retain(|kept| kept != pv);
+    }
+}
+
+/// The chains of a lazy attachment test: its bound widened until the shortest chain of the
+/// pieces it decided is no longer than the bound (then no undecided piece can make a shorter
+/// one). Each widening takes at least a fixed share of the candidates decided before
+/// ([`ROUND_GROWTH_DIVISOR`], and at least [`MIN_ROUND`]), so the rounds grow geometrically
+/// in work, not in length: the work past the answer's bound stays a bounded fraction of the
+/// work up to it.
+struct Lazy<'r, 'a> {
+    setup: &'a Setup,
+    attachment: LazyAttachment<'r, 'a>,
+}
+
+/// The fewest new candidates a lazy search's round takes on: fewer would leave the threads
+/// idle between rounds.
+const MIN_ROUND: usize = 1000;
+
+/// A lazy search's round takes on at least 1/this of the candidates decided so far. Rounds
+/// re-solve the shorter lengths of the pairs they extend (a length's shape is continued from
+/// its block's start), so smaller rounds cost more per piece; larger ones overshoot the
+/// answer further. Measured on the bundled inspection motion (attachment test, 2 cores): 1
+/// 4.5 s, 2 3.5 s, 4 3.0 s, 8 3.3 s.
+const ROUND_GROWTH_DIVISOR: usize = 4;
+
+impl Lazy<'_, '_> {
+    /// The next bound after `bound`: the first that decides [`MIN_ROUND`] candidates, or the
+    /// share [`ROUND_GROWTH_DIVISOR`] of those decided already, no more than `cap` (a known
+    /// chain's length).
+    fn next_bound(&self, bound: usize, cap: Option<usize>) -> usize {
+        let wanted = (self.attachment.decided() / ROUND_GROWTH_DIVISOR).max(MIN_ROUND);
+        let mut taken = 0;
+        let mut next = bound + 1;
+        for (&key, &count) in self.attachment.pending_by_bound().range(bound + 1..) {
+            next = key;
+            taken += count;
+            if taken >= wanted {
+                break;
+            }
+        }
+        cap.map_or(next, |cap| next.min(cap)).max(bound + 1)
+    }
+}
+
+impl Chains for Lazy<'_, '_> {
+    fn shortest(&mut self) -> Result<Option<CablePath>, SolveError> {
+        loop {
+            let Some(bound) = self.attachment.bound() else {
+                let Some(first) = self.attachment.lower_bound() else {
+                    return Ok(None);
+                };
+                let next = self.next_bound(first.saturating_sub(1), None);
+                self.attachment.widen_to(next);
+                continue;
+            };
+            let path = chain_search(self.setup, &self.attachment.robust())?.shortest();
+            if let Some(path) = &path
+                && path.total_sub_segments() <= bound
+            {
+                return Ok(Some(path.clone()));
+            }
+            if self.attachment.lower_bound().is_none() {
+                return Ok(path);
+            }
+            let next = self.next_bound(bound, path.as_ref().map(CablePath::total_sub_segments));
+            log::debug!("lazy search: no chain up to {bound} sub-segments, widening to {next}");
+            self.attachment.widen_to(next);
+        }
+    }
+
+    fn drop_piece(&mut self, m: usize, pv: &Pv) {
+        self.attachment.drop_piece(m, pv);
+    }
 }
 
 /// One chain put to the motion test (`None`: not tested).
@@ -302,6 +442,11 @@ pub(crate) struct MotionSearch {
     pub dropped: Vec<Dropped>,
     /// Wall time spent sweeping (s).
     pub sweep_s: f64,
+    /// Wall time of the chain searches between motion tests (s), attachment tests a lazy
+    /// search ran for them not included.
+    pub chain_s: f64,
+    /// Wall time of the dynamic motion tests (s).
+    pub motion_test_s: f64,
 }
 
 impl MotionSearch {
@@ -320,8 +465,7 @@ impl MotionSearch {
 fn motion_tests(
     setup: &Setup,
     motion: &Motion,
-    d2: &[Vec<Pv>],
-    search: &ChainSearch,
+    chains: &mut dyn Chains,
     options: &SolveOptions,
 ) -> Result<MotionSearch, SolveError> {
     let mut outcome = MotionSearch {
@@ -332,11 +476,18 @@ fn motion_tests(
         swept: 0,
         dropped: Vec::new(),
         sweep_s: 0.0,
+        chain_s: 0.0,
+        motion_test_s: 0.0,
+    };
+    let shortest = |outcome: &mut MotionSearch, chains: &mut dyn Chains| {
+        let clock = Instant::now();
+        let path = chains.shortest();
+        outcome.chain_s += clock.elapsed().as_secs_f64();
+        path
     };
     if !options.motion_test {
-        outcome
-            .tried
-            .extend(search.shortest().map(|path| (path, None)));
+        let path = shortest(&mut outcome, chains)?;
+        outcome.tried.extend(path.map(|path| (path, None)));
         outcome.winner = (!outcome.tried.is_empty()).then_some(0);
         return Ok(outcome);
     }
@@ -355,9 +506,8 @@ fn motion_tests(
         shape_interval_s: options.shape_interval_s,
         ..MotionTestOptions::new(options.engine.with_defaults(setup.gravity_m_s2))
     };
-    let mut d2 = d2.to_vec();
     while outcome.tried.len() < options.k_best {
-        let Some(path) = chain_search(setup, &d2)?.shortest() else {
+        let Some(path) = shortest(&mut outcome, chains)? else {
             return Ok(
                 outcome.stopped("no chain is left of the robust pieces that did not fail it")
             );
@@ -374,13 +524,15 @@ fn motion_tests(
                         setup.segment_name(*m),
                         failure.detail
                     );
-                    d2[*m].retain(|kept| kept != pv);
+                    chains.drop_piece(*m, pv);
                 }
                 outcome.dropped.extend(failed);
                 continue;
             }
         }
+        let clock = Instant::now();
         let report = motion_test::run(setup, &path, motion, &test_options)?;
+        outcome.motion_test_s += clock.elapsed().as_secs_f64();
         log::info!(
             "motion test {}: {:.0} mm, {}",
             outcome.tried.len() + 1,
@@ -400,9 +552,8 @@ fn motion_tests(
         let Some(m) = failed_segment else {
             return Ok(outcome.stopped("the last failure belongs to no single segment"));
         };
-        let failed = path.pieces().filter(|&(segment, _)| segment == m);
-        for (_, failed) in failed {
-            d2[m].retain(|pv| *pv != failed);
+        for (_, failed) in path.pieces().filter(|&(segment, _)| segment == m) {
+            chains.drop_piece(m, &failed);
         }
     }
     let budget = options.k_best;

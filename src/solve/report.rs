@@ -175,6 +175,9 @@ pub struct SegmentReport {
     pub rejections: BTreeMap<Rejection, usize>,
     /// (guides, length) combinations evaluated, robustness lengths included.
     pub evaluations: usize,
+    /// Static solves (Newton's) the attachment test started for this segment, at every test
+    /// pose: the machine-independent measure of its work.
+    pub static_solves: usize,
 }
 
 /// A test pose, without its link poses.
@@ -756,6 +759,7 @@ fn segment_reports(
                 d2: s.d2.len(),
                 rejections: s.rejections.clone(),
                 evaluations: s.evaluations,
+                static_solves: s.static_solves,
             }
         })
         .collect()

@@ -1,0 +1,541 @@
+//! The attachment test driven by the chain search: only the pieces some chain shorter than a
+//! bound could use are evaluated, and the bound is widened until the shortest chain of robust
+//! pieces is no longer than it (docs/architecture.md, "Lazy attachment test").
+//!
+//! Every candidate pair of guide configurations `(a, b)` of segment `m` has a *floor*: a
+//! length below which none of its pieces can be robust — below the shortest length that
+//! reaches between the clamps at every test pose, plus the robustness range (a shorter
+//! neighbour would be too short), or below what is already known to fail. From the floors,
+//! a dynamic program over the guides gives every configuration the shortest a chain can be
+//! from the first guide to it (`before`) and from it to the last (`after`). A piece
+//! `(S, a, b)` can be on a chain no longer than `L` only if `before(a) + S + after(b) ≤ L`;
+//! [`LazyAttachment::widen_to`] decides exactly those. Every chain of robust pieces no
+//! longer than `L` is then known, so the shortest known chain is the shortest of all as soon
+//! as it is no longer than `L`.
+//!
+//! Verdicts do not depend on which lengths are asked for together, nor in which batches
+//! ([`Evaluator::first_rejections`]), so the pieces decided here get exactly the verdicts of
+//! the exhaustive test ([`super::attachment_test`]).
+
+use super::{
+    Evaluator, IntraLinkAnswer, LookedUp, LookupCounts, PairJob, SegmentPoses, SegmentSets,
+    Verdicts, evaluate_jobs, looked_up, pair_jobs, robust_neighbours,
+};
+use crate::geometry::reaches;
+use crate::path::Pv;
+use crate::pose::Pose;
+use crate::setup::Setup;
+use std::collections::{BTreeMap, BTreeSet};
+use std::time::Instant;
+
+/// A pair of guide configurations of one segment and what is known of its candidates.
+#[derive(Debug, Clone)]
+struct Pair {
+    start: usize,
+    end: usize,
+    /// The candidates are the segment's zero-length one (coincident clamps) rather than its
+    /// lengths above zero.
+    coincident: bool,
+    /// Candidates decided: the first `decided` of the pair's candidate lengths.
+    decided: usize,
+    /// The shortest length (sub-segments) that reaches between the clamps at every test
+    /// pose: anything shorter is too short at one of them.
+    reach: usize,
+    /// The shortest decided candidate that is robust and not dropped.
+    shortest_robust: Option<usize>,
+}
+
+/// One segment's pairs, verdicts and decided robust pieces.
+#[derive(Debug)]
+struct Segment {
+    pairs: Vec<Pair>,
+    /// The candidate lengths above zero, ascending.
+    lengths: Vec<usize>,
+    /// Whether zero is a candidate length (coincident clamps).
+    zero: bool,
+    verdicts: Verdicts,
+    /// Robust candidates decided.
+    robust: BTreeSet<Pv>,
+    /// Robust pieces a later test failed: no longer on any chain.
+    dropped: BTreeSet<Pv>,
+    /// Worker time spent on this segment's pieces (s).
+    busy_s: f64,
+    lookup_counts: Option<LookupCounts>,
+}
+
+impl Segment {
+    fn candidate_lengths(&self, pair: &Pair) -> &[usize] {
+        match (pair.coincident, self.zero) {
+            (true, true) => &[0],
+            (true, false) => &[],
+            (false, _) => &self.lengths,
+        }
+    }
+}
+
+/// The lazily evaluated attachment test of every segment of a setup over a motion's test
+/// poses.
+pub struct LazyAttachment<'r, 'a> {
+    evaluator: &'r Evaluator<'a>,
+    poses: &'r SegmentPoses,
+    intra_link: Option<&'r IntraLinkAnswer<'r>>,
+    segments: Vec<Segment>,
+    /// Every candidate on a chain no longer than this (sub-segments) is decided.
+    bound: Option<usize>,
+    /// Wall time of the evaluations so far (s).
+    wall_s: f64,
+}
+
+impl<'r, 'a> LazyAttachment<'r, 'a> {
+    /// Nothing evaluated yet; the pairs' reach computed at every test pose. The intra-link
+    /// segments' pieces are answered by `intra_link` (a dictionary's lookup) when given.
+    pub fn new(
+        evaluator: &'r Evaluator<'a>,
+        poses: &'r SegmentPoses,
+        intra_link: Option<&'r IntraLinkAnswer<'r>>,
+    ) -> LazyAttachment<'r, 'a> {
+        let setup = evaluator.setup();
+        let segments = (0..setup.segment_count())
+            .map(|m| {
+                let lengths = &setup.segments[m].lengths;
+                Segment {
+                    pairs: pairs(evaluator, poses, m),
+                    lengths: lengths.iter().copied().filter(|&s| s > 0).collect(),
+                    zero: lengths.contains(&0),
+                    verdicts: Verdicts::new(),
+                    robust: BTreeSet::new(),
+                    dropped: BTreeSet::new(),
+                    busy_s: 0.0,
+                    lookup_counts: (intra_link.is_some() && setup.is_intra_link(m))
+                        .then(LookupCounts::default),
+                }
+            })
+            .collect();
+        LazyAttachment {
+            evaluator,
+            poses,
+            intra_link,
+            segments,
+            bound: None,
+            wall_s: 0.0,
+        }
+    }
+
+    /// The setup under test.
+    fn setup(&self) -> &'a Setup {
+        self.evaluator.setup()
+    }
+
+    /// The shortest any chain of robust pieces can be (sub-segments), from what is known so
+    /// far; `None` when no chain is possible at all.
+    pub fn lower_bound(&self) -> Option<usize> {
+        let (before, _) = self.bounds();
+        before.last()?.iter().copied().flatten().min()
+    }
+
+    /// Every candidate decided (the exhaustive test's sets are known).
+    pub fn complete(&self) -> bool {
+        self.segments.iter().all(|segment| {
+            segment
+                .pairs
+                .iter()
+                .all(|pair| pair.decided == segment.candidate_lengths(pair).len())
+        })
+    }
+
+    /// The bound every candidate on a shorter chain is decided for, if any.
+    pub fn bound(&self) -> Option<usize> {
+        self.bound
+    }
+
+    /// The robust pieces decided so far, minus those dropped, per segment (sorted).
+    pub fn robust(&self) -> Vec<Vec<Pv>> {
+        self.segments
+            .iter()
+            .map(|s| s.robust.difference(&s.dropped).copied().collect())
+            .collect()
+    }
+
+    /// Takes piece `pv` of segment `m` out of the chains (it failed a later test): its
+    /// pair's floor rises accordingly.
+    pub fn drop_piece(&mut self, m: usize, pv: &Pv) {
+        let segment = &mut self.segments[m];
+        if !segment.robust.contains(pv) || !segment.dropped.insert(*pv) {
+            return;
+        }
+        let same_pair = |r: &&Pv| (r.start, r.end) == (pv.start, pv.end);
+        let shortest = segment
+            .robust
+            .difference(&segment.dropped)
+            .filter(same_pair)
+            .map(|r| r.sub_segments)
+            .min();
+        if let Some(pair) = segment
+            .pairs
+            .iter_mut()
+            .find(|p| (p.start, p.end) == (pv.start, pv.end))
+        {
+            pair.shortest_robust = shortest;
+        }
+    }
+
+    /// Decides every candidate, chain or no chain (what the exhaustive test decides, without
+    /// its adjacency pruning): for a diagnosis when no path exists.
+    pub fn decide_all(&mut self) {
+        let everything: Vec<(usize, usize, usize)> = self
+            .segments
+            .iter()
+            .enumerate()
+            .flat_map(|(m, segment)| {
+                segment
+                    .pairs
+                    .iter()
+                    .enumerate()
+                    .map(move |(k, pair)| (m, k, segment.candidate_lengths(pair).len()))
+            })
+            .collect();
+        self.decide_up_to(&everything, usize::MAX);
+    }
+
+    /// How many undecided candidates that can be robust each bound would decide: per chain
+    /// length `L` (sub-segments), the number of those whose shortest chain through them
+    /// (by the floors) is `L` — what a search weighs its next bound by.
+    pub fn pending_by_bound(&self) -> BTreeMap<usize, usize> {
+        let (before, after) = self.bounds();
+        let setup = self.setup();
+        let robustness = &setup.robustness;
+        let mut pending = BTreeMap::new();
+        for (m, segment) in self.segments.iter().enumerate() {
+            let (a, b) = setup.segment_guides(m);
+            for pair in &segment.pairs {
+                let (Some(Some(head)), Some(Some(tail))) =
+                    (before[a].get(pair.start), after[b].get(pair.end))
+                else {
+                    continue;
+                };
+                let undecided = &segment.candidate_lengths(pair)[pair.decided..];
+                for &s in undecided.iter().filter(|&&s| feasible(s, pair.reach, robustness)) {
+                    *pending.entry(head + s + tail).or_insert(0) += 1;
+                }
+            }
+        }
+        pending
+    }
+
+    /// Candidates decided so far.
+    pub fn decided(&self) -> usize {
+        self.segments
+            .iter()
+            .map(|segment| segment.pairs.iter().map(|pair| pair.decided).sum::<usize>())
+            .sum()
+    }
+
+    /// Decides every candidate that a chain no longer than `bound` sub-segments could use:
+    /// evaluates it and its robustness neighbours (those not evaluated yet), in one
+    /// parallel batch.
+    pub fn widen_to(&mut self, bound: usize) {
+        let (before, after) = self.bounds();
+        let setup = self.setup();
+        let robustness = &setup.robustness;
+        let mut deciding: Vec<(usize, usize, usize)> = Vec::new();
+        for (m, segment) in self.segments.iter().enumerate() {
+            let (a, b) = setup.segment_guides(m);
+            for (k, pair) in segment.pairs.iter().enumerate() {
+                let (Some(floor), Some(Some(head)), Some(Some(tail))) = (
+                    floor(segment, pair, robustness),
+                    before[a].get(pair.start),
+                    after[b].get(pair.end),
+                ) else {
+                    continue;
+                };
+                let Some(target) = bound.checked_sub(head + tail).filter(|&t| t >= floor) else {
+                    continue;
+                };
+                let lengths = segment.candidate_lengths(pair);
+                let upto = pair.decided + lengths[pair.decided..].partition_point(|&s| s <= target);
+                deciding.push((m, k, upto));
+            }
+        }
+        self.decide_up_to(&deciding, bound);
+        self.bound = Some(self.bound.map_or(bound, |b| b.max(bound)));
+    }
+
+    /// Decides the candidates of pair `k` of segment `m` up to index `upto`, for every
+    /// `(m, k, upto)` of `deciding`: the feasible ones and their robustness neighbours
+    /// evaluated in one parallel batch (the progress stage names `bound`).
+    fn decide_up_to(&mut self, deciding: &[(usize, usize, usize)], bound: usize) {
+        let clock = Instant::now();
+        let robustness = self.setup().robustness.clone();
+        let mut wanted: Vec<(usize, Pv)> = Vec::new();
+        for &(m, k, upto) in deciding {
+            let segment = &self.segments[m];
+            let pair = &segment.pairs[k];
+            for &s in &segment.candidate_lengths(pair)[pair.decided..upto] {
+                if !feasible(s, pair.reach, &robustness) {
+                    continue;
+                }
+                let pv = Pv::new(s, pair.start, pair.end);
+                let neighbours = robust_neighbours(&pv, robustness.delta_s, robustness.range)
+                    .unwrap_or_default();
+                for piece in std::iter::once(pv).chain(neighbours) {
+                    if segment.verdicts.get(&piece).is_none() {
+                        wanted.push((m, piece));
+                    }
+                }
+            }
+        }
+        let jobs = pair_jobs(wanted.into_iter());
+        let solves_before: usize = (0..self.segments.len())
+            .map(|m| self.evaluator.static_solves(m))
+            .sum();
+        self.evaluate(&jobs, bound);
+        for &(m, k, upto) in deciding {
+            self.decide(m, k, upto);
+        }
+        let solves: usize = (0..self.segments.len())
+            .map(|m| self.evaluator.static_solves(m))
+            .sum::<usize>()
+            - solves_before;
+        log::debug!(
+            "lazy search: {} pieces of {} pairs evaluated for chains up to {bound} sub-segments, \
+             {solves} static solves, {:.2} s",
+            jobs.iter().map(|j| j.lengths.len()).sum::<usize>(),
+            jobs.len(),
+            clock.elapsed().as_secs_f64()
+        );
+        self.wall_s += clock.elapsed().as_secs_f64();
+    }
+
+    /// Evaluates `jobs` in parallel and records their verdicts.
+    fn evaluate(&mut self, jobs: &[PairJob], bound: usize) {
+        let evaluator = self.evaluator;
+        let poses = self.poses;
+        let intra_link = self.intra_link;
+        let segments = &self.segments;
+        let pitch_mm = self.setup().cable.sub_segment_pitch_m * 1e3;
+        let stage = match bound {
+            usize::MAX => "attachment, every piece".to_string(),
+            _ => format!("attachment, chains up to {:.0} mm", bound as f64 * pitch_mm),
+        };
+        let timed = evaluate_jobs(&stage, jobs, |job| {
+            let clock = Instant::now();
+            let m = job.segment;
+            let verdicts = match (intra_link, &segments[m].lookup_counts) {
+                (Some(lookup), Some(counts)) => looked_up(
+                    evaluator,
+                    &poses.poses[m],
+                    lookup,
+                    m,
+                    job.pair,
+                    &job.lengths,
+                    counts,
+                ),
+                _ => evaluator.first_rejections(m, job.pair, &job.lengths, &poses.poses[m]),
+            };
+            (verdicts, clock.elapsed().as_secs_f64())
+        });
+        let mut by_segment: Vec<(Vec<PairJob>, Vec<_>)> =
+            (0..self.segments.len()).map(|_| Default::default()).collect();
+        for (job, (verdicts, busy_s)) in jobs.iter().zip(timed) {
+            self.segments[job.segment].busy_s += busy_s;
+            by_segment[job.segment].0.push(job.clone());
+            by_segment[job.segment].1.push(verdicts);
+        }
+        for (segment, (jobs, verdicts)) in self.segments.iter_mut().zip(by_segment) {
+            segment.verdicts.extend(&jobs, verdicts);
+        }
+    }
+
+    /// Marks the candidates of pair `k` of segment `m` decided up to index `upto`, keeping
+    /// the robust ones.
+    fn decide(&mut self, m: usize, k: usize, upto: usize) {
+        let robustness = self.setup().robustness.clone();
+        let segment = &mut self.segments[m];
+        let pair = segment.pairs[k].clone();
+        let lengths = segment.candidate_lengths(&pair)[pair.decided..upto].to_vec();
+        for s in lengths {
+            let pv = Pv::new(s, pair.start, pair.end);
+            if feasible(s, pair.reach, &robustness) && segment.verdicts.robust(&pv, &robustness)
+            {
+                segment.robust.insert(pv);
+                if segment.dropped.contains(&pv) {
+                    continue;
+                }
+                let shortest = &mut segment.pairs[k].shortest_robust;
+                *shortest = Some(shortest.map_or(s, |r| r.min(s)));
+            }
+        }
+        segment.pairs[k].decided = upto;
+    }
+
+    /// For every guide and configuration, the shortest a chain can be from the first guide
+    /// to it and from it to the last (`None`: no chain), with every pair's floor as its
+    /// length.
+    fn bounds(&self) -> (Vec<Vec<Option<usize>>>, Vec<Vec<Option<usize>>>) {
+        let setup = self.setup();
+        let robustness = &setup.robustness;
+        let counts: Vec<usize> = setup
+            .guides
+            .iter()
+            .map(|g| g.configurations.len())
+            .collect();
+        let last = counts.len() - 1;
+        let mut before: Vec<Vec<Option<usize>>> = counts.iter().map(|&n| vec![None; n]).collect();
+        let mut after = before.clone();
+        before[0].iter_mut().for_each(|b| *b = Some(0));
+        after[last].iter_mut().for_each(|b| *b = Some(0));
+        let ends: Vec<(usize, usize)> = (0..self.segments.len())
+            .map(|m| setup.segment_guides(m))
+            .collect();
+        let relax = |slot: &mut Option<usize>, value: usize| {
+            *slot = Some(slot.map_or(value, |v| v.min(value)));
+        };
+        for g in 1..=last {
+            for (m, segment) in self.segments.iter().enumerate().filter(|(m, _)| ends[*m].1 == g) {
+                let a = ends[m].0;
+                for pair in &segment.pairs {
+                    if let (Some(floor), Some(head)) =
+                        (floor(segment, pair, robustness), before[a][pair.start])
+                    {
+                        relax(&mut before[g][pair.end], head + floor);
+                    }
+                }
+            }
+        }
+        for g in (0..last).rev() {
+            for (m, segment) in self.segments.iter().enumerate().filter(|(m, _)| ends[*m].0 == g) {
+                let b = ends[m].1;
+                for pair in &segment.pairs {
+                    if let (Some(floor), Some(tail)) =
+                        (floor(segment, pair, robustness), after[b][pair.end])
+                    {
+                        relax(&mut after[g][pair.start], tail + floor);
+                    }
+                }
+            }
+        }
+        (before, after)
+    }
+
+    /// The sets of every segment as far as they are decided: candidates decided by
+    /// evaluation count as tested ("after pruning"); the others were pruned by the search's
+    /// bounds.
+    pub fn sets(&self) -> Vec<SegmentSets> {
+        let setup = self.setup();
+        let busy_total: f64 = self.segments.iter().map(|s| s.busy_s).sum();
+        self.segments
+            .iter()
+            .enumerate()
+            .map(|(m, segment)| {
+                let tested: Vec<Pv> = segment
+                    .pairs
+                    .iter()
+                    .flat_map(|pair| {
+                        segment.candidate_lengths(pair)[..pair.decided]
+                            .iter()
+                            .map(|&s| Pv::new(s, pair.start, pair.end))
+                            .filter(|pv| segment.verdicts.get(pv).is_some())
+                    })
+                    .collect();
+                let mut sets = segment.verdicts.sets(setup, &tested);
+                sets.d0 = setup.admissible_pv_count(m);
+                sets.d2 = segment.robust.iter().copied().collect();
+                sets.static_solves = self.evaluator.static_solves(m);
+                sets.looked_up = segment
+                    .lookup_counts
+                    .as_ref()
+                    .map(LookupCounts::snapshot);
+                sets.time_s = if busy_total > 0.0 {
+                    self.wall_s * segment.busy_s / busy_total
+                } else {
+                    0.0
+                };
+                sets
+            })
+            .collect()
+    }
+
+    /// Wall time spent evaluating (s).
+    pub fn time_s(&self) -> f64 {
+        self.wall_s
+    }
+}
+
+/// Whether candidate length `s` of a pair that reaches from `reach` sub-segments on can be
+/// robust at all: its shortest robustness neighbour must reach too.
+fn feasible(s: usize, reach: usize, robustness: &crate::setup::Robustness) -> bool {
+    let below = robustness.range * robustness.delta_s;
+    s == 0 || (s > below && s - below >= reach)
+}
+
+/// The shortest length a robust piece of `pair` can have from what is known: its shortest
+/// known robust piece, or its first undecided candidate that can be robust; `None` when
+/// there is neither.
+fn floor(segment: &Segment, pair: &Pair, robustness: &crate::setup::Robustness) -> Option<usize> {
+    let undecided = segment.candidate_lengths(pair)[pair.decided..]
+        .iter()
+        .copied()
+        .find(|&s| feasible(s, pair.reach, robustness));
+    match (pair.shortest_robust, undecided) {
+        (Some(r), Some(u)) => Some(r.min(u)),
+        (r, u) => r.or(u),
+    }
+}
+
+/// The candidate pairs of segment `m` (those with at least one admissible length), with
+/// the shortest length that reaches at every test pose.
+fn pairs(evaluator: &Evaluator<'_>, poses: &SegmentPoses, m: usize) -> Vec<Pair> {
+    let setup = evaluator.setup();
+    let (a, b) = setup.segment_guides(m);
+    let (na, nb) = (
+        setup.guides[a].configurations.len(),
+        setup.guides[b].configurations.len(),
+    );
+    let pitch = setup.cable.sub_segment_pitch_m;
+    let mut pairs = Vec::new();
+    for start in 0..na {
+        for end in 0..nb {
+            let coincident = setup.coincident(a, start, b, end);
+            let distance = poses.poses[m]
+                .iter()
+                .map(|pose| evaluator.clamp_distance_m(m, (start, end), pose))
+                .fold(0.0, f64::max);
+            pairs.push(Pair {
+                start,
+                end,
+                coincident,
+                decided: 0,
+                reach: shortest_reaching(distance, pitch),
+                shortest_robust: None,
+            });
+        }
+    }
+    pairs
+}
+
+/// The shortest whole number of sub-segments of `pitch_m` that reaches `distance_m`
+/// ([`reaches`]' rule).
+fn shortest_reaching(distance_m: f64, pitch_m: f64) -> usize {
+    let mut s = ((distance_m / pitch_m).floor() as usize).saturating_sub(1).max(1);
+    let origin = Pose::identity();
+    let at = Pose::translation(distance_m, 0.0, 0.0);
+    while reaches(&origin, &at, s, pitch_m).is_err() {
+        s += 1;
+    }
+    s
+}
+
+impl LookupCounts {
+    /// The counts so far.
+    fn snapshot(&self) -> LookedUp {
+        let [holds, fails, solved, solved_failed] = std::array::from_fn(|k| {
+            self.0[k].load(std::sync::atomic::Ordering::Relaxed)
+        });
+        LookedUp {
+            holds,
+            fails,
+            solved,
+            solved_failed,
+        }
+    }
+}
