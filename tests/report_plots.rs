@@ -228,6 +228,7 @@ fn segment(
         d2: d[3],
         rejections: BTreeMap::new(),
         evaluations: 0,
+        static_solves: 0,
     }
 }
 

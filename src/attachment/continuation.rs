@@ -232,7 +232,12 @@ pub(super) struct ClampTurns {
 impl ClampTurns {
     /// The turns of `pair` of segment `m` for the lengths 1 ..= the longest of `lengths`
     /// (ascending).
-    pub(super) fn new(setup: &Setup, m: usize, pair: (usize, usize), lengths: &[usize]) -> ClampTurns {
+    pub(super) fn new(
+        setup: &Setup,
+        m: usize,
+        pair: (usize, usize),
+        lengths: &[usize],
+    ) -> ClampTurns {
         let last = lengths.last().copied().unwrap_or(0);
         ClampTurns {
             pair,

@@ -28,7 +28,6 @@ pub enum ConnectMethod {
     Linear,
 }
 
-
 /// Everything a PV evaluation needs besides the PV and the pose, prepared once per run.
 #[derive(Debug, Clone)]
 pub struct Evaluator<'a> {
@@ -60,7 +59,10 @@ impl<'a> Evaluator<'a> {
     /// Static solves (Newton's, or the baseline's relaxations) this evaluator has started for
     /// segment `m` so far: the machine-independent measure of its work.
     pub fn static_solves(&self, m: usize) -> usize {
-        self.static_solves.0.get(m).map_or(0, |n| n.load(Ordering::Relaxed))
+        self.static_solves
+            .0
+            .get(m)
+            .map_or(0, |n| n.load(Ordering::Relaxed))
     }
 
     pub(super) fn count_static_solve(&self, m: usize) {
@@ -291,32 +293,32 @@ impl<'a> Evaluator<'a> {
             let (scene, declared) = self.at_pose(m, (pv.start, pv.end), pose);
             let guides = (declared.0, declared.1 * turn);
             let warm = Warm::Poses(&earlier);
-            let check = match self.solve_warm(&mut solver, m, &guides, pv.sub_segments, &scene, warm) {
-                Ok(solved) => {
-                    let check = self.judge(
-                        m,
-                        &guides.0,
-                        &guides.1,
-                        &solved.nodes,
-                        pv.sub_segments,
-                        &scene,
-                    );
-                    earlier.insert(0, (solved, guides));
-                    earlier.truncate(2);
-                    check
-                }
-                Err(check) => {
-                    earlier.clear();
-                    check
-                }
-            };
+            let check =
+                match self.solve_warm(&mut solver, m, &guides, pv.sub_segments, &scene, warm) {
+                    Ok(solved) => {
+                        let check = self.judge(
+                            m,
+                            &guides.0,
+                            &guides.1,
+                            &solved.nodes,
+                            pv.sub_segments,
+                            &scene,
+                        );
+                        earlier.insert(0, (solved, guides));
+                        earlier.truncate(2);
+                        check
+                    }
+                    Err(check) => {
+                        earlier.clear();
+                        check
+                    }
+                };
             if !check.passed() {
                 return Some((pose, check));
             }
         }
         None
     }
-
 
     /// The distance between the clamps of configurations `pair` of segment `m` at `pose`
     /// (m): what the shortest cable between them must reach.
@@ -342,7 +344,6 @@ impl<'a> Evaluator<'a> {
         );
         (scene, guides)
     }
-
 
     /// Equilibrium nodes between two guide poses, or the failed check.
     fn equilibrium(
@@ -421,7 +422,6 @@ impl<'a> Evaluator<'a> {
     }
 }
 
-
 /// A counter per segment, shared by the threads of a run.
 #[derive(Debug)]
 struct StaticSolves(Vec<AtomicUsize>);
@@ -450,7 +450,3 @@ pub(super) struct Scene<'p> {
     pub(super) gravity_m_s2: Vector3<f64>,
     pub(super) clearance_link: Option<usize>,
 }
-
-
-
-

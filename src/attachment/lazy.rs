@@ -194,7 +194,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
                     .map(move |(k, pair)| (m, k, segment.candidate_lengths(pair).len()))
             })
             .collect();
-        self.decide_up_to(&everything, usize::MAX);
+        self.decide_up_to(&everything, usize::MAX, Evaluate::Every);
     }
 
     /// How many undecided candidates that can be robust each bound would decide: per chain
@@ -214,7 +214,10 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
                     continue;
                 };
                 let undecided = &segment.candidate_lengths(pair)[pair.decided..];
-                for &s in undecided.iter().filter(|&&s| feasible(s, pair.reach, robustness)) {
+                for &s in undecided
+                    .iter()
+                    .filter(|&&s| feasible(s, pair.reach, robustness))
+                {
                     *pending.entry(head + s + tail).or_insert(0) += 1;
                 }
             }
@@ -256,14 +259,14 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
                 deciding.push((m, k, upto));
             }
         }
-        self.decide_up_to(&deciding, bound);
+        self.decide_up_to(&deciding, bound, Evaluate::Feasible);
         self.bound = Some(self.bound.map_or(bound, |b| b.max(bound)));
     }
 
     /// Decides the candidates of pair `k` of segment `m` up to index `upto`, for every
-    /// `(m, k, upto)` of `deciding`: the feasible ones and their robustness neighbours
-    /// evaluated in one parallel batch (the progress stage names `bound`).
-    fn decide_up_to(&mut self, deciding: &[(usize, usize, usize)], bound: usize) {
+    /// `(m, k, upto)` of `deciding`: the candidates `which` names and their robustness
+    /// neighbours evaluated in one parallel batch (the progress stage names `bound`).
+    fn decide_up_to(&mut self, deciding: &[(usize, usize, usize)], bound: usize, which: Evaluate) {
         let clock = Instant::now();
         let robustness = self.setup().robustness.clone();
         let mut wanted: Vec<(usize, Pv)> = Vec::new();
@@ -271,7 +274,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             let segment = &self.segments[m];
             let pair = &segment.pairs[k];
             for &s in &segment.candidate_lengths(pair)[pair.decided..upto] {
-                if !feasible(s, pair.reach, &robustness) {
+                if which == Evaluate::Feasible && !feasible(s, pair.reach, &robustness) {
                     continue;
                 }
                 let pv = Pv::new(s, pair.start, pair.end);
@@ -334,8 +337,9 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             };
             (verdicts, clock.elapsed().as_secs_f64())
         });
-        let mut by_segment: Vec<(Vec<PairJob>, Vec<_>)> =
-            (0..self.segments.len()).map(|_| Default::default()).collect();
+        let mut by_segment: Vec<(Vec<PairJob>, Vec<_>)> = (0..self.segments.len())
+            .map(|_| Default::default())
+            .collect();
         for (job, (verdicts, busy_s)) in jobs.iter().zip(timed) {
             self.segments[job.segment].busy_s += busy_s;
             by_segment[job.segment].0.push(job.clone());
@@ -355,8 +359,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
         let lengths = segment.candidate_lengths(&pair)[pair.decided..upto].to_vec();
         for s in lengths {
             let pv = Pv::new(s, pair.start, pair.end);
-            if feasible(s, pair.reach, &robustness) && segment.verdicts.robust(&pv, &robustness)
-            {
+            if feasible(s, pair.reach, &robustness) && segment.verdicts.robust(&pv, &robustness) {
                 segment.robust.insert(pv);
                 if segment.dropped.contains(&pv) {
                     continue;
@@ -391,7 +394,12 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             *slot = Some(slot.map_or(value, |v| v.min(value)));
         };
         for g in 1..=last {
-            for (m, segment) in self.segments.iter().enumerate().filter(|(m, _)| ends[*m].1 == g) {
+            for (m, segment) in self
+                .segments
+                .iter()
+                .enumerate()
+                .filter(|(m, _)| ends[*m].1 == g)
+            {
                 let a = ends[m].0;
                 for pair in &segment.pairs {
                     if let (Some(floor), Some(head)) =
@@ -403,7 +411,12 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             }
         }
         for g in (0..last).rev() {
-            for (m, segment) in self.segments.iter().enumerate().filter(|(m, _)| ends[*m].0 == g) {
+            for (m, segment) in self
+                .segments
+                .iter()
+                .enumerate()
+                .filter(|(m, _)| ends[*m].0 == g)
+            {
                 let b = ends[m].1;
                 for pair in &segment.pairs {
                     if let (Some(floor), Some(tail)) =
@@ -441,10 +454,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
                 sets.d0 = setup.admissible_pv_count(m);
                 sets.d2 = segment.robust.iter().copied().collect();
                 sets.static_solves = self.evaluator.static_solves(m);
-                sets.looked_up = segment
-                    .lookup_counts
-                    .as_ref()
-                    .map(LookupCounts::snapshot);
+                sets.looked_up = segment.lookup_counts.as_ref().map(LookupCounts::snapshot);
                 sets.time_s = if busy_total > 0.0 {
                     self.wall_s * segment.busy_s / busy_total
                 } else {
@@ -459,6 +469,15 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     pub fn time_s(&self) -> f64 {
         self.wall_s
     }
+}
+
+/// Which candidates a round evaluates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Evaluate {
+    /// Those that can be robust (their shortest robustness neighbour reaches).
+    Feasible,
+    /// Every one: what a diagnosis ranks its nearest misses from.
+    Every,
 }
 
 /// Whether candidate length `s` of a pair that reaches from `reach` sub-segments on can be
@@ -516,7 +535,9 @@ fn pairs(evaluator: &Evaluator<'_>, poses: &SegmentPoses, m: usize) -> Vec<Pair>
 /// The shortest whole number of sub-segments of `pitch_m` that reaches `distance_m`
 /// ([`reaches`]' rule).
 fn shortest_reaching(distance_m: f64, pitch_m: f64) -> usize {
-    let mut s = ((distance_m / pitch_m).floor() as usize).saturating_sub(1).max(1);
+    let mut s = ((distance_m / pitch_m).floor() as usize)
+        .saturating_sub(1)
+        .max(1);
     let origin = Pose::identity();
     let at = Pose::translation(distance_m, 0.0, 0.0);
     while reaches(&origin, &at, s, pitch_m).is_err() {
@@ -528,9 +549,8 @@ fn shortest_reaching(distance_m: f64, pitch_m: f64) -> usize {
 impl LookupCounts {
     /// The counts so far.
     fn snapshot(&self) -> LookedUp {
-        let [holds, fails, solved, solved_failed] = std::array::from_fn(|k| {
-            self.0[k].load(std::sync::atomic::Ordering::Relaxed)
-        });
+        let [holds, fails, solved, solved_failed] =
+            std::array::from_fn(|k| self.0[k].load(std::sync::atomic::Ordering::Relaxed));
         LookedUp {
             holds,
             fails,

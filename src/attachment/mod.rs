@@ -32,9 +32,9 @@ mod verdict;
 pub use continuation::CONTINUATION_BLOCK;
 pub use evaluate::{ConnectMethod, Evaluator};
 pub use lazy::LazyAttachment;
-pub use verdict::{Check, Margins, Metrics, Miss, Rejection};
 pub use poses::{GRAVITY_RESOLUTION_DEG, IntraLinkCriterion, SegmentPoses, TestPose};
 pub use sweep::{MotionSweep, SweepFailure};
+pub use verdict::{Check, Margins, Metrics, Miss, Rejection};
 
 use crate::path::Pv;
 use crate::progress;
@@ -352,9 +352,11 @@ fn test_segment(
     let mut verdicts = Verdicts::new();
     verdicts.extend(
         &jobs,
-        evaluate_jobs(&format!("attachment {}", setup.segment_name(m)), &jobs, |job| {
-            verdicts_of(job.pair, &job.lengths)
-        }),
+        evaluate_jobs(
+            &format!("attachment {}", setup.segment_name(m)),
+            &jobs,
+            |job| verdicts_of(job.pair, &job.lengths),
+        ),
     );
     let mut sets = verdicts.sets(setup, &candidates);
     sets.time_s = timer.elapsed().as_secs_f64();
