@@ -268,7 +268,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     /// neighbours evaluated in one parallel batch (the progress stage names `bound`).
     fn decide_up_to(&mut self, deciding: &[(usize, usize, usize)], bound: usize, which: Evaluate) {
         let clock = Instant::now();
-        let robustness = self.setup().robustness.clone();
+        let robustness = self.setup().robustness;
         let mut wanted: Vec<(usize, Pv)> = Vec::new();
         for &(m, k, upto) in deciding {
             let segment = &self.segments[m];
@@ -353,7 +353,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     /// Marks the candidates of pair `k` of segment `m` decided up to index `upto`, keeping
     /// the robust ones.
     fn decide(&mut self, m: usize, k: usize, upto: usize) {
-        let robustness = self.setup().robustness.clone();
+        let robustness = self.setup().robustness;
         let segment = &mut self.segments[m];
         let pair = segment.pairs[k].clone();
         let lengths = segment.candidate_lengths(&pair)[pair.decided..upto].to_vec();
@@ -374,7 +374,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     /// For every guide and configuration, the shortest a chain can be from the first guide
     /// to it and from it to the last (`None`: no chain), with every pair's floor as its
     /// length.
-    fn bounds(&self) -> (Vec<Vec<Option<usize>>>, Vec<Vec<Option<usize>>>) {
+    fn bounds(&self) -> (ChainBounds, ChainBounds) {
         let setup = self.setup();
         let robustness = &setup.robustness;
         let counts: Vec<usize> = setup
@@ -383,7 +383,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             .map(|g| g.configurations.len())
             .collect();
         let last = counts.len() - 1;
-        let mut before: Vec<Vec<Option<usize>>> = counts.iter().map(|&n| vec![None; n]).collect();
+        let mut before: ChainBounds = counts.iter().map(|&n| vec![None; n]).collect();
         let mut after = before.clone();
         before[0].iter_mut().for_each(|b| *b = Some(0));
         after[last].iter_mut().for_each(|b| *b = Some(0));
@@ -470,6 +470,10 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
         self.wall_s
     }
 }
+
+/// Per guide and configuration, the shortest a chain can be on one side of it (`None`: no
+/// chain).
+type ChainBounds = Vec<Vec<Option<usize>>>;
 
 /// Which candidates a round evaluates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
