@@ -291,7 +291,12 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
         let solves_before: usize = (0..self.segments.len())
             .map(|m| self.evaluator.static_solves(m))
             .sum();
-        self.evaluate(&jobs, bound);
+        let pitch_mm = self.setup().cable.sub_segment_pitch_m * 1e3;
+        let reach = match bound {
+            usize::MAX => "every candidate".to_string(),
+            _ => format!("chains up to {:.0} mm", bound as f64 * pitch_mm),
+        };
+        self.evaluate(&jobs, &format!("attachment, {reach}"));
         for &(m, k, upto) in deciding {
             self.decide(m, k, upto);
         }
@@ -299,9 +304,9 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             .map(|m| self.evaluator.static_solves(m))
             .sum::<usize>()
             - solves_before;
-        log::debug!(
-            "lazy search: {} pieces of {} pairs evaluated for chains up to {bound} sub-segments, \
-             {solves} static solves, {:.2} s",
+        log::info!(
+            "attachment round, {reach}: {} cable pieces of {} clamp pairs, {solves} static \
+             solves, {:.2} s",
             jobs.iter().map(|j| j.lengths.len()).sum::<usize>(),
             jobs.len(),
             clock.elapsed().as_secs_f64()
@@ -310,17 +315,12 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     }
 
     /// Evaluates `jobs` in parallel and records their verdicts.
-    fn evaluate(&mut self, jobs: &[PairJob], bound: usize) {
+    fn evaluate(&mut self, jobs: &[PairJob], stage: &str) {
         let evaluator = self.evaluator;
         let poses = self.poses;
         let intra_link = self.intra_link;
         let segments = &self.segments;
-        let pitch_mm = self.setup().cable.sub_segment_pitch_m * 1e3;
-        let stage = match bound {
-            usize::MAX => "attachment, every piece".to_string(),
-            _ => format!("attachment, chains up to {:.0} mm", bound as f64 * pitch_mm),
-        };
-        let timed = evaluate_jobs(&stage, jobs, |job| {
+        let timed = evaluate_jobs(stage, jobs, |job| {
             let clock = Instant::now();
             let m = job.segment;
             let verdicts = match (intra_link, &segments[m].lookup_counts) {

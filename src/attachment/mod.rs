@@ -23,6 +23,7 @@
 
 mod baseline;
 mod continuation;
+mod estimate;
 mod evaluate;
 mod lazy;
 mod poses;
@@ -30,6 +31,7 @@ mod sweep;
 mod verdict;
 
 pub use continuation::CONTINUATION_BLOCK;
+pub use estimate::{CostEstimate, SAMPLE_PAIRS};
 pub use evaluate::{ConnectMethod, Evaluator};
 pub use lazy::LazyAttachment;
 pub use poses::{GRAVITY_RESOLUTION_DEG, IntraLinkCriterion, SegmentPoses, TestPose};

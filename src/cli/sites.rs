@@ -4,6 +4,8 @@
 
 use super::scene::write_scene;
 use super::{Failure, emit, print_json, tidy};
+use cable_dict::attachment::{ConnectMethod, CostEstimate, Evaluator, SAMPLE_PAIRS, SegmentPoses};
+use cable_dict::motion::Motion;
 use cable_dict::report::scene::{GuideMark, PoseScene, SceneSpec};
 use cable_dict::setup::{ConfigurationOrigin, Guide, GuideConfiguration, Setup};
 use cable_dict::sites::{GeneratedSites, Site, reference_axes};
@@ -55,8 +57,38 @@ pub fn run(args: Args) -> Result<(), Failure> {
     if args.json {
         print_json(&report(&setup)?)
     } else {
-        emit(&listing(&setup, args.all))
+        let mut out = listing(&setup, args.all);
+        out.push_str(&cost_line(&setup));
+        emit(&out)
     }
+}
+
+/// What testing every candidate piece costs on this machine, measured on a sample at the
+/// installation pose (all joints at 0 without one); empty when that pose cannot be used.
+fn cost_line(setup: &Setup) -> String {
+    let joints = match &setup.installation {
+        Some(installation) => installation.joints.clone(),
+        None => vec![0.0; setup.robot.dof()],
+    };
+    let estimate = Motion::new(&setup.robot, vec![0.0, 1.0], vec![joints.clone(), joints])
+        .ok()
+        .and_then(|motion| SegmentPoses::new(setup, &motion).ok())
+        .and_then(|poses| {
+            let evaluator = Evaluator::new(setup, ConnectMethod::Hermite).ok()?;
+            Some(CostEstimate::measure(&evaluator, &poses))
+        });
+    let Some(estimate) = estimate else {
+        return String::new();
+    };
+    let cpu_s = estimate.exhaustive_cpu_s();
+    let threads = rayon::current_num_threads();
+    format!(
+        "\ntesting every candidate piece at one pose (the installation pose) takes about \
+         {cpu_s:.0} CPU-s here, {:.0} s on {threads} threads (measured on {SAMPLE_PAIRS} clamp \
+         pairs per segment); `solve` tests only the pieces a chain shorter than the answer can \
+         use, and each motion has its own test poses\n",
+        cpu_s / threads as f64
+    )
 }
 
 /// A marker per configuration of every guide.

@@ -26,8 +26,9 @@ pub use report::{
 };
 
 use crate::attachment::{
-    ConnectMethod, Evaluator, IntraLinkAnswer, IntraLinkCriterion, LazyAttachment, LookupAnswer,
-    MotionSweep, SegmentPoses, SegmentSets, SweepFailure, attachment_test_with, check_size,
+    ConnectMethod, CostEstimate, Evaluator, IntraLinkAnswer, IntraLinkCriterion, LazyAttachment,
+    LookupAnswer, MotionSweep, SAMPLE_PAIRS, SegmentPoses, SegmentSets, SweepFailure,
+    attachment_test_with, check_size,
 };
 use crate::chain::{ChainError, ChainSearch};
 use crate::dictionary::{Dictionary, LookupError, MotionLookup};
@@ -186,8 +187,13 @@ fn solve_with(
         None => LookupAnswer::Undecided(Vec::new()),
     };
     let intra_link: Option<&IntraLinkAnswer<'_>> = lookup.is_some().then_some(&answer);
+    log_candidates(setup, options.search);
     let (sets, outcome, attachment_s) = match options.search {
         SearchKind::Exhaustive => {
+            if log::log_enabled!(log::Level::Info) {
+                let sampler = Evaluator::new(setup, options.method)?;
+                log_estimate(&CostEstimate::measure(&sampler, &poses));
+            }
             let clock = Instant::now();
             let sets = attachment_test_with(&evaluator, &poses, intra_link);
             let attachment_s = clock.elapsed().as_secs_f64();
@@ -274,6 +280,38 @@ fn dictionary_use(setup: &Setup, lookup: &MotionLookup<'_>, sets: &[SegmentSets]
             })
             .collect(),
     }
+}
+
+/// The number of candidate pieces, before the attachment test starts.
+fn log_candidates(setup: &Setup, search: SearchKind) {
+    let counts: Vec<usize> = (0..setup.segment_count())
+        .map(|m| setup.admissible_pv_count(m))
+        .collect();
+    let listed: Vec<String> = counts
+        .iter()
+        .enumerate()
+        .map(|(m, n)| format!("{} {n}", setup.segment_name(m)))
+        .collect();
+    let what = match search {
+        SearchKind::Lazy => "testing those a chain shorter than the answer can use, in rounds",
+        SearchKind::Exhaustive => "testing every one",
+    };
+    log::info!(
+        "attachment test: {} candidate pieces ({}); {what}",
+        counts.iter().sum::<usize>(),
+        listed.join(", ")
+    );
+}
+
+/// What the exhaustive test is about to cost, measured on a sample.
+fn log_estimate(estimate: &CostEstimate) {
+    let cpu_s = estimate.exhaustive_cpu_s();
+    let threads = rayon::current_num_threads();
+    log::info!(
+        "attachment test: about {cpu_s:.0} CPU-s, {:.0} s on {threads} threads (measured on \
+         {SAMPLE_PAIRS} clamp pairs per segment)",
+        cpu_s / threads as f64
+    );
 }
 
 /// One `info` line per segment: its set sizes, and where intra-link verdicts came from.

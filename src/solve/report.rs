@@ -2,7 +2,7 @@
 //! human summary).
 
 use super::diagnosis::{Diagnosis, diagnose};
-use super::{MotionSearch, SolveOptions, Tried};
+use super::{MotionSearch, SearchKind, SolveOptions, Tried};
 use crate::attachment::{
     ConnectMethod, Evaluator, Metrics, Rejection, SegmentPoses, SegmentSets, TestPose,
 };
@@ -263,6 +263,8 @@ pub struct Inputs {
     pub method: String,
     /// `hermite` or `linear`.
     pub connect: ConnectMethod,
+    /// `lazy` (the pieces the search needs) or `exhaustive` (every candidate first).
+    pub search: SearchKind,
     /// The dictionary the intra-link sets came from (`None`: tested at their poses).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub dictionary: Option<DictionaryUse>,
@@ -643,6 +645,7 @@ fn inputs(setup: &Setup, motion: &Motion, options: &SolveOptions) -> Inputs {
         motion_samples: motion.len(),
         method: method.into(),
         connect: options.method,
+        search: options.search,
         dictionary: None,
     }
 }
