@@ -2,7 +2,7 @@
 //!
 //! - **static solve**: the equilibrium of a 3D S-bend with a 45° torsion mismatch under
 //!   gravity (SMC cable, 10 mm pitch), 250 mm and 500 mm, from the Hermite + RMF connected
-//!   geometry: quasi-static Newton solver vs. rapier3d relaxation (DESIGN §4 settings). The
+//!   geometry: quasi-static Newton solver vs. rapier3d relaxation. The
 //!   target is < 1 ms for the quasi-static 500 mm solve.
 //! - **table 6** (the paper's comparison): the connected geometry by Hermite + RMF vs. by
 //!   linear deformation (a straight cable dragged into place in rapier), and the totals

@@ -1,4 +1,4 @@
-//! Cable files: the paper presets carry the paper's values (Table 3, restated in DESIGN §3.3)
+//! Cable files: the paper presets carry the paper's values (Table 3)
 //! converted from per-joint springs to EI and GJ; the realistic presets load without a
 //! plausibility warning while the paper's camera cable (23 400 kg/m³) and both paper cables'
 //! GJ/EI ≈ 30 warn; every bad value is refused naming the file, the line and the field.

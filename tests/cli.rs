@@ -69,7 +69,7 @@ fn fk_json_gives_the_flange_of_the_dh_table_at_zero() {
     let links = report["links"].as_array().expect("links");
     assert_eq!(links.len(), 8);
     let tool0 = links.iter().find(|l| l["name"] == "tool0").expect("tool0");
-    // x = a1 + a2 + a3, z = d1 + d4 + d6 (DESIGN §5).
+    // x = a1 + a2 + a3, z = d1 + d4 + d6.
     let expected = [0.075 + 0.365 - 0.090, 0.0, 0.335 + 0.405 + 0.080];
     for (got, want) in numbers(&tool0["position_m"]).iter().zip(expected) {
         assert!((got - want).abs() < 1e-12);

@@ -760,7 +760,7 @@ fn bundled_motions_are_valid_and_stay_in_the_workspace() {
             assert!(p.z > 0.1, "{name}: flange at z = {}", p.z);
             assert!(p.x.hypot(p.y) > 0.3, "{name}: flange near the column");
         }
-        // Critical poses of the segments of DESIGN §3.1: 2 for link_3–link_4.
+        // Critical poses of the segments: 2 for link_3–link_4.
         let c1 = traversed_joints(&robot, "link_3", "link_4").expect("links");
         let c3 = traversed_joints(&robot, "link_4", "link_6").expect("links");
         assert_eq!(

@@ -272,7 +272,7 @@ fn a_rigid_translation_of_the_guides_translates_the_relaxed_cable() {
     );
 }
 
-/// DESIGN §4: the relaxation substep (1/3840 s) keeps the rigid sub-segments together;
+/// The relaxation substep (1/3840 s) keeps the rigid sub-segments together;
 /// rapier's defaults (1/60 s, 4 substeps) stretch the hanging cable by a quarter.
 #[test]
 fn stretch_stays_small_only_with_the_small_substep() {

@@ -518,7 +518,7 @@ fn large_deflections_match_the_continuous_heavy_elastica_with_second_order_conve
 }
 
 /// The same equilibrium by a second method: rapier3d's damped rigid-body relaxation of the
-/// same discrete model (DESIGN §4 stepping), started from the same connected geometry. Within
+/// same discrete model (the relaxation stepping), started from the same connected geometry. Within
 /// 1 mm: the relaxation's joints open by up to ~0.1 mm (a residual stretch of ~0.1 %, which
 /// lowers a 500 mm span by ~0.4 mm) and it stops at 0.02 mm of motion per 0.05 s window.
 ///

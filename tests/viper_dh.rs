@@ -1,4 +1,4 @@
-//! The bundled Viper s850 URDF against the standard-DH closed form of DESIGN §5.
+//! The bundled Viper s850 URDF against the standard-DH closed form of the Viper s850.
 //!
 //! The reference is computed here from the DH table alone, with its own 4×4 matrices, so it
 //! shares nothing with the URDF loader or the forward kinematics under test.

@@ -18,8 +18,8 @@
 //! the exhaustive test ([`super::attachment_test`]).
 
 use super::{
-    Evaluator, IntraLinkAnswer, LookedUp, LookupCounts, PairJob, SegmentPoses, SegmentSets,
-    Verdicts, evaluate_jobs, looked_up, pair_jobs, robust_neighbours,
+    Evaluator, IntraLinkAnswer, LookupCounts, PairJob, SegmentPoses, SegmentSets, Verdicts,
+    evaluate_jobs, looked_up, pair_jobs, robust_neighbours,
 };
 use crate::geometry::reaches;
 use crate::path::Pv;
@@ -131,16 +131,6 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     pub fn lower_bound(&self) -> Option<usize> {
         let (before, _) = self.bounds();
         before.last()?.iter().copied().flatten().min()
-    }
-
-    /// Every candidate decided (the exhaustive test's sets are known).
-    pub fn complete(&self) -> bool {
-        self.segments.iter().all(|segment| {
-            segment
-                .pairs
-                .iter()
-                .all(|pair| pair.decided == segment.candidate_lengths(pair).len())
-        })
     }
 
     /// The bound every candidate on a shorter chain is decided for, if any.
@@ -548,18 +538,4 @@ fn shortest_reaching(distance_m: f64, pitch_m: f64) -> usize {
         s += 1;
     }
     s
-}
-
-impl LookupCounts {
-    /// The counts so far.
-    fn snapshot(&self) -> LookedUp {
-        let [holds, fails, solved, solved_failed] =
-            std::array::from_fn(|k| self.0[k].load(std::sync::atomic::Ordering::Relaxed));
-        LookedUp {
-            holds,
-            fails,
-            solved,
-            solved_failed,
-        }
-    }
 }

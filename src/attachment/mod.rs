@@ -1,4 +1,4 @@
-//! The attachment test (DESIGN §3.5): which PVs of each segment hold all three stress limits
+//! The attachment test: which PVs of each segment hold all three stress limits
 //! at every pose that matters, and which of those are robust to a length error.
 //!
 //! Per segment `C_m`, in the paper's notation:
@@ -20,6 +20,13 @@
 //! Every (guides, length) pair is evaluated once, in parallel with rayon; results are
 //! collected in a fixed order, so the sets do not depend on the thread count. A failed
 //! solve rejects that PV (counted as "solver failed") and the run goes on.
+//!
+//! Two drivers share the evaluation: [`attachment_test`] decides every candidate (the
+//! paper's order, `solve --exhaustive`), [`LazyAttachment`] only those a chain shorter than
+//! a bound can use (`solve`'s default; docs/architecture.md, "Lazy attachment test"). The
+//! modules: verdicts and margins (`verdict`), one piece at one pose (`evaluate`), warm starts
+//! and continuation over lengths (`continuation`), the rapier baseline (`baseline`), test
+//! poses (`poses`), the static sweep (`sweep`), cost estimates (`estimate`).
 
 mod baseline;
 mod continuation;
@@ -141,7 +148,7 @@ pub fn attachment_test_with(
                         &counts,
                     )
                 });
-                tested.looked_up = Some(counts.into_inner());
+                tested.looked_up = Some(counts.snapshot());
                 tested
             }
             None => test_segment(setup, m, candidates, |guides, lengths| {
@@ -218,8 +225,10 @@ impl LookupCounts {
         self.0[k].fetch_add(1, Ordering::Relaxed);
     }
 
-    fn into_inner(self) -> LookedUp {
-        let [holds, fails, solved, solved_failed] = self.0.map(AtomicUsize::into_inner);
+    /// The counts so far.
+    fn snapshot(&self) -> LookedUp {
+        let [holds, fails, solved, solved_failed] =
+            std::array::from_fn(|k| self.0[k].load(Ordering::Relaxed));
         LookedUp {
             holds,
             fails,

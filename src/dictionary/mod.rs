@@ -1,4 +1,4 @@
-//! Dictionaries (DESIGN §3.7): the motion-independent part of the attachment test, computed
+//! Dictionaries: the motion-independent part of the attachment test, computed
 //! once per robot + cable + guide catalogue and shared as a `.cdict` file.
 //!
 //! An intra-link segment's shape depends only on gravity's direction in its link's frame. A

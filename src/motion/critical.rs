@@ -1,4 +1,4 @@
-//! Critical poses of an inter-link segment (DESIGN §3.1; algorithm in the [module](super)
+//! Critical poses of an inter-link segment (algorithm in the [module](super)
 //! docs).
 
 use super::{Motion, MotionError};

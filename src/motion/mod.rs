@@ -52,7 +52,7 @@
 //! in [`profile`]). Samples: the grid `k / sample_rate_hz` plus every arrival and departure
 //! instant (the last sample is exactly the end). See [`WaypointFile::generate`].
 //!
-//! # Critical poses (DESIGN §3.1)
+//! # Critical poses
 //!
 //! A segment between guides on links A and B *traverses* the actuated joints on the
 //! kinematic path between A and B ([`traversed_joints`]; Viper s850: `link_3`–`link_4` →

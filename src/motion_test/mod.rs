@@ -1,4 +1,4 @@
-//! The *motion test* (DESIGN §3.6): the whole cable of a candidate path — every segment,
+//! The *motion test*: the whole cable of a candidate path — every segment,
 //! clamped at every guide — simulated dynamically while the guides and the robot's links
 //! follow the motion at its real timing; the worst contact, stretch and bend radius over
 //! time decide whether the candidate passes.

@@ -23,7 +23,7 @@ pub enum Engine {
     Implicit(IntegratorSettings),
     /// Rigid sub-segments jointed in rapier3d ([`crate::rigid_chain`]): the reference
     /// paper's kind of simulation, kept as its baseline. It leaves the static equilibrium
-    /// at rest for cables stiffer than the paper's (DESIGN §4).
+    /// at rest for cables stiffer than the paper's.
     RigidChain(DynamicsSettings),
 }
 

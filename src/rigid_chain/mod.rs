@@ -8,7 +8,7 @@
 //! sub-segments of pitch `l` joined at the nodes by bending springs `kb` and torsion springs
 //! `kt`, clamped in position and orientation at every guide. See [`CableWorld`] for how it
 //! maps onto rapier bodies and joints, and [`DynamicsSettings`] for the stepping that makes
-//! it accurate (DESIGN §4: solver substep ≤ 1/3840 s).
+//! it accurate (solver substep ≤ 1/3840 s).
 //!
 //! - [`CableWorld`]: build, move guides and robot, step, read nodes and per-step
 //!   [`StepRecord`]s (contact force, stretch, bend radius per segment).

@@ -25,7 +25,7 @@ const MAX_TIME_STEP_S: f64 = 1.0;
 /// |---|---|---|---|
 /// | 1/240 s (rapier default 1/60 s × 4) | 1 | 1.295 | ≈ 20 ms |
 /// | 1/960 s | 1 | 1.021 | ≈ 60 ms |
-/// | 1/3840 s (DESIGN §4, the presets) | 1 | 1.0013 | ≈ 220 ms |
+/// | 1/3840 s (the presets) | 1 | 1.0013 | ≈ 220 ms |
 /// | 1/1920 s | 4 | 1.0013 | ≈ 160 ms |
 /// | 1/3840 s | 4 | 1.0003 | ≈ 300 ms |
 ///
@@ -45,7 +45,7 @@ pub struct DynamicsSettings {
     pub linear_damping_per_s: f64,
     /// Angular damping of every sub-segment (1/s), same form.
     pub angular_damping_per_s: f64,
-    /// Damping of the joints' angular springs (N·m·s/rad); DESIGN §4: above ~1e-4 it kinks
+    /// Damping of the joints' angular springs (N·m·s/rad); above ~1e-4 it kinks
     /// the shape, so 0 in both presets.
     pub joint_damping_nms_per_rad: f64,
     /// Gravity (m/s²), world frame.
@@ -89,7 +89,7 @@ impl Default for BlowUpBounds {
 
 impl DynamicsSettings {
     /// Static relaxation (the convergent geometry, the paper's baseline): substep 1/3840 s
-    /// (1/240 s steps of 16 substeps, DESIGN §4's accuracy limit) and a heavy linear damping
+    /// (1/240 s steps of 16 substeps, the accuracy limit) and a heavy linear damping
     /// of 40 1/s, about twice the critical damping of a 10–50 cm cable's swinging mode
     /// (ω ≈ √(g/sag) ≈ 10–20 rad/s), so the cable creeps into equilibrium without swinging.
     /// No angular damping: the joint springs are integrated implicitly and do not ring.
@@ -128,7 +128,7 @@ impl DynamicsSettings {
     }
 
     /// Rapier's own defaults (1/60 s, 4 substeps) with the relaxation damping: fast but
-    /// inaccurate (DESIGN §4: a hanging cable stretches by ~26 %). For comparisons only.
+    /// inaccurate (a hanging cable stretches by ~26 %). For comparisons only.
     pub fn rapier_defaults(gravity_m_s2: Vector3<f64>) -> Self {
         Self {
             time_step_s: 1.0 / 60.0,
@@ -221,7 +221,7 @@ impl DynamicsSettings {
     }
 }
 
-/// When a relaxation counts as at rest: the geometric test of DESIGN §4 (the kinetic energy
+/// When a relaxation counts as at rest: the geometric test (the kinetic energy
 /// never settles because of solver jitter).
 ///
 /// The simulation is cut into windows of `window_s`; the cable is at rest when no node moved

@@ -273,7 +273,7 @@ pub enum BendRadiusSource {
     Setup,
 }
 
-/// Robustness test parameters (DESIGN §2, D2).
+/// Robustness test parameters (the paper's D2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Robustness {
     /// ΔS (sub-segments, ≥ 1).

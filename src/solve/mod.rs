@@ -1,4 +1,4 @@
-//! The main job: from a setup and a motion to the optimal cable path d* (DESIGN §3).
+//! The main job: from a setup and a motion to the optimal cable path d*.
 //!
 //! 1. Critical poses of every inter-link segment, test poses of the intra-link ones
 //!    ([`SegmentPoses`]).
