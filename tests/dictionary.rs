@@ -571,3 +571,43 @@ fn a_setup_outside_the_catalogue_is_refused_naming_what_differs() {
         );
     }
 }
+
+/// `info`'s undecided share of a link equals the share counted one lookup at a time through
+/// [`Dictionary::answer_at`] (each call finding its own neighbours) over the same directions,
+/// and it falls as the directions get denser (the hand-written pick-and-place catalogue at 16
+/// and 64 directions; README, "Direction count").
+#[test]
+fn the_undecided_share_counts_single_lookups() {
+    use cable_dict::dictionary::UNDECIDED_SAMPLE_DIRECTIONS;
+    use cable_dict::dictionary::directions::probe_directions;
+    use cable_dict::dictionary::format::PvRecord;
+    let downs: Vec<Vector3<f64>> = probe_directions(UNDECIDED_SAMPLE_DIRECTIONS)
+        .into_iter()
+        .map(Vector3::from)
+        .collect();
+    let mut shares = Vec::new();
+    for directions in [16, 64] {
+        let dictionary = shared(HAND_WRITTEN_PICK_AND_PLACE, directions);
+        let slot = dictionary.link_slot("link_4").expect("link_4 stored");
+        let (mut undecided, mut lookups) = (0usize, 0usize);
+        for record in dictionary.pv_records().iter().filter(|r| {
+            usize::from(r.link) == slot && r.has(PvRecord::CANDIDATE) && r.sub_segments > 0
+        }) {
+            let pv = Pv::new(
+                record.sub_segments as usize,
+                record.start.into(),
+                record.end.into(),
+            );
+            for down in &downs {
+                let answer = dictionary.answer_at(slot, &pv, down).expect("stored");
+                lookups += 1;
+                undecided += usize::from(answer == DirectionAnswer::Undecided);
+            }
+        }
+        let share = dictionary.undecided_share(slot).expect("candidates");
+        assert!(lookups > 0);
+        assert_eq!(share, undecided as f64 / lookups as f64, "{directions}");
+        shares.push(share);
+    }
+    assert!(shares[1] < shares[0], "{shares:?}");
+}

@@ -4,7 +4,7 @@ use super::solve::open_verified;
 use super::{Failure, emit, print_json};
 use cable_dict::dictionary::{
     BuildOptions, DEFAULT_DIRECTION_COUNT, Dictionary, Info, RECOMPUTE_TOLERANCE_UNITS,
-    RecomputeChoice, build, merge, write_dictionary,
+    RecomputeChoice, UNDECIDED_SAMPLE_DIRECTIONS, build, merge, write_dictionary,
 };
 use cable_dict::setup::Setup;
 use std::collections::hash_map::RandomState;
@@ -21,7 +21,8 @@ pub struct BuildArgs {
     /// The dictionary (or shard) to write; replaced atomically.
     #[arg(short, long, value_name = "DICT.cdict")]
     output: PathBuf,
-    /// Gravity directions sampled on the sphere (README, "Dictionaries": why 256).
+    /// Gravity directions sampled on the sphere (README, "Dictionaries", "Direction count":
+    /// why 32).
     #[arg(long, value_name = "N", default_value_t = DEFAULT_DIRECTION_COUNT)]
     directions: usize,
     /// Worker threads (default: one per core). The bytes do not depend on it.
@@ -174,6 +175,17 @@ fn describe(info: &Info) -> String {
     for s in &info.links {
         // One factor per piece serves all three margins (a branch change moves the whole shape).
         let _ = writeln!(text, "  {:<10} {:.3}", s.link, s.margin_error[0]);
+    }
+    let _ = writeln!(
+        text,
+        "\nundecided: lookups of candidate pieces the margins cannot decide, solved exactly \
+         instead (over {UNDECIDED_SAMPLE_DIRECTIONS} gravity directions spread over the sphere):"
+    );
+    for s in &info.links {
+        let share = s
+            .undecided_share
+            .map_or("-".to_string(), |u| format!("{:.1} %", 100.0 * u));
+        let _ = writeln!(text, "  {:<10} {share}", s.link);
     }
     text
 }

@@ -67,6 +67,10 @@ pub struct LinkInfo {
     pub d2_all: u64,
     /// The lookup's error bound: clearance (mm), stretch, curvature (1/m).
     pub margin_error: [f64; 3],
+    /// Share of the candidate pieces' lookups the dictionary cannot decide (the exact check
+    /// then solves them), over gravity directions spread over the sphere
+    /// ([`Dictionary::undecided_share`]); `None` without candidates (and in a shard).
+    pub undecided_share: Option<f64>,
 }
 
 impl Info {
@@ -100,6 +104,10 @@ impl Info {
                     d1_all: e.d1_all,
                     d2_all: e.d2_all,
                     margin_error: e.margin_error,
+                    undecided_share: match header.shard {
+                        Some(_) => None,
+                        None => dictionary.undecided_share(slot),
+                    },
                 }
             })
             .collect();

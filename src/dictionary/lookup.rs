@@ -189,6 +189,45 @@ impl Dictionary {
     }
 }
 
+/// Gravity directions [`Dictionary::undecided_share`] samples: the probe spiral's
+/// ([`super::directions::probe_directions`]), at a count no build uses for its probes.
+pub const UNDECIDED_SAMPLE_DIRECTIONS: usize = 97;
+
+impl Dictionary {
+    /// How often the lookup of a candidate piece of the link at `slot` cannot decide and
+    /// leaves the piece to an exact solve: the share of (piece, direction) lookups that are
+    /// undecided over [`UNDECIDED_SAMPLE_DIRECTIONS`] gravity directions spread over the
+    /// sphere; `None` without candidate pieces.
+    pub fn undecided_share(&self, slot: usize) -> Option<f64> {
+        let neighbours: Vec<Neighbours> =
+            super::directions::probe_directions(UNDECIDED_SAMPLE_DIRECTIONS)
+                .iter()
+                .map(|d| Neighbours::of(self.directions(), &Vector3::from(*d)))
+                .collect();
+        let (mut undecided, mut lookups) = (0usize, 0usize);
+        let candidates = self.pv_records().iter().filter(|r| {
+            usize::from(r.link) == slot && r.has(PvRecord::CANDIDATE) && r.sub_segments > 0
+        });
+        for candidate in candidates {
+            let pv = Pv::new(
+                candidate.sub_segments as usize,
+                candidate.start.into(),
+                candidate.end.into(),
+            );
+            let Some((record, rows)) = self.lookup(slot, &pv) else {
+                continue;
+            };
+            for around in &neighbours {
+                lookups += 1;
+                if at_direction(record, rows, around) == DirectionAnswer::Undecided {
+                    undecided += 1;
+                }
+            }
+        }
+        (lookups > 0).then(|| undecided as f64 / lookups as f64)
+    }
+}
+
 /// Classifies the margins of `rows` interpolated at `neighbours` against the error bound of
 /// `record`.
 fn at_direction(

@@ -41,7 +41,9 @@ pub use catalogue::{LinkCatalogue, link_catalogues};
 pub use directions::DEFAULT_DIRECTION_COUNT;
 pub use error::{DictionaryError, Problem};
 pub use info::{Info, LinkInfo};
-pub use lookup::{DirectionAnswer, LookupError, MotionLookup, StoredSegment};
+pub use lookup::{
+    DirectionAnswer, LookupError, MotionLookup, StoredSegment, UNDECIDED_SAMPLE_DIRECTIONS,
+};
 pub use merge::merge;
 pub use reader::Dictionary;
 pub use recompute::{Disagreement, RECOMPUTE_TOLERANCE_UNITS, RecomputeChoice, Recomputed};
