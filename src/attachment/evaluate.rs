@@ -125,7 +125,8 @@ impl<'a> Evaluator<'a> {
     /// `lengths` (sorted, > 0), in the link's frame under gravity along `down` (unit vector
     /// in that frame), clearance against the own link: the link-frame twin of
     /// [`Evaluator::first_rejections`] at one pose, lengths continued the same way (in
-    /// blocks of [`CONTINUATION_BLOCK`]), every length measured (none skipped). `Err` with
+    /// blocks of [`CONTINUATION_BLOCK`](super::CONTINUATION_BLOCK)), every length measured
+    /// (none skipped). `Err` with
     /// the rejection when there is no equilibrium (a cable too short for its clamps, a failed
     /// solve).
     pub fn link_frame_metrics(
@@ -272,7 +273,8 @@ impl<'a> Evaluator<'a> {
     /// The first pose of `poses` (in their order) where PV `pv` of segment `m` violates a
     /// limit, with its check; `None` when it holds them all. Each pose's equilibrium starts
     /// from the previous poses', carried along by the guides' motion and extrapolated
-    /// ([`continuation::follow_guides_extrapolated`]): the quasi-static cable moved slowly
+    /// ([`follow_guides_extrapolated`](crate::statics::continuation::follow_guides_extrapolated)):
+    /// the quasi-static cable moved slowly
     /// through the poses, on the branch it started on.
     pub fn sweep<'p>(
         &self,

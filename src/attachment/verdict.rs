@@ -223,7 +223,8 @@ impl Margins {
     }
 
     /// The limit `[clearance, stretch, curvature]` margins violate first, in the order of
-    /// [`Evaluator::check`] (contact, stretch, bend); `None` when all are non-negative.
+    /// [`Evaluator::check`](super::Evaluator::check) (contact, stretch, bend); `None` when all
+    /// are non-negative.
     pub fn first_violation(margins: [f64; 3]) -> Option<Rejection> {
         let kinds = [Rejection::Contact, Rejection::Stretch, Rejection::Bend];
         kinds

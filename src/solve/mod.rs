@@ -2,10 +2,13 @@
 //!
 //! 1. Critical poses of every inter-link segment, test poses of the intra-link ones
 //!    ([`SegmentPoses`]).
-//! 2. The attachment test: D0 → D'0 → D1 → D2 per segment ([`crate::attachment::attachment_test`]); with a
-//!    dictionary ([`solve_with_dictionary`]) the intra-link segments' pieces are answered
-//!    from its margins at the motion's gravity directions, the undecided ones solved
-//!    ([`MotionLookup`]): the same sets either way.
+//! 2. The attachment test: D0 → D'0 → D1 → D2 per segment. By default it is lazy
+//!    ([`LazyAttachment`], [`SearchKind::Lazy`]): steps 2 and 3 interleave, and only the
+//!    pieces a chain shorter than the answer can use are decided; [`SearchKind::Exhaustive`]
+//!    decides every candidate first ([`crate::attachment::attachment_test`]). Both give the
+//!    same chains. With a dictionary ([`solve_with_dictionary`]) the intra-link segments'
+//!    pieces are answered from its margins at the motion's gravity directions, the undecided
+//!    ones solved ([`MotionLookup`]): the same sets either way.
 //! 3. The chain search over D2: |D3| and the shortest chain d̂ ([`ChainSearch`]).
 //! 4. The motion test of the chains in non-decreasing length: the first that passes is d*.
 //!    Each PV of a chain is first swept statically over every pose of the motion
@@ -404,8 +407,8 @@ const MIN_ROUND: usize = 1000;
 /// A lazy search's round takes on at least 1/this of the candidates decided so far. Rounds
 /// re-solve the shorter lengths of the pairs they extend (a length's shape is continued from
 /// its block's start), so smaller rounds cost more per piece; larger ones overshoot the
-/// answer further. Measured on the bundled inspection motion (attachment test, 2 cores): 1
-/// 4.5 s, 2 3.5 s, 4 3.0 s, 8 3.3 s.
+/// answer further. Measured on the bundled inspection motion (attachment test, 2 cores, with
+/// inter-link blocks of 32): 1 4.5 s, 2 3.5 s, 4 3.0 s, 8 3.3 s.
 const ROUND_GROWTH_DIVISOR: usize = 4;
 
 impl Lazy<'_, '_> {
