@@ -1,9 +1,7 @@
 //! What testing every candidate piece would cost, measured on a sample of pairs before a long
 //! run, so that a user knows before waiting (`sites`, `solve --exhaustive`).
 
-use super::{Evaluator, SegmentPoses, admissible_pvs, needed_pvs};
-use crate::path::Pv;
-use std::collections::BTreeMap;
+use super::{Evaluator, PairJob, SegmentPoses, admissible_pvs, needed_pvs, pair_jobs};
 use std::time::Instant;
 
 /// Pairs of clamp configurations sampled per segment: enough to average over short and long
@@ -34,15 +32,14 @@ impl CostEstimate {
                 robustness.delta_s,
                 robustness.range,
             );
-            let pairs = lengths_by_pair(&needed);
+            let pairs = pair_jobs(needed.iter().map(|pv| (m, *pv)));
             evaluations.push(needed.len());
             let stride = (pairs.len() / SAMPLE_PAIRS).max(1);
-            let sample: Vec<(&(usize, usize), &Vec<usize>)> =
-                pairs.iter().step_by(stride).take(SAMPLE_PAIRS).collect();
-            let sampled: usize = sample.iter().map(|(_, lengths)| lengths.len()).sum();
+            let sample: Vec<&PairJob> = pairs.iter().step_by(stride).take(SAMPLE_PAIRS).collect();
+            let sampled: usize = sample.iter().map(|job| job.lengths.len()).sum();
             let clock = Instant::now();
-            for (pair, lengths) in &sample {
-                evaluator.first_rejections(m, **pair, lengths, &poses.poses[m]);
+            for job in &sample {
+                evaluator.first_rejections(m, job.pair, &job.lengths, &poses.poses[m]);
             }
             let cpu_s = clock.elapsed().as_secs_f64();
             cpu_s_per_evaluation.push(if sampled > 0 {
@@ -57,6 +54,17 @@ impl CostEstimate {
         }
     }
 
+    /// "about N CPU-s here, M s on T threads (measured on …)": what a front end prints, for
+    /// `threads` workers.
+    pub fn describe(&self, threads: usize) -> String {
+        let cpu_s = self.exhaustive_cpu_s();
+        format!(
+            "about {cpu_s:.0} CPU-s here, {:.0} s on {threads} threads (measured on \
+             {SAMPLE_PAIRS} clamp pairs per segment)",
+            cpu_s / threads.max(1) as f64
+        )
+    }
+
     /// CPU seconds of the whole exhaustive test.
     pub fn exhaustive_cpu_s(&self) -> f64 {
         self.evaluations
@@ -65,16 +73,4 @@ impl CostEstimate {
             .map(|(&n, &s)| n as f64 * s)
             .sum()
     }
-}
-
-/// The lengths (> 0) of `pieces` grouped by pair of clamp configurations.
-fn lengths_by_pair(pieces: &[Pv]) -> BTreeMap<(usize, usize), Vec<usize>> {
-    let mut pairs: BTreeMap<(usize, usize), Vec<usize>> = BTreeMap::new();
-    for pv in pieces.iter().filter(|pv| pv.sub_segments > 0) {
-        pairs
-            .entry((pv.start, pv.end))
-            .or_default()
-            .push(pv.sub_segments);
-    }
-    pairs
 }

@@ -191,25 +191,15 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     /// length `L` (sub-segments), the number of those whose shortest chain through them
     /// (by the floors) is `L` — what a search weighs its next bound by.
     pub fn pending_by_bound(&self) -> BTreeMap<usize, usize> {
-        let (before, after) = self.bounds();
-        let setup = self.setup();
-        let robustness = &setup.robustness;
+        let robustness = &self.setup().robustness;
         let mut pending = BTreeMap::new();
-        for (m, segment) in self.segments.iter().enumerate() {
-            let (a, b) = setup.segment_guides(m);
-            for pair in &segment.pairs {
-                let (Some(Some(head)), Some(Some(tail))) =
-                    (before[a].get(pair.start), after[b].get(pair.end))
-                else {
-                    continue;
-                };
-                let undecided = &segment.candidate_lengths(pair)[pair.decided..];
-                for &s in undecided
-                    .iter()
-                    .filter(|&&s| feasible(s, pair.reach, robustness))
-                {
-                    *pending.entry(head + s + tail).or_insert(0) += 1;
-                }
+        for (_, _, segment, pair, around) in self.chained_pairs() {
+            let undecided = &segment.candidate_lengths(pair)[pair.decided..];
+            for &s in undecided
+                .iter()
+                .filter(|&&s| feasible(s, pair.reach, robustness))
+            {
+                *pending.entry(around + s).or_insert(0) += 1;
             }
         }
         pending
@@ -227,30 +217,41 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     /// evaluates it and its robustness neighbours (those not evaluated yet), in one
     /// parallel batch.
     pub fn widen_to(&mut self, bound: usize) {
-        let (before, after) = self.bounds();
-        let setup = self.setup();
-        let robustness = &setup.robustness;
+        let robustness = &self.setup().robustness;
         let mut deciding: Vec<(usize, usize, usize)> = Vec::new();
-        for (m, segment) in self.segments.iter().enumerate() {
-            let (a, b) = setup.segment_guides(m);
-            for (k, pair) in segment.pairs.iter().enumerate() {
-                let (Some(floor), Some(Some(head)), Some(Some(tail))) = (
-                    floor(segment, pair, robustness),
-                    before[a].get(pair.start),
-                    after[b].get(pair.end),
-                ) else {
-                    continue;
-                };
-                let Some(target) = bound.checked_sub(head + tail).filter(|&t| t >= floor) else {
-                    continue;
-                };
-                let lengths = segment.candidate_lengths(pair);
-                let upto = pair.decided + lengths[pair.decided..].partition_point(|&s| s <= target);
-                deciding.push((m, k, upto));
-            }
+        for (m, k, segment, pair, around) in self.chained_pairs() {
+            let Some(floor) = floor(segment, pair, robustness) else {
+                continue;
+            };
+            let Some(target) = bound.checked_sub(around).filter(|&t| t >= floor) else {
+                continue;
+            };
+            let lengths = segment.candidate_lengths(pair);
+            let upto = pair.decided + lengths[pair.decided..].partition_point(|&s| s <= target);
+            deciding.push((m, k, upto));
         }
         self.decide_up_to(&deciding, bound, Evaluate::Feasible);
         self.bound = Some(self.bound.map_or(bound, |b| b.max(bound)));
+    }
+
+    /// Every pair that lies on some chain by the floors, as `(segment, pair index, segment,
+    /// pair, before(start) + after(end))`: the shortest a chain through it can be, its own
+    /// piece left out.
+    fn chained_pairs(&self) -> Vec<(usize, usize, &Segment, &Pair, usize)> {
+        let (before, after) = self.bounds();
+        let setup = self.setup();
+        let mut chained = Vec::new();
+        for (m, segment) in self.segments.iter().enumerate() {
+            let (a, b) = setup.segment_guides(m);
+            for (k, pair) in segment.pairs.iter().enumerate() {
+                if let (Some(Some(head)), Some(Some(tail))) =
+                    (before[a].get(pair.start), after[b].get(pair.end))
+                {
+                    chained.push((m, k, segment, pair, head + tail));
+                }
+            }
+        }
+        chained
     }
 
     /// Decides the candidates of pair `k` of segment `m` up to index `upto`, for every

@@ -4,7 +4,7 @@
 
 use super::scene::write_scene;
 use super::{Failure, emit, print_json, tidy};
-use cable_dict::attachment::{ConnectMethod, CostEstimate, Evaluator, SAMPLE_PAIRS, SegmentPoses};
+use cable_dict::attachment::{ConnectMethod, CostEstimate, Evaluator, SegmentPoses};
 use cable_dict::motion::Motion;
 use cable_dict::report::scene::{GuideMark, PoseScene, SceneSpec};
 use cable_dict::setup::{ConfigurationOrigin, Guide, GuideConfiguration, Setup};
@@ -80,14 +80,11 @@ fn cost_line(setup: &Setup) -> String {
     let Some(estimate) = estimate else {
         return String::new();
     };
-    let cpu_s = estimate.exhaustive_cpu_s();
-    let threads = rayon::current_num_threads();
     format!(
-        "\ntesting every candidate piece at one pose (the installation pose) takes about \
-         {cpu_s:.0} CPU-s here, {:.0} s on {threads} threads (measured on {SAMPLE_PAIRS} clamp \
-         pairs per segment); `solve` tests only the pieces a chain shorter than the answer can \
-         use, and each motion has its own test poses\n",
-        cpu_s / threads as f64
+        "\ntesting every candidate piece at one pose (the installation pose) takes {}; \
+         `solve` tests only the pieces a chain shorter than the answer can use, and each motion \
+         has its own test poses\n",
+        estimate.describe(rayon::current_num_threads())
     )
 }
 

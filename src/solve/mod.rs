@@ -30,8 +30,8 @@ pub use report::{
 
 use crate::attachment::{
     ConnectMethod, CostEstimate, Evaluator, IntraLinkAnswer, IntraLinkCriterion, LazyAttachment,
-    LookupAnswer, MotionSweep, SAMPLE_PAIRS, SegmentPoses, SegmentSets, SweepFailure,
-    attachment_test_with, check_size,
+    LookupAnswer, MotionSweep, SegmentPoses, SegmentSets, SweepFailure, attachment_test_with,
+    check_size,
 };
 use crate::chain::{ChainError, ChainSearch};
 use crate::dictionary::{Dictionary, LookupError, MotionLookup};
@@ -308,13 +308,8 @@ fn log_candidates(setup: &Setup, search: SearchKind) {
 
 /// What the exhaustive test is about to cost, measured on a sample.
 fn log_estimate(estimate: &CostEstimate) {
-    let cpu_s = estimate.exhaustive_cpu_s();
     let threads = rayon::current_num_threads();
-    log::info!(
-        "attachment test: about {cpu_s:.0} CPU-s, {:.0} s on {threads} threads (measured on \
-         {SAMPLE_PAIRS} clamp pairs per segment)",
-        cpu_s / threads as f64
-    );
+    log::info!("attachment test: {}", estimate.describe(threads));
 }
 
 /// One `info` line per segment: its set sizes, and where intra-link verdicts came from.
