@@ -64,6 +64,8 @@ pub mod calibrate;
 pub mod chain;
 pub mod dictionary;
 pub mod dynamics;
+#[cfg(test)]
+mod fixtures;
 pub mod geometry;
 pub mod input;
 pub mod json;

@@ -9,9 +9,10 @@
 //! a dynamic program over the guides gives every configuration the shortest a chain can be
 //! from the first guide to it (`before`) and from it to the last (`after`). A piece
 //! `(S, a, b)` can be on a chain no longer than `L` only if `before(a) + S + after(b) ≤ L`;
-//! [`LazyAttachment::widen_to`] decides exactly those. Every chain of robust pieces no
-//! longer than `L` is then known, so the shortest known chain is the shortest of all as soon
-//! as it is no longer than `L`.
+//! [`LazyAttachment::widen_to`] decides those, up to each pair's first robust piece (a
+//! longer one makes a longer chain through the same clamps), one segment at a time. Every
+//! shortest chain no longer than `L` is then known, so the shortest known chain is the
+//! shortest of all as soon as it is no longer than `L`.
 //!
 //! Verdicts do not depend on which lengths are asked for together, nor in which batches
 //! ([`Evaluator::first_rejections`]), so the pieces decided here get exactly the verdicts of
@@ -172,7 +173,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     /// Decides every candidate, chain or no chain (what the exhaustive test decides, without
     /// its adjacency pruning): for a diagnosis when no path exists.
     pub fn decide_all(&mut self) {
-        let everything: Vec<(usize, usize, usize)> = self
+        let everything: Deciding = self
             .segments
             .iter()
             .enumerate()
@@ -193,7 +194,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     pub fn pending_by_bound(&self) -> BTreeMap<usize, usize> {
         let robustness = &self.setup().robustness;
         let mut pending = BTreeMap::new();
-        for (_, _, segment, pair, around) in self.chained_pairs() {
+        for (_, _, segment, pair, around) in self.open_pairs() {
             let undecided = &segment.candidate_lengths(pair)[pair.decided..];
             for &s in undecided
                 .iter()
@@ -213,25 +214,56 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             .sum()
     }
 
-    /// Decides every candidate that a chain no longer than `bound` sub-segments could use:
-    /// evaluates it and its robustness neighbours (those not evaluated yet), in one
-    /// parallel batch.
+    /// Decides, for every pair of guide configurations that a chain no longer than `bound`
+    /// sub-segments could use, its candidates up to its shortest robust piece (a longer one
+    /// makes a longer chain through the same clamps): evaluates them and their robustness
+    /// neighbours, in parallel batches, one segment at a time — the segment with the fewest
+    /// such candidates first, because when its pieces fail, the chains through them and the
+    /// other segments' pieces on those chains need no evaluation at all.
     pub fn widen_to(&mut self, bound: usize) {
+        while let Some(deciding) = self.fewest_undecided(bound) {
+            self.decide_up_to(&deciding, bound, Evaluate::Feasible);
+        }
+        self.bound = Some(self.bound.map_or(bound, |b| b.max(bound)));
+    }
+
+    /// The undecided candidates of one segment that a chain no longer than `bound` could
+    /// use, as `(segment, pair index, decide up to)`: those of the segment that has the
+    /// fewest; `None` when no segment has any.
+    fn fewest_undecided(&self, bound: usize) -> Option<Deciding> {
         let robustness = &self.setup().robustness;
-        let mut deciding: Vec<(usize, usize, usize)> = Vec::new();
-        for (m, k, segment, pair, around) in self.chained_pairs() {
+        let mut by_segment: Vec<(usize, Deciding)> = vec![(0, Vec::new()); self.segments.len()];
+        for (m, k, segment, pair, around) in self.open_pairs() {
             let Some(floor) = floor(segment, pair, robustness) else {
                 continue;
             };
             let Some(target) = bound.checked_sub(around).filter(|&t| t >= floor) else {
                 continue;
             };
-            let lengths = segment.candidate_lengths(pair);
-            let upto = pair.decided + lengths[pair.decided..].partition_point(|&s| s <= target);
-            deciding.push((m, k, upto));
+            let undecided = &segment.candidate_lengths(pair)[pair.decided..];
+            let upto = undecided.partition_point(|&s| s <= target);
+            let count = undecided[..upto]
+                .iter()
+                .filter(|&&s| feasible(s, pair.reach, robustness))
+                .count();
+            if count > 0 {
+                by_segment[m].0 += count;
+                by_segment[m].1.push((m, k, pair.decided + upto));
+            }
         }
-        self.decide_up_to(&deciding, bound, Evaluate::Feasible);
-        self.bound = Some(self.bound.map_or(bound, |b| b.max(bound)));
+        by_segment
+            .into_iter()
+            .filter(|(count, _)| *count > 0)
+            .min_by_key(|(count, _)| *count)
+            .map(|(_, deciding)| deciding)
+    }
+
+    /// The chained pairs ([`Self::chained_pairs`]) that may still need candidates decided:
+    /// those without a robust piece (one not dropped) yet.
+    fn open_pairs(&self) -> Vec<(usize, usize, &Segment, &Pair, usize)> {
+        let mut open = self.chained_pairs();
+        open.retain(|(_, _, _, pair, _)| pair.shortest_robust.is_none());
+        open
     }
 
     /// Every pair that lies on some chain by the floors, as `(segment, pair index, segment,
@@ -279,6 +311,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             }
         }
         let jobs = pair_jobs(wanted.into_iter());
+        let segments: BTreeSet<usize> = jobs.iter().map(|job| job.segment).collect();
         let solves_before: usize = (0..self.segments.len())
             .map(|m| self.evaluator.static_solves(m))
             .sum();
@@ -295,14 +328,22 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             .map(|m| self.evaluator.static_solves(m))
             .sum::<usize>()
             - solves_before;
+        self.wall_s += clock.elapsed().as_secs_f64();
+        if jobs.is_empty() {
+            return;
+        }
+        let names: Vec<String> = segments
+            .iter()
+            .map(|&m| self.setup().segment_name(m))
+            .collect();
         log::info!(
-            "attachment round, {reach}: {} cable pieces of {} clamp pairs, {solves} static \
-             solves, {:.2} s",
+            "attachment round, {reach}, {}: {} cable pieces of {} clamp pairs, {solves} \
+             static solves, {:.2} s",
+            names.join(" "),
             jobs.iter().map(|j| j.lengths.len()).sum::<usize>(),
             jobs.len(),
             clock.elapsed().as_secs_f64()
         );
-        self.wall_s += clock.elapsed().as_secs_f64();
     }
 
     /// Evaluates `jobs` in parallel and records their verdicts.
@@ -466,6 +507,9 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
 /// chain).
 type ChainBounds = Vec<Vec<Option<usize>>>;
 
+/// Pairs whose candidates a batch decides, as `(segment, pair index, decide up to)`.
+type Deciding = Vec<(usize, usize, usize)>;
+
 /// Which candidates a round evaluates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Evaluate {
@@ -539,4 +583,154 @@ fn shortest_reaching(distance_m: f64, pitch_m: f64) -> usize {
         s += 1;
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    //! The invariant of the lazy test, checked against the exhaustive sets with a dynamic
+    //! program of the test's own: after widening to a bound, the lazy test knows, for every
+    //! pair of clamp placements on a chain of robust pieces no longer than the bound, the
+    //! shortest robust piece between them — so it knows every shortest chain.
+
+    use super::*;
+    use crate::attachment::ConnectMethod;
+    use crate::fixtures::{exhaustive_robust, narrow_pick_and_place};
+
+    /// The pieces of `d2` (per segment, segment `m` from guide `m` to `m + 1`) that lie on a
+    /// chain of `d2` no longer than `bound`: a shortest prefix and suffix per configuration by
+    /// relaxation over the guides, written here independently of the library's chain search.
+    fn on_chains_up_to(setup: &Setup, d2: &[Vec<Pv>], bound: usize) -> Vec<BTreeSet<Pv>> {
+        let counts: Vec<usize> = setup
+            .guides
+            .iter()
+            .map(|g| g.configurations.len())
+            .collect();
+        let guides = counts.len();
+        let mut before: Vec<Vec<usize>> = counts.iter().map(|&n| vec![usize::MAX; n]).collect();
+        let mut after = before.clone();
+        before[0].fill(0);
+        after[guides - 1].fill(0);
+        for (m, pieces) in d2.iter().enumerate() {
+            for pv in pieces {
+                let head = before[m][pv.start];
+                if head != usize::MAX {
+                    let slot = &mut before[m + 1][pv.end];
+                    *slot = (*slot).min(head + pv.sub_segments);
+                }
+            }
+        }
+        for (m, pieces) in d2.iter().enumerate().rev() {
+            for pv in pieces {
+                let tail = after[m + 1][pv.end];
+                if tail != usize::MAX {
+                    let slot = &mut after[m][pv.start];
+                    *slot = (*slot).min(tail + pv.sub_segments);
+                }
+            }
+        }
+        d2.iter()
+            .enumerate()
+            .map(|(m, pieces)| {
+                pieces
+                    .iter()
+                    .filter(|pv| {
+                        let (head, tail) = (before[m][pv.start], after[m + 1][pv.end]);
+                        head != usize::MAX
+                            && tail != usize::MAX
+                            && head + pv.sub_segments + tail <= bound
+                    })
+                    .copied()
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// Per pair of clamp placements of each segment, the shortest of `pieces`.
+    fn shortest_per_pair(pieces: &[BTreeSet<Pv>]) -> Vec<BTreeSet<Pv>> {
+        pieces
+            .iter()
+            .map(|segment| {
+                let mut shortest: BTreeMap<(usize, usize), Pv> = BTreeMap::new();
+                for pv in segment {
+                    shortest
+                        .entry((pv.start, pv.end))
+                        .and_modify(|kept| {
+                            if pv.sub_segments < kept.sub_segments {
+                                *kept = *pv;
+                            }
+                        })
+                        .or_insert(*pv);
+                }
+                shortest.into_values().collect()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn after_widening_the_lazy_test_knows_the_shortest_piece_of_every_pair_on_a_chain() {
+        let (setup, motion) = narrow_pick_and_place();
+        assert!(setup.segment_count() == 3 && setup.guides.len() == 4);
+        let poses = SegmentPoses::new(&setup, &motion).unwrap_or_else(|e| panic!("{e}"));
+        let evaluator =
+            Evaluator::new(&setup, ConnectMethod::Hermite).unwrap_or_else(|e| panic!("{e}"));
+        let exhaustive = exhaustive_robust(&evaluator, &poses);
+        let mut lazy = LazyAttachment::new(&evaluator, &poses, None);
+        let first = lazy.lower_bound().expect("a chain can exist");
+        let on_any_chain = on_chains_up_to(&setup, &exhaustive, usize::MAX);
+        assert!(
+            on_any_chain.iter().all(|pieces| !pieces.is_empty()),
+            "the narrow setup has chains"
+        );
+        let mut longer_pieces_left_out = false;
+        for bound in [first, first + 3, first + 8, first + 16] {
+            lazy.widen_to(bound);
+            let known = lazy.robust();
+            let expected = on_chains_up_to(&setup, &exhaustive, bound);
+            let found = on_chains_up_to(&setup, &known, bound);
+            assert_eq!(
+                shortest_per_pair(&found),
+                shortest_per_pair(&expected),
+                "bound {bound}"
+            );
+            longer_pieces_left_out |= found != expected;
+            for (m, pieces) in known.iter().enumerate() {
+                for pv in pieces {
+                    assert!(
+                        exhaustive[m].contains(pv),
+                        "bound {bound}: C{} {pv:?} robust only in the lazy test",
+                        m + 1
+                    );
+                }
+            }
+            // In one round from nothing, the same shortest pieces: verdicts do not depend on
+            // batches.
+            let mut fresh = LazyAttachment::new(&evaluator, &poses, None);
+            fresh.widen_to(bound);
+            assert_eq!(
+                shortest_per_pair(&on_chains_up_to(&setup, &fresh.robust(), bound)),
+                shortest_per_pair(&expected)
+            );
+        }
+        assert!(
+            longer_pieces_left_out,
+            "the lazy test skips the longer pieces of pairs with a shorter robust one"
+        );
+        // A dropped piece (the motion test failed it) reopens its pair: widening to the same
+        // bound again decides what the bound now needs of it.
+        let bound = lazy.bound().expect("widened");
+        let mut remaining = exhaustive.clone();
+        let shortest = shortest_per_pair(&on_chains_up_to(&setup, &exhaustive, bound));
+        for (m, pieces) in shortest.iter().enumerate() {
+            for pv in pieces.iter().take(3) {
+                lazy.drop_piece(m, pv);
+                remaining[m].retain(|kept| kept != pv);
+            }
+        }
+        lazy.widen_to(bound);
+        assert_eq!(
+            shortest_per_pair(&on_chains_up_to(&setup, &lazy.robust(), bound)),
+            shortest_per_pair(&on_chains_up_to(&setup, &remaining, bound)),
+            "after drops"
+        );
+    }
 }
