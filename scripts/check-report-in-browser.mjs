@@ -1,6 +1,7 @@
 // Opens a report folder's index.html in headless Chromium and checks what an engineer would
 // see: the page loads with no console error, no uncaught exception and no failed request,
-// asks for nothing outside the folder, and every picture shows something.
+// asks for nothing outside the folder, runs no script (a dialog is a problem: markup from an
+// input ran), and every picture shows something.
 //
 //   node scripts/check-report-in-browser.mjs REPORT_DIR
 //
@@ -30,6 +31,11 @@ function watch(page, problems) {
     if (message.type() === "error") problems.push(`console error: ${message.text()}`);
   });
   page.on("pageerror", (error) => problems.push(`uncaught exception: ${error.message}`));
+  // The page has no script of its own: a dialog means markup from an input ran as code.
+  page.on("dialog", (dialog) => {
+    problems.push(`a script ran and opened a dialog (${dialog.type()}): ${dialog.message()}`);
+    return dialog.dismiss();
+  });
   page.on("requestfailed", (request) =>
     problems.push(`failed request: ${request.url()} (${request.failure()?.errorText})`),
   );

@@ -84,6 +84,17 @@ impl FolderReplacement {
     /// a long run whose output would then have nowhere to go.
     pub fn check(target: &Path, may_replace: impl Fn(&str) -> bool) -> io::Result<()> {
         let (dir, _) = split(target)?;
+        if fs::symlink_metadata(target).is_ok_and(|meta| !meta.is_dir()) {
+            return Err(io::Error::new(
+                io::ErrorKind::AlreadyExists,
+                format!(
+                    "{} is a symbolic link or a file, not a folder: give a new folder or an \
+                     earlier report's (a link is not followed: the folder it points to would \
+                     be replaced)",
+                    target.display()
+                ),
+            ));
+        }
         if !dir.is_dir() {
             return Err(io::Error::new(
                 io::ErrorKind::NotFound,
@@ -113,6 +124,16 @@ impl FolderReplacement {
     /// folder for an instant, or the new one — never a mix.
     pub fn commit(mut self) -> io::Result<()> {
         let (dir, name) = split(&self.target)?;
+        if self.target.exists() && exchange(&self.staging, &self.target)? {
+            // One atomic step: the staging path now holds the old folder.
+            self.committed = true;
+            let _ = fs::remove_dir_all(&self.staging);
+            unregister(&self.staging);
+            sync_folder(&dir);
+            return Ok(());
+        }
+        // Where folders cannot be exchanged, a crash between the two renames leaves the old
+        // folder aside and none at the target; the next `begin` puts it back.
         let old = match self.target.exists() {
             true => {
                 let (old, ()) =
@@ -239,23 +260,77 @@ fn remove_stale_temporaries(dir: &Path, name: &str) {
     let Ok(entries) = fs::read_dir(dir) else {
         return;
     };
-    let prefixes = [format!(".{name}.tmp-"), format!(".{name}.old.tmp-")];
+    let (new, old) = (format!(".{name}.tmp-"), format!(".{name}.old.tmp-"));
+    let mut set_aside: Vec<PathBuf> = Vec::new();
     for entry in entries.flatten() {
         let file_name = entry.file_name();
         let file_name = file_name.to_string_lossy();
-        let Some(rest) = prefixes
-            .iter()
-            .find_map(|p| file_name.strip_prefix(p.as_str()))
-        else {
-            continue;
+        let (rest, aside) = match (file_name.strip_prefix(&new), file_name.strip_prefix(&old)) {
+            (Some(rest), _) => (rest, false),
+            (_, Some(rest)) => (rest, true),
+            _ => continue,
         };
         let pid = rest.split('-').next().and_then(|p| p.parse::<u32>().ok());
         let running = pid.is_some_and(|pid| Path::new(&format!("/proc/{pid}")).exists());
         if pid.is_none() || running {
             continue;
         }
-        remove_entry(&entry.path());
+        match aside {
+            true => set_aside.push(entry.path()),
+            false => remove_entry(&entry.path()),
+        }
     }
+    // A folder set aside by a run that stopped before it renamed the new one in is the last
+    // complete one: it goes back to the target when the target is missing.
+    set_aside.sort();
+    let target = dir.join(name);
+    if let Some(last) = set_aside.pop()
+        && fs::symlink_metadata(&target).is_err()
+        && fs::rename(&last, &target).is_ok()
+    {
+        log::warn!(
+            "{}: put back the folder an interrupted run had set aside",
+            target.display()
+        );
+    }
+    set_aside.iter().for_each(|path| remove_entry(path));
+}
+
+/// Exchanges the folders `a` and `b` in one atomic step; `Ok(false)` where the platform or the
+/// file system cannot (the caller then renames twice).
+#[cfg(target_os = "linux")]
+fn exchange(a: &Path, b: &Path) -> io::Result<bool> {
+    use std::os::unix::ffi::OsStrExt;
+    let c = |p: &Path| {
+        std::ffi::CString::new(p.as_os_str().as_bytes())
+            .map_err(|e| io::Error::new(io::ErrorKind::InvalidInput, e))
+    };
+    let (a, b) = (c(a)?, c(b)?);
+    // SAFETY: both paths are NUL-terminated strings that live across the call.
+    let done = unsafe {
+        libc::renameat2(
+            libc::AT_FDCWD,
+            a.as_ptr(),
+            libc::AT_FDCWD,
+            b.as_ptr(),
+            libc::RENAME_EXCHANGE,
+        )
+    };
+    if done == 0 {
+        return Ok(true);
+    }
+    let error = io::Error::last_os_error();
+    match error.raw_os_error() {
+        Some(libc::EINVAL | libc::ENOSYS | libc::EOPNOTSUPP) => Ok(false),
+        _ => Err(error),
+    }
+}
+
+/// Exchanges the folders `a` and `b` in one atomic step; `Ok(false)` where the platform or the
+/// file system cannot (the caller then renames twice).
+#[cfg(not(target_os = "linux"))]
+fn exchange(_: &Path, _: &Path) -> io::Result<bool> {
+    Ok(false)
 }
 
 /// The first entry of folder `target` that `may_replace` does not accept; `None` when
@@ -377,6 +452,47 @@ mod tests {
         let e = FolderReplacement::begin(&dir, |n| n.ends_with(".svg")).unwrap_err();
         assert!(e.to_string().contains("holds `thesis.tex`"), "{e}");
         assert_eq!(fs::read(dir.join("thesis.tex")).unwrap(), b"years of work");
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A folder at `path` holding `a.svg` with `bytes`.
+    fn folder_with_a_picture(path: &Path, bytes: &[u8]) -> PathBuf {
+        fs::create_dir(path).unwrap();
+        fs::write(path.join("a.svg"), bytes).unwrap();
+        path.to_path_buf()
+    }
+
+    #[test]
+    fn a_linked_folder_is_refused_and_what_it_points_to_kept() {
+        let dir = scratch("linked");
+        let real = folder_with_a_picture(&dir.join("real"), b"kept");
+        let link = dir.join("link");
+        std::os::unix::fs::symlink(&real, &link).unwrap();
+        let e = FolderReplacement::check(&link, |n| n.ends_with(".svg")).unwrap_err();
+        assert!(e.to_string().contains("symbolic link"), "{e}");
+        assert!(FolderReplacement::begin(&link, |n| n.ends_with(".svg")).is_err());
+        assert_eq!(listing(&dir), ["link", "real"]);
+        assert_eq!(fs::read(real.join("a.svg")).unwrap(), b"kept");
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_folder_set_aside_by_a_run_that_died_is_put_back() {
+        let dir = scratch("aside");
+        let target = dir.join("report");
+        // What a run killed between its two renames leaves: the old folder set aside under
+        // its temporary name, no folder at the target.
+        folder_with_a_picture(
+            &dir.join(format!("{}0-1", temporary_prefix("report.old", 99_999_999))),
+            b"old",
+        );
+        assert!(FolderReplacement::check(&target, |n| n.ends_with(".svg")).is_ok());
+        let staging = FolderReplacement::begin(&target, |n| n.ends_with(".svg")).unwrap();
+        assert_eq!(fs::read(target.join("a.svg")).unwrap(), b"old");
+        fs::write(staging.path().join("a.svg"), b"new").unwrap();
+        staging.commit().unwrap();
+        assert_eq!(fs::read(target.join("a.svg")).unwrap(), b"new");
+        assert_eq!(listing(&dir), ["report"]);
         fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -105,13 +105,14 @@ fn too_large(kind: FileKind, len: u64) -> String {
     )
 }
 
-/// `3.2 MB`, `512 MB`.
+/// `1.4 MiB`, `512 MiB`: in the binary unit the limits are set in, so that a limit prints as
+/// the documented figure (16 MiB, not "17 MB").
 fn megabytes(bytes: u64) -> String {
-    let mb = bytes as f64 / 1e6;
-    if mb < 10.0 {
-        format!("{mb:.1} MB")
+    let mib = bytes as f64 / (1024.0 * 1024.0);
+    if mib < 10.0 {
+        format!("{mib:.1} MiB")
     } else {
-        format!("{mb:.0} MB")
+        format!("{mib:.0} MiB")
     }
 }
 
@@ -163,7 +164,7 @@ mod tests {
         std::fs::remove_dir_all(&dir).unwrap();
         assert_eq!(
             e,
-            "the cable file is 1.5 MB, more than the 1.0 MB a cable file may have"
+            "the cable file is 1.4 MiB, more than the 1.0 MiB a cable file may have"
         );
     }
 

@@ -13,7 +13,7 @@ pub const SIGNIFICANT_DIGITS: usize = 12;
 pub fn to_pretty_string<T: Serialize + ?Sized>(value: &T) -> serde_json::Result<String> {
     let mut tree = serde_json::to_value(value)?;
     round_numbers(&mut tree);
-    serde_json::to_string_pretty(&tree)
+    serde_json::to_string_pretty(&tree).map(crate::escape::json)
 }
 
 fn round_numbers(value: &mut Value) {
@@ -30,11 +30,13 @@ fn round_numbers(value: &mut Value) {
 }
 
 /// `x` rounded to [`SIGNIFICANT_DIGITS`] significant digits (through its decimal form, so
-/// that the shortest representation of the result is short).
+/// that the shortest representation of the result is short), a negative zero as zero.
 fn round(x: f64) -> f64 {
-    format!("{x:.*e}", SIGNIFICANT_DIGITS - 1)
+    let rounded: f64 = format!("{x:.*e}", SIGNIFICANT_DIGITS - 1)
         .parse()
-        .unwrap_or(x)
+        .unwrap_or(x);
+    // -0.0 + 0.0 is +0.0; every other value is unchanged.
+    rounded + 0.0
 }
 
 #[cfg(test)]
@@ -48,6 +50,8 @@ mod tests {
             "b": [85.90000000000002, -0.1 + 0.2, 1e-30 / 3.0],
             "n": 9_007_199_254_740_993u64,
             "t": 4.975322457688607,
+            "z": -0.0,
+            "s": ([0.0f64; 0].iter().sum::<f64>()),
         }))
         .unwrap();
         let back: Value = serde_json::from_str(&text).unwrap();
@@ -57,5 +61,6 @@ mod tests {
         assert_eq!(back["b"][2], 3.33333333333e-31);
         assert_eq!(back["n"], 9_007_199_254_740_993u64);
         assert_eq!(back["t"], 4.97532245769);
+        assert!(!text.contains("-0"), "{text}");
     }
 }

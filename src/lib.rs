@@ -64,6 +64,7 @@ pub mod calibrate;
 pub mod chain;
 pub mod dictionary;
 pub mod dynamics;
+pub mod escape;
 #[cfg(test)]
 mod fixtures;
 pub mod geometry;

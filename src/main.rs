@@ -23,7 +23,8 @@ fn main() -> ExitCode {
     match cli::run(args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(failure) => {
-            eprintln!("error: {:#}", failure.error);
+            let message = format!("{:#}", failure.error);
+            eprintln!("error: {}", cable_dict::escape::terminal(&message));
             ExitCode::from(failure.code)
         }
     }

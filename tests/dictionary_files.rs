@@ -734,7 +734,11 @@ fn recomputation_catches_forged_margins_and_an_altered_setup() {
     let k = a_failing_piece(built);
     let n = built.directions.len();
     let pass = format::MarginRecord::quantize(Some([5.0, 0.01, 1.0]));
-    let margins = forged(|b| b.results[k * n..(k + 1) * n].fill(pass));
+    let margins = forged(|b| {
+        b.results[k * n..(k + 1) * n].fill(pass);
+        // A careful forger also sets the flags and counts the forged margins imply.
+        b.derive_flags(&setup.robustness);
+    });
     let altered_text = setup.text.replace("stretch = 1.02", "stretch = 1.05");
     assert_ne!(altered_text, setup.text);
     let altered = Setup::from_texts(
@@ -790,4 +794,67 @@ fn recomputation_catches_forged_margins_and_an_altered_setup() {
         stderr.contains(&format!("margins.cdict: a stored cable piece is not what the embedded setup gives (forged, stale or computed differently): PV record {record} ")),
         "{stderr}"
     );
+}
+
+/// Record flags a forger can reseal, with the header's counts made to agree: a failing
+/// candidate promoted to D1 and D2 (what `info` counts), and a measured record made
+/// inadmissible with its margins cleared (out of `verify --recompute`'s draw). Each opens and
+/// is refused by `verify`, naming the record and the flags.
+#[test]
+fn resealed_flags_that_contradict_the_setup_or_the_margins_are_refused_by_verify() {
+    use format::PvRecord;
+    let (_, built) = whole();
+    let n = built.directions.len();
+    let stored = built.header.stored_pvs().start;
+    let records = &built.pvs;
+    let failing = (0..records.len())
+        .find(|&k| {
+            let r = &records[k];
+            r.has(PvRecord::CANDIDATE)
+                && !r.has(PvRecord::D1_ALL)
+                && !r.has(PvRecord::TOO_SHORT)
+                && r.sub_segments > 0
+        })
+        .expect("the fixture has a failing candidate");
+    let measured = (0..records.len())
+        .find(|&k| {
+            let r = &records[k];
+            r.has(PvRecord::ADMISSIBLE)
+                && !r.has(PvRecord::D1_ALL)
+                && r.sub_segments > 0
+                && r.error_factor == [0; 3]
+                && built.results[k * n..(k + 1) * n]
+                    .iter()
+                    .any(|row| row.values().is_some())
+        })
+        .expect("the fixture has a measured record without an error factor");
+    let cases = [
+        (
+            failing,
+            "0x000f",
+            forged(|b| {
+                let slot = usize::from(b.pvs[failing].link);
+                b.pvs[failing].flags |= PvRecord::D1_ALL | PvRecord::D2_ALL;
+                b.header.links[slot].d1_all += 1;
+                b.header.links[slot].d2_all += 1;
+            }),
+        ),
+        (
+            measured,
+            "ADMISSIBLE",
+            forged(|b| {
+                b.pvs[measured].flags &= !(PvRecord::ADMISSIBLE | PvRecord::CANDIDATE);
+                b.results[measured * n..(measured + 1) * n].fill(format::MarginRecord::UNMEASURED);
+            }),
+        ),
+    ];
+    let dir = tempfile::tempdir().expect("temp dir");
+    for (i, (k, flags, bytes)) in cases.iter().enumerate() {
+        let path = write(dir.path(), &format!("flags{i}.cdict"), bytes);
+        let dictionary = Dictionary::open(&path).expect("its checksums are valid");
+        let error = dictionary.verify().expect_err(flags).to_string();
+        let record = format!("PV record {}", stored + *k as u64);
+        assert!(error.contains(&record), "{error}");
+        assert!(error.contains(&format!("flags {flags}")), "{error}");
+    }
 }

@@ -64,7 +64,8 @@ fn the_result_json_has_the_documented_fields_with_the_setups_values() {
     assert_eq!(code, 0, "{stderr}");
     assert_eq!(result["status"], "untested");
     assert_eq!(result["outcome"], "untested");
-    assert_eq!(result["method"], "up to two clamps per link");
+    // The small setup allows one clamp per link (`max_guides_per_link = 1`).
+    assert_eq!(result["method"], "one clamp per link");
     assert!(result["motion_test"].is_null());
     assert!(result["reason"].is_string());
 

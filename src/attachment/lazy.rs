@@ -83,7 +83,7 @@ pub struct LazyAttachment<'r, 'a> {
     segments: Vec<Segment>,
     /// Every candidate on a chain no longer than this (sub-segments) is decided.
     bound: Option<usize>,
-    /// Wall time of the evaluations so far (s).
+    /// Wall time spent deciding so far, the bounds between batches included (s).
     wall_s: f64,
 }
 
@@ -185,7 +185,9 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
                     .map(move |(k, pair)| (m, k, segment.candidate_lengths(pair).len()))
             })
             .collect();
+        let clock = Instant::now();
         self.decide_up_to(&everything, usize::MAX, Evaluate::Every);
+        self.wall_s += clock.elapsed().as_secs_f64();
     }
 
     /// How many undecided candidates that can be robust each bound would decide: per chain
@@ -221,10 +223,12 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     /// such candidates first, because when its pieces fail, the chains through them and the
     /// other segments' pieces on those chains need no evaluation at all.
     pub fn widen_to(&mut self, bound: usize) {
+        let clock = Instant::now();
         while let Some(deciding) = self.fewest_undecided(bound) {
             self.decide_up_to(&deciding, bound, Evaluate::Feasible);
         }
         self.bound = Some(self.bound.map_or(bound, |b| b.max(bound)));
+        self.wall_s += clock.elapsed().as_secs_f64();
     }
 
     /// The undecided candidates of one segment that a chain no longer than `bound` could
@@ -328,7 +332,6 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             .map(|m| self.evaluator.static_solves(m))
             .sum::<usize>()
             - solves_before;
-        self.wall_s += clock.elapsed().as_secs_f64();
         if jobs.is_empty() {
             return;
         }
@@ -497,7 +500,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             .collect()
     }
 
-    /// Wall time spent evaluating (s).
+    /// Wall time spent deciding (s).
     pub fn time_s(&self) -> f64 {
         self.wall_s
     }

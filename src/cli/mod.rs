@@ -123,8 +123,16 @@ fn init_logging(verbose: u8, quiet: bool) {
     };
     let _ = env_logger::Builder::new()
         .filter_level(level)
-        .format_timestamp(None)
-        .format_target(false)
+        .format(|buf, record| {
+            use std::io::Write;
+            let message = record.args().to_string();
+            writeln!(
+                buf,
+                "[{:<5}] {}",
+                record.level(),
+                cable_dict::escape::terminal(&message)
+            )
+        })
         .try_init();
 }
 
@@ -141,7 +149,7 @@ fn emit(text: &str) -> Result<(), Failure> {
     use std::io::Write;
     let mut stdout = std::io::stdout().lock();
     match stdout
-        .write_all(text.as_bytes())
+        .write_all(cable_dict::escape::terminal(text).as_bytes())
         .and_then(|()| stdout.flush())
     {
         Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Failure::unsolved(

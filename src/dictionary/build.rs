@@ -62,6 +62,12 @@ impl Built {
     pub fn to_bytes(&self) -> Result<Vec<u8>, Problem> {
         encode(&self.header, &self.directions, &self.pvs, &self.results)
     }
+
+    /// Sets the D1/D2 flags and the header's counts from the margins as they are now, as a
+    /// build does after its last margin: for a whole dictionary whose margins were changed.
+    pub fn derive_flags(&mut self, robustness: &Robustness) {
+        finalize(self, robustness);
+    }
 }
 
 /// Builds the dictionary of `setup`'s clamp catalogue (or one shard of it).
@@ -652,39 +658,115 @@ pub(super) fn pv_at(header: &Header, g: u64) -> (usize, Pv) {
 /// Sets the all-directions D1/D2 flags and counts of a whole dictionary: D1 = candidates that
 /// pass every direction; D2 = those whose robustness neighbours (candidates or not) do too.
 pub(super) fn finalize(built: &mut Built, robustness: &Robustness) {
-    let n = built.directions.len();
+    let sets = all_direction_sets(&built.header, &built.pvs, &built.results, robustness);
+    for (record, (d1, d2)) in built.pvs.iter_mut().zip(&sets) {
+        record.flags &= !(PvRecord::D1_ALL | PvRecord::D2_ALL);
+        record.flags |=
+            if *d1 { PvRecord::D1_ALL } else { 0 } | if *d2 { PvRecord::D2_ALL } else { 0 };
+    }
+    for entry in &mut built.header.links {
+        let block = entry.first_pv as usize..(entry.first_pv + entry.pv_count()) as usize;
+        let of_link = &sets[block];
+        entry.d1_all = of_link.iter().filter(|(d1, _)| *d1).count() as u64;
+        entry.d2_all = of_link.iter().filter(|(_, d2)| *d2).count() as u64;
+    }
+}
+
+/// Per record of a whole dictionary, whether it belongs to D1 and to D2 at every stored
+/// direction, from its flags ADMISSIBLE and CANDIDATE and the stored margins alone.
+fn all_direction_sets(
+    header: &Header,
+    pvs: &[PvRecord],
+    results: &[MarginRecord],
+    robustness: &Robustness,
+) -> Vec<(bool, bool)> {
+    let n = header.directions.count as usize;
     let holds = |r: &MarginRecord| r.values().is_some_and(|v| v.iter().all(|&m| m >= 0.0));
-    let passes_all: Vec<bool> = built
-        .results
+    let passes_all: Vec<bool> = results
         .chunks_exact(n.max(1))
-        .zip(&built.pvs)
+        .zip(pvs)
         .map(|(rows, record)| {
             record.has(PvRecord::ADMISSIBLE) && (record.sub_segments == 0 || rows.iter().all(holds))
         })
         .collect();
-    let header = &mut built.header;
-    for entry in &mut header.links {
-        let block = entry.first_pv as usize..(entry.first_pv + entry.pv_count()) as usize;
+    let mut sets = vec![(false, false); pvs.len()];
+    for entry in &header.links {
+        let first = entry.first_pv as usize;
         let passes = |pv: &Pv| {
             entry
                 .grid_index(pv.sub_segments, pv.start, pv.end)
-                .is_some_and(|i| passes_all[entry.first_pv as usize + i as usize])
+                .is_some_and(|i| passes_all.get(first + i as usize) == Some(&true))
         };
-        let (mut d1, mut d2) = (0, 0);
-        for g in block {
-            let record = &mut built.pvs[g];
+        for g in first..first + entry.pv_count() as usize {
+            let record = &pvs[g];
             if !(record.has(PvRecord::CANDIDATE) && passes_all[g]) {
                 continue;
             }
-            record.flags |= PvRecord::D1_ALL;
-            d1 += 1;
-            let robust = robust_neighbours(&record.pv(), robustness.delta_s, robustness.range);
-            if robust.is_some_and(|n| n.iter().all(passes)) {
-                record.flags |= PvRecord::D2_ALL;
-                d2 += 1;
-            }
+            let robust = robust_neighbours(&record.pv(), robustness.delta_s, robustness.range)
+                .is_some_and(|n| n.iter().all(passes));
+            sets[g] = (true, robust);
         }
-        entry.d1_all = d1;
-        entry.d2_all = d2;
     }
+    sets
+}
+
+/// The records' flags are what a build of `setup` derives: ADMISSIBLE and CANDIDATE from the
+/// catalogues, and (whole dictionaries) D1_ALL and D2_ALL from the stored margins. A flag is
+/// not covered by a checksum's meaning: forged, it changes what `info` counts and which
+/// records `verify --recompute` draws from.
+pub(super) fn check_flags(
+    setup: &Setup,
+    header: &Header,
+    pvs: &[PvRecord],
+    results: &[MarginRecord],
+) -> Result<(), Problem> {
+    let (_, candidate_lengths) = catalogue_lengths(setup);
+    let catalogues = link_catalogues(setup, &candidate_lengths);
+    let stored = header.stored_pvs();
+    let whole = header.shard.is_none();
+    let sets = whole.then(|| all_direction_sets(header, pvs, results, &setup.robustness));
+    for (k, record) in pvs.iter().enumerate() {
+        let g = stored.start + k as u64;
+        let mut expected = pv_record(&catalogues, header, g).flags;
+        let mut compared = PvRecord::ADMISSIBLE | PvRecord::CANDIDATE;
+        if let Some(sets) = &sets {
+            let (d1, d2) = sets[k];
+            expected |=
+                if d1 { PvRecord::D1_ALL } else { 0 } | if d2 { PvRecord::D2_ALL } else { 0 };
+            compared |= PvRecord::D1_ALL | PvRecord::D2_ALL;
+        }
+        let differing = (record.flags ^ expected) & compared;
+        if differing != 0 {
+            return Err(Problem::Layout {
+                place: format!("PV record {g}"),
+                detail: format!(
+                    "flags {} {} not what the embedded setup and the stored margins give \
+                     (forged or from another version: rebuild it)",
+                    flag_names(differing),
+                    if differing.count_ones() == 1 {
+                        "is"
+                    } else {
+                        "are"
+                    }
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The names of the flags set in `flags`.
+fn flag_names(flags: u16) -> String {
+    [
+        (PvRecord::ADMISSIBLE, "ADMISSIBLE"),
+        (PvRecord::CANDIDATE, "CANDIDATE"),
+        (PvRecord::D1_ALL, "D1_ALL"),
+        (PvRecord::D2_ALL, "D2_ALL"),
+        (PvRecord::TOO_SHORT, "TOO_SHORT"),
+    ]
+    .iter()
+    .filter(|(bit, _)| flags & bit != 0)
+    .map(|(_, name)| *name)
+    .collect::<Vec<_>>()
+    .join(", ")
 }

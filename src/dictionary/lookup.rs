@@ -114,6 +114,14 @@ impl<'d> MotionLookup<'d> {
         self.segment(m).map_or(0, |s| s.neighbours.len())
     }
 
+    /// The record that answers piece `pv` of intra-link segment `m`: its link and the piece
+    /// in the link's catalogue (clamp places); `None` for an inter-link segment.
+    pub fn record_of(&self, m: usize, pv: &Pv) -> Option<(&'d str, Pv)> {
+        let stored = &self.segment(m)?.stored;
+        let link = &self.dictionary.header().links.get(stored.slot)?.link;
+        Some((link.as_str(), stored.piece(pv)?))
+    }
+
     fn segment(&self, m: usize) -> Option<&SegmentLookup> {
         self.segments.get(m)?.as_ref()
     }

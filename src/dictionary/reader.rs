@@ -117,6 +117,8 @@ impl Dictionary {
         check_records(self.header(), self.pv_records(), self.results()).map_err(error)?;
         let setup = self.embedded().map_err(error)?;
         check_setup_meaning(self.header(), self.directions(), setup).map_err(error)?;
+        super::build::check_flags(setup, self.header(), self.pv_records(), self.results())
+            .map_err(error)?;
         let _ = self.verified.set(());
         Ok(())
     }

@@ -1,7 +1,8 @@
 //! `index.html`: the summary, the pictures and the plots on one page that needs nothing but
 //! the folder it is in (no scripts, no fonts, no network).
 
-use pulldown_cmark::{Options, Parser, html};
+use crate::escape::html as escape;
+use pulldown_cmark::{Event, Options, Parser, html};
 
 /// A titled group of figures on the page.
 pub struct Section<'a> {
@@ -17,10 +18,13 @@ pub struct Section<'a> {
 /// of the folder with its caption.
 pub fn index_html(title: &str, summary_md: &str, sections: &[Section<'_>]) -> String {
     let mut body = String::new();
-    html::push_html(
-        &mut body,
-        Parser::new_ext(summary_md, Options::ENABLE_TABLES),
-    );
+    // Raw HTML in the Markdown is shown as text: the summary escapes the names it quotes,
+    // and this keeps any it missed from becoming markup.
+    let events = Parser::new_ext(summary_md, Options::ENABLE_TABLES).map(|event| match event {
+        Event::Html(raw) | Event::InlineHtml(raw) => Event::Text(raw),
+        other => other,
+    });
+    html::push_html(&mut body, events);
     let mut page = format!(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
          <title>{}</title>\n<style>\n{STYLE}</style>\n</head>\n<body>\n<main>\n",
@@ -41,14 +45,6 @@ pub fn index_html(title: &str, summary_md: &str, sections: &[Section<'_>]) -> St
     }
     page.push_str("</main>\n</body>\n</html>\n");
     page
-}
-
-/// `&`, `<`, `>` and `"` as HTML (and XML) entities.
-pub(super) fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }
 
 /// Plain, print-friendly styling; system fonts only.

@@ -2,6 +2,7 @@
 //! the motion test, the timings and the inputs with their hashes.
 
 use super::Hashed;
+use crate::escape::markdown as text;
 use crate::motion_test::{MotionTestReport, Worst};
 use crate::setup::Thresholds;
 use crate::solve::{Ecpv, SolveReport};
@@ -36,7 +37,7 @@ pub fn summary_markdown(
     if !notes.is_empty() {
         section(&mut md, "Notes");
         for note in notes {
-            let _ = writeln!(md, "- {note}");
+            let _ = writeln!(md, "- {}", text(note));
         }
     }
     md
@@ -46,8 +47,10 @@ fn section(md: &mut String, title: &str) {
     let _ = write!(md, "\n## {title}\n\n");
 }
 
-/// A Markdown table row.
+/// A Markdown table row; the cells are text (names from the inputs among them), never
+/// markup.
 fn row(md: &mut String, cells: &[String]) {
+    let cells: Vec<String> = cells.iter().map(|cell| text(cell)).collect();
     let _ = writeln!(md, "| {} |", cells.join(" | "));
 }
 
@@ -57,15 +60,20 @@ fn header(md: &mut String, titles: &[&str]) {
         md,
         &titles.iter().map(|t| t.to_string()).collect::<Vec<_>>(),
     );
-    row(md, &vec!["---".to_string(); titles.len()]);
+    let _ = writeln!(md, "|{}", " --- |".repeat(titles.len()));
 }
 
 fn heading(md: &mut String, report: &SolveReport) {
     let verdict = report.status.describe();
     let _ = writeln!(md, "# Cable path: {verdict}\n");
-    let _ = writeln!(md, "{}.\n", capitalized(&report.explanation));
+    let _ = writeln!(md, "{}.\n", text(&capitalized(&report.explanation)));
     if let Some(diagnosis) = &report.diagnosis {
-        let _ = writeln!(md, "## Why there is no path\n\n```text\n{diagnosis}```\n");
+        let diagnosis = crate::escape::terminal(&diagnosis.to_string()).into_owned();
+        let fence = fence_for(&diagnosis);
+        let _ = writeln!(
+            md,
+            "## Why there is no path\n\n{fence}text\n{diagnosis}{fence}\n"
+        );
     }
     if let Some(total) = report.optimal_length_mm {
         let _ = writeln!(
@@ -123,7 +131,7 @@ fn path_tables(md: &mut String, path: &Ecpv, total_mm: f64) {
         let _ = writeln!(
             md,
             "\nOptional clamps this path leaves out: {}.",
-            path.left_out.join(", ")
+            text(&path.left_out.join(", "))
         );
     }
 }
@@ -167,9 +175,11 @@ fn sets_table(md: &mut String, report: &SolveReport) {
     if let Some(d) = &report.inputs.dictionary {
         let _ = writeln!(
             md,
-            "\nIntra-link pieces from the dictionary `{}` ({} gravity directions, at most {:.1}° \
+            "\nIntra-link pieces from the dictionary {} ({} gravity directions, at most {:.1}° \
              from any direction).",
-            d.file, d.directions, d.covering_radius_deg
+            text(&d.file),
+            d.directions,
+            d.covering_radius_deg
         );
     }
 }
@@ -206,7 +216,7 @@ fn motion_test_table(md: &mut String, test: &MotionTestReport, t: &Thresholds) {
     section(md, "Motion test");
     let verdict = match &test.failure {
         None => "passed".to_string(),
-        Some(f) => format!("failed: {}", f.reason),
+        Some(f) => format!("failed: {}", text(&f.reason)),
     };
     let _ = writeln!(
         md,
@@ -357,7 +367,7 @@ fn inputs_table(md: &mut String, inputs: &[Hashed], report: &SolveReport) {
             md,
             &[
                 input.role.to_string(),
-                format!("`{}`", input.file),
+                input.file.clone(),
                 input.hash.clone(),
             ],
         );
@@ -366,8 +376,18 @@ fn inputs_table(md: &mut String, inputs: &[Hashed], report: &SolveReport) {
     let _ = writeln!(
         md,
         "\nSetup content hash {} (FNV-1a of the loaded setup), cable {}, motion {:.2} s in {} samples.",
-        i.setup_hash, i.cable, i.motion_duration_s, i.motion_samples
+        i.setup_hash,
+        text(&i.cable),
+        i.motion_duration_s,
+        i.motion_samples
     );
+}
+
+/// A code fence longer than any run of backticks in `content`, so that nothing in it ends
+/// the block early.
+fn fence_for(content: &str) -> String {
+    let longest = content.split(|c| c != '`').map(str::len).max().unwrap_or(0);
+    "`".repeat(longest.max(2) + 1)
 }
 
 /// `text` with its first letter in upper case.

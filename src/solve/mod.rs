@@ -4,22 +4,27 @@
 //!    ([`SegmentPoses`]).
 //! 2. The attachment test: D0 → D'0 → D1 → D2 per segment. By default it is lazy
 //!    ([`LazyAttachment`], [`SearchKind::Lazy`]): steps 2 and 3 interleave, and only the
-//!    pieces a chain shorter than the answer can use are decided; [`SearchKind::Exhaustive`]
+//!    pieces a shortest chain can use are decided; [`SearchKind::Exhaustive`]
 //!    decides every candidate first ([`crate::attachment::attachment_test`]). Both give the
 //!    same chains. With a dictionary ([`solve_with_dictionary`]) the intra-link segments'
 //!    pieces are answered from its margins at the motion's gravity directions, the undecided
 //!    ones solved ([`MotionLookup`]): the same sets either way.
 //! 3. The chain search over D2: |D3| and the shortest chain d̂ ([`ChainSearch`]).
 //! 4. The motion test of the chains in non-decreasing length: the first that passes is d*.
-//!    Each PV of a chain is first swept statically over every pose of the motion
+//!    With a dictionary, the pieces a chain takes from it are first solved exactly
+//!    ([`Certification`]): a piece the file got wrong is dropped, never reported. Each PV of a
+//!    chain is then swept statically over every pose of the motion
 //!    ([`MotionSweep`]); a PV that fails there, or the PV of the segment that failed a
 //!    dynamic motion test, is dropped before the next try (segments are independent between
 //!    clamps). When none passes within `k` dynamic tries, or there is no chain, the result
 //!    says so and why.
 
+mod certify;
 mod diagnosis;
 mod report;
 
+use certify::Certified;
+pub use certify::{Certification, Disagreement};
 pub use diagnosis::{Diagnosis, NearestMiss, SegmentDiagnosis};
 
 pub use report::{
@@ -191,7 +196,8 @@ fn solve_with(
     };
     let intra_link: Option<&IntraLinkAnswer<'_>> = lookup.is_some().then_some(&answer);
     log_candidates(setup, options.search);
-    let (sets, outcome, attachment_s) = match options.search {
+    let certify = lookup.as_ref().map(|lookup| (&evaluator, &poses, lookup));
+    let (sets, (outcome, certification), attachment_s) = match options.search {
         SearchKind::Exhaustive => {
             if log::log_enabled!(log::Level::Info) {
                 let sampler = Evaluator::new(setup, options.method)?;
@@ -202,8 +208,8 @@ fn solve_with(
             let attachment_s = clock.elapsed().as_secs_f64();
             let d2: Vec<Vec<Pv>> = sets.iter().map(|s| s.d2.clone()).collect();
             let mut chains = Decided { setup, d2 };
-            let outcome = motion_tests(setup, motion, &mut chains, options)?;
-            (sets, outcome, attachment_s)
+            let searched = search_chains(setup, motion, options, &mut chains, certify)?;
+            (sets, searched, attachment_s)
         }
         SearchKind::Lazy => {
             let mut chains = Lazy {
@@ -211,7 +217,8 @@ fn solve_with(
                 attachment: LazyAttachment::new(&evaluator, &poses, intra_link),
                 min_round: MIN_ROUND,
             };
-            let outcome = motion_tests(setup, motion, &mut chains, options)?;
+            let (outcome, certification) =
+                search_chains(setup, motion, options, &mut chains, certify)?;
             if outcome.tried.is_empty() {
                 // No chain: the diagnosis wants every piece's verdict, as without the search.
                 chains.attachment.decide_all();
@@ -222,7 +229,7 @@ fn solve_with(
                 chain_s: (outcome.chain_s - attachment_s).max(0.0),
                 ..outcome
             };
-            (attachment.sets(), outcome, attachment_s)
+            (attachment.sets(), (outcome, certification), attachment_s)
         }
     };
     log_sets(setup, &sets, lookup.as_ref(), attachment_s);
@@ -259,13 +266,18 @@ fn solve_with(
         setup, motion, options, &evaluator, &poses, &sets, &search, outcome, timings,
     );
     if let Some(lookup) = &lookup {
-        report.inputs.dictionary = Some(dictionary_use(setup, lookup, &sets));
+        report.inputs.dictionary = Some(dictionary_use(setup, lookup, &sets, certification));
     }
     Ok(report)
 }
 
 /// What the report says of the dictionary a solve used.
-fn dictionary_use(setup: &Setup, lookup: &MotionLookup<'_>, sets: &[SegmentSets]) -> DictionaryUse {
+fn dictionary_use(
+    setup: &Setup,
+    lookup: &MotionLookup<'_>,
+    sets: &[SegmentSets],
+    certification: Certification,
+) -> DictionaryUse {
     let dictionary = lookup.dictionary();
     let header = dictionary.header();
     DictionaryUse {
@@ -283,7 +295,32 @@ fn dictionary_use(setup: &Setup, lookup: &MotionLookup<'_>, sets: &[SegmentSets]
                 })
             })
             .collect(),
+        certification,
     }
+}
+
+/// The motion tests over `chains`; with a dictionary's lookup (and the exact test it is
+/// checked against), each chain certified before it is offered ([`Certified`]).
+fn search_chains(
+    setup: &Setup,
+    motion: &Motion,
+    options: &SolveOptions,
+    chains: &mut dyn Chains,
+    certify: Option<(&Evaluator<'_>, &SegmentPoses, &MotionLookup<'_>)>,
+) -> Result<(MotionSearch, Certification), SolveError> {
+    let Some((evaluator, poses, lookup)) = certify else {
+        let outcome = motion_tests(setup, motion, chains, options)?;
+        return Ok((outcome, Certification::default()));
+    };
+    let mut certified = Certified::new(chains, evaluator, poses, lookup);
+    let outcome = motion_tests(setup, motion, &mut certified, options)?;
+    let certification = certified.certification;
+    log::info!(
+        "certified: {} stored pieces solved exactly, {} records contradicted",
+        certification.pieces_solved,
+        certification.disagreements.len()
+    );
+    Ok((outcome, certification))
 }
 
 /// The number of candidate pieces, before the attachment test starts.

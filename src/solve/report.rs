@@ -1,6 +1,7 @@
 //! The result of [`solve`](super::solve): serializable (the result JSON) and printable (the
 //! human summary).
 
+use super::certify::Certification;
 use super::diagnosis::{Diagnosis, diagnose};
 use super::{MotionSearch, SearchKind, SolveOptions, Tried};
 use crate::attachment::{
@@ -281,6 +282,8 @@ pub struct DictionaryUse {
     pub covering_radius_deg: f64,
     /// Per intra-link segment: what the lookup decided.
     pub segments: Vec<DictionarySegmentUse>,
+    /// The exact checks of the pieces the offered chains took from the file.
+    pub certification: Certification,
 }
 
 /// How a dictionary answered for one intra-link segment.
@@ -632,6 +635,7 @@ fn inputs(setup: &Setup, motion: &Motion, options: &SolveOptions) -> Inputs {
     let method = match (options.method, options.max_guides_per_link) {
         (ConnectMethod::Linear, _) => "previous method",
         (ConnectMethod::Hermite, Some(1)) => "one clamp per link",
+        (ConnectMethod::Hermite, _) if setup.max_guides_per_link == 1 => "one clamp per link",
         (ConnectMethod::Hermite, _) => "up to two clamps per link",
     };
     Inputs {
@@ -870,6 +874,23 @@ impl fmt::Display for SolveReport {
                      stored margins, {} too close to a limit were solved ({} of them failed)",
                     s.segment, s.gravity_directions, p.holds, p.fails, p.solved, p.solved_failed
                 )?;
+            }
+            let c = &d.certification;
+            match (c.pieces_solved, c.disagreements.len()) {
+                (0, _) => writeln!(f, "  certified: the chains offered took no stored piece")?,
+                (n, k) => writeln!(
+                    f,
+                    "  certified: the stored pieces the chains offered and their robustness \
+                     neighbours solved exactly ({n} pieces); {}",
+                    match k {
+                        0 => "the file agrees".to_string(),
+                        1 => "1 record contradicted".to_string(),
+                        k => format!("{k} records contradicted"),
+                    }
+                )?,
+            }
+            for disagreement in &c.disagreements {
+                writeln!(f, "  {}", disagreement.describe(&d.file))?;
             }
         }
         if let (Some(path), Some(total)) = (&self.optimal, self.optimal_length_mm) {

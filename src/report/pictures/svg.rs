@@ -10,7 +10,7 @@
 //! that it is never hidden; clamps `<circle>`s with their names in `<g class="clamps">`.
 
 use super::projection::{View, outline};
-use crate::report::page::escape;
+use crate::escape::html as escape;
 use nalgebra::Point3;
 use std::fmt::Write;
 

@@ -1,0 +1,111 @@
+//! Answers no dictionary can bend: `solve --dict` solves exactly every piece a chain takes
+//! from the file (the piece and its robustness neighbours) before the chain is offered. A
+//! resealed forgery that makes every stored piece pass — robustness neighbours included —
+//! yields the path the exact test finds, and each record it contradicts is reported; the
+//! genuine file is contradicted nowhere.
+
+use cable_dict::dictionary::{BuildOptions, Built, Dictionary, build, format, write_dictionary};
+use cable_dict::motion::Motion;
+use cable_dict::setup::Setup;
+use cable_dict::solve::{SolveOptions, SolveReport, solve, solve_with_dictionary};
+use std::path::Path;
+
+const SETUP: &str = "robots/viper_s850/hand_written/pick_and_place.toml";
+const MOTION: &str = "motions/viper_s850/pick_and_place.csv";
+
+fn setup_and_motion() -> (Setup, Motion) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let setup = Setup::from_file(root.join(SETUP)).unwrap_or_else(|e| panic!("{e}"));
+    let motion =
+        Motion::from_csv_file(&setup.robot, root.join(MOTION)).unwrap_or_else(|e| panic!("{e}"));
+    (setup, motion)
+}
+
+/// `built` written to `dir/name` and solved with.
+fn solved_with(
+    dir: &Path,
+    name: &str,
+    built: &Built,
+    setup: &Setup,
+    motion: &Motion,
+) -> SolveReport {
+    let path = dir.join(name);
+    write_dictionary(&path, built).unwrap_or_else(|e| panic!("{e}"));
+    let dictionary = Dictionary::open(&path).unwrap_or_else(|e| panic!("{e}"));
+    dictionary
+        .verify()
+        .unwrap_or_else(|e| panic!("{name}'s checksums are valid: {e}"));
+    solve_with_dictionary(&dictionary, setup, motion, &SolveOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn a_dictionary_forged_to_pass_every_piece_yields_the_exact_path() {
+    let (setup, motion) = setup_and_motion();
+    let exact = solve(&setup, &motion, &SolveOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    let exact_total_mm = exact
+        .optimal_length_mm
+        .expect("the hand-written setup has a path");
+    let options = BuildOptions {
+        directions: 8,
+        shard: None,
+    };
+    let genuine = build(&setup, &options).unwrap_or_else(|e| panic!("{e}"));
+    let mut forged = genuine.clone();
+    let pass = format::MarginRecord::quantize(Some([5.0, 0.01, 1.0]));
+    for row in forged
+        .results
+        .iter_mut()
+        .filter(|row| row.values().is_some())
+    {
+        *row = pass;
+    }
+    // A careful forger also sets the flags and counts the forged margins imply, so that
+    // `verify` finds nothing to object to.
+    forged.derive_flags(&setup.robustness);
+    let dir = tempfile::tempdir().expect("temp dir");
+
+    let from_genuine = solved_with(dir.path(), "genuine.cdict", &genuine, &setup, &motion);
+    let certification = |report: &SolveReport| {
+        report
+            .inputs
+            .dictionary
+            .as_ref()
+            .expect("a dictionary was used")
+            .certification
+            .clone()
+    };
+    assert_eq!(from_genuine.optimal, exact.optimal);
+    let genuine_checks = certification(&from_genuine);
+    assert!(genuine_checks.pieces_solved > 0);
+    assert_eq!(genuine_checks.disagreements, Vec::new());
+
+    let from_forged = solved_with(dir.path(), "forged.cdict", &forged, &setup, &motion);
+    assert_eq!(
+        from_forged.optimal, exact.optimal,
+        "the forgery bent the path"
+    );
+    assert_eq!(from_forged.optimal_length_mm, exact.optimal_length_mm);
+    let forged_checks = certification(&from_forged);
+    assert!(
+        !forged_checks.disagreements.is_empty(),
+        "the forgery offered no shorter chain: the test shows nothing"
+    );
+    let summary = from_forged.to_string();
+    assert!(summary.contains("records contradicted"), "{summary}");
+    for disagreement in &forged_checks.disagreements {
+        assert!(
+            summary.contains(&disagreement.describe(&from_forged_file(dir.path()))),
+            "{summary}"
+        );
+        let line = disagreement.describe("forged.cdict");
+        assert!(line.contains(&disagreement.link), "{line}");
+        assert!(line.contains("forged.cdict"), "{line}");
+        assert!(disagreement.piece_length_mm <= exact_total_mm, "{line}");
+    }
+}
+
+/// The dictionary file name a report shows for the forged file.
+fn from_forged_file(dir: &Path) -> String {
+    dir.join("forged.cdict").display().to_string()
+}
