@@ -24,6 +24,11 @@ use toml::Spanned;
 /// Sub-segment pitch (m) when the cable file does not set one: the reference paper's.
 pub const DEFAULT_SUB_SEGMENT_PITCH_M: f64 = 0.010;
 
+/// The sub-segment pitches a cable file may state (mm): finer than 1 mm resolves nothing a
+/// robot cable's shape has and makes a metre of cable 1000 sub-segments; coarser than 100 mm
+/// cannot bend around a link.
+pub const SUB_SEGMENT_PITCH_RANGE_MM: std::ops::RangeInclusive<f64> = 1.0..=100.0;
+
 /// Axial stiffness `EA` (N) of the model when the cable file does not set one. Not a
 /// material value: a real cable's copper makes it 10⁵–10⁶ N. It only has to make the
 /// sub-segments nearly rigid (a hanging metre of a 0.3 kg/m cable strains by < 3e-4) while
@@ -147,7 +152,7 @@ impl CableSpec {
         })?;
         let file = FileValues { text, source };
         let pitch_m = match &raw.sub_segment_pitch_mm {
-            Some(value) => file.positive("sub_segment_pitch_mm", value)? * 1e-3,
+            Some(value) => file.pitch_mm(value)? * 1e-3,
             None => DEFAULT_SUB_SEGMENT_PITCH_M,
         };
         let stiffness = |continuum, per_joint, names| {
@@ -249,6 +254,23 @@ impl FileValues<'_> {
             line,
             problem,
         }
+    }
+
+    /// The file's `sub_segment_pitch_mm`, within [`SUB_SEGMENT_PITCH_RANGE_MM`].
+    fn pitch_mm(&self, value: &Spanned<f64>) -> Result<f64, CableError> {
+        let pitch = self.positive("sub_segment_pitch_mm", value)?;
+        if SUB_SEGMENT_PITCH_RANGE_MM.contains(&pitch) {
+            return Ok(pitch);
+        }
+        Err(self.error(
+            Some(line_of(self.text, value.span().start)),
+            format!(
+                "`sub_segment_pitch_mm` = {pitch} is outside {} to {} mm (a piece may have at \
+                 most 10 000 sub-segments; 10 mm is the default)",
+                SUB_SEGMENT_PITCH_RANGE_MM.start(),
+                SUB_SEGMENT_PITCH_RANGE_MM.end()
+            ),
+        ))
     }
 
     fn positive(&self, field: &str, value: &Spanned<f64>) -> Result<f64, CableError> {

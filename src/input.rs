@@ -116,7 +116,8 @@ fn megabytes(bytes: u64) -> String {
     }
 }
 
-fn file_type(meta: &std::fs::Metadata) -> &'static str {
+/// What kind of entry `meta` describes, for a message (`a device`, `a pipe`, `a folder`, …).
+pub(crate) fn file_type(meta: &std::fs::Metadata) -> &'static str {
     #[cfg(unix)]
     {
         use std::os::unix::fs::FileTypeExt;

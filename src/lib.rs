@@ -83,3 +83,4 @@ pub mod sites;
 pub mod solve;
 pub mod statics;
 pub mod stress;
+pub mod text_table;

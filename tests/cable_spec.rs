@@ -150,6 +150,11 @@ fn non_positive_and_non_finite_values_are_refused_with_field_and_line() {
             "axial_stiffness_n",
         ),
     ];
+    let tiny = refusal(&GOOD.replace("sub_segment_pitch_mm = 10.0", "sub_segment_pitch_mm = 1e-6"));
+    assert!(
+        tiny.starts_with("c.toml:7: `sub_segment_pitch_mm` = 0.000001 is outside 1 to 100 mm"),
+        "«{tiny}»"
+    );
     for (good, bad, line, field) in cases {
         let message = refusal(&GOOD.replace(good, bad));
         assert!(

@@ -43,7 +43,7 @@ fn diagnosis(report: &SolveReport) -> &Diagnosis {
 /// Lengths 100–140 mm between clamps about 265 mm apart: every piece is too short. The
 /// diagnosis names the segment, its nearest miss is a 140 mm piece whose needed stretch is
 /// the clamps' distance (recomputed here from the robot's kinematics) over 140 mm, and it
-/// asks for a longer window reaching that distance over the allowed stretch.
+/// asks for a longer window reaching that distance.
 #[test]
 fn a_window_too_short_for_the_clamps_asks_for_longer_lengths() {
     let text = small_with(
@@ -77,7 +77,12 @@ fn a_window_too_short_for_the_clamps_asks_for_longer_lengths() {
         (nearest.value - distance_mm / 140.0).abs() < 1e-6,
         "{nearest:?}"
     );
-    let needed = format!("needs about {:.0} mm", distance_mm / 1.02);
+    // It must reach before it can hold: the clamps' distance in whole 10 mm sub-segments
+    // (not that distance over the allowed stretch, which is shorter than the distance).
+    let needed = format!(
+        "needs at least {:.0} mm to reach between its clamps",
+        (distance_mm / 10.0).ceil() * 10.0
+    );
     assert!(
         c1.suggestions
             .iter()

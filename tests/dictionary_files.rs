@@ -610,6 +610,21 @@ fn resealed_headers_that_would_change_answers_are_refused_by_verify() {
             forged(|b| b.header.links[0].margin_error = [0.0; 3]),
             "error bounds",
         ),
+        (
+            "a setup name with folders and an ANSI sequence",
+            forged(|b| b.header.setup.file_name = "../\u{1b}[31mevil.toml".into()),
+            "not a plain file name",
+        ),
+        (
+            "a mesh the URDF does not use",
+            forged(|b| {
+                b.header.setup.meshes.push(cable_dict::robot::MeshFile {
+                    uri: "payload.stl".into(),
+                    bytes: vec![0; 84],
+                })
+            }),
+            "the embedded mesh `payload.stl` is not a mesh the embedded URDF uses",
+        ),
     ];
     let dir = tempfile::tempdir().expect("temp dir");
     for (i, (case, bytes, words)) in cases.iter().enumerate() {

@@ -283,3 +283,48 @@ fn a_collision_mesh_the_tool_does_not_read_is_refused_naming_link_file_and_stl()
         }
     }
 }
+
+/// Site generators each within their own limits but together far beyond a catalogue's
+/// memory (the issue's 4 KB setup: 2–3 mm spacing, 36 directions on every generated guide)
+/// are refused before any site is made, with the estimated total, the limit and the largest
+/// generators — by `critical-poses` as by `solve`, at once.
+#[test]
+fn site_generators_too_many_together_are_refused_before_any_runs() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let text =
+        std::fs::read_to_string(Path::new(ROOT).join("robots/viper_s850/pick_and_place.toml"))
+            .expect("bundled setup");
+    let directions: Vec<String> = (0..36).map(|k| format!("{}.0", k * 10)).collect();
+    let text = text
+        .replace(
+            "robot = \"viper_s850.urdf\"",
+            &format!("robot = \"{ROOT}/robots/viper_s850/viper_s850.urdf\""),
+        )
+        .replace(
+            "cable = \"../../cables/",
+            &format!("cable = \"{ROOT}/cables/"),
+        )
+        .replace(
+            "spacing_mm = 80.0, clamp_height_mm = 8.0, directions_deg = [0.0, 90.0, 180.0, 270.0]",
+            &format!(
+                "spacing_mm = 3.0, clamp_height_mm = 8.0, directions_deg = [{}]",
+                directions.join(", ")
+            ),
+        );
+    assert_eq!(text.matches("spacing_mm = 3.0").count(), 3);
+    let setup = dir.path().join("setup.toml");
+    std::fs::write(&setup, &text).expect("written");
+    let setup = setup.to_str().expect("utf-8");
+    for args in [
+        vec!["critical-poses", setup, MOTION],
+        vec!["solve", "--setup", setup, MOTION],
+    ] {
+        let (code, stderr) = refusal(&args);
+        assert_eq!(code, 2, "{stderr}");
+        assert!(stderr.contains("setup.toml:"), "{stderr}");
+        assert!(stderr.contains("clamp configurations together"), "{stderr}");
+        assert!(stderr.contains("at most 1000000"), "{stderr}");
+        assert!(stderr.contains("guides[1] on link_4"), "{stderr}");
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    }
+}

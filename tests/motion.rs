@@ -666,8 +666,14 @@ fn critical_poses_take_the_other_joints_extremes_inside_a_dwell() {
     assert_eq!(samples, vec![5, 13, 17, 35, 40]);
     let reasons: Vec<&str> = poses.iter().map(|p| p.reason.as_str()).collect();
     assert_eq!(reasons[0], "joint_6 min");
-    assert_eq!(reasons[1], "joint_5 max (dwell 1.00–2.00 s), joint_6 max");
-    assert_eq!(reasons[2], "joint_5 max (dwell 1.00–2.00 s), joint_6 min");
+    assert_eq!(
+        reasons[1],
+        "joint_6 max while joint_5 rests at its max (1.00–2.00 s)"
+    );
+    assert_eq!(
+        reasons[2],
+        "joint_6 min while joint_5 rests at its max (1.00–2.00 s)"
+    );
     assert_eq!(reasons[3], "joint_5 min");
     assert_eq!(reasons[4], "joint_6 max");
     for pose in &poses {
@@ -700,6 +706,14 @@ fn critical_poses_ties_rests_and_coincidences() {
     // extremes are taken — the same samples as joint_5's own extremes, so each reason names
     // the extreme once, not again per rest of joint_6.
     assert_eq!(found, vec![(2, "joint_5 max"), (8, "joint_5 min")]);
+    // Alone, the constant joint gives one pose that says it does not move (it was both its
+    // maximum and its minimum).
+    let still = critical_poses(&motion, &[5]).expect("poses");
+    let still: Vec<(usize, &str)> = still
+        .iter()
+        .map(|p| (p.sample, p.reason.as_str()))
+        .collect();
+    assert_eq!(still, vec![(0, "joint_6 (does not move)")]);
     // The whole robot resting at an extreme gives one pose for it: the first instant.
     let q5 = [0.0, 0.4, 0.8, 0.8, 0.8, 0.8, 0.4, 0.0];
     let q6 = [0.0, 0.1, 0.2, 0.2, 0.2, 0.2, 0.1, 0.0];

@@ -354,3 +354,39 @@ fn an_unwritable_report_folder_is_refused() {
     assert_eq!(output.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("report"), "{stderr}");
 }
+
+/// The bundled pick-and-place answer's C2 has no length (G2 and G3 are one clamp): the
+/// pictures say so, and do not call it a piece without a static shape (it read as a failure).
+#[test]
+fn a_piece_of_no_length_is_said_to_join_its_clamps() {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let report = dir.path().join("out");
+    let output = run(&[
+        "solve",
+        "--setup",
+        "robots/viper_s850/pick_and_place.toml",
+        MOTION,
+        "--report",
+        report.to_str().expect("utf-8"),
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let c2 = stdout
+        .lines()
+        .find(|line| line.trim_start().starts_with("C2 "))
+        .expect("a C2 row");
+    assert!(
+        c2.contains("intra-link") && c2.ends_with(" 0 mm"),
+        "{stdout}"
+    );
+    let html = std::fs::read_to_string(report.join("index.html")).expect("index.html");
+    assert!(
+        html.contains("Cable piece C2 has no length: its two clamps are one."),
+        "{html}"
+    );
+    assert!(!html.contains("No static shape found"), "{html}");
+}

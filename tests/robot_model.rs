@@ -259,11 +259,14 @@ fn stl_meshes_resolve_relative_and_package_paths_and_are_scaled() {
 
 #[test]
 fn missing_unreadable_and_non_stl_meshes_are_refused() {
+    // A link to a device is named as what it is, not as missing.
     let dir = tempfile::tempdir().expect("temp dir");
     std::fs::write(dir.path().join("junk.stl"), "this is not an STL file").expect("write");
     std::fs::write(dir.path().join("arm.dae"), "<COLLADA/>").expect("write");
+    std::os::unix::fs::symlink("/dev/zero", dir.path().join("zero.stl")).expect("link");
     let cases = [
         ("meshes/none.stl", "does not exist"),
+        ("zero.stl", "zero.stl is not a regular file (a device)"),
         (
             "package://no_such_package/none.stl",
             "no folder named 'no_such_package'",

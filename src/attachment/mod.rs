@@ -520,7 +520,8 @@ fn nearest_misses(mut misses: Vec<(Pv, Miss)>) -> Vec<(Pv, Miss)> {
         }
     }
     for miss in &misses {
-        if chosen.len() < NEAREST_MISSES && !chosen.contains(miss) {
+        // By piece: a miss holds NaN where nothing was measured, and NaN ≠ NaN.
+        if chosen.len() < NEAREST_MISSES && !chosen.iter().any(|c| c.0 == miss.0) {
             chosen.push(*miss);
         }
     }
@@ -559,4 +560,30 @@ pub fn needed_pvs(candidates: &[Pv], delta_s: usize, range: usize) -> Vec<Pv> {
         }
     }
     needed.into_iter().collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn miss(rejection: Rejection, severity: f64) -> Miss {
+        Miss {
+            rejection,
+            severity,
+            value: f64::NAN,
+            pose: 0,
+            at_m: f64::NAN,
+        }
+    }
+
+    #[test]
+    fn a_nearest_miss_is_listed_once_though_it_holds_unmeasured_values() {
+        let misses = vec![
+            (Pv::new(30, 0, 0), miss(Rejection::TooShort, 0.5)),
+            (Pv::new(31, 0, 0), miss(Rejection::TooShort, 0.6)),
+        ];
+        let chosen = nearest_misses(misses);
+        let pieces: Vec<Pv> = chosen.iter().map(|(pv, _)| *pv).collect();
+        assert_eq!(pieces, [Pv::new(30, 0, 0), Pv::new(31, 0, 0)]);
+    }
 }

@@ -145,7 +145,10 @@ impl Miss {
             (Rejection::TooShort, _) => {
                 let distance = (guides.1.translation.vector - guides.0.translation.vector).norm();
                 let stretch = distance / (sub_segments as f64 * pitch);
-                measured(excess(stretch), stretch, f64::NAN)
+                // Short of reaching at all: the stretch it would need beyond 1, over the
+                // allowed excess (within the stretch limit it is still a miss, not a near hit).
+                let needed = (stretch - 1.0) / (limits.stretch - 1.0).max(1e-12);
+                measured(needed, stretch, f64::NAN)
             }
             (Rejection::Contact, Some(m)) => {
                 let clearance = m.clearance_m.unwrap_or(f64::NAN);
@@ -316,5 +319,37 @@ pub(super) fn connect_failure(error: ConnectError) -> Check {
     match error {
         ConnectError::TooShort { .. } => Check::fail(Rejection::TooShort, error.to_string(), None),
         _ => Check::fail(Rejection::Diverged, error.to_string(), None),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::setup::Setup;
+    use std::path::Path;
+
+    /// A piece 1.25 % too short to reach its clamps ranks behind a contact miss by 0.1 mm:
+    /// being within the stretch limit does not make it a near hit.
+    #[test]
+    fn a_piece_too_short_ranks_behind_a_hair_of_contact() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let setup = Setup::from_file(root.join("robots/viper_s850/pick_and_place.toml"))
+            .unwrap_or_else(|e| panic!("{e}"));
+        let pitch = setup.cable.sub_segment_pitch_m;
+        let (s, stretch) = (32, 1.0125);
+        let guides = (
+            Pose::identity(),
+            Pose::translation(s as f64 * pitch * stretch, 0.0, 0.0),
+        );
+        let short = Check::fail(Rejection::TooShort, String::new(), None);
+        let too_short = Miss::of(&short, &setup, 0, &guides, s).expect("a miss");
+        assert!((too_short.value - stretch).abs() < 1e-12);
+        // Clearance 0.1 mm below the limit, for the cable's diameter.
+        let hair = 1e-4 / setup.cable.diameter_m;
+        assert!(
+            too_short.severity > 10.0 * hair,
+            "{} against {hair}",
+            too_short.severity
+        );
     }
 }

@@ -249,15 +249,17 @@ pub fn run_verify(args: VerifyArgs) -> Result<(), Failure> {
         if let Some(disagreement) = recomputed.disagreement {
             return Err(Failure::input(anyhow::anyhow!(
                 "{}: a stored cable piece is not what the embedded setup gives (forged, stale \
-                 or computed differently): {disagreement}; re-solved {} of {} pieces, {drawn}",
+                 or computed differently): {disagreement}; re-solved {} of the {} measured \
+                 pieces, {drawn}",
                 args.dict.display(),
                 recomputed.checked,
                 recomputed.measured
             )));
         }
         out.push_str(&format!(
-            "re-solved {} of {} cable pieces ({drawn}): all agree with the file within \
-             {RECOMPUTE_TOLERANCE_UNITS} stored unit\n",
+            "re-solved {} of the {} measured cable pieces ({drawn}; the other records are \
+             zero-length, not admissible or too short to solve): all agree with the file \
+             within {RECOMPUTE_TOLERANCE_UNITS} stored unit\n",
             recomputed.checked, recomputed.measured
         ));
     }

@@ -351,6 +351,12 @@ pub(super) fn solve_lengths(
 
 /// Refuses what a dictionary cannot represent.
 fn check_buildable(setup: &Setup, options: &BuildOptions) -> Result<(), Problem> {
+    let name = setup
+        .source
+        .file_name()
+        .unwrap_or_default()
+        .to_string_lossy();
+    super::reader::check_file_name(&name)?;
     if !(MIN_DIRECTION_COUNT..=MAX_DIRECTION_COUNT).contains(&options.directions) {
         return Err(Problem::Build(format!(
             "--directions must be {MIN_DIRECTION_COUNT} to {MAX_DIRECTION_COUNT}, got {}",

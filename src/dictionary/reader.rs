@@ -299,6 +299,7 @@ fn check_physics_version(header: &Header) -> Result<(), Problem> {
 /// The setup embedded in `header`, with its content hash checked.
 pub(super) fn embedded_setup(header: &Header) -> Result<Setup, Problem> {
     let embedded = &header.setup;
+    check_file_name(&embedded.file_name)?;
     let setup = Setup::from_texts(
         &embedded.text,
         Path::new(&embedded.file_name),
@@ -313,5 +314,37 @@ pub(super) fn embedded_setup(header: &Header) -> Result<Setup, Problem> {
             computed: setup.content_hash,
         });
     }
+    // Bytes the robot does not read would ride along unchecked (and be written out by any
+    // tool that unpacks the file).
+    if let Some(unread) = embedded
+        .meshes
+        .iter()
+        .find(|m| !setup.robot.mesh_files.iter().any(|read| read.uri == m.uri))
+    {
+        return Err(Problem::Header(format!(
+            "the embedded mesh `{}` is not a mesh the embedded URDF uses (a build embeds \
+             only those)",
+            crate::escape::terminal(&unread.uri)
+        )));
+    }
     Ok(setup)
+}
+
+/// The embedded setup's name is a plain file name, as a build writes it: no folder, no
+/// `..`, no control character — it is shown on terminals and in reports.
+pub(super) fn check_file_name(name: &str) -> Result<(), Problem> {
+    let plain = !name.is_empty()
+        && name.len() <= 255
+        && name != "."
+        && name != ".."
+        && !name.contains(['/', '\\'])
+        && crate::escape::terminal(name) == name;
+    if plain {
+        return Ok(());
+    }
+    Err(Problem::Header(format!(
+        "the embedded setup's file name \"{}\" is not a plain file name (a build writes the \
+         setup's own name, without folders)",
+        crate::escape::terminal(name)
+    )))
 }

@@ -17,7 +17,8 @@ pub struct CriticalPose {
     pub time_s: f64,
     /// The joint vector at that sample (rad / m, joint-vector order).
     pub joints: Vec<f64>,
-    /// Why, e.g. `joint_4 max`, or `joint_5 max (dwell 1.2–1.7 s), joint_6 min`; several
+    /// Why, e.g. `joint_4 max`, or `joint_6 min while joint_5 rests at its max (1.20–1.70 s)`;
+    /// several
     /// reasons for one sample are joined by `; `.
     pub reason: String,
 }
@@ -86,7 +87,8 @@ pub fn critical_poses_with_tolerance(
 }
 
 /// A critical sample and why: a joint's extreme (`joint_5 min`), over the whole motion or
-/// within another joint's dwell at its extreme (`joint_6 max (dwell 0.00–2.30 s)`).
+/// within another joint's dwell at its extreme (`during`: `joint_6 rests at its max
+/// (0.00–2.30 s)`).
 struct Pick {
     sample: usize,
     extreme: String,
@@ -120,15 +122,21 @@ fn extreme_picks(
         .filter(|&k| k != j && spread(k) > tolerance)
         .collect();
     if moving.is_empty() {
+        // A joint that rests the whole motion has one pose, not a maximum and a minimum.
+        let still = *run.start() == 0 && *run.end() + 1 == motion.len();
+        let extreme = match still {
+            true => format!("{} (does not move)", names[j]),
+            false => format!("{} {}", names[j], kind.name()),
+        };
         return vec![Pick {
             sample: first,
-            extreme: format!("{} {}", names[j], kind.name()),
+            extreme,
             during: None,
         }];
     }
     let times = motion.times_s();
     let during = format!(
-        "{} {} (dwell {:.2}–{:.2} s)",
+        "{} rests at its {} ({:.2}–{:.2} s)",
         names[j],
         kind.name(),
         times[*run.start()],
@@ -206,17 +214,18 @@ fn dwell(
 
 /// One pose per sample, by time. Its reason lists each extreme once: the motion's own
 /// extremes first, then per dwell the extremes within it that are not already among them
-/// (`joint_5 min; joint_6 max (dwell 0.00–2.30 s), joint_5 max`).
+/// (`joint_5 min; joint_5 max while joint_6 rests at its max (0.00–2.30 s)`).
 fn merge(motion: &Motion, mut picks: Vec<Pick>) -> Vec<CriticalPose> {
     picks.sort_by_key(|p| p.sample);
     let mut poses: Vec<CriticalPose> = Vec::new();
     for same in picks.chunk_by(|a, b| a.sample == b.sample) {
         let sample = same[0].sample;
-        let plain: Vec<&str> = same
-            .iter()
-            .filter(|p| p.during.is_none())
-            .map(|p| p.extreme.as_str())
-            .collect();
+        let mut plain: Vec<&str> = Vec::new();
+        for pick in same.iter().filter(|p| p.during.is_none()) {
+            if !plain.contains(&pick.extreme.as_str()) {
+                plain.push(&pick.extreme);
+            }
+        }
         let mut clauses: Vec<String> = plain.iter().map(|e| e.to_string()).collect();
         let mut dwells: Vec<(&str, Vec<&str>)> = Vec::new();
         for pick in same.iter().filter(|p| !plain.contains(&p.extreme.as_str())) {
@@ -229,7 +238,7 @@ fn merge(motion: &Motion, mut picks: Vec<Pick>) -> Vec<CriticalPose> {
             }
         }
         for (during, extremes) in dwells {
-            clauses.push(format!("{during}, {}", extremes.join(" and ")));
+            clauses.push(format!("{} while {during}", extremes.join(" and ")));
         }
         poses.push(CriticalPose {
             sample,

@@ -66,8 +66,9 @@
 //! 3. the other traversed joints that *move* during the dwell (their values in it spread by
 //!    more than the tolerance): if there are none, sample `i` is critical (reason
 //!    `joint_j max`); otherwise, for each of them, `k`, the first samples of the dwell where
-//!    `k` is largest and smallest are critical (reason `joint_j max (dwell t0–t1 s), joint_k
-//!    min`), and `i` itself is not.
+//!    `k` is largest and smallest are critical (reason `joint_k min while joint_j rests at
+//!    its max (t0–t1 s)`), and `i` itself is not. A joint that never moves gives one pose
+//!    (`joint_j (does not move)`).
 //!
 //! Poses on the same sample are merged (reasons joined by `; `) and sorted by time. So one
 //! traversed joint gives 2 poses; two give 4 when the extremes are isolated or the robot

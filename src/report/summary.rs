@@ -137,7 +137,7 @@ fn path_tables(md: &mut String, path: &Ecpv, total_mm: f64) {
 }
 
 fn triple(v: &[f64; 3]) -> String {
-    format!("{:.1}, {:.1}, {:.1}", v[0], v[1], v[2])
+    v.map(|x| crate::text_table::decimal(x, 1)).join(", ")
 }
 
 fn sets_table(md: &mut String, report: &SolveReport) {

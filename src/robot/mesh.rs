@@ -215,10 +215,14 @@ fn locate(uri: &str, base_dir: &Path) -> Result<PathBuf, String> {
     } else {
         base_dir.join(uri)
     };
-    if path.is_file() {
-        Ok(path)
-    } else {
-        Err(format!("file {} does not exist", path.display()))
+    match std::fs::metadata(&path) {
+        Ok(meta) if meta.is_file() => Ok(path),
+        Ok(meta) => Err(format!(
+            "{} is not a regular file ({}); give the path of a mesh file",
+            path.display(),
+            crate::input::file_type(&meta)
+        )),
+        Err(_) => Err(format!("file {} does not exist", path.display())),
     }
 }
 

@@ -2,10 +2,11 @@
 
 use super::error::Source;
 use super::raw::{RawConfiguration, RawGuide};
-use super::sites::SiteContext;
+use super::sites::{GeneratorEstimate, SiteContext, check_generated_total};
 use super::{ConfigurationOrigin, Guide, GuideConfiguration, SetupError};
 use crate::pose::{Pose, pose_from_mm_deg};
 use crate::robot::Robot;
+use crate::sites::MIN_SPACING_M;
 use std::collections::{HashMap, HashSet};
 use toml::Spanned;
 
@@ -27,6 +28,7 @@ pub(super) fn build(
             "at least two guides are needed (a cable path has at least one segment)",
         ));
     }
+    check_generated_total(src, raw.span(), robot, &generators(robot, raw.get_ref()))?;
     let mut guides: Vec<Guide> = Vec::new();
     for (g, entry) in raw.get_ref().iter().enumerate() {
         let guide = guide(src, robot, g, entry.get_ref(), sites)?;
@@ -44,6 +46,27 @@ pub(super) fn build(
     check_optional_ends(src, raw, &guides)?;
     check_per_link(src, robot, raw, &guides, max_per_link)?;
     Ok(guides)
+}
+
+/// The site generators among `raw`'s guides, as far as they can be read (the others are
+/// refused later, one by one, with their own messages).
+fn generators(robot: &Robot, raw: &[Spanned<RawGuide>]) -> Vec<GeneratorEstimate> {
+    raw.iter()
+        .enumerate()
+        .filter_map(|(g, entry)| {
+            let guide = entry.get_ref();
+            let sites = guide.sites.as_ref()?.get_ref();
+            let spacing_mm = *sites.spacing_mm.get_ref();
+            let generated = guide.configurations.is_none() && guide.fixed.is_none();
+            let readable = spacing_mm.is_finite() && spacing_mm * 1e-3 >= MIN_SPACING_M;
+            (generated && readable).then_some(GeneratorEstimate {
+                guide: g,
+                link: robot.link_index(guide.link.get_ref())?,
+                spacing_mm,
+                directions: sites.directions_deg.get_ref().len(),
+            })
+        })
+        .collect()
 }
 
 fn guide(

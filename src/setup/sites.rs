@@ -14,6 +14,64 @@ use toml::Spanned;
 /// Most cable directions per site.
 const MAX_DIRECTIONS: usize = 36;
 
+/// Most clamp configurations all of a setup's site generators together may give, estimated
+/// from their links' surface areas before any site is made. Each generator has its own
+/// limits ([`crate::sites::MAX_SURFACE_POINTS`], [`MAX_DIRECTIONS`]); eight of them within
+/// theirs made 29 million configurations and 3.5 GB. A configuration takes about 200 bytes,
+/// so this keeps a setup's catalogue near 200 MB.
+pub(super) const MAX_GENERATED_CONFIGURATIONS: f64 = 1.0e6;
+
+/// One site generator of a setup, as the total bound sees it: `guides[g]` on `link`.
+pub(super) struct GeneratorEstimate {
+    pub guide: usize,
+    pub link: usize,
+    pub spacing_mm: f64,
+    pub directions: usize,
+}
+
+/// Refuses site generators that together would give more than
+/// [`MAX_GENERATED_CONFIGURATIONS`] configurations, before any of them runs: the figure, the
+/// limit and the largest generators in the message.
+pub(super) fn check_generated_total(
+    src: Source,
+    span: std::ops::Range<usize>,
+    robot: &Robot,
+    generators: &[GeneratorEstimate],
+) -> Result<(), SetupError> {
+    let mut estimates: Vec<(f64, &GeneratorEstimate)> = generators
+        .iter()
+        .map(|e| {
+            let points = crate::sites::estimated_surface_points(robot, e.link, e.spacing_mm * 1e-3);
+            (points * e.directions as f64, e)
+        })
+        .collect();
+    let total: f64 = estimates.iter().map(|(n, _)| n).sum();
+    if total <= MAX_GENERATED_CONFIGURATIONS {
+        return Ok(());
+    }
+    estimates.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let largest: Vec<String> = estimates
+        .iter()
+        .take(3)
+        .map(|(n, e)| {
+            format!(
+                "guides[{}] on {}: about {n:.0} ({} mm spacing × {} directions)",
+                e.guide, robot.links[e.link].name, e.spacing_mm, e.directions
+            )
+        })
+        .collect();
+    Err(src.error(
+        span,
+        "guides",
+        format!(
+            "the site generators would give about {total:.0} clamp configurations together, \
+             at most {MAX_GENERATED_CONFIGURATIONS:.0}; the largest: {}. Raise spacing_mm, \
+             give fewer directions_deg, or a region",
+            largest.join("; ")
+        ),
+    ))
+}
+
 /// What generating sites needs besides the generator itself: the cable radius, the
 /// installation pose and, built on first use, the robot's collision geometry (which the
 /// check of written clamps shares, so that loading a setup builds it once).

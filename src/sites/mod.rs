@@ -251,6 +251,16 @@ fn mounting_surfaces(robot: &Robot, link: usize) -> Vec<Surface<'_>> {
         .collect()
 }
 
+/// About how many surface points a generator at `spacing_m` finds on `link` and the links
+/// fixed to it: their mounting surfaces' area over the spacing squared, known before any is
+/// sampled.
+pub fn estimated_surface_points(robot: &Robot, link: usize, spacing_m: f64) -> f64 {
+    mounting_surfaces(robot, link)
+        .iter()
+        .map(|s| surface::estimated_count(&s.collider.shape, spacing_m))
+        .sum()
+}
+
 /// Refuses a spacing that would sample too many points, before anything is allocated.
 fn check_work(robot: &Robot, link: usize, spacing_m: f64) -> Result<(), SiteError> {
     let surfaces = mounting_surfaces(robot, link);
@@ -262,14 +272,13 @@ fn check_work(robot: &Robot, link: usize, spacing_m: f64) -> Result<(), SiteErro
             robot.links[link].name
         )));
     }
-    let total = |measure: fn(&crate::robot::Shape, f64) -> f64| -> f64 {
-        colliders().map(|c| measure(&c.shape, spacing_m)).sum()
-    };
-    let estimated = total(surface::estimated_count);
+    let estimated = estimated_surface_points(robot, link, spacing_m);
     if estimated > MAX_SURFACE_POINTS as f64 {
         return Err(SiteError::TooMany { estimated });
     }
-    let work = total(surface::sampling_work);
+    let work: f64 = colliders()
+        .map(|c| surface::sampling_work(&c.shape, spacing_m))
+        .sum();
     if work > MAX_SAMPLING_WORK as f64 {
         return Err(SiteError::TooMuchWork { work });
     }

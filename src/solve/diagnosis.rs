@@ -264,13 +264,25 @@ fn attachment_suggestions(
     let range = setup.segments[m].range;
     let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
     let (min_mm, max_mm) = (range.min as f64 * pitch_mm, range.max as f64 * pitch_mm);
-    let too_tight = matches!(nearest.limit, Rejection::Stretch | Rejection::TooShort);
-    if too_tight && nearest.length_mm >= max_mm {
-        out.push(format!(
-            "a longer length window: the nearest miss is {max_mm:.0} mm long, the window's \
-             maximum, and needs about {:.0} mm (segments[{m}].lengths.max)",
-            max_mm * nearest.value / nearest.limit_value
-        ));
+    if nearest.length_mm >= max_mm {
+        let needs = match nearest.limit {
+            // Its clamps' distance, in whole sub-segments: it must reach before it can hold.
+            Rejection::TooShort => Some(format!(
+                "needs at least {:.0} mm to reach between its clamps",
+                (max_mm * nearest.value / pitch_mm).ceil() * pitch_mm
+            )),
+            Rejection::Stretch => Some(format!(
+                "needs about {:.0} mm",
+                max_mm * nearest.value / nearest.limit_value
+            )),
+            _ => None,
+        };
+        if let Some(needs) = needs {
+            out.push(format!(
+                "a longer length window: the nearest miss is {max_mm:.0} mm long, the \
+                 window's maximum, and {needs} (segments[{m}].lengths.max)"
+            ));
+        }
     }
     let slack = matches!(nearest.limit, Rejection::Bend | Rejection::Contact);
     if slack && nearest.length_mm <= min_mm && range.min > 1 {

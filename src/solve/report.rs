@@ -944,40 +944,47 @@ impl fmt::Display for SolveReport {
 }
 
 fn write_path(f: &mut fmt::Formatter<'_>, path: &Ecpv) -> fmt::Result {
-    writeln!(
-        f,
-        "  {:<5} {:<9} {:<15} {:<10} {:>8}",
-        "piece", "clamps", "links", "kind", "length"
-    )?;
+    use crate::text_table::{Align, TextTable, decimal};
+    let triple = |v: [f64; 3]| format!("({})", v.map(|x| decimal(x, 1)).join(", "));
+    let mut pieces = TextTable::new(
+        2,
+        &[
+            ("piece", Align::Left),
+            ("clamps", Align::Left),
+            ("links", Align::Left),
+            ("kind", Align::Left),
+            ("length", Align::Right),
+        ],
+    );
     for s in &path.segments {
-        writeln!(
-            f,
-            "  {:<5} {:<9} {:<15} {:<10} {:>5} mm",
-            s.name,
+        pieces.row(vec![
+            s.name.clone(),
             format!("{}→{}", s.from_guide, s.to_guide),
             format!("{}→{}", s.from_link, s.to_link),
-            s.kind,
-            s.length_mm,
-        )?;
+            s.kind.to_string(),
+            format!("{:.0} mm", s.length_mm),
+        ]);
     }
-    writeln!(
-        f,
-        "  {:<5} {:<7} {:<28} {:>24} {:>22}",
-        "clamp", "link", "placement", "xyz (mm)", "rpy (deg)"
-    )?;
+    let mut clamps = TextTable::new(
+        2,
+        &[
+            ("clamp", Align::Left),
+            ("link", Align::Left),
+            ("placement", Align::Left),
+            ("xyz (mm)", Align::Right),
+            ("rpy (deg)", Align::Right),
+        ],
+    );
     for g in &path.guides {
-        let [x, y, z] = g.xyz_mm;
-        let [r, p, w] = g.rpy_deg;
-        writeln!(
-            f,
-            "  {:<5} {:<7} {:<28} {:>24} {:>22}",
-            g.name,
-            g.link,
-            g.configuration,
-            format!("({x:.1}, {y:.1}, {z:.1})"),
-            format!("({r:.1}, {p:.1}, {w:.1})"),
-        )?;
+        clamps.row(vec![
+            g.name.clone(),
+            g.link.clone(),
+            g.configuration.clone(),
+            triple(g.xyz_mm),
+            triple(g.rpy_deg),
+        ]);
     }
+    write!(f, "{pieces}{clamps}")?;
     if !path.left_out.is_empty() {
         writeln!(f, "  left out (optional): {}", path.left_out.join(", "))?;
     }

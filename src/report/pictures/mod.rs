@@ -141,16 +141,36 @@ fn reasons_words(pose: &CriticalPose) -> String {
 
 /// What a critical pose's cable is, and which pieces have no static shape there.
 fn static_shape_words(report: &SolveReport, scene: &PoseScene) -> String {
-    if views::shown_candidate(report).is_none() {
+    let Some(shown) = views::shown_candidate(report) else {
         return "No candidate path, so only the robot is drawn.".into();
+    };
+    let path = &shown.path;
+    let zero_length = |m: usize| {
+        path.segments
+            .iter()
+            .zip(&path.lengths)
+            .any(|(&segment, &length)| segment == m && length == 0)
+    };
+    let (mut coincident, mut missing) = (Vec::new(), Vec::new());
+    for (m, s) in report.segments.iter().enumerate() {
+        let piece = s.segment.as_str();
+        if zero_length(m) {
+            coincident.push(piece);
+        } else if !scene.cable.iter().any(|line| line.name == piece) {
+            missing.push(piece);
+        }
     }
-    let missing: Vec<&str> = report
-        .segments
-        .iter()
-        .map(|s| s.segment.as_str())
-        .filter(|piece| !scene.cable.iter().any(|line| line.name == *piece))
-        .collect();
     let mut words = "The cable is drawn in its static shape at this pose.".to_string();
+    match coincident.as_slice() {
+        [] => {}
+        [one] => words += &format!(" Cable piece {one} has no length: its two clamps are one."),
+        many => {
+            words += &format!(
+                " Cable pieces {} have no length: the two clamps of each are one.",
+                many.join(", ")
+            )
+        }
+    }
     if !missing.is_empty() {
         words += &format!(
             " No static shape found for cable piece {}: not drawn.",
