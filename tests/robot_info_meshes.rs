@@ -449,3 +449,34 @@ fn a_cube_with_a_hole_is_warned_about_naming_link_and_file_and_a_clean_cube_is_n
     assert_eq!(report["warnings"], Value::Array(Vec::new()));
     assert!(!self::text(&urdf).contains("warning"));
 }
+
+/// The joint table of every real robot stays aligned whatever its names' lengths (the UR5's
+/// `base_link-base_link_inertia` pushed every later column): each column starts at the same
+/// character in every row, found from the header's titles.
+#[test]
+fn the_joint_table_is_aligned_with_long_names() {
+    for robot in ROBOTS {
+        let urdf = robots_folder().join(robot);
+        let output = run(&["robot-info", urdf.to_str().unwrap()]);
+        let text = String::from_utf8_lossy(&output.stdout);
+        let lines: Vec<&str> = text.lines().collect();
+        let header = lines
+            .iter()
+            .position(|l| l.starts_with("#") && l.contains("parent → child"))
+            .expect("a joint table");
+        let columns = |line: &str| -> Vec<usize> {
+            // Character positions where a cell starts after a run of spaces.
+            let chars: Vec<char> = line.chars().collect();
+            (1..chars.len())
+                .filter(|&i| chars[i] != ' ' && chars[i - 1] == ' ')
+                .collect()
+        };
+        let title = |name: &str| lines[header].split(name).next().unwrap().chars().count();
+        let (joint, kind) = (title("joint"), title("type"));
+        for line in lines[header + 1..].iter().take_while(|l| !l.is_empty()) {
+            let starts = columns(line);
+            assert!(starts.contains(&joint), "{robot}: «{line}»");
+            assert!(starts.contains(&kind), "{robot}: «{line}»");
+        }
+    }
+}

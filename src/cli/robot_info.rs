@@ -4,6 +4,7 @@ use super::{Failure, emit, print_json, tidy};
 use cable_dict::pose::Pose;
 use cable_dict::robot::shells::{SelfCrossing, Shell, ShellKind};
 use cable_dict::robot::{Collider, Joint, JointDrive, Robot, Shape, TriMesh};
+use cable_dict::text_table::{Align, TextTable};
 use serde::Serialize;
 use std::fmt;
 use std::path::PathBuf;
@@ -464,11 +465,18 @@ impl fmt::Display for RobotTables<'_> {
             robot.dof()
         )?;
         writeln!(f)?;
-        writeln!(
-            f,
-            "{:<3} {:<14} {:<11} {:<24} {:<14} {:>18} {:>10}",
-            "#", "joint", "type", "parent → child", "axis", "limits", "max speed"
-        )?;
+        let mut joints = TextTable::new(
+            0,
+            &[
+                ("#", Align::Left),
+                ("joint", Align::Left),
+                ("type", Align::Left),
+                ("parent → child", Align::Left),
+                ("axis", Align::Left),
+                ("limits", Align::Right),
+                ("max speed", Align::Right),
+            ],
+        );
         for joint in &robot.joints {
             let index = match joint.drive {
                 JointDrive::Actuated { index } => index.to_string(),
@@ -488,21 +496,20 @@ impl fmt::Display for RobotTables<'_> {
                 .and_then(|l| l.velocity)
                 .map_or("-".into(), |v| format!("{:.0} {unit}/s", v * scale));
             let a = joint.axis;
-            writeln!(
-                f,
-                "{:<3} {:<14} {:<11} {:<24} {:<14} {:>18} {:>10}",
+            joints.row(vec![
                 index,
-                joint.name,
-                joint.kind.urdf_name(),
+                joint.name.clone(),
+                joint.kind.urdf_name().to_string(),
                 format!(
                     "{} → {}",
                     robot.links[joint.parent_link].name, robot.links[joint.child_link].name
                 ),
                 format!("({:.2},{:.2},{:.2})", a.x, a.y, a.z),
                 limits,
-                speed
-            )?;
+                speed,
+            ]);
         }
+        write!(f, "{joints}")?;
         writeln!(f)?;
         writeln!(
             f,
