@@ -1,7 +1,8 @@
 //! Strings from inputs (names in setups, URDFs and dictionaries, file names) shown safely:
 //! on a terminal, in HTML or SVG, and in Markdown. A name is shown as written, never obeyed:
 //! `<img onerror=…>` stays text on a page, an ANSI escape sequence stays text on a terminal.
-//! JSON needs nothing here: serde escapes control characters itself.
+//! In JSON, serde escapes the control characters below U+0020; [`json`] escapes the others a
+//! terminal would obey.
 
 use std::borrow::Cow;
 use std::fmt::Write;
