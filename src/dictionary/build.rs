@@ -515,15 +515,15 @@ fn header(
     }
 }
 
-/// `Ok` when `header` and `directions` are what a build of `setup` (the embedded one)
-/// writes: the documented direction sample for the header's count, the same solver
+/// `Ok` (with the link catalogues of `setup`, for the records' checks) when `header` and
+/// `directions` are what a build of `setup` (the embedded one) writes: the documented direction sample for the header's count, the same solver
 /// settings, catalogues, lengths and grid; else the first part that differs. Only the
 /// fields the margins determine (|D1|, |D2|, the error bounds) are not derived here.
 pub(super) fn check_derivation(
     header: &Header,
     directions: &[[f64; 3]],
     setup: &Setup,
-) -> Result<(), Problem> {
+) -> Result<Vec<LinkCatalogue>, Problem> {
     let count = header.directions.count as usize;
     if !(MIN_DIRECTION_COUNT..=MAX_DIRECTION_COUNT).contains(&count) {
         return Err(Problem::Header(format!(
@@ -556,7 +556,7 @@ pub(super) fn check_derivation(
         .shard
         .map(|s| ShardRange::new(s.index, s.count, expected.pv_total));
     match first_difference(&expected, header) {
-        None => Ok(()),
+        None => Ok(catalogues),
         Some(part) => Err(Problem::Header(format!(
             "{part} is not what a build of the embedded setup writes (forged or from \
              another version: rebuild it)"
@@ -667,8 +667,7 @@ pub(super) fn finalize(built: &mut Built, robustness: &Robustness) {
     let sets = all_direction_sets(&built.header, &built.pvs, &built.results, robustness);
     for (record, (d1, d2)) in built.pvs.iter_mut().zip(&sets) {
         record.flags &= !(PvRecord::D1_ALL | PvRecord::D2_ALL);
-        record.flags |=
-            if *d1 { PvRecord::D1_ALL } else { 0 } | if *d2 { PvRecord::D2_ALL } else { 0 };
+        record.flags |= all_direction_flags(*d1, *d2);
     }
     for entry in &mut built.header.links {
         let block = entry.first_pv as usize..(entry.first_pv + entry.pv_count()) as usize;
@@ -676,6 +675,11 @@ pub(super) fn finalize(built: &mut Built, robustness: &Robustness) {
         entry.d1_all = of_link.iter().filter(|(d1, _)| *d1).count() as u64;
         entry.d2_all = of_link.iter().filter(|(_, d2)| *d2).count() as u64;
     }
+}
+
+/// The D1_ALL and D2_ALL bits of a record that belongs to D1 and to D2 at every direction.
+fn all_direction_flags(d1: bool, d2: bool) -> u16 {
+    (if d1 { PvRecord::D1_ALL } else { 0 }) | (if d2 { PvRecord::D2_ALL } else { 0 })
 }
 
 /// Per record of a whole dictionary, whether it belongs to D1 and to D2 at every stored
@@ -722,23 +726,21 @@ fn all_direction_sets(
 /// records `verify --recompute` draws from.
 pub(super) fn check_flags(
     setup: &Setup,
+    catalogues: &[LinkCatalogue],
     header: &Header,
     pvs: &[PvRecord],
     results: &[MarginRecord],
 ) -> Result<(), Problem> {
-    let (_, candidate_lengths) = catalogue_lengths(setup);
-    let catalogues = link_catalogues(setup, &candidate_lengths);
     let stored = header.stored_pvs();
     let whole = header.shard.is_none();
     let sets = whole.then(|| all_direction_sets(header, pvs, results, &setup.robustness));
     for (k, record) in pvs.iter().enumerate() {
         let g = stored.start + k as u64;
-        let mut expected = pv_record(&catalogues, header, g).flags;
+        let mut expected = pv_record(catalogues, header, g).flags;
         let mut compared = PvRecord::ADMISSIBLE | PvRecord::CANDIDATE;
         if let Some(sets) = &sets {
             let (d1, d2) = sets[k];
-            expected |=
-                if d1 { PvRecord::D1_ALL } else { 0 } | if d2 { PvRecord::D2_ALL } else { 0 };
+            expected |= all_direction_flags(d1, d2);
             compared |= PvRecord::D1_ALL | PvRecord::D2_ALL;
         }
         let differing = (record.flags ^ expected) & compared;

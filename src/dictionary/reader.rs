@@ -2,6 +2,7 @@
 //! zero-copy access to its records; [`Dictionary::verify`] checks every byte.
 
 use super::build::check_derivation;
+use super::catalogue::LinkCatalogue;
 use super::error::{DictionaryError, Problem};
 use super::format::{
     Header, Layout, LinkEntry, MarginRecord, PHYSICS_VERSION, PvRecord, SectionKind, parse,
@@ -116,8 +117,10 @@ impl Dictionary {
         verify_sections(&self.map, &self.layout).map_err(error)?;
         check_records(self.header(), self.pv_records(), self.results()).map_err(error)?;
         let setup = self.embedded().map_err(error)?;
-        check_setup_meaning(self.header(), self.directions(), setup).map_err(error)?;
-        super::build::check_flags(setup, self.header(), self.pv_records(), self.results())
+        let catalogues =
+            check_setup_meaning(self.header(), self.directions(), setup).map_err(error)?;
+        let (header, records) = (self.header(), self.pv_records());
+        super::build::check_flags(setup, &catalogues, header, records, self.results())
             .map_err(error)?;
         let _ = self.verified.set(());
         Ok(())
@@ -271,15 +274,16 @@ fn check_alignment(bytes: &[u8], layout: &Layout) -> Result<(), Problem> {
 /// hash, the physics version is this program's, and the header and `directions` are what a
 /// build of that setup writes.
 pub(super) fn check_meaning(header: &Header, directions: &[[f64; 3]]) -> Result<(), Problem> {
-    check_setup_meaning(header, directions, &embedded_setup(header)?)
+    check_setup_meaning(header, directions, &embedded_setup(header)?).map(|_| ())
 }
 
-/// [`check_meaning`] with the embedded setup already loaded.
+/// [`check_meaning`] with the embedded setup already loaded; the link catalogues a build of
+/// it makes, for the records' checks.
 fn check_setup_meaning(
     header: &Header,
     directions: &[[f64; 3]],
     setup: &Setup,
-) -> Result<(), Problem> {
+) -> Result<Vec<LinkCatalogue>, Problem> {
     check_physics_version(header)?;
     check_derivation(header, directions, setup)
 }

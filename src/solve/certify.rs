@@ -97,12 +97,12 @@ impl<'c, 'e, 'a> Certified<'c, 'e, 'a> {
     fn refuted(&mut self, path: &CablePath) -> Vec<(usize, Pv)> {
         let setup = self.evaluator.setup();
         let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+        let robustness = setup.robustness;
         let mut refuted = Vec::new();
         for (m, pv) in path.pieces().filter(|(_, pv)| pv.sub_segments > 0) {
             if self.lookup.record_of(m, &pv).is_none() {
                 continue;
             }
-            let robustness = setup.robustness;
             let vouched: Vec<Pv> = std::iter::once(pv)
                 .chain(
                     robust_neighbours(&pv, robustness.delta_s, robustness.range)

@@ -469,6 +469,11 @@ impl Lazy<'_, '_> {
 
 impl Chains for Lazy<'_, '_> {
     fn shortest(&mut self) -> Result<Option<CablePath>, SolveError> {
+        // A piece dropped since the last call reopens its pair: decide what the bound now
+        // needs of it before trusting the bound.
+        if let Some(bound) = self.attachment.bound() {
+            self.attachment.widen_to(bound);
+        }
         loop {
             let Some(bound) = self.attachment.bound() else {
                 let Some(first) = self.attachment.lower_bound() else {
@@ -478,8 +483,6 @@ impl Chains for Lazy<'_, '_> {
                 self.attachment.widen_to(next);
                 continue;
             };
-            // A piece dropped since reopens its pair: decide what the bound now needs of it.
-            self.attachment.widen_to(bound);
             let path = chain_search(self.setup, &self.attachment.robust())?.shortest();
             if let Some(path) = &path
                 && path.total_sub_segments() <= bound
