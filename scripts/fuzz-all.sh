@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs every cargo-fuzz target for RUNS executions (default 10⁶) from its seed corpus and
 # prints one line per target: executions, seconds, and whether it found a crash.
-#   bash scripts/fuzz-all.sh [RUNS]
+#   bash scripts/fuzz-all.sh [RUNS] [TARGET …]   (default: every target)
 # Built without a sanitizer (-s none: the parsers are safe Rust; 2–3 times the speed).
 # Needs the nightly toolchain and cargo-fuzz (`cargo install cargo-fuzz`). Seeds: the bundled
 # robots, setups, cables, motions (first 3 kB) and dictionaries, copied by this script.
@@ -16,9 +16,14 @@ seed parse_waypoints ../motions/viper_s850/*.toml
 mkdir -p corpus/parse_motion
 for f in ../motions/viper_s850/*.csv; do head -c 3000 "$f" > "corpus/parse_motion/$(basename "$f")"; done
 seed read_resealed ../dictionaries/*.cdict
+seed read_mesh ../tests/data/tetrahedron.stl ../tests/data/robots/franka_description/meshes/collision/link4.stl
+seed parse_trusted_keys seeds/trusted_keys
+seed check_signatures seeds/check_signatures.sig
 cargo +nightly fuzz build -O -s none >/dev/null 2>&1 || { echo "fuzz build failed" >&2; exit 2; }
 status=0
-for target in parse_urdf parse_cable parse_setup parse_motion parse_waypoints read_dictionary read_resealed dictionary_structured; do
+targets=("${@:2}")
+[ ${#targets[@]} -gt 0 ] || targets=(parse_urdf parse_cable parse_setup parse_motion parse_waypoints read_dictionary read_resealed dictionary_structured read_mesh parse_trusted_keys check_signatures)
+for target in "${targets[@]}"; do
   log="artifacts/$target.log"
   mkdir -p artifacts
   start=$(date +%s)

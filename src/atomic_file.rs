@@ -51,6 +51,31 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> io::Result<()> {
     result
 }
 
+/// Writes `bytes` to `path`, which must not exist yet, with permissions `mode` on Unix (0o600
+/// for a secret key: its owner only). Like [`write_atomically`], the file appears whole or
+/// not at all; an existing file (or link) at `path` is an error, never replaced.
+pub fn write_new(path: &Path, bytes: &[u8], mode: u32) -> io::Result<()> {
+    let (dir, name) = split(path)?;
+    let (temp, mut file) = create_exclusively(&dir, &name, |p| {
+        let mut options = OpenOptions::new();
+        options.write(true).create_new(true);
+        #[cfg(unix)]
+        std::os::unix::fs::OpenOptionsExt::mode(&mut options, mode);
+        options.open(p)
+    })?;
+    // A hard link fails on an existing target: no check-then-rename window.
+    let result = file
+        .write_all(bytes)
+        .and_then(|()| file.sync_all())
+        .and_then(|()| fs::hard_link(&temp, path));
+    let _ = fs::remove_file(&temp);
+    unregister(&temp);
+    if result.is_ok() {
+        sync_folder(&dir);
+    }
+    result
+}
+
 /// A folder being filled next to the one it will replace as a whole ([`Self::commit`]);
 /// dropped without a commit, it is removed and the old folder stays as it was.
 #[derive(Debug)]

@@ -75,6 +75,7 @@ pub mod motion_test;
 pub mod path;
 pub mod pose;
 pub mod progress;
+pub mod provenance;
 pub mod report;
 pub mod rigid_chain;
 pub mod robot;

@@ -265,6 +265,60 @@ fn help_explains_every_subcommand() {
     }
 }
 
+/// Every subcommand's help agrees with the README: each section it sends the reader to
+/// exists (a heading or a bold paragraph title), and each time range it quotes is the
+/// README's (issue 27: `build --help` cited an explanation that did not exist, `segment
+/// --help` quoted other solver timings).
+#[test]
+fn every_help_points_to_readme_sections_that_exist_and_quotes_its_timings() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).expect("README");
+    let top = String::from_utf8_lossy(&run(&["--help"]).stdout).into_owned();
+    let commands: Vec<&str> = top
+        .lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|c| *c != "help")
+        .collect();
+    assert!(commands.len() >= 15, "{commands:?}");
+    let (mut references, mut timings) = (0, 0);
+    for command in commands {
+        let help = String::from_utf8_lossy(&run(&[command, "--help"]).stdout).into_owned();
+        let help = help.split_whitespace().collect::<Vec<_>>().join(" ");
+        for cited in help.split("README, ").skip(1) {
+            // `"Dictionaries", "Direction count": why 32` → each quoted title.
+            let titles = cited.split(':').next().unwrap_or_default();
+            for title in titles.split('"').skip(1).step_by(2) {
+                let heading = readme
+                    .lines()
+                    .any(|l| l.starts_with('#') && l.contains(title));
+                let bold = readme.contains(&format!("**{title}.**"));
+                assert!(
+                    heading || bold,
+                    "`{command} --help` cites README \"{title}\""
+                );
+                references += 1;
+            }
+        }
+        let words: Vec<&str> = help.split(' ').collect();
+        for pair in words
+            .windows(2)
+            .filter(|w| w[0].contains('–') && w[1] == "ms")
+        {
+            let range = format!("{} ms", pair[0].trim_start_matches('('));
+            assert!(readme.contains(&range), "`{command} --help` quotes {range}");
+            timings += 1;
+        }
+    }
+    assert!(
+        references >= 2,
+        "the help cites the README {references} times"
+    );
+    assert!(timings >= 2, "the help quotes {timings} timings");
+}
+
 /// The README's own segment example is a cable that holds its limits: its static
 /// equilibrium is judged ok, and the start shape (not a cable at rest) is not judged
 /// (issue 18: the example printed "TOO TIGHT").

@@ -305,7 +305,7 @@ fn write_shards(dir: &Path, tag: &str, shards: &[&Built]) -> Vec<PathBuf> {
 }
 
 fn merge_error(paths: &[PathBuf], culprit: &Path, words: &str) {
-    let error = merge(paths).expect_err("the shards do not make one dictionary");
+    let error = merge(paths, None).expect_err("the shards do not make one dictionary");
     assert!(matches!(error.problem, Problem::Merge(_)), "{error}");
     assert_names(&error, culprit, words);
 }
@@ -338,7 +338,7 @@ fn overlapping_missing_and_whole_files_do_not_merge() {
     write_dictionary(&whole_path, whole).expect("written");
 
     // The halves alone do merge: the failures below come from what was added or left out.
-    merge(&halves).expect("the halves merge");
+    merge(&halves, None).expect("the halves merge");
     let twice = [halves[0].clone(), halves[0].clone(), halves[1].clone()];
     merge_error(&twice, &halves[0], "overlap");
     merge_error(&thirds, &thirds[1], "missing");
@@ -377,7 +377,46 @@ fn shards_given_out_of_order_merge_to_the_single_builds_bytes() {
         .map(|i| fixture(setup, DIRECTIONS, Some((i, 3))))
         .into();
     let paths = write_shards(dir.path(), "all", &thirds.iter().collect::<Vec<_>>());
-    let merged = merge(&paths).expect("the shards merge");
+    let merged = merge(&paths, None).expect("the shards merge");
+    assert_eq!(
+        merged.to_bytes().expect("encodes"),
+        whole.to_bytes().expect("encodes")
+    );
+}
+
+#[test]
+fn merge_requiring_signatures_refuses_unsigned_and_untrusted_shards() {
+    use cable_dict::provenance::{SecretKey, TrustedKeys};
+    let (setup, whole) = whole();
+    let dir = tempfile::tempdir().expect("temp dir");
+    let halves = [
+        fixture(setup, DIRECTIONS, Some((0, 2))),
+        fixture(setup, DIRECTIONS, Some((1, 2))),
+    ];
+    let paths = write_shards(dir.path(), "signed", &[&halves[0], &halves[1]]);
+    let (builder, stranger) = (
+        SecretKey::from_seed([5; 32], "shard builder"),
+        SecretKey::from_seed([6; 32], "stranger"),
+    );
+    let trusted =
+        TrustedKeys::parse(&builder.public().to_line(), Path::new("keys")).expect("the key parses");
+    let sign = |path: &Path, key: &SecretKey| {
+        Dictionary::open(path)
+            .expect("opens")
+            .sign(key)
+            .expect("signs");
+    };
+    let refused = |culprit: &Path, words: &str| {
+        let error = merge(&paths, Some(&trusted)).expect_err("a shard is not trusted");
+        assert!(matches!(error.problem, Problem::Provenance(_)), "{error}");
+        assert_names(&error, culprit, words);
+    };
+    sign(&paths[0], &builder);
+    refused(&paths[1], "unsigned");
+    sign(&paths[1], &stranger);
+    refused(&paths[1], "not in keys");
+    sign(&paths[1], &builder);
+    let merged = merge(&paths, Some(&trusted)).expect("both shards are signed by the builder");
     assert_eq!(
         merged.to_bytes().expect("encodes"),
         whole.to_bytes().expect("encodes")
@@ -717,7 +756,7 @@ fn shards_without_directions_are_refused_by_merge_without_a_panic() {
             path
         })
         .collect();
-    let error = merge(&paths).expect_err("a shard without directions does not verify");
+    let error = merge(&paths, None).expect_err("a shard without directions does not verify");
     assert!(
         error.to_string().contains("0 gravity directions"),
         "{error}"

@@ -205,7 +205,7 @@ libfuzzer_sys::fuzz_target!(|data: &[u8]| {
             std::fs::write(&paths[1], shards[1].to_bytes().ok()?).ok()
         });
         if written.is_some() {
-            let _ = merge(&paths);
+            let _ = merge(&paths, None);
         }
         for path in &paths {
             let _ = std::fs::remove_file(path);

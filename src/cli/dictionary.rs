@@ -1,12 +1,14 @@
 //! `cable-dict build`, `info`, `verify` and `merge`: dictionaries from the command line.
 
 use super::solve::open_verified;
-use super::{Failure, emit, print_json};
+use super::{Failure, emit, print_json, provenance};
 use cable_dict::dictionary::{
     BuildOptions, DEFAULT_DIRECTION_COUNT, Dictionary, Info, RECOMPUTE_TOLERANCE_UNITS,
     RecomputeChoice, UNDECIDED_SAMPLE_DIRECTIONS, build, merge, write_dictionary,
 };
+use cable_dict::provenance::TrustedKeys;
 use cable_dict::setup::Setup;
+use cable_dict::text_table::{Align, TextTable};
 use std::collections::hash_map::RandomState;
 use std::fmt::Write as _;
 use std::hash::{BuildHasher, Hasher};
@@ -103,11 +105,19 @@ pub struct InfoArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    /// Look the signers up in these public keys (see `verify`).
+    #[arg(long, value_name = "FILE")]
+    trusted_keys: Option<PathBuf>,
 }
 
 pub fn run_info(args: InfoArgs) -> Result<(), Failure> {
     let dictionary = Dictionary::open(&args.dict).map_err(Failure::input)?;
-    let info = Info::of(&dictionary);
+    let mut info = Info::of(&dictionary);
+    // A signature that does not hold is shown, not an error: `info` describes what is there.
+    match provenance::check(&dictionary, args.trusted_keys.as_deref(), false) {
+        Ok(provenance) => info.provenance = Some(provenance),
+        Err(failure) => info.signature_problem = Some(format!("{:#}", failure.error)),
+    }
     if args.json {
         return print_json(&info);
     }
@@ -128,6 +138,12 @@ fn describe(info: &Info) -> String {
             .map(|s| format!(", shard {s} ({} of {} PVs)", info.pv_records, info.pv_total))
             .unwrap_or_default()
     );
+    if let Some(provenance) = &info.provenance {
+        let _ = writeln!(text, "{}", provenance.describe());
+    }
+    if let Some(problem) = &info.signature_problem {
+        let _ = writeln!(text, "the signature does not hold: {problem}");
+    }
     let _ = writeln!(
         text,
         "setup {} (hash {}): robot {}, cable {}",
@@ -145,49 +161,53 @@ fn describe(info: &Info) -> String {
             info.mesh_files
         );
     }
+    let _ = write!(text, "\n{}", link_table(info));
     let _ = writeln!(
         text,
-        "\nlink        clamp places  lengths (S)        pieces  candidates  hold at all  robust at all\n\
-         {:>79}",
-        "(every stored direction)"
-    );
-    for s in &info.links {
-        let _ = writeln!(
-            text,
-            "  {:<10} {:>12}  {:>3} to {:<3} ({:>2}) {:>9} {:>11} {:>12} {:>13}",
-            s.link,
-            s.clamps,
-            s.lengths[0],
-            s.lengths[1],
-            s.length_count,
-            s.pvs,
-            s.candidates,
-            s.d1_all,
-            s.d2_all
-        );
-    }
-    let _ = writeln!(
-        text,
-        "\nlargest error factor of a piece (its interpolation error per unit of neighbour spread \
-         × 1.5, measured leaving each direction out and at {} probe directions):",
+        "\nhold, robust: pieces that hold the limits (D1), and robustly (D2), at every stored \
+         direction. error factor: the piece's largest interpolation error per unit of \
+         neighbour spread × 1.5, measured leaving each direction out and at {} probe \
+         directions. undecided: lookups of candidate pieces the margins cannot decide, solved \
+         exactly instead (over {UNDECIDED_SAMPLE_DIRECTIONS} gravity directions spread over \
+         the sphere).",
         info.probes
+    );
+    text
+}
+
+/// One row per link's clamp catalogue, columns as wide as their cells.
+fn link_table(info: &Info) -> TextTable {
+    use Align::{Left, Right};
+    let mut table = TextTable::new(
+        2,
+        &[
+            ("link", Left),
+            ("clamp places", Right),
+            ("lengths (S)", Right),
+            ("pieces", Right),
+            ("candidates", Right),
+            ("hold", Right),
+            ("robust", Right),
+            ("error factor", Right),
+            ("undecided", Right),
+        ],
     );
     for s in &info.links {
         // One factor per piece serves all three margins (a branch change moves the whole shape).
-        let _ = writeln!(text, "  {:<10} {:.3}", s.link, s.margin_error[0]);
+        table.row(vec![
+            s.link.clone(),
+            s.clamps.to_string(),
+            format!("{} to {} ({})", s.lengths[0], s.lengths[1], s.length_count),
+            s.pvs.to_string(),
+            s.candidates.to_string(),
+            s.d1_all.to_string(),
+            s.d2_all.to_string(),
+            format!("{:.3}", s.margin_error[0]),
+            s.undecided_share
+                .map_or("-".to_string(), |u| format!("{:.1} %", 100.0 * u)),
+        ]);
     }
-    let _ = writeln!(
-        text,
-        "\nundecided: lookups of candidate pieces the margins cannot decide, solved exactly \
-         instead (over {UNDECIDED_SAMPLE_DIRECTIONS} gravity directions spread over the sphere):"
-    );
-    for s in &info.links {
-        let share = s
-            .undecided_share
-            .map_or("-".to_string(), |u| format!("{:.1} %", 100.0 * u));
-        let _ = writeln!(text, "  {:<10} {share}", s.link);
-    }
-    text
+    table
 }
 
 #[derive(Debug, clap::Args)]
@@ -202,6 +222,8 @@ pub struct VerifyArgs {
     /// Seed of the random draw (default: a fresh one, printed so the draw can be repeated).
     #[arg(long, requires = "recompute")]
     seed: Option<u64>,
+    #[command(flatten)]
+    trust: provenance::Trust,
 }
 
 /// `--recompute N` or `--recompute all`.
@@ -225,13 +247,15 @@ fn recompute_arg(text: &str) -> Result<Recount, String> {
 
 pub fn run_verify(args: VerifyArgs) -> Result<(), Failure> {
     let dictionary = open_verified(&args.dict)?;
+    let provenance = args.trust.check(&dictionary)?;
     let mut out = format!(
         "{}: ok ({} bytes; every section checksum and {} piece records × {} directions verified; \
-         the header is what a build of the embedded setup writes)\n",
+         the header is what a build of the embedded setup writes)\n{}\n",
         args.dict.display(),
         dictionary.file_len(),
         dictionary.pv_records().len(),
-        dictionary.directions().len()
+        dictionary.directions().len(),
+        provenance.describe()
     );
     if let Some(recount) = args.recompute {
         let seed = args
@@ -274,10 +298,23 @@ pub struct MergeArgs {
     /// The whole dictionary to write; replaced atomically.
     #[arg(short, long, value_name = "DICT.cdict")]
     output: PathBuf,
+    /// Public keys whose signatures you accept (see `verify`).
+    #[arg(long, value_name = "FILE", requires = "require_signatures")]
+    trusted_keys: Option<PathBuf>,
+    /// Refuse shards that a key in --trusted-keys has not signed (each shard's signature
+    /// must hold). The merged file is unsigned: sign it in turn.
+    #[arg(long, requires = "trusted_keys")]
+    require_signatures: bool,
 }
 
 pub fn run_merge(args: MergeArgs) -> Result<(), Failure> {
-    let built = merge(&args.shards).map_err(Failure::input)?;
+    let trusted = args
+        .trusted_keys
+        .as_deref()
+        .map(TrustedKeys::read)
+        .transpose()
+        .map_err(Failure::input)?;
+    let built = merge(&args.shards, trusted.as_ref()).map_err(Failure::input)?;
     write_dictionary(&args.output, &built).map_err(Failure::input)?;
     emit(&format!(
         "wrote {}: {} shards merged, {} cable pieces × {} gravity directions\n",
@@ -286,4 +323,66 @@ pub fn run_merge(args: MergeArgs) -> Result<(), Failure> {
         built.pvs.len(),
         built.directions.len()
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cable_dict::dictionary::LinkInfo;
+
+    fn link(name: &str, clamps: usize) -> LinkInfo {
+        LinkInfo {
+            link: name.into(),
+            lengths: [0, 37],
+            length_count: 38,
+            clamps,
+            pvs: 38 * (clamps * clamps) as u64,
+            candidates: 12_345,
+            d1_all: 7,
+            d2_all: 0,
+            margin_error: [15.9375; 3],
+            undecided_share: Some(0.017),
+        }
+    }
+
+    /// Long vendor link names do not shift the columns after them: every right-aligned
+    /// column ends at the same character in every line, the title's included.
+    #[test]
+    fn the_link_table_keeps_its_columns_with_long_names() {
+        let info = Info {
+            file: "x.cdict".into(),
+            file_bytes: 0,
+            format_version: 3,
+            physics_version: 6,
+            setup_file: "s.toml".into(),
+            setup_hash: "0".into(),
+            robot: "r".into(),
+            cable: "c".into(),
+            directions: 32,
+            direction_method: "fibonacci".into(),
+            probes: 16,
+            covering_radius_deg: 20.0,
+            solver: "hermite".into(),
+            shard: None,
+            pv_total: 0,
+            pv_records: 0,
+            mesh_files: 0,
+            links: vec![link("l3", 7), link("kr6r900sixx_link_4_with_flange", 123)],
+            provenance: None,
+            signature_problem: None,
+        };
+        let text = link_table(&info).to_string();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 3, "{text}");
+        let ends = |line: &str, cell: &str| line.find(cell).map(|at| at + cell.len());
+        let title_end = ends(lines[0], "clamp places").expect("title");
+        assert_eq!(ends(lines[1], " 7 "), Some(title_end + 1), "{text}");
+        assert_eq!(ends(lines[2], " 123 "), Some(title_end + 1), "{text}");
+        let undecided = ends(lines[0], "undecided").expect("title");
+        assert!(
+            lines[1..]
+                .iter()
+                .all(|l| l.ends_with("1.7 %") && l.len() == undecided)
+        );
+    }
 }

@@ -6,6 +6,7 @@ mod dictionary;
 mod fk;
 mod motion;
 mod progress_bars;
+mod provenance;
 mod robot_info;
 mod scene;
 mod segment;
@@ -60,6 +61,10 @@ enum Command {
     Verify(dictionary::VerifyArgs),
     /// Merge the shards of a sharded build into one dictionary.
     Merge(dictionary::MergeArgs),
+    /// Make an Ed25519 key pair to sign dictionaries with (PREFIX.key, PREFIX.pub).
+    Keygen(provenance::KeygenArgs),
+    /// Sign a dictionary: the signature goes to DICT.cdict.sig beside it.
+    Sign(provenance::SignArgs),
     /// A cable file (EI, GJ) from bench measurements: the droop of a horizontal cantilever,
     /// a twist test or a stated GJ/EI.
     Calibrate(Box<calibrate::Args>),
@@ -108,6 +113,8 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Info(args) => dictionary::run_info(args),
         Command::Verify(args) => dictionary::run_verify(args),
         Command::Merge(args) => dictionary::run_merge(args),
+        Command::Keygen(args) => provenance::run_keygen(args),
+        Command::Sign(args) => provenance::run_sign(args),
         Command::Calibrate(args) => calibrate::run(*args),
     }
 }

@@ -27,6 +27,8 @@ pub struct Args {
     /// same sets as solving them, faster; the pieces its margins cannot decide are solved.
     #[arg(long, value_name = "DICT.cdict")]
     dict: Option<PathBuf>,
+    #[command(flatten)]
+    trust: super::provenance::Trust,
     /// The motion CSV (see motions/README.md).
     motion: PathBuf,
     /// Print the result as JSON instead of the summary.
@@ -105,6 +107,22 @@ pub fn run(args: Args) -> Result<(), Failure> {
         check_report_folder(dir).map_err(Failure::input)?;
     }
     let dictionary = args.dict.as_deref().map(open_verified).transpose()?;
+    let provenance = match &dictionary {
+        Some(dictionary) => {
+            let provenance = args.trust.check(dictionary)?;
+            if !provenance.is_trusted() {
+                // Accepted: every piece an answer takes from the file is solved again.
+                log::warn!("{}: {}", dictionary.path().display(), provenance.describe());
+            }
+            Some(provenance)
+        }
+        None if args.trust.is_given() => {
+            return Err(Failure::input(anyhow::anyhow!(
+                "--trusted-keys and --require-signature check a dictionary: give --dict"
+            )));
+        }
+        None => None,
+    };
     let setup = match (&args.setup, &dictionary) {
         (Some(path), _) => Setup::from_file(path).map_err(Failure::input)?,
         (None, Some(dictionary)) => dictionary.setup().map_err(Failure::input)?,
@@ -152,6 +170,9 @@ pub fn run(args: Args) -> Result<(), Failure> {
         SolveError::Chain(_) | SolveError::MotionTest(_) => Failure::unsolved(e),
     })?;
     report.inputs.motion_file = Some(args.motion.display().to_string());
+    if let Some(used) = &mut report.inputs.dictionary {
+        used.provenance = provenance;
+    }
     if let Some(path) = &args.output {
         let text = cable_dict::json::to_pretty_string(&report)
             .map_err(|e| Failure::unsolved(anyhow::anyhow!("cannot encode the result: {e}")))?;

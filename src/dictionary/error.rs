@@ -134,4 +134,18 @@ pub enum Problem {
     /// The build cannot run for this setup or these options.
     #[error("{0}")]
     Build(String),
+    /// A signature that does not hold, or a signature required and missing.
+    #[error("{0}")]
+    Provenance(String),
+}
+
+impl From<crate::provenance::ProvenanceError> for DictionaryError {
+    /// Names the file the provenance error blames (the signature file, or the dictionary).
+    fn from(error: crate::provenance::ProvenanceError) -> Self {
+        let at = error
+            .line
+            .map(|l| format!("line {l}: "))
+            .unwrap_or_default();
+        DictionaryError::new(error.file, Problem::Provenance(at + &error.problem))
+    }
 }

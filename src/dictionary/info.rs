@@ -44,6 +44,11 @@ pub struct Info {
     pub mesh_files: usize,
     /// The links' clamp catalogues.
     pub links: Vec<LinkInfo>,
+    /// Who signed the file (`None` until the caller checks the signatures:
+    /// [`Dictionary::provenance`], or when they do not hold).
+    pub provenance: Option<crate::provenance::Provenance>,
+    /// Why the signatures beside the file do not hold, when they do not.
+    pub signature_problem: Option<String>,
 }
 
 /// One link's clamp catalogue in a dictionary.
@@ -137,6 +142,8 @@ impl Info {
             pv_records: records.len(),
             mesh_files: header.setup.meshes.len(),
             links,
+            provenance: None,
+            signature_problem: None,
         }
     }
 }

@@ -5,16 +5,26 @@ use super::build::{Built, finalize};
 use super::error::{DictionaryError, Problem};
 use super::format::{Header, ShardRange};
 use super::reader::{Dictionary, embedded_setup};
+use crate::provenance::TrustedKeys;
 use std::path::PathBuf;
 
-/// Merges the shard files `paths` (any order). Each is verified; they must come from one
+/// Merges the shard files `paths` (any order). Each is verified, and with
+/// `require_signed_by` must carry a signature by one of those keys; they must come from one
 /// build (same header apart from the shard range, same shard count) and cover every PV
 /// exactly once.
-pub fn merge(paths: &[PathBuf]) -> Result<Built, DictionaryError> {
+pub fn merge(
+    paths: &[PathBuf],
+    require_signed_by: Option<&TrustedKeys>,
+) -> Result<Built, DictionaryError> {
     let mut shards = Vec::with_capacity(paths.len());
     for path in paths {
         let dictionary = Dictionary::open(path)?;
         dictionary.verify()?;
+        if let Some(trusted) = require_signed_by {
+            dictionary
+                .provenance(Some(trusted))?
+                .require_trusted(path)?;
+        }
         let Some(range) = dictionary.header().shard else {
             return Err(merge_error(path, "a whole dictionary, not a shard".into()));
         };

@@ -9,6 +9,7 @@ use super::format::{
     verify_sections,
 };
 use crate::path::Pv;
+use crate::provenance::{Provenance, ProvenanceError, SecretKey, TrustedKeys};
 use crate::setup::Setup;
 use memmap2::Mmap;
 use std::fs::File;
@@ -50,6 +51,17 @@ impl Dictionary {
             embedded: OnceLock::new(),
             verified: OnceLock::new(),
         })
+    }
+
+    /// Who signed this file ([`crate::provenance::check`]: every signature beside it must
+    /// hold for these bytes), its signers looked up in `trusted`.
+    pub fn provenance(&self, trusted: Option<&TrustedKeys>) -> Result<Provenance, ProvenanceError> {
+        crate::provenance::check(&self.path, &self.map, trusted)
+    }
+
+    /// Signs this file with `key` ([`crate::provenance::sign`]).
+    pub fn sign(&self, key: &SecretKey) -> Result<Provenance, ProvenanceError> {
+        crate::provenance::sign(&self.path, &self.map, key)
     }
 
     /// The file it was opened from.

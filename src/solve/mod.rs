@@ -296,6 +296,7 @@ fn dictionary_use(
             })
             .collect(),
         certification,
+        provenance: None,
     }
 }
 

@@ -284,6 +284,9 @@ pub struct DictionaryUse {
     pub segments: Vec<DictionarySegmentUse>,
     /// The exact checks of the pieces the offered chains took from the file.
     pub certification: Certification,
+    /// Who signed the file, as the command line checked it; `None`: not checked (a library
+    /// caller's business, [`crate::dictionary::Dictionary::provenance`]).
+    pub provenance: Option<crate::provenance::Provenance>,
 }
 
 /// How a dictionary answered for one intra-link segment.
@@ -891,6 +894,9 @@ impl fmt::Display for SolveReport {
             }
             for disagreement in &c.disagreements {
                 writeln!(f, "  {}", disagreement.describe(&d.file))?;
+            }
+            if let Some(provenance) = &d.provenance {
+                writeln!(f, "  {}", provenance.describe())?;
             }
         }
         if let (Some(path), Some(total)) = (&self.optimal, self.optimal_length_mm) {

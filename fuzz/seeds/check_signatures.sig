@@ -1,0 +1,2 @@
+# cable-dict signatures of the dictionary beside this file, one line per signer (cable-dict verify --trusted-keys FILE checks them)
+cable-dict-signature v1 ed25519 fd1724385aa0c75b64fb78cd602fa1d991fdebf76b13c58ed702eac835e9f618 0ec0551a80792bbc907e30e6137d9d1ab3f3d94258e9a6ec811e7d4c5e346c88f95caff9ceac2a754faa12ba7b2795a99cf47a2e5b840ce82168848f79789800 2903a5143d708bd8b15a9bf4cbe448e856d543ca29241b8409917903eed365d58bd4130208d2b92a4d27e32a267f95fd341f71dce6f2654b04ec6b20b1c952ef 4 fuzz seed

@@ -1,0 +1,399 @@
+//! The signature file beside a dictionary, `DICT.cdict.sig`: one line per signer,
+//! `cable-dict-signature v1 ed25519 KEY SIGNATURE FILE-SHA512 FILE-BYTES NAME`. Each signs a
+//! short statement — the dictionary's length, its SHA-512 and the signer's name — so a line
+//! copied to another file, or a name changed, no longer verifies.
+
+use super::keys::{check_name, next_word};
+use super::{ProvenanceError, PublicKey, SecretKey, TrustedKeys, content_lines, hex, unhex};
+use crate::atomic_file::write_atomically;
+use crate::input::{self, FileKind};
+use ed25519_dalek::Signature;
+use serde::Serialize;
+use sha2::{Digest, Sha512};
+use std::path::{Path, PathBuf};
+
+/// First word of a signature line.
+const TAG: &str = "cable-dict-signature";
+/// Version of the signed statement.
+const VERSION: &str = "v1";
+/// Largest signature file read (bytes).
+pub const SIGNATURE_FILE_LIMIT: u64 = 1 << 20;
+/// Most signers of one dictionary.
+pub const MAX_SIGNATURES: usize = 64;
+
+const SIGNATURE_FILE: FileKind = FileKind {
+    what: "signature file",
+    limit_bytes: SIGNATURE_FILE_LIMIT,
+};
+
+/// One signer whose signature holds for the dictionary.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Signer {
+    /// The name the signer gave its key: self-declared, only `trusted_as` is vouched for.
+    pub name: String,
+    /// The public key: `ed25519:` and 64 hexadecimal digits.
+    pub key: String,
+    /// The key's name in the trusted-keys file; `None` when the key is not in it (or no
+    /// trusted keys were given).
+    pub trusted_as: Option<String>,
+}
+
+/// Who signed a dictionary, and whether the signers are trusted.
+#[derive(Debug, Clone, PartialEq, Eq, Default, Serialize)]
+pub struct Provenance {
+    /// The signature file; `None`: the dictionary is unsigned.
+    pub signature_file: Option<String>,
+    /// Every signer, in the file's order (each signature verified).
+    pub signers: Vec<Signer>,
+    /// The trusted-keys file the signers were looked up in; `None`: not looked up.
+    pub trusted_keys: Option<String>,
+}
+
+impl Provenance {
+    /// True when at least one signature holds.
+    pub fn is_signed(&self) -> bool {
+        !self.signers.is_empty()
+    }
+
+    /// True when a signer's key is among the trusted keys.
+    pub fn is_trusted(&self) -> bool {
+        self.signers.iter().any(|s| s.trusted_as.is_some())
+    }
+
+    /// Refuses `dictionary` unless a trusted key signed it (`--require-signature`).
+    pub fn require_trusted(&self, dictionary: &Path) -> Result<(), ProvenanceError> {
+        if self.is_trusted() {
+            return Ok(());
+        }
+        let keys = self
+            .trusted_keys
+            .as_deref()
+            .unwrap_or("(no trusted keys given)");
+        let problem = if self.is_signed() {
+            format!(
+                "signed only by keys that are not in {keys}: {}; add the signer's .pub line \
+                 to the trusted keys if you trust it",
+                self.signer_list()
+            )
+        } else {
+            format!(
+                "unsigned (no {}); a signature is required: have its builder run `cable-dict \
+                 sign` with a key in {keys}",
+                signature_path(dictionary).display()
+            )
+        };
+        Err(ProvenanceError::new(dictionary, None, problem))
+    }
+
+    /// One sentence for people: unsigned, or who signed and whether they are trusted.
+    pub fn describe(&self) -> String {
+        if !self.is_signed() {
+            return "unsigned: nothing says who built it (cable-dict sign; --require-signature \
+                    refuses unsigned files)"
+                .into();
+        }
+        let trust = match (&self.trusted_keys, self.is_trusted()) {
+            (None, _) => "; not checked against trusted keys (--trusted-keys FILE)".to_string(),
+            (Some(keys), true) => format!("; trusted by {keys}"),
+            (Some(keys), false) => format!("; no signer is in {keys}"),
+        };
+        format!("signed by {}{trust}", self.signer_list())
+    }
+
+    fn signer_list(&self) -> String {
+        let one = |s: &Signer| {
+            let short = &s.key[..s.key.len().min(24)];
+            match &s.trusted_as {
+                Some(known) if *known != s.name => {
+                    format!("'{}' (key {short}…, trusted as '{known}')", s.name)
+                }
+                _ => format!("'{}' (key {short}…)", s.name),
+            }
+        };
+        let list: Vec<String> = self.signers.iter().map(one).collect();
+        list.join(", ")
+    }
+}
+
+/// The signature file of `dictionary`: its path with `.sig` appended.
+pub fn signature_path(dictionary: &Path) -> PathBuf {
+    let mut name = dictionary.as_os_str().to_os_string();
+    name.push(".sig");
+    PathBuf::from(name)
+}
+
+/// Checks the signatures of the dictionary at `dictionary`, whose bytes are `bytes`: every
+/// line of its signature file must sign exactly these bytes (a stale or forged line is an
+/// error, not skipped); the signers are looked up in `trusted`. No signature file: unsigned.
+pub fn check(
+    dictionary: &Path,
+    bytes: &[u8],
+    trusted: Option<&TrustedKeys>,
+) -> Result<Provenance, ProvenanceError> {
+    let file = signature_path(dictionary);
+    let trusted_keys = trusted.map(|t| t.file().display().to_string());
+    let Some(lines) = read_lines(&file)? else {
+        return Ok(Provenance {
+            trusted_keys,
+            ..Provenance::default()
+        });
+    };
+    if lines.is_empty() {
+        return Err(ProvenanceError::new(
+            &file,
+            None,
+            "holds no signature: remove it, or sign the dictionary (cable-dict sign)",
+        ));
+    }
+    let signed = Signed::of(bytes);
+    let signers = lines
+        .iter()
+        .map(|(line, entry)| {
+            entry
+                .check(&signed, dictionary)
+                .map_err(|problem| ProvenanceError::new(&file, Some(*line), problem))?;
+            Ok(entry.signer(trusted))
+        })
+        .collect::<Result<Vec<_>, ProvenanceError>>()?;
+    Ok(Provenance {
+        signature_file: Some(file.display().to_string()),
+        signers,
+        trusted_keys,
+    })
+}
+
+/// Signs the dictionary at `dictionary` (bytes `bytes`) with `key`: its line is added to the
+/// signature file, or replaces the key's earlier line; the other signers' lines must still
+/// hold. The file is replaced atomically.
+pub fn sign(
+    dictionary: &Path,
+    bytes: &[u8],
+    key: &SecretKey,
+) -> Result<Provenance, ProvenanceError> {
+    let file = signature_path(dictionary);
+    let signed = Signed::of(bytes);
+    let mut lines: Vec<Entry> = Vec::new();
+    for (line, entry) in read_lines(&file)?.unwrap_or_default() {
+        entry.check(&signed, dictionary).map_err(|problem| {
+            let advice = " — remove the signature file to sign the new dictionary afresh";
+            ProvenanceError::new(&file, Some(line), problem + advice)
+        })?;
+        if entry.key.key() != key.public().key() {
+            lines.push(entry);
+        }
+    }
+    lines.push(Entry::new(key, &signed));
+    if lines.len() > MAX_SIGNATURES {
+        return Err(ProvenanceError::new(
+            &file,
+            None,
+            format!("would hold more than {MAX_SIGNATURES} signatures"),
+        ));
+    }
+    let mut text = "# cable-dict signatures of the dictionary beside this file, one line per \
+                    signer (cable-dict verify --trusted-keys FILE checks them)\n"
+        .to_string();
+    for entry in &lines {
+        text.push_str(&entry.to_line());
+    }
+    write_atomically(&file, text.as_bytes())
+        .map_err(|e| ProvenanceError::new(&file, None, format!("cannot write: {e}")))?;
+    check(dictionary, bytes, None)
+}
+
+/// What a signature covers: the dictionary's length and SHA-512.
+#[derive(Clone, Copy)]
+struct Signed {
+    bytes: u64,
+    sha512: [u8; 64],
+}
+
+impl Signed {
+    fn of(bytes: &[u8]) -> Signed {
+        Signed {
+            bytes: bytes.len() as u64,
+            sha512: Sha512::digest(bytes).into(),
+        }
+    }
+
+    /// The statement a signer signs.
+    fn statement(&self, signer: &str) -> Vec<u8> {
+        format!(
+            "cable-dict signature {VERSION}\nfile-bytes {}\nfile-sha512 {}\nsigner {signer}\n",
+            self.bytes,
+            hex(&self.sha512)
+        )
+        .into_bytes()
+    }
+}
+
+/// One line of a signature file.
+struct Entry {
+    /// The signer's key, under the name it signed with.
+    key: PublicKey,
+    signature: Signature,
+    signed: Signed,
+}
+
+impl Entry {
+    fn new(key: &SecretKey, signed: &Signed) -> Entry {
+        Entry {
+            key: key.public(),
+            signature: key.sign(&signed.statement(key.name())),
+            signed: *signed,
+        }
+    }
+
+    fn to_line(&self) -> String {
+        format!(
+            "{TAG} {VERSION} ed25519 {} {} {} {} {}\n",
+            self.key.hex(),
+            hex(&self.signature.to_bytes()),
+            hex(&self.signed.sha512),
+            self.signed.bytes,
+            self.key.name()
+        )
+    }
+
+    fn parse(line: &str) -> Result<Entry, String> {
+        let (tag, rest) = next_word(line);
+        let (version, rest) = next_word(rest);
+        if tag != TAG || version != VERSION {
+            return Err(format!(
+                "starts with '{tag} {version}', not '{TAG} {VERSION}' (a signature file of a \
+                 newer cable-dict, or not a signature file)"
+            ));
+        }
+        let (algorithm, rest) = next_word(rest);
+        if algorithm != "ed25519" {
+            return Err(format!("the algorithm is '{algorithm}', not 'ed25519'"));
+        }
+        let (key, rest) = next_word(rest);
+        let (signature, rest) = next_word(rest);
+        let (sha512, rest) = next_word(rest);
+        let (length, name) = next_word(rest);
+        let digits = |what: &str, text: &str, n: usize| {
+            format!("the {what} '{text}' is not {n} hexadecimal digits")
+        };
+        let key = unhex::<32>(key).ok_or_else(|| digits("key", key, 64))?;
+        let signature =
+            unhex::<64>(signature).ok_or_else(|| digits("signature", signature, 128))?;
+        let sha512 = unhex::<64>(sha512).ok_or_else(|| digits("SHA-512", sha512, 128))?;
+        let bytes = length
+            .parse::<u64>()
+            .map_err(|_| format!("the file length '{length}' is not a whole number"))?;
+        check_name(name)?;
+        Ok(Entry {
+            key: PublicKey::from_bytes(key, name.to_string())?,
+            signature: Signature::from_bytes(&signature),
+            signed: Signed { bytes, sha512 },
+        })
+    }
+
+    /// The line signs `signed` (the dictionary at `dictionary`) and its signature holds.
+    fn check(&self, signed: &Signed, dictionary: &Path) -> Result<(), String> {
+        if self.signed.bytes != signed.bytes || self.signed.sha512 != signed.sha512 {
+            return Err(format!(
+                "'{}' signed another file ({} bytes, SHA-512 {}…) than {} ({} bytes, SHA-512 \
+                 {}…): the dictionary changed after it was signed",
+                self.key.name(),
+                self.signed.bytes,
+                &hex(&self.signed.sha512)[..16],
+                dictionary.display(),
+                signed.bytes,
+                &hex(&signed.sha512)[..16]
+            ));
+        }
+        self.key
+            .key()
+            .verify_strict(&signed.statement(self.key.name()), &self.signature)
+            .map_err(|_| {
+                format!(
+                    "the signature of '{}' (key {}) does not verify: the line was altered or \
+                     forged",
+                    self.key.name(),
+                    self.key.fingerprint()
+                )
+            })
+    }
+
+    fn signer(&self, trusted: Option<&TrustedKeys>) -> Signer {
+        Signer {
+            name: self.key.name().to_string(),
+            key: format!("ed25519:{}", self.key.hex()),
+            trusted_as: trusted
+                .and_then(|t| t.find(&self.key))
+                .map(|k| k.name().to_string()),
+        }
+    }
+}
+
+/// The parsed lines of the signature file `file`, `None` when there is none.
+fn read_lines(file: &Path) -> Result<Option<Vec<(usize, Entry)>>, ProvenanceError> {
+    match std::fs::symlink_metadata(file) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        _ => {}
+    }
+    let text = input::read_text(file, SIGNATURE_FILE)
+        .map_err(|problem| ProvenanceError::new(file, None, problem))?;
+    let mut lines = Vec::new();
+    for (line, content) in content_lines(&text) {
+        if lines.len() == MAX_SIGNATURES {
+            return Err(ProvenanceError::new(
+                file,
+                Some(line),
+                format!("more than {MAX_SIGNATURES} signatures"),
+            ));
+        }
+        let entry = Entry::parse(content).map_err(|p| ProvenanceError::new(file, Some(line), p))?;
+        lines.push((line, entry));
+    }
+    Ok(Some(lines))
+}
+
+/// Parses `text` as a signature file and checks every line against `bytes` (for fuzzing: no
+/// file system).
+pub fn check_text(text: &str, bytes: &[u8]) -> Result<usize, String> {
+    let signed = Signed::of(bytes);
+    let mut count = 0;
+    for (line, content) in content_lines(text).take(MAX_SIGNATURES + 1) {
+        let entry = Entry::parse(content).map_err(|p| format!("line {line}: {p}"))?;
+        entry
+            .check(&signed, Path::new("the dictionary"))
+            .map_err(|p| format!("line {line}: {p}"))?;
+        count += 1;
+    }
+    Ok(count)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The fuzzing seed is a valid signature of the bytes `fuzz`, whose SHA-512 (Python's
+    /// `hashlib`) it carries; one changed digit anywhere in the line makes it fail.
+    #[test]
+    fn the_fuzz_seed_signs_its_bytes_and_no_altered_copy_does() {
+        let seed = include_str!("../../fuzz/seeds/check_signatures.sig");
+        assert_eq!(check_text(seed, b"fuzz"), Ok(1));
+        assert!(seed.contains(
+            "2903a5143d708bd8b15a9bf4cbe448e856d543ca29241b8409917903eed365d58bd4130208d2b92a4\
+             d27e32a267f95fd341f71dce6f2654b04ec6b20b1c952ef"
+        ));
+        assert!(check_text(seed, b"fuzz!").is_err());
+        let line = seed.lines().nth(1).expect("the signature line");
+        let start = line.find(" ed25519 ").expect("the key") + 9;
+        for at in (start..line.len() - " 4 fuzz seed".len()).step_by(7) {
+            let digit = line.as_bytes()[at];
+            if !digit.is_ascii_hexdigit() {
+                continue;
+            }
+            let other = if digit == b'0' { '1' } else { '0' };
+            let altered = format!("{}{other}{}", &line[..at], &line[at + 1..]);
+            assert!(
+                check_text(&altered, b"fuzz").is_err(),
+                "digit {at} altered passes"
+            );
+        }
+    }
+}
