@@ -13,9 +13,17 @@ use std::path::Path;
 const SETUP: &str = "robots/viper_s850/hand_written/pick_and_place.toml";
 const MOTION: &str = "motions/viper_s850/pick_and_place.csv";
 
+/// The hand-written catalogue with its intra-link pieces made to have a length (no 0 mm
+/// piece through one clamp), so that every chain takes pieces from the dictionary.
 fn setup_and_motion() -> (Setup, Motion) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let setup = Setup::from_file(root.join(SETUP)).unwrap_or_else(|e| panic!("{e}"));
+    let folder = root.join(SETUP).parent().expect("a folder").to_path_buf();
+    let text = std::fs::read_to_string(root.join(SETUP))
+        .expect("the setup")
+        .replace("allow_zero = true", "allow_zero = false");
+    assert!(!text.contains("allow_zero = true"));
+    let setup = Setup::from_toml_str(&text, &folder.join("pick_and_place_no_zero.toml"))
+        .unwrap_or_else(|e| panic!("{e}"));
     let motion =
         Motion::from_csv_file(&setup.robot, root.join(MOTION)).unwrap_or_else(|e| panic!("{e}"));
     (setup, motion)
@@ -35,14 +43,23 @@ fn solved_with(
     dictionary
         .verify()
         .unwrap_or_else(|e| panic!("{name}'s checksums are valid: {e}"));
-    solve_with_dictionary(&dictionary, setup, motion, &SolveOptions::default())
-        .unwrap_or_else(|e| panic!("{e}"))
+    solve_with_dictionary(&dictionary, setup, motion, &options()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Certification is about the chains the attachment test offers: the shortest chain of
+/// robust pieces the static sweep keeps is the answer compared (the catalogue's short
+/// paths all fail the motion test, their two long loops touching each other).
+fn options() -> SolveOptions {
+    SolveOptions {
+        motion_test: false,
+        ..SolveOptions::default()
+    }
 }
 
 #[test]
 fn a_dictionary_forged_to_pass_every_piece_yields_the_exact_path() {
     let (setup, motion) = setup_and_motion();
-    let exact = solve(&setup, &motion, &SolveOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    let exact = solve(&setup, &motion, &options()).unwrap_or_else(|e| panic!("{e}"));
     let exact_total_mm = exact
         .optimal_length_mm
         .expect("the hand-written setup has a path");

@@ -476,6 +476,7 @@ fn stress_report(points: usize) -> MotionTestReport {
         worst_stretch: worst(1.01, "1", 1.5, 0),
         worst_bend: worst(0.05, "m", 2.0, 1),
         worst_contact_force: None,
+        worst_self_clearance: None,
         max_joint_gap_m: 1e-4,
         series,
         final_shape: Vec::new(),

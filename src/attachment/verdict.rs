@@ -6,8 +6,8 @@ use crate::pose::Pose;
 use crate::setup::{Setup, Thresholds};
 use serde::Serialize;
 
-/// The stress limit a PV violates first (in the order contact, stretch, bend), or why it
-/// could not be evaluated.
+/// The stress limit a PV violates first (in the order contact, self-contact, stretch,
+/// bend), or why it could not be evaluated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Rejection {
@@ -17,6 +17,8 @@ pub enum Rejection {
     Diverged,
     /// Clearance to the robot below the contact threshold.
     Contact,
+    /// The cable touches or passes through itself.
+    SelfContact,
     /// Centreline length / natural length above the stretch threshold.
     Stretch,
     /// Bend radius below the minimum.
@@ -25,10 +27,11 @@ pub enum Rejection {
 
 impl Rejection {
     /// Every kind, in report order.
-    pub const ALL: [Rejection; 5] = [
+    pub const ALL: [Rejection; 6] = [
         Rejection::TooShort,
         Rejection::Diverged,
         Rejection::Contact,
+        Rejection::SelfContact,
         Rejection::Stretch,
         Rejection::Bend,
     ];
@@ -39,6 +42,7 @@ impl Rejection {
             Rejection::TooShort => "too short",
             Rejection::Diverged => "solver failed",
             Rejection::Contact => "contact",
+            Rejection::SelfContact => "touches itself",
             Rejection::Stretch => "stretch",
             Rejection::Bend => "bend radius",
         }
@@ -51,13 +55,13 @@ impl Rejection {
 pub struct Miss {
     /// The first limit violated.
     pub rejection: Rejection,
-    /// How far past the limit, relative to it: contact, the clearance deficit over the
-    /// cable's diameter; stretch (and a cable too short for its clamps), the excess stretch
+    /// How far past the limit, relative to it: contact (with the robot or itself), the
+    /// clearance deficit over the cable's diameter; stretch (and a cable too short for its clamps), the excess stretch
     /// over the allowed excess; bend, the radius deficit over the minimum radius. Infinite
     /// when nothing was measured (a failed solve, a verdict read from a dictionary).
     pub severity: f64,
-    /// The measured value: clearance (m), stretch ratio, or bend radius (m); NaN when not
-    /// measured.
+    /// The measured value: clearance to the robot or to itself (m), stretch ratio, or bend
+    /// radius (m); NaN when not measured.
     pub value: f64,
     /// Index of the test pose where it failed first.
     pub pose: usize,
@@ -111,7 +115,10 @@ impl Miss {
                 let radius = 1.0 / (1.0 / limit - curvature);
                 ((limit - radius) / limit, radius)
             }
-            Rejection::TooShort | Rejection::Diverged => return unmeasured,
+            // A looked-up clearance margin is the lower of the two clearances.
+            Rejection::TooShort | Rejection::Diverged | Rejection::SelfContact => {
+                return unmeasured;
+            }
         };
         Miss {
             rejection,
@@ -158,6 +165,11 @@ impl Miss {
                     .map_or(f64::NAN, |k| (k as f64 + 0.5) * pitch);
                 measured(deficit / setup.cable.diameter_m, clearance, at)
             }
+            (Rejection::SelfContact, Some(m)) => {
+                let clearance = m.self_clearance_m;
+                let at = (f64::from(m.self_contact_sub_segments[0]) + 0.5) * pitch;
+                measured(-clearance / setup.cable.diameter_m, clearance, at)
+            }
             (Rejection::Stretch, Some(m)) => measured(excess(m.stretch), m.stretch, f64::NAN),
             (Rejection::Bend, Some(m)) => {
                 let limit = limits.static_min_bend_radius_m();
@@ -186,6 +198,11 @@ pub struct Metrics {
     pub clearance_link: Option<usize>,
     /// Sub-segment of the lowest clearance.
     pub clearance_sub_segment: Option<usize>,
+    /// The cable's clearance to itself (m, [`crate::stress::self_contact`]); infinite for a
+    /// piece too short to meet itself.
+    pub self_clearance_m: f64,
+    /// The two sub-segments of the lowest clearance to itself (0, 0 when not measured).
+    pub self_contact_sub_segments: [u32; 2],
     /// Centreline length / natural length.
     pub stretch: f64,
     /// Smallest bend radius (m); infinite for a straight cable.
@@ -198,7 +215,9 @@ pub struct Metrics {
 /// dictionary stores per PV and direction ([`crate::dictionary::format::MarginRecord`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Margins {
-    /// Clearance − contact limit (mm); infinite when no clearance was measured.
+    /// The lower of clearance − contact limit and the clearance to itself (mm): both are
+    /// contact, and one stored margin keeps the dictionary's records as they are; infinite
+    /// when neither was measured.
     pub clearance_mm: f64,
     /// Stretch limit − stretch.
     pub stretch: f64,
@@ -213,7 +232,8 @@ impl Margins {
         Margins {
             clearance_mm: metrics
                 .clearance_m
-                .map_or(f64::INFINITY, |c| (c - limits.contact_clearance_m) * 1e3),
+                .map_or(f64::INFINITY, |c| (c - limits.contact_clearance_m) * 1e3)
+                .min(metrics.self_clearance_m * 1e3),
             stretch: limits.stretch - metrics.stretch,
             curvature_per_m: 1.0 / limits.static_min_bend_radius_m()
                 - 1.0 / metrics.min_bend_radius_m,
@@ -272,7 +292,7 @@ impl Check {
     }
 }
 
-/// The first limit `metrics` violates, in the order contact, stretch, bend.
+/// The first limit `metrics` violates, in the order contact, self-contact, stretch, bend.
 pub(super) fn verdict(setup: &Setup, metrics: Metrics) -> Check {
     let limits = &setup.thresholds;
     if let (Some(clearance), Some(link)) = (metrics.clearance_m, metrics.clearance_link)
@@ -285,6 +305,16 @@ pub(super) fn verdict(setup: &Setup, metrics: Metrics) -> Check {
             limits.contact_clearance_m * 1e3
         );
         return Check::fail(Rejection::Contact, detail, Some(metrics));
+    }
+    if metrics.self_clearance_m < 0.0 {
+        let ([i, j], clearance) = (metrics.self_contact_sub_segments, metrics.self_clearance_m);
+        let detail = format!(
+            "the cable passes through itself: sub-segments {i} and {j} are {:.1} mm apart, \
+             centre to centre, less than its diameter {:.1} mm",
+            (clearance + setup.cable.diameter_m) * 1e3,
+            setup.cable.diameter_m * 1e3
+        );
+        return Check::fail(Rejection::SelfContact, detail, Some(metrics));
     }
     if metrics.stretch > limits.stretch {
         let detail = format!("stretch {:.4} (limit {})", metrics.stretch, limits.stretch);
@@ -351,5 +381,46 @@ mod tests {
             "{} against {hair}",
             too_short.severity
         );
+    }
+    /// A piece that passes through itself is refused as such, after contact with the robot
+    /// and before stretch and bend; its clearance margin is the clearance to itself when that
+    /// is the lower one, so that a dictionary's lookup refuses it too.
+    #[test]
+    fn a_cable_through_itself_is_refused_and_its_margin_says_so() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let setup = Setup::from_file(root.join("robots/viper_s850/pick_and_place.toml"))
+            .unwrap_or_else(|e| panic!("{e}"));
+        let metrics = |self_clearance_m: f64, stretch: f64| Metrics {
+            clearance_m: Some(0.050),
+            clearance_link: Some(1),
+            clearance_sub_segment: Some(3),
+            self_clearance_m,
+            self_contact_sub_segments: [2, 30],
+            stretch,
+            min_bend_radius_m: 1.0,
+            min_bend_node: 4,
+        };
+        let through = verdict(&setup, metrics(-0.002, 1.5));
+        assert_eq!(through.rejection, Some(Rejection::SelfContact));
+        let detail = through.detail.as_deref().unwrap_or_default();
+        assert!(detail.contains("sub-segments 2 and 30"), "{detail}");
+        let margins = Margins::of(&metrics(-0.002, 1.0), &setup.thresholds);
+        assert!((margins.clearance_mm + 2.0).abs() < 1e-9, "{margins:?}");
+        assert_eq!(
+            Margins::first_violation(margins.to_array()),
+            Some(Rejection::Contact)
+        );
+        let clear = verdict(&setup, metrics(0.001, 1.0));
+        assert!(clear.passed(), "{:?}", clear.detail);
+        let miss = Miss::of(
+            &through,
+            &setup,
+            0,
+            &(Pose::identity(), Pose::identity()),
+            40,
+        )
+        .expect("a miss");
+        assert!((miss.severity - 0.002 / setup.cable.diameter_m).abs() < 1e-12);
+        assert!((miss.at_m - 2.5 * setup.cable.sub_segment_pitch_m).abs() < 1e-12);
     }
 }

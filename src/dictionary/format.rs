@@ -37,7 +37,9 @@ pub const ALIGNMENT: usize = 16;
 /// from a clamp into itself), not solved ([`crate::geometry::COINCIDENT_GUIDES_M`]).
 /// 6: clamp zones counted in the cable's sub-segments, not along its current shape
 /// ([`crate::stress::ClampZone`]); a mesh is the union of its shells' solids.
-pub const PHYSICS_VERSION: u32 = 6;
+/// 7: the clearance margin is also the cable's clearance to itself
+/// ([`crate::stress::self_contact`]).
+pub const PHYSICS_VERSION: u32 = 7;
 /// Largest header accepted when decoding (the URDF text dominates it).
 pub const HEADER_LIMIT: usize = 64 << 20;
 

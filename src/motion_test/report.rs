@@ -29,6 +29,10 @@ pub struct MotionTestReport {
     /// Largest contact force on one sub-segment outside the clamp zones in the simulation
     /// (N); `None` when the cable never touched the robot there.
     pub worst_contact_force: Option<Worst>,
+    /// Lowest clearance of the whole cable to itself (m: centreline distance − diameter,
+    /// [`crate::stress::self_contact`]; < 0 the cable passes through itself), at the first of
+    /// the two sub-segments; `None` for a cable too short to meet itself.
+    pub worst_self_clearance: Option<Worst>,
     /// Largest gap between the anchors of two joined bodies over the run (m): the solver's
     /// constraint error, ≈ 0.1 mm at the default settings.
     pub max_joint_gap_m: f64,
@@ -95,6 +99,8 @@ pub enum Constraint {
     Stretch,
     /// Bend radius below `min_bend_radius_m`.
     BendRadius,
+    /// The cable touches or passes through itself (clearance to itself below 0).
+    SelfContact,
 }
 
 /// The worst value of one metric over the run, and when and where it happened.
@@ -125,8 +131,10 @@ pub struct Place {
     /// most loaded sub-segment overall).
     pub link: Option<String>,
     /// The point in the world frame (m): on the cable surface for a clearance, the node for
-    /// a bend, the sub-segment's midpoint for a contact force.
+    /// a bend, the sub-segment's midpoint for a contact force or a self-contact.
     pub position_m: Option<[f64; 3]>,
+    /// For a self-contact, the other part of the cable (`C1 sub-segment 31`).
+    pub touches: Option<String>,
 }
 
 /// A limit violated at one instant.
@@ -191,6 +199,7 @@ impl fmt::Display for Constraint {
             Constraint::ContactForce => "contact force",
             Constraint::Stretch => "stretch",
             Constraint::BendRadius => "bend radius",
+            Constraint::SelfContact => "self-contact",
         })
     }
 }
@@ -207,6 +216,9 @@ impl fmt::Display for Place {
         }
         if let Some(link) = &self.link {
             parts.push(link.clone());
+        }
+        if let Some(other) = &self.touches {
+            parts.push(format!("touching {other}"));
         }
         f.write_str(&parts.join(", "))
     }
@@ -237,6 +249,12 @@ impl fmt::Display for Violation {
             ),
             Constraint::BendRadius => (
                 "bend radius",
+                format!("{:.2} mm", self.value * 1e3),
+                "<",
+                format!("{:.2} mm", self.threshold * 1e3),
+            ),
+            Constraint::SelfContact => (
+                "clearance to itself",
                 format!("{:.2} mm", self.value * 1e3),
                 "<",
                 format!("{:.2} mm", self.threshold * 1e3),
@@ -288,6 +306,12 @@ impl MotionTestReport {
             worst("max stretch", &self.worst_stretch, 1.0, ""),
             worst("min bend radius", &self.worst_bend, 1e3, "mm"),
             worst("max contact force", &self.worst_contact_force, 1.0, "N"),
+            worst(
+                "min clearance to itself",
+                &self.worst_self_clearance,
+                1e3,
+                "mm",
+            ),
             format!(
                 "{} steps, {:.2} s simulated in {:.2} s wall{}{}",
                 self.steps,

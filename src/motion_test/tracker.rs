@@ -6,7 +6,7 @@ use super::report::{
     ShapeFrame, Violation, Worst,
 };
 use crate::setup::{Setup, Thresholds};
-use crate::stress::{BendRadius, Clearance};
+use crate::stress::{BendRadius, Clearance, self_contact};
 use nalgebra::Point3;
 
 /// The metrics of one segment at one instant.
@@ -36,6 +36,7 @@ pub(super) struct Tracker<'a> {
     worst_stretch: Option<Worst>,
     worst_bend: Option<Worst>,
     worst_contact_force: Option<Worst>,
+    worst_self_clearance: Option<Worst>,
     first_violation: Option<Violation>,
     max_joint_gap_m: f64,
     series: Vec<SeriesPoint>,
@@ -56,6 +57,7 @@ impl<'a> Tracker<'a> {
             worst_stretch: None,
             worst_bend: None,
             worst_contact_force: None,
+            worst_self_clearance: None,
             first_violation: None,
             max_joint_gap_m: 0.0,
             series: Vec::new(),
@@ -83,6 +85,7 @@ impl<'a> Tracker<'a> {
         for measure in measures {
             self.record_segment(time_s, measure);
         }
+        self.keep_self_contact(time_s, measures);
         if self.record_series {
             self.series.push(series_point(time_s, measures));
         }
@@ -144,6 +147,7 @@ impl<'a> Tracker<'a> {
             worst_stretch: self.worst_stretch,
             worst_bend: self.worst_bend,
             worst_contact_force: self.worst_contact_force,
+            worst_self_clearance: self.worst_self_clearance,
             max_joint_gap_m: self.max_joint_gap_m,
             series: self.series,
             final_shape: self.final_shape,
@@ -257,6 +261,58 @@ impl<'a> Tracker<'a> {
         keep(&mut self.worst_contact_force, worst, |new, old| new > old);
     }
 
+    /// The whole cable's clearance to itself: the segments' shapes joined where they meet at
+    /// a clamp, so that parts of different segments are checked against each other too.
+    fn keep_self_contact(&mut self, time_s: f64, measures: &[SegmentMeasure]) {
+        let cable = &self.setup.cable;
+        let (diameter, pitch) = (cable.diameter_m, cable.sub_segment_pitch_m);
+        for run in joined_runs(measures) {
+            let Some(itself) = self_contact(&run.nodes, diameter, pitch) else {
+                continue;
+            };
+            let [k, l] = itself.sub_segments;
+            let (blamed, other) = run.blame(k, l);
+            let (other_segment, other_local) = run.owners[other];
+            let touches = Some(format!(
+                "{} sub-segment {other_local}",
+                self.setup.segment_name(other_segment)
+            ));
+            let (segment, place) = match run.coincident_between(other_segment, run.owners[blamed].0)
+            {
+                Some(between) => (
+                    between,
+                    Place {
+                        touches,
+                        ..Place::default()
+                    },
+                ),
+                None => {
+                    let (segment, local) = run.owners[blamed];
+                    let middle = nalgebra::center(&run.nodes[blamed], &run.nodes[blamed + 1]);
+                    let place = Place {
+                        sub_segment: Some(local),
+                        position_m: Some(xyz(&middle)),
+                        touches,
+                        ..Place::default()
+                    };
+                    (segment, place)
+                }
+            };
+            let worst = Worst {
+                value: itself.clearance_m,
+                unit: "m",
+                time_s,
+                segment,
+                segment_name: self.setup.segment_name(segment),
+                place,
+            };
+            if itself.is_violated() {
+                self.violate(Constraint::SelfContact, 0.0, &worst);
+            }
+            keep(&mut self.worst_self_clearance, worst, |new, old| new < old);
+        }
+    }
+
     /// Records a violation if it is the first one.
     fn violate(&mut self, constraint: Constraint, threshold: f64, at: &Worst) {
         if self.first_violation.is_none() {
@@ -301,6 +357,69 @@ fn keep(slot: &mut Option<Worst>, candidate: Worst, better: fn(f64, f64) -> bool
     }
 }
 
+/// A stretch of cable whose segments meet end to start, and which segment and sub-segment
+/// each of its sub-segments is.
+struct JoinedRun {
+    nodes: Vec<Point3<f64>>,
+    owners: Vec<(usize, usize)>,
+    /// Sub-segments of each segment, by segment index.
+    lengths: std::collections::BTreeMap<usize, usize>,
+}
+
+impl JoinedRun {
+    /// How many sub-segments sub-segment `k` is from the nearer clamp of its segment.
+    fn free_length(&self, k: usize) -> usize {
+        let (segment, local) = self.owners[k];
+        let length = self.lengths.get(&segment).copied().unwrap_or(0);
+        local.min(length.saturating_sub(local + 1))
+    }
+
+    /// Of two touching sub-segments, (the one the failure is given to, the other): the one
+    /// farther from its clamps swings free, and a longer or rerouted piece there is the
+    /// remedy.
+    fn blame(&self, k: usize, l: usize) -> (usize, usize) {
+        if self.free_length(l) >= self.free_length(k) {
+            (l, k)
+        } else {
+            (k, l)
+        }
+    }
+
+    /// A 0 mm piece between segments `a` and `b` (two clamps at one place that the run
+    /// passes through): the two touching parts hang from that one place, and separating
+    /// the clamps is the remedy.
+    fn coincident_between(&self, a: usize, b: usize) -> Option<usize> {
+        let (low, high) = (a.min(b), a.max(b));
+        (low + 1..high).find(|s| !self.lengths.contains_key(s))
+    }
+}
+
+/// The segments' shapes joined where one ends at the next one's start clamp (within 1 µm);
+/// a gap starts a new run.
+fn joined_runs(measures: &[SegmentMeasure]) -> Vec<JoinedRun> {
+    let mut runs: Vec<JoinedRun> = Vec::new();
+    for m in measures.iter().filter(|m| m.nodes.len() >= 2) {
+        let joins = runs
+            .last()
+            .and_then(|run| run.nodes.last())
+            .is_some_and(|end| (end - m.nodes[0]).norm() < 1e-6);
+        if !joins {
+            runs.push(JoinedRun {
+                nodes: vec![m.nodes[0]],
+                owners: Vec::new(),
+                lengths: Default::default(),
+            });
+        }
+        if let Some(run) = runs.last_mut() {
+            run.nodes.extend_from_slice(&m.nodes[1..]);
+            run.owners
+                .extend((0..m.nodes.len() - 1).map(|k| (m.segment, k)));
+            run.lengths.insert(m.segment, m.nodes.len() - 1);
+        }
+    }
+    runs
+}
+
 /// The whole cable's metrics at one instant.
 fn series_point(time_s: f64, measures: &[SegmentMeasure]) -> SeriesPoint {
     let clearances = measures
@@ -323,4 +442,88 @@ fn series_point(time_s: f64, measures: &[SegmentMeasure]) -> SeriesPoint {
 
 fn xyz(p: &Point3<f64>) -> [f64; 3] {
     [p.x, p.y, p.z]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Points `pitch` apart along the polyline through `corners`.
+    fn along(corners: &[Point3<f64>], pitch: f64) -> Vec<Point3<f64>> {
+        let mut points = vec![corners[0]];
+        for pair in corners.windows(2) {
+            let steps = ((pair[1] - pair[0]).norm() / pitch).round() as usize;
+            points.extend(
+                (1..=steps).map(|k| pair[0] + (pair[1] - pair[0]) * (k as f64 / steps as f64)),
+            );
+        }
+        points
+    }
+
+    /// Two segments that meet at a clamp, the second coming back across the first: the
+    /// joined cable passes through itself although neither segment does alone, and the
+    /// violation names the segment and sub-segment where the first is crossed.
+    #[test]
+    fn parts_of_two_segments_that_cross_are_a_self_contact_violation() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let setup = Setup::from_file(root.join("robots/viper_s850/pick_and_place.toml"))
+            .unwrap_or_else(|e| panic!("{e}"));
+        let pitch = setup.cable.sub_segment_pitch_m;
+        let measure = |segment: usize, nodes: Vec<Point3<f64>>| SegmentMeasure {
+            segment,
+            nodes,
+            clearance: None,
+            stretch: 1.0,
+            bend: BendRadius {
+                radius_m: f64::INFINITY,
+                node: 0,
+            },
+            contact: None,
+            max_joint_gap_m: 0.0,
+        };
+        let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
+        let first = along(&[p(0.0, 0.0), p(0.3, 0.0)], pitch);
+        // Out past the clamp, back, and down across the first segment at x = 205 mm.
+        let second = along(
+            &[
+                p(0.3, 0.0),
+                p(0.4, 0.0),
+                p(0.4, 0.1),
+                p(0.205, 0.1),
+                p(0.205, -0.1),
+            ],
+            pitch,
+        );
+        let diameter = setup.cable.diameter_m;
+        for alone in [&first, &second] {
+            assert!(self_contact(alone, diameter, pitch).is_none_or(|c| !c.is_violated()));
+        }
+        let mut tracker = Tracker::new(&setup, false, false);
+        tracker.record(0.5, &[measure(1, first), measure(2, second)]);
+        let violation = tracker
+            .first_violation
+            .expect("the second crosses the first");
+        assert_eq!(violation.constraint, Constraint::SelfContact);
+        assert!(
+            (violation.value + diameter).abs() < 1e-9,
+            "{}",
+            violation.value
+        );
+        let worst = tracker.worst_self_clearance.expect("measured");
+        assert_eq!(worst.value, violation.value);
+        // The failure is the second segment's, whose part swings free; it names the part of
+        // the first it crosses, at x = 205 mm.
+        assert_eq!(violation.segment, 2);
+        let touches = violation.place.touches.as_deref().unwrap_or_default();
+        let k: usize = touches
+            .rsplit(' ')
+            .next()
+            .and_then(|k| k.parse().ok())
+            .unwrap_or_else(|| panic!("{touches}"));
+        assert!(touches.starts_with(&setup.segment_name(1)), "{touches}");
+        assert!(
+            (k as f64 + 0.5) * pitch > 0.195 && (k as f64 - 0.5) * pitch < 0.215,
+            "{k}"
+        );
+    }
 }

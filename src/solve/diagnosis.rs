@@ -73,6 +73,7 @@ impl NearestMiss {
                 "{} {:.2} mm < {:.2} mm ({} short)",
                 match limit {
                     Rejection::Contact => "clearance",
+                    Rejection::SelfContact => "clearance to itself",
                     _ => "bend radius",
                 },
                 self.value,
@@ -230,6 +231,7 @@ fn nearest_miss(
     let limits = &setup.thresholds;
     let (value, limit_value) = match miss.rejection {
         Rejection::Contact => (miss.value * 1e3, limits.contact_clearance_m * 1e3),
+        Rejection::SelfContact => (miss.value * 1e3, 0.0),
         Rejection::Bend => (miss.value * 1e3, limits.static_min_bend_radius_m() * 1e3),
         _ => (miss.value, limits.stretch),
     };
@@ -284,7 +286,10 @@ fn attachment_suggestions(
             ));
         }
     }
-    let slack = matches!(nearest.limit, Rejection::Bend | Rejection::Contact);
+    let slack = matches!(
+        nearest.limit,
+        Rejection::Bend | Rejection::Contact | Rejection::SelfContact
+    );
     if slack && nearest.length_mm <= min_mm && range.min > 1 {
         out.push(format!(
             "a shorter length window: the nearest miss is {min_mm:.0} mm long, the window's \

@@ -21,6 +21,7 @@ mod joint;
 pub(crate) mod newton;
 mod retract;
 pub(crate) mod rod;
+pub mod turns;
 
 pub use rod::{EnergyTerms, RodParameters};
 

@@ -1,14 +1,16 @@
 //! Stress metrics of a cable shape at one robot pose: how tightly it bends, how far it is
-//! stretched, and how close it comes to the robot.
+//! stretched, how close it comes to the robot and to itself.
 //!
 //! A shape is the polyline of the discrete cable's nodes from one guide to the next.
 
 mod bend;
 pub mod contact;
+mod self_contact;
 mod stretch;
 
 pub use bend::{BendRadius, min_bend_radius};
 pub use contact::{
     ClampZone, Clearance, ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
 };
+pub use self_contact::{SelfContact, self_contact, self_contact_gap_m};
 pub use stretch::stretch;

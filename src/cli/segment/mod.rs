@@ -36,6 +36,13 @@ pub struct Args {
     /// Static solver of the converged stage.
     #[arg(long, value_enum, default_value_t = Solver::QuasiStatic)]
     solver: Solver,
+    /// Whole turns of twist added at the end guide about the cable (right-handed about its
+    /// +z axis; negative: the other way), beyond what the guide frames define — a frame fixes
+    /// the twist only up to whole turns. Reached by turning the end guide in steps of at most
+    /// 15°, each solved from the previous shape (quasi-static solver, converged stage).
+    #[arg(long, value_name = "N", default_value_t = 0, allow_hyphen_values = true,
+          value_parser = clap::value_parser!(i32).range(-MAX_TWIST_TURNS..=MAX_TWIST_TURNS))]
+    twist_turns: i32,
     /// How the connected geometry is obtained: `hermite` (Hermite curve + rotation-minimizing
     /// frames) or `linear` (the paper's previous method: a straight cable dragged into the end
     /// guide by the physics engine; slow, for comparison).
@@ -114,12 +121,24 @@ enum Connect {
     Linear,
 }
 
+/// Most whole turns `--twist-turns` takes: beyond a few turns every real cable has writhed
+/// into loops long before (and each turn costs 24 solves or more).
+const MAX_TWIST_TURNS: i64 = 100;
+
 pub fn run(args: Args) -> Result<(), Failure> {
     run_with_scene(args, None)
 }
 
 /// `segment`, and with `scene_file` also its scene (`export-scene segment`).
 pub fn run_with_scene(args: Args, scene_file: Option<&Path>) -> Result<(), Failure> {
+    if args.twist_turns != 0
+        && (args.stage != Stage::Converged || args.solver != Solver::QuasiStatic)
+    {
+        return Err(Failure::input(anyhow::anyhow!(
+            "--twist-turns turns the end guide of the static equilibrium: it needs --stage \
+             converged and --solver quasi-static"
+        )));
+    }
     let cable = CableSpec::from_file(&args.cable).map_err(Failure::input)?;
     let sub_segments =
         sub_segment_count(args.length_mm, cable.sub_segment_pitch_m).map_err(Failure::input)?;

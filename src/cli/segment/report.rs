@@ -6,7 +6,7 @@ use super::shape::{Connected, Converged};
 use super::{Args, Solver, Stage};
 use cable_dict::cable::CableSpec;
 use cable_dict::pose::{Pose, matrix_rows};
-use cable_dict::stress::{min_bend_radius, stretch};
+use cable_dict::stress::{min_bend_radius, self_contact, stretch};
 use nalgebra::{Point3, Rotation3, Vector3};
 use serde::Serialize;
 use std::fmt;
@@ -48,8 +48,14 @@ struct ConvergedReport {
     residual: f64,
     residual_unit: &'static str,
     solve_time_us: f64,
-    /// Total twist between the guides (deg); `null` for rapier.
+    /// Total twist between the guides (deg), whole turns of `--twist-turns` included;
+    /// `null` for rapier.
     twist_deg: Option<f64>,
+    /// `--twist-turns`.
+    twist_turns: i32,
+    /// The extra turn of the end guide (deg) at which the cable first passed through itself
+    /// on the way; `null` when it never did.
+    self_contact_from_deg: Option<f64>,
     nodes_mm: Vec<[f64; 3]>,
     frames: Vec<[[f64; 3]; 3]>,
     metrics: Metrics,
@@ -65,6 +71,20 @@ struct Metrics {
     /// Closest approach to the robot, with `--robot`.
     #[serde(skip_serializing_if = "Option::is_none")]
     contact: Option<ContactMetric>,
+    /// Closest approach of the cable to itself; `null` for a cable too short to meet itself.
+    self_contact: Option<SelfContactMetric>,
+}
+
+/// How close the cable comes to itself.
+#[derive(Serialize)]
+struct SelfContactMetric {
+    /// Distance between the two closest sub-segments (not the same stretch of cable bending)
+    /// less the cable diameter (mm); negative: the cable passes through itself.
+    min_clearance_mm: f64,
+    /// The cable touches or passes through itself: not a shape a real cable can take.
+    violation: bool,
+    /// The two sub-segments (0-based from the start guide).
+    sub_segments: [usize; 2],
 }
 
 impl SegmentReport {
@@ -107,6 +127,8 @@ impl SegmentReport {
             residual_unit: shape.residual_unit,
             solve_time_us: shape.time_us,
             twist_deg: shape.twist_rad.map(f64::to_degrees),
+            twist_turns: args.twist_turns,
+            self_contact_from_deg: shape.self_contact_from_deg,
             nodes_mm: millimetres(&shape.nodes),
             frames: rows(&shape.frames),
             metrics: Metrics::of(cable, args, &shape.nodes, scene)?,
@@ -144,7 +166,14 @@ impl Metrics {
             Some(scene) => scene.contact(nodes)?,
             None => None,
         };
+        let self_contact =
+            self_contact(nodes, cable.diameter_m, pitch).map(|c| SelfContactMetric {
+                min_clearance_mm: c.clearance_m * 1e3,
+                violation: c.is_violated(),
+                sub_segments: c.sub_segments,
+            });
         Ok(Metrics {
+            self_contact,
             min_bend_radius_mm: bend.radius_m.is_finite().then_some(bend.radius_m * 1e3),
             min_bend_radius_node: bend.node,
             cable_min_bend_radius_mm: cable.min_bend_radius_m * 1e3,
@@ -189,7 +218,20 @@ impl fmt::Display for SegmentReport {
                 c.iterations, c.residual, c.residual_unit, c.solve_time_us
             )?;
             if let Some(twist) = c.twist_deg {
-                writeln!(f, "  twist             {twist:.3}°")?;
+                // No "-0.000°" for a twist that rounds to zero.
+                let twist = if twist.abs() < 5e-4 { 0.0 } else { twist };
+                let turns = match c.twist_turns {
+                    0 => String::new(),
+                    n => format!(" ({n:+} whole turns of the end guide)"),
+                };
+                writeln!(f, "  twist             {twist:.3}°{turns}")?;
+            }
+            if let Some(angle) = c.self_contact_from_deg {
+                writeln!(
+                    f,
+                    "  the cable passed through itself from {angle:.0}° of the turning on: the \
+                     model has no self-contact forces, so the shapes from there are not physical"
+                )?;
             }
             c.metrics.write(f, true)?;
             nodes = &c.nodes_mm;
@@ -221,6 +263,18 @@ impl Metrics {
             None => writeln!(f, "  min bend radius   ∞ (straight)")?,
         }
         writeln!(f, "  stretch           {:.6}", self.stretch)?;
+        if let Some(c) = &self.self_contact {
+            let verdict = match (judged, c.violation) {
+                (false, _) => "",
+                (true, false) => ": ok",
+                (true, true) => ": passes through itself, not a real cable's shape",
+            };
+            writeln!(
+                f,
+                "  self-clearance    {:.1} mm between sub-segments {} and {}{verdict}",
+                c.min_clearance_mm, c.sub_segments[0], c.sub_segments[1]
+            )?;
+        }
         if let Some(c) = &self.contact {
             let verdict = match (judged, c.violation) {
                 (false, _) => "",

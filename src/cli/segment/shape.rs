@@ -8,7 +8,9 @@ use cable_dict::rigid_chain::{
     ConvergenceWindow, DynamicsError, DynamicsSettings, LinearConnect, SegmentShape,
     connect_linear, relax,
 };
-use cable_dict::statics::{FarEnd, RodParameters, SolverOptions, StaticsError, solve_segment};
+use cable_dict::statics::turns::solve_turned;
+use cable_dict::statics::{RodParameters, SolverOptions, StaticSolver, StaticsError};
+use cable_dict::stress::self_contact;
 use nalgebra::{Point3, Rotation3};
 use std::time::Instant;
 
@@ -36,6 +38,9 @@ pub struct Converged {
     pub residual_unit: &'static str,
     /// Total twist between the guides (rad); `None` for rapier.
     pub twist_rad: Option<f64>,
+    /// The extra turn of the end guide (deg) at which the cable first passed through itself
+    /// while `--twist-turns` turned it; `None` when it never did (or no turns were asked).
+    pub self_contact_from_deg: Option<f64>,
     pub nodes: Vec<Point3<f64>>,
     pub frames: Vec<Rotation3<f64>>,
     pub time_us: f64,
@@ -104,13 +109,27 @@ pub fn converged(cable: &CableSpec, args: &Args, start: &Connected) -> Result<Co
     match args.solver {
         Solver::QuasiStatic => {
             let params = RodParameters::new(cable, args.gravity);
-            let equilibrium = solve_segment(
+            let mut self_contact_from_deg = None;
+            let equilibrium = solve_turned(
+                &mut StaticSolver::default(),
                 &params,
                 &args.start,
-                &FarEnd::Clamped(args.end),
+                &args.end,
                 &start.nodes,
                 start.twist_correction_rad,
+                f64::from(args.twist_turns) * std::f64::consts::TAU,
                 &SolverOptions::default(),
+                |angle, equilibrium, crossed| {
+                    let (nodes, d, pitch) = (
+                        &equilibrium.nodes,
+                        cable.diameter_m,
+                        cable.sub_segment_pitch_m,
+                    );
+                    let touches = self_contact(nodes, d, pitch).is_some_and(|c| c.is_violated());
+                    if (touches || crossed) && self_contact_from_deg.is_none() {
+                        self_contact_from_deg = Some(angle.to_degrees());
+                    }
+                },
             )
             .map_err(|e| match e {
                 StaticsError::InvalidInput { .. } => Failure::input(e),
@@ -121,6 +140,7 @@ pub fn converged(cable: &CableSpec, args: &Args, start: &Connected) -> Result<Co
                 residual: equilibrium.residual_n,
                 residual_unit: "N",
                 twist_rad: Some(equilibrium.twist_rad),
+                self_contact_from_deg,
                 time_us: micros(timer),
                 nodes: equilibrium.nodes,
                 frames: equilibrium.frames,
@@ -141,6 +161,7 @@ pub fn converged(cable: &CableSpec, args: &Args, start: &Connected) -> Result<Co
                 residual: relaxed.final_window_motion_m,
                 residual_unit: "m",
                 twist_rad: None,
+                self_contact_from_deg: None,
                 time_us: micros(timer),
                 nodes: relaxed.nodes,
                 frames: relaxed.frames,

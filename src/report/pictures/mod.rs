@@ -289,6 +289,11 @@ fn limit_words(constraint: Constraint, value: f64, limit: f64) -> String {
             millimetres(value),
             millimetres(limit)
         ),
+        Constraint::SelfContact => format!(
+            "clearance of the cable to itself {} (limit {})",
+            millimetres(value),
+            millimetres(limit)
+        ),
     }
 }
 
@@ -522,6 +527,7 @@ mod tests {
             worst_stretch: Some(worst(1.015, 2.0, 1)),
             worst_bend: Some(worst(0.062, 3.0, 2)),
             worst_contact_force: None,
+            worst_self_clearance: None,
             max_joint_gap_m: 0.0,
             series: Vec::new(),
             final_shape: Vec::new(),

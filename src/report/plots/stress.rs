@@ -80,7 +80,8 @@ fn panels(test: &MotionTestReport, thresholds: &Thresholds) -> [Panel; 3] {
     ];
     if let Some(v) = test.first_violation.as_ref().filter(|_| !test.passed) {
         let i = match v.constraint {
-            Constraint::Contact | Constraint::ContactForce => 0,
+            // The cable touching itself is contact too: shown in the clearance panel.
+            Constraint::Contact | Constraint::ContactForce | Constraint::SelfContact => 0,
             Constraint::Stretch => 1,
             Constraint::BendRadius => 2,
         };

@@ -36,6 +36,8 @@
 
 mod mesh;
 mod primitives;
+
+pub(crate) use primitives::segment_segment_distance;
 #[cfg(test)]
 mod tests;
 
@@ -43,7 +45,7 @@ use crate::pose::Pose;
 use crate::robot::{Robot, Shape};
 use mesh::MeshSolid;
 use nalgebra::{Point3, Vector3};
-use primitives::{Projection, SegmentMin, segment_segment_distance};
+use primitives::{Projection, SegmentMin};
 use std::path::PathBuf;
 
 /// Why obstacles cannot be built or a clearance query cannot be answered.

@@ -92,8 +92,8 @@ pub(super) fn closest_segment_segment(
     (s, t)
 }
 
-/// Distance between two segments.
-pub(super) fn segment_segment_distance(
+/// Distance between two segments: `p1 + s d1` and `p2 + t d2`, `s, t ∈ [0, 1]`.
+pub(crate) fn segment_segment_distance(
     p1: &Point3<f64>,
     d1: &Vector3<f64>,
     p2: &Point3<f64>,

@@ -1,0 +1,296 @@
+//! How close a cable comes to itself: the smallest distance between two of its sub-segments
+//! that are not the same stretch of cable bending, less the cable's diameter. Negative: the
+//! cable passes through itself, which no real cable can (docs/architecture.md, "Self-contact").
+//!
+//! Two sub-segments closer along the cable than half a turn around the cable's own radius
+//! (`π d / 2`) are excluded: a cable bent as tightly as it physically can (radius `d/2`)
+//! brings such points within `d` without touching itself. Beyond that gap any approach
+//! within `d` is contact; a cable that holds a bend radius `R ≥ d` keeps points up to `π R`
+//! apart along it at least `2 R sin(g / 2R)` apart in space (Schur's comparison theorem), so
+//! bent cables are not flagged.
+//!
+//! The search is exact and cheap: the sub-segments are grouped in runs of [`RUN`] with a
+//! bounding sphere each, run pairs are visited by increasing lower bound, and the search stops
+//! when no remaining pair can beat the closest found.
+
+use super::contact::segment_segment_distance;
+use nalgebra::Point3;
+use serde::Serialize;
+
+/// Sub-segments per bounding sphere.
+const RUN: usize = 8;
+
+/// The closest approach of a cable to itself.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SelfContact {
+    /// Centreline distance − diameter (m) at the closest approach; negative where the cable
+    /// passes through itself.
+    pub clearance_m: f64,
+    /// The two sub-segments (0-based from the cable's start, the first below the second).
+    pub sub_segments: [usize; 2],
+}
+
+impl SelfContact {
+    /// True when the cable touches or passes through itself.
+    pub fn is_violated(&self) -> bool {
+        self.clearance_m < 0.0
+    }
+}
+
+/// Arc length (m) below which two parts of a cable of `diameter_m` are the same stretch of
+/// cable bending, not two parts touching: half a turn around its own radius.
+pub fn self_contact_gap_m(diameter_m: f64) -> f64 {
+    0.5 * std::f64::consts::PI * diameter_m
+}
+
+/// The closest approach of the polyline `nodes` (sub-segments of about `pitch_m`) to itself,
+/// for a cable of `diameter_m`; `None` when it is too short to have two sub-segments far
+/// enough apart along it.
+pub fn self_contact(nodes: &[Point3<f64>], diameter_m: f64, pitch_m: f64) -> Option<SelfContact> {
+    let segments = nodes.len().checked_sub(1)?;
+    let skip = skipped_neighbours(diameter_m, pitch_m);
+    if segments <= skip + 1 {
+        return None;
+    }
+    let runs = bounding_runs(nodes, segments);
+    let mut pairs = run_pairs(&runs, skip);
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+    let mut best: Option<(f64, [usize; 2])> = None;
+    for (lower, a, b) in pairs {
+        if best.is_some_and(|(distance, _)| lower >= distance) {
+            break;
+        }
+        for i in runs[a].range.clone() {
+            let first_j = runs[b].range.start.max(i + skip + 1);
+            for j in first_j..runs[b].range.end {
+                let distance = segment_distance(&nodes[i], &nodes[i + 1], &nodes[j], &nodes[j + 1]);
+                if best.is_none_or(|(d, _)| distance < d) {
+                    best = Some((distance, [i, j]));
+                }
+            }
+        }
+    }
+    best.map(|(distance, sub_segments)| SelfContact {
+        clearance_m: distance - diameter_m,
+        sub_segments,
+    })
+}
+
+/// How many sub-segments on either side of one are the same stretch of cable: those whose
+/// gap along the cable, `(j − i − 1)·pitch`, is below [`self_contact_gap_m`].
+fn skipped_neighbours(diameter_m: f64, pitch_m: f64) -> usize {
+    let gap = self_contact_gap_m(diameter_m) / pitch_m;
+    // Sub-segments j = i + 1 … i + skip are skipped: (skip)·pitch ≥ gap.
+    (gap.ceil().max(1.0) as usize).min(usize::MAX / 4)
+}
+
+/// A run of consecutive sub-segments and a sphere holding them.
+struct Run {
+    range: std::ops::Range<usize>,
+    center: Point3<f64>,
+    radius: f64,
+}
+
+fn bounding_runs(nodes: &[Point3<f64>], segments: usize) -> Vec<Run> {
+    (0..segments)
+        .step_by(RUN)
+        .map(|first| {
+            let range = first..(first + RUN).min(segments);
+            let points = &nodes[range.start..=range.end];
+            let (mut low, mut high) = (points[0].coords, points[0].coords);
+            for p in points {
+                low = low.inf(&p.coords);
+                high = high.sup(&p.coords);
+            }
+            let center = Point3::from(0.5 * (low + high));
+            let radius = points
+                .iter()
+                .map(|p| (p - center).norm())
+                .fold(0.0, f64::max);
+            Run {
+                range,
+                center,
+                radius,
+            }
+        })
+        .collect()
+}
+
+/// Every pair of runs `a ≤ b` holding at least one pair of sub-segments more than `skip`
+/// apart, with the lower bound of their distance.
+fn run_pairs(runs: &[Run], skip: usize) -> Vec<(f64, usize, usize)> {
+    let mut pairs = Vec::new();
+    for (a, first) in runs.iter().enumerate() {
+        for (b, second) in runs.iter().enumerate().skip(a) {
+            if second.range.end - 1 < first.range.start + skip + 1 {
+                continue;
+            }
+            let lower = (second.center - first.center).norm() - first.radius - second.radius;
+            pairs.push((lower.max(0.0), a, b));
+        }
+    }
+    pairs
+}
+
+/// The distance between the segments `p0 p1` and `q0 q1`.
+fn segment_distance(p0: &Point3<f64>, p1: &Point3<f64>, q0: &Point3<f64>, q1: &Point3<f64>) -> f64 {
+    segment_segment_distance(p0, &(p1 - p0), q0, &(q1 - q0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    /// The distance between two segments by sampling both finely: an independent reference.
+    fn sampled_distance(p: [Point3<f64>; 2], q: [Point3<f64>; 2]) -> f64 {
+        let n = 400;
+        let at = |s: [Point3<f64>; 2], k: usize| s[0] + (s[1] - s[0]) * (k as f64 / n as f64);
+        (0..=n)
+            .flat_map(|i| (0..=n).map(move |j| (i, j)))
+            .map(|(i, j)| (at(p, i) - at(q, j)).norm())
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    #[test]
+    fn segment_distance_matches_sampling_in_every_configuration() {
+        let p = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
+        let cases = [
+            (
+                [p(0., 0., 0.), p(1., 0., 0.)],
+                [p(0.5, -1., 0.3), p(0.5, 1., 0.3)],
+            ), // crossing
+            (
+                [p(0., 0., 0.), p(1., 0., 0.)],
+                [p(2., 1., 0.), p(3., 1., 0.)],
+            ), // end to end
+            (
+                [p(0., 0., 0.), p(1., 0., 0.)],
+                [p(0.2, 0.5, 0.), p(0.8, 0.5, 0.)],
+            ), // parallel
+            (
+                [p(0., 0., 0.), p(1., 0., 0.)],
+                [p(1.5, 0., 0.), p(3., 0., 0.)],
+            ), // collinear
+            (
+                [p(0., 0., 0.), p(0., 0., 0.)],
+                [p(1., 1., 1.), p(2., 1., 0.)],
+            ), // a point
+            (
+                [p(0., 0., 0.), p(1., 1., 1.)],
+                [p(0.3, 0.9, -0.2), p(-0.4, 0.2, 1.1)],
+            ),
+        ];
+        for (a, b) in cases {
+            let exact = segment_distance(&a[0], &a[1], &b[0], &b[1]);
+            let sampled = sampled_distance(a, b);
+            assert!(exact <= sampled + 1e-12, "{a:?} {b:?}: {exact} > {sampled}");
+            assert!(sampled - exact < 5e-3, "{a:?} {b:?}: {exact} vs {sampled}");
+        }
+    }
+
+    /// A helix of radius r and pitch h: each turn is h from the next along the axis, so the
+    /// closest approach of sub-segments a turn apart is about h (less the chord's sagitta).
+    fn helix(radius: f64, rise_per_turn: f64, turns: f64, pitch: f64) -> Vec<Point3<f64>> {
+        let arc_per_turn = (4.0 * PI * PI * radius * radius + rise_per_turn.powi(2)).sqrt();
+        let count = (turns * arc_per_turn / pitch).round() as usize;
+        (0..=count)
+            .map(|k| {
+                let phase = 2.0 * PI * turns * k as f64 / count as f64;
+                Point3::new(
+                    radius * phase.cos(),
+                    radius * phase.sin(),
+                    rise_per_turn * phase / (2.0 * PI),
+                )
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_helix_comes_as_close_to_itself_as_its_rise_per_turn() {
+        let (radius, diameter, pitch) = (0.05, 0.008, 0.002);
+        // Rises above the excluded gap (π d / 2 = 12.6 mm) meet sub-segments just beyond it
+        // first, not a turn away.
+        for rise in [0.004, 0.006, 0.010] {
+            let nodes = helix(radius, rise, 3.0, pitch);
+            let contact = self_contact(&nodes, diameter, pitch).expect("three turns");
+            let distance = contact.clearance_m + diameter;
+            // Closest points lie on chords a turn apart: within the chords' sagitta of h.
+            let sagitta = pitch * pitch / (8.0 * radius);
+            assert!(
+                (distance - rise).abs() <= sagitta + 1e-9,
+                "rise {rise}: {distance}"
+            );
+            let [i, j] = contact.sub_segments;
+            let per_turn = nodes.len() as f64 / 3.0;
+            assert!(((j - i) as f64 - per_turn).abs() < 2.0, "{i} {j}");
+            assert_eq!(contact.is_violated(), rise < diameter, "rise {rise}");
+        }
+    }
+
+    /// The bounded search finds the same closest pair as trying every pair.
+    #[test]
+    fn the_bounded_search_equals_trying_every_pair() {
+        let (diameter, pitch) = (0.008, 0.005);
+        let skip = skipped_neighbours(diameter, pitch);
+        // A cable that loops through itself: a planar figure eight with a lift at the cross.
+        let nodes: Vec<Point3<f64>> = (0..=157)
+            .map(|k| {
+                let s = 2.0 * PI * k as f64 / 157.0;
+                Point3::new(0.1 * s.sin(), 0.05 * (2.0 * s).sin(), 0.003 * s.cos())
+            })
+            .collect();
+        let mut brute: Option<(f64, [usize; 2])> = None;
+        for i in 0..nodes.len() - 1 {
+            for j in i + skip + 1..nodes.len() - 1 {
+                let d = segment_distance(&nodes[i], &nodes[i + 1], &nodes[j], &nodes[j + 1]);
+                if brute.is_none_or(|(b, _)| d < b) {
+                    brute = Some((d, [i, j]));
+                }
+            }
+        }
+        let (distance, pair) = brute.expect("pairs");
+        let found = self_contact(&nodes, diameter, pitch).expect("long enough");
+        assert_eq!(found.sub_segments, pair);
+        assert_eq!(found.clearance_m, distance - diameter);
+        assert!(
+            found.is_violated(),
+            "the lobes cross 6 mm apart: {distance}"
+        );
+    }
+
+    /// A straight cable, or one bent around a circle of radius d (a quarter turn), never
+    /// touches itself at any pitch; a circle closed on itself does.
+    #[test]
+    fn straight_and_bent_cables_do_not_touch_themselves_a_closed_ring_does() {
+        let diameter = 0.008;
+        for pitch in [0.001, 0.0025, 0.005, 0.01, 0.02] {
+            let straight: Vec<Point3<f64>> = (0..=40)
+                .map(|k| Point3::new(k as f64 * pitch, 0.0, 0.0))
+                .collect();
+            if let Some(contact) = self_contact(&straight, diameter, pitch) {
+                assert!(!contact.is_violated(), "pitch {pitch}: {contact:?}");
+            }
+            let radius = 2.0 * diameter;
+            let arc = |turn: f64| -> Vec<Point3<f64>> {
+                let count = (2.0 * PI * radius * turn / pitch).round().max(1.0) as usize;
+                (0..=count)
+                    .map(|k| {
+                        let phase = 2.0 * PI * turn * k as f64 / count as f64;
+                        Point3::new(radius * phase.cos(), radius * phase.sin(), 0.0)
+                    })
+                    .collect()
+            };
+            if let Some(contact) = self_contact(&arc(0.5), diameter, pitch) {
+                assert!(
+                    !contact.is_violated(),
+                    "pitch {pitch}: half a ring {contact:?}"
+                );
+            }
+            if pitch <= 0.005 {
+                let ring = self_contact(&arc(1.05), diameter, pitch).expect("a ring");
+                assert!(ring.is_violated(), "pitch {pitch}: a closed ring {ring:?}");
+            }
+        }
+    }
+}
