@@ -308,3 +308,191 @@ fn the_wires_that_pass_through_themselves_are_found() {
     }
     assert_eq!(through("white_pose2"), None);
 }
+
+/// One ring photo's 51 points, in our frame (x = image right, z = image up), at arc lengths
+/// 0.03 m apart from the start clamp.
+fn ring_points(wire: &str, photo: usize) -> Vec<Point3<f64>> {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!(
+        "tests/data/real_cables/chen2023/ring/{wire}_photo{photo}.csv"
+    ));
+    let text = std::fs::read_to_string(file).expect("ring CSV");
+    text.lines()
+        .skip(1)
+        .map(|line| {
+            let cells: Vec<f64> = line
+                .split(',')
+                .map(|c| c.parse().expect("number"))
+                .collect();
+            Point3::new(cells[1], 0.0, -cells[2])
+        })
+        .collect()
+}
+
+/// A loop of `count` sub-segments of `pitch` from (0, 0) leaving along +x around a circle
+/// below to (−gap, 0): the start shape of the ring.
+fn ring_start_shape(count: usize, pitch: f64, gap: f64) -> Vec<Point3<f64>> {
+    let length = count as f64 * pitch;
+    let arc = |depth: f64| {
+        let radius = (0.25 * gap * gap + depth * depth).sqrt();
+        let (a0, a1) = (depth.atan2(0.5 * gap), depth.atan2(-0.5 * gap));
+        (radius, a0, TAU - (a1 - a0))
+    };
+    let (mut low, mut high) = (0.0, length);
+    for _ in 0..100 {
+        let mid = 0.5 * (low + high);
+        let (radius, _, sweep) = arc(mid);
+        if radius * sweep < length {
+            low = mid
+        } else {
+            high = mid
+        }
+    }
+    let (radius, a0, sweep) = arc(low);
+    let center = Point3::new(-0.5 * gap, 0.0, -low);
+    (0..=count)
+        .map(|k| {
+            let a = a0 - sweep * k as f64 / count as f64;
+            center + Vector3::new(radius * a.cos(), 0.0, radius * a.sin())
+        })
+        .collect()
+}
+
+/// The ring photos (a 1.5 m wire hanging between clamps 0.12 m apart, used upstream to
+/// identify EI): the best-fit EI against the published one, for three assumptions the data
+/// leave open — clamps horizontal (as inferred from the upstream simulation) at our pitch and
+/// at the upstream model's 30 pieces, and clamps along the measured end chords. See
+/// docs/real-cables.md, "The ring photos".
+#[test]
+#[ignore = "the ring photos: run with --ignored --nocapture"]
+fn the_ring_photos() {
+    let wires: toml::Value = toml::from_str(
+        &std::fs::read_to_string(
+            PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+                .join("tests/data/real_cables/chen2023/ring.toml"),
+        )
+        .expect("ring.toml"),
+    )
+    .expect("TOML");
+    // A clamp at `at` whose cable leaves along `tangent` (in the x-z plane).
+    let clamp_along = |at: Point3<f64>, tangent: Vector3<f64>| {
+        let turn = UnitQuaternion::from_axis_angle(&Vector3::y_axis(), tangent.x.atan2(tangent.z));
+        Isometry3::from_parts(Translation3::from(at.coords), turn)
+    };
+    println!(
+        "| photo | clamps | mean / max at published EI (mm) | best EI / published | mean at best (mm) |"
+    );
+    let (mut factors, mut bracketing) = (Vec::new(), 0);
+    for wire in ["white", "black", "red"] {
+        let ei = number(&wires, &[wire, "EI_Nm2_mean_adapted"]);
+        let gj = ei * number(&wires, &[wire, "GJ_over_EI_adapted"]);
+        let mass = number(&wires, &[wire, "mass_kg_per_m"]);
+        for photo in 0..5 {
+            let points = ring_points(wire, photo);
+            let chord = |a: usize, b: usize| (points[b] - points[a]).normalize();
+            let last = points.len() - 1;
+            let variants = [
+                (
+                    "horizontal",
+                    Vector3::x(),
+                    Vector3::x(),
+                    Point3::new(-0.12, 0.0, 0.0),
+                    0.01_f64,
+                ),
+                (
+                    "horizontal, 30 sub-segments",
+                    Vector3::x(),
+                    Vector3::x(),
+                    Point3::new(-0.12, 0.0, 0.0),
+                    0.05,
+                ),
+                (
+                    "end chords",
+                    chord(0, 1),
+                    chord(last - 1, last),
+                    points[last],
+                    0.01,
+                ),
+            ];
+            for (label, t0, t1, end_at, pitch) in variants {
+                let start = clamp_along(Point3::origin(), t0);
+                let end = clamp_along(end_at, t1);
+                let count = (1.5 / pitch).round() as usize;
+                let mut shape = ring_start_shape(count, pitch, -end_at.x);
+                let mut error = |factor: f64| -> (f64, f64) {
+                    let params = RodParameters {
+                        pitch_m: pitch,
+                        bending_stiffness_n_m2: factor * ei,
+                        torsion_stiffness_n_m2: gj,
+                        axial_stiffness_n: AXIAL_N,
+                        mass_per_length_kg_m: mass,
+                        gravity_m_s2: Vector3::new(0.0, 0.0, -9.81),
+                    };
+                    let solved = StaticSolver::default().solve(
+                        &params,
+                        &start,
+                        &cable_dict::statics::FarEnd::Clamped(end),
+                        &shape,
+                        None,
+                        &SolverOptions::default(),
+                    );
+                    let Ok(solved) = solved else {
+                        return (f64::INFINITY, f64::INFINITY);
+                    };
+                    shape = solved.nodes.clone();
+                    let d: Vec<f64> = points
+                        .iter()
+                        .enumerate()
+                        .map(|(i, p)| {
+                            let s = (i as f64 * 0.03).min(1.5);
+                            let k = ((s / pitch).floor() as usize).min(count - 1);
+                            let f = s / pitch - k as f64;
+                            (solved.nodes[k] + (solved.nodes[k + 1] - solved.nodes[k]) * f - p)
+                                .norm()
+                        })
+                        .collect();
+                    (
+                        d.iter().sum::<f64>() / d.len() as f64,
+                        d.iter().copied().fold(0.0, f64::max),
+                    )
+                };
+                let at_published = error(1.0);
+                // Golden-section search of the factor on [0.3, 2] (log scale).
+                let (mut a, mut b) = (0.3f64.ln(), 2.0f64.ln());
+                let g = (5f64.sqrt() - 1.0) / 2.0;
+                for _ in 0..30 {
+                    let (c, d) = (b - g * (b - a), a + g * (b - a));
+                    if error(c.exp()).0 < error(d.exp()).0 {
+                        b = d
+                    } else {
+                        a = c
+                    }
+                }
+                let best = (0.5 * (a + b)).exp();
+                println!(
+                    "| {wire} {photo} | {label} | {:.1} / {:.1} | {:.2} | {:.1} |",
+                    at_published.0 * 1e3,
+                    at_published.1 * 1e3,
+                    best,
+                    error(best).0 * 1e3
+                );
+                factors.push(best);
+            }
+            // Per photo: horizontal, horizontal at 30 sub-segments, end chords.
+            let [fine, coarse, chords] = factors[..] else {
+                panic!("three variants")
+            };
+            factors.clear();
+            bracketing += usize::from(fine < 1.0 && chords > 1.0);
+            assert!(
+                (coarse / fine - 1.0).abs() < 0.25,
+                "{wire} {photo}: {fine} {coarse}"
+            );
+        }
+    }
+    // The clamps' unrecorded angle moves the best EI across the published value for nearly
+    // every photo: the identification's boundary conditions, not the model, set the factor.
+    assert!(
+        bracketing >= 12,
+        "{bracketing} of 15 photos bracket the published EI"
+    );
+}
