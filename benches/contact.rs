@@ -7,7 +7,9 @@
 //! - the same cable 70 mm closer to the axis, so it runs inside the forearm tube;
 //! - a cable 0.5 m away from the arm (everything culled);
 //! - the forearm tube alone as a closed 1024-triangle STL mesh, with the same cable beside it
-//!   and pushed into it.
+//!   and pushed into it;
+//! - the cable's clearance to itself (`self_contact`): the same 50 sub-segments, and a loop of
+//!   150 sub-segments that nearly closes (a ring hanging between two clamps 12 cm apart).
 
 use std::hint::black_box;
 
@@ -15,6 +17,7 @@ use cable_dict::robot::Robot;
 use cable_dict::stress::contact::{
     ClampZone, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
 };
+use cable_dict::stress::self_contact;
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::{Point3, Vector3};
 
@@ -175,5 +178,31 @@ fn tube_stl(radius: f64, length: f64, n: usize) -> String {
     text + "endsolid tube\n"
 }
 
-criterion_group!(benches, bench_contact);
+/// The clearance of a cable to itself, next to the robot clearance it is checked with.
+fn bench_self_contact(c: &mut Criterion) {
+    let robot = Robot::from_urdf_file("robots/viper_s850/viper_s850.urdf").expect("Viper");
+    let q: Vec<f64> = [20.0f64, -35.0, 110.0, 30.0, 45.0, 0.0]
+        .iter()
+        .map(|d| d.to_radians())
+        .collect();
+    let poses = robot.link_poses(&q).expect("poses");
+    let cable = forearm_cable(&robot, &poses, 0.08);
+    let diameter = 2.0 * RADIUS_M;
+    c.bench_function("self_contact/forearm cable, 50 sub-segments", |b| {
+        b.iter(|| self_contact(black_box(&cable), diameter, PITCH_M))
+    });
+    // 150 sub-segments around a circle from one clamp to another 12 cm beside it.
+    let ring: Vec<Point3<f64>> = (0..=150)
+        .map(|k| {
+            let a = 0.25 * std::f64::consts::TAU * 0.1
+                + 0.95 * std::f64::consts::TAU * k as f64 / 150.0;
+            Point3::new(0.24 * a.sin(), 0.0, 0.24 * (a.cos() - 1.0))
+        })
+        .collect();
+    c.bench_function("self_contact/hanging ring, 150 sub-segments", |b| {
+        b.iter(|| self_contact(black_box(&ring), diameter, PITCH_M))
+    });
+}
+
+criterion_group!(benches, bench_contact, bench_self_contact);
 criterion_main!(benches);

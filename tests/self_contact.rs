@@ -5,6 +5,7 @@
 
 mod common;
 
+use cable_dict::attachment::Rejection;
 use cable_dict::motion::Motion;
 use cable_dict::setup::Setup;
 use cable_dict::solve::{SolveOptions, Status, solve};
@@ -47,6 +48,13 @@ fn the_catalogue_s_short_paths_touch_themselves_and_are_not_reported() {
         "{}",
         report.explanation
     );
+    // The attachment test refuses loops between the two link_4 clamps that touch themselves.
+    let touching_pieces: usize = report
+        .segments
+        .iter()
+        .filter_map(|s| s.rejections.get(&Rejection::SelfContact))
+        .sum();
+    assert!(touching_pieces > 0, "no piece refused as touching itself");
     let failures: Vec<&str> = report
         .candidates
         .iter()

@@ -270,34 +270,8 @@ impl<'a> Tracker<'a> {
             let Some(itself) = self_contact(&run.nodes, diameter, pitch) else {
                 continue;
             };
-            let [k, l] = itself.sub_segments;
-            let (blamed, other) = run.blame(k, l);
-            let (other_segment, other_local) = run.owners[other];
-            let touches = Some(format!(
-                "{} sub-segment {other_local}",
-                self.setup.segment_name(other_segment)
-            ));
-            let (segment, place) = match run.coincident_between(other_segment, run.owners[blamed].0)
-            {
-                Some(between) => (
-                    between,
-                    Place {
-                        touches,
-                        ..Place::default()
-                    },
-                ),
-                None => {
-                    let (segment, local) = run.owners[blamed];
-                    let middle = nalgebra::center(&run.nodes[blamed], &run.nodes[blamed + 1]);
-                    let place = Place {
-                        sub_segment: Some(local),
-                        position_m: Some(xyz(&middle)),
-                        touches,
-                        ..Place::default()
-                    };
-                    (segment, place)
-                }
-            };
+            let name = |segment| self.setup.segment_name(segment);
+            let (segment, place) = run.failure(itself.sub_segments, name);
             let worst = Worst {
                 value: itself.clearance_m,
                 unit: "m",
@@ -383,6 +357,31 @@ impl JoinedRun {
         } else {
             (k, l)
         }
+    }
+
+    /// The segment a contact between sub-segments `pair` is given to, and where: the freer
+    /// part's ([`JoinedRun::blame`]), or the 0 mm piece both parts hang from
+    /// ([`JoinedRun::coincident_between`]); the place names the other part.
+    fn failure(&self, [k, l]: [usize; 2], name: impl Fn(usize) -> String) -> (usize, Place) {
+        let (blamed, other) = self.blame(k, l);
+        let (other_segment, other_local) = self.owners[other];
+        let touches = Some(format!("{} sub-segment {other_local}", name(other_segment)));
+        let (segment, local) = self.owners[blamed];
+        if let Some(between) = self.coincident_between(other_segment, segment) {
+            let place = Place {
+                touches,
+                ..Place::default()
+            };
+            return (between, place);
+        }
+        let middle = nalgebra::center(&self.nodes[blamed], &self.nodes[blamed + 1]);
+        let place = Place {
+            sub_segment: Some(local),
+            position_m: Some(xyz(&middle)),
+            touches,
+            ..Place::default()
+        };
+        (segment, place)
     }
 
     /// A 0 mm piece between segments `a` and `b` (two clamps at one place that the run

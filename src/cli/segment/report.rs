@@ -83,7 +83,8 @@ struct SelfContactMetric {
     min_clearance_mm: f64,
     /// The cable touches or passes through itself: not a shape a real cable can take.
     violation: bool,
-    /// The two sub-segments (0-based from the start guide).
+    /// Where: the two sub-segments (0-based from the start guide).
+    #[serde(rename = "where")]
     sub_segments: [usize; 2],
 }
 
