@@ -13,7 +13,7 @@ use cable_dict::geometry::{connect, sag_direction};
 use cable_dict::pose::Pose;
 use cable_dict::statics::turns::solve_turned;
 use cable_dict::statics::{RodParameters, SolverOptions, StaticSolver};
-use cable_dict::stress::self_contact;
+use cable_dict::stress::FirstSelfContact;
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
@@ -188,7 +188,7 @@ fn solve(case: &Case) -> Result<Outcome, String> {
     let sag = sag_direction(&case.params.gravity_m_s2);
     let start_shape =
         connect(&case.start, &case.end, count, PITCH_M, &sag).map_err(|e| e.to_string())?;
-    let mut through = None;
+    let mut watch = FirstSelfContact::new(DIAMETER_M, PITCH_M);
     let equilibrium = solve_turned(
         &mut StaticSolver::default(),
         &case.params,
@@ -198,13 +198,7 @@ fn solve(case: &Case) -> Result<Outcome, String> {
         Some(start_shape.twist_correction_rad),
         f64::from(case.turns) * TAU,
         &SolverOptions::default(),
-        |angle, equilibrium, crossed| {
-            let touches = self_contact(&equilibrium.nodes, DIAMETER_M, PITCH_M)
-                .is_some_and(|c| c.is_violated());
-            if (touches || crossed) && through.is_none() {
-                through = Some(angle.to_degrees());
-            }
-        },
+        |angle, equilibrium, crossed| watch.step(angle, &equilibrium.nodes, crossed),
     )
     .map_err(|e| e.to_string())?;
     let nodes = &equilibrium.nodes;
@@ -226,7 +220,7 @@ fn solve(case: &Case) -> Result<Outcome, String> {
                 .collect(),
         ),
         twist_deg: equilibrium.twist_rad.to_degrees(),
-        through_itself_from_deg: through,
+        through_itself_from_deg: watch.at.map(f64::to_degrees),
     })
 }
 

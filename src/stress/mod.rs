@@ -12,5 +12,5 @@ pub use bend::{BendRadius, min_bend_radius};
 pub use contact::{
     ClampZone, Clearance, ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
 };
-pub use self_contact::{SelfContact, self_contact, self_contact_gap_m};
+pub use self_contact::{FirstSelfContact, SelfContact, self_contact, self_contact_gap_m};
 pub use stretch::stretch;

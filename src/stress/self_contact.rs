@@ -37,6 +37,41 @@ impl SelfContact {
     }
 }
 
+/// Watches a cable through a sequence of shapes — the steps of turning a clamp, say — and
+/// keeps where along the sequence it first touched or passed through itself: by overlapping
+/// in a shape, or by crossing between two shapes (`crossed`, e.g.
+/// [`crate::statics::turns::passed_through_itself`]), which neither shape shows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FirstSelfContact {
+    diameter_m: f64,
+    pitch_m: f64,
+    /// The sequence's parameter (e.g. the clamp's extra turn, rad) at the first contact.
+    pub at: Option<f64>,
+}
+
+impl FirstSelfContact {
+    /// A watch for a cable of `diameter_m` in sub-segments of `pitch_m`.
+    pub fn new(diameter_m: f64, pitch_m: f64) -> Self {
+        FirstSelfContact {
+            diameter_m,
+            pitch_m,
+            at: None,
+        }
+    }
+
+    /// Takes in the shape `nodes` at `at`, reached from the previous one `crossed` or not.
+    pub fn step(&mut self, at: f64, nodes: &[Point3<f64>], crossed: bool) {
+        if self.at.is_some() {
+            return;
+        }
+        let touches =
+            self_contact(nodes, self.diameter_m, self.pitch_m).is_some_and(|c| c.is_violated());
+        if touches || crossed {
+            self.at = Some(at);
+        }
+    }
+}
+
 /// Arc length (m) below which two parts of a cable of `diameter_m` are the same stretch of
 /// cable bending, not two parts touching: half a turn around its own radius.
 pub fn self_contact_gap_m(diameter_m: f64) -> f64 {

@@ -10,7 +10,7 @@ use cable_dict::rigid_chain::{
 };
 use cable_dict::statics::turns::solve_turned;
 use cable_dict::statics::{RodParameters, SolverOptions, StaticSolver, StaticsError};
-use cable_dict::stress::self_contact;
+use cable_dict::stress::FirstSelfContact;
 use nalgebra::{Point3, Rotation3};
 use std::time::Instant;
 
@@ -109,7 +109,7 @@ pub fn converged(cable: &CableSpec, args: &Args, start: &Connected) -> Result<Co
     match args.solver {
         Solver::QuasiStatic => {
             let params = RodParameters::new(cable, args.gravity);
-            let mut self_contact_from_deg = None;
+            let mut watch = FirstSelfContact::new(cable.diameter_m, cable.sub_segment_pitch_m);
             let equilibrium = solve_turned(
                 &mut StaticSolver::default(),
                 &params,
@@ -119,17 +119,7 @@ pub fn converged(cable: &CableSpec, args: &Args, start: &Connected) -> Result<Co
                 start.twist_correction_rad,
                 f64::from(args.twist_turns) * std::f64::consts::TAU,
                 &SolverOptions::default(),
-                |angle, equilibrium, crossed| {
-                    let (nodes, d, pitch) = (
-                        &equilibrium.nodes,
-                        cable.diameter_m,
-                        cable.sub_segment_pitch_m,
-                    );
-                    let touches = self_contact(nodes, d, pitch).is_some_and(|c| c.is_violated());
-                    if (touches || crossed) && self_contact_from_deg.is_none() {
-                        self_contact_from_deg = Some(angle.to_degrees());
-                    }
-                },
+                |angle, equilibrium, crossed| watch.step(angle, &equilibrium.nodes, crossed),
             )
             .map_err(|e| match e {
                 StaticsError::InvalidInput { .. } => Failure::input(e),
@@ -140,7 +130,7 @@ pub fn converged(cable: &CableSpec, args: &Args, start: &Connected) -> Result<Co
                 residual: equilibrium.residual_n,
                 residual_unit: "N",
                 twist_rad: Some(equilibrium.twist_rad),
-                self_contact_from_deg,
+                self_contact_from_deg: watch.at.map(f64::to_degrees),
                 time_us: micros(timer),
                 nodes: equilibrium.nodes,
                 frames: equilibrium.frames,
