@@ -172,13 +172,14 @@ pub fn sign(
 ) -> Result<Provenance, ProvenanceError> {
     let file = signature_path(dictionary);
     let signed = Signed::of(bytes);
+    let public = key.public();
     let mut lines: Vec<Entry> = Vec::new();
     for (line, entry) in read_lines(&file)?.unwrap_or_default() {
         entry.check(&signed, dictionary).map_err(|problem| {
             let advice = " — remove the signature file to sign the new dictionary afresh";
             ProvenanceError::new(&file, Some(line), problem + advice)
         })?;
-        if entry.key.key() != key.public().key() {
+        if entry.key.key() != public.key() {
             lines.push(entry);
         }
     }
@@ -198,7 +199,12 @@ pub fn sign(
     }
     write_atomically(&file, text.as_bytes())
         .map_err(|e| ProvenanceError::new(&file, None, format!("cannot write: {e}")))?;
-    check(dictionary, bytes, None)
+    // Every line was checked above or just signed: no second pass over the file.
+    Ok(Provenance {
+        signature_file: Some(file.display().to_string()),
+        signers: lines.iter().map(|entry| entry.signer(None)).collect(),
+        trusted_keys: None,
+    })
 }
 
 /// What a signature covers: the dictionary's length and SHA-512.
@@ -336,34 +342,36 @@ fn read_lines(file: &Path) -> Result<Option<Vec<(usize, Entry)>>, ProvenanceErro
     }
     let text = input::read_text(file, SIGNATURE_FILE)
         .map_err(|problem| ProvenanceError::new(file, None, problem))?;
-    let mut lines = Vec::new();
-    for (line, content) in content_lines(&text) {
-        if lines.len() == MAX_SIGNATURES {
-            return Err(ProvenanceError::new(
-                file,
-                Some(line),
-                format!("more than {MAX_SIGNATURES} signatures"),
-            ));
-        }
-        let entry = Entry::parse(content).map_err(|p| ProvenanceError::new(file, Some(line), p))?;
-        lines.push((line, entry));
-    }
+    let lines = parse_entries(&text)
+        .map_err(|(line, problem)| ProvenanceError::new(file, Some(line), problem))?;
     Ok(Some(lines))
 }
 
-/// Parses `text` as a signature file and checks every line against `bytes` (for fuzzing: no
-/// file system).
+/// The signature lines of a signature file's text, numbered; the first bad line's number and
+/// problem otherwise.
+fn parse_entries(text: &str) -> Result<Vec<(usize, Entry)>, (usize, String)> {
+    let mut lines = Vec::new();
+    for (line, content) in content_lines(text) {
+        if lines.len() == MAX_SIGNATURES {
+            return Err((line, format!("more than {MAX_SIGNATURES} signatures")));
+        }
+        lines.push((line, Entry::parse(content).map_err(|p| (line, p))?));
+    }
+    Ok(lines)
+}
+
+/// Parses `text` as a signature file and checks every line against `bytes`, as [`check`]
+/// does, without the file system (for fuzzing).
 pub fn check_text(text: &str, bytes: &[u8]) -> Result<usize, String> {
+    let in_line = |(line, problem): (usize, String)| format!("line {line}: {problem}");
+    let lines = parse_entries(text).map_err(in_line)?;
     let signed = Signed::of(bytes);
-    let mut count = 0;
-    for (line, content) in content_lines(text).take(MAX_SIGNATURES + 1) {
-        let entry = Entry::parse(content).map_err(|p| format!("line {line}: {p}"))?;
+    for (line, entry) in &lines {
         entry
             .check(&signed, Path::new("the dictionary"))
-            .map_err(|p| format!("line {line}: {p}"))?;
-        count += 1;
+            .map_err(|problem| in_line((*line, problem)))?;
     }
-    Ok(count)
+    Ok(lines.len())
 }
 
 #[cfg(test)]
