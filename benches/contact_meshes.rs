@@ -9,7 +9,7 @@
 //! - `Obstacles::from_robot` for the UR5 (the meshes' shells analysed, BVHs built).
 //!
 //! It uses only the API that existed before the mesh solids were split into shells, so the
-//! same file measures both versions (README, "Contact with real meshes").
+//! same file measures both versions (docs/physics.md, "Contact with the robot").
 
 use std::hint::black_box;
 

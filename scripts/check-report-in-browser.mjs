@@ -1,7 +1,9 @@
 // Opens a report folder's index.html in headless Chromium and checks what an engineer would
 // see: the page loads with no console error, no uncaught exception and no failed request,
-// asks for nothing outside the folder, runs no script (a dialog is a problem: markup from an
-// input ran), and every picture shows something.
+// asks for nothing outside the folder, runs no script from an input (a dialog is a problem:
+// markup from an input ran), every picture shows something, and the 3D view loads its scene,
+// draws it, plays (the time advances and the picture changes) and seeks. The installation
+// sheet (install.html), when there is one, is checked like the page.
 //
 //   node scripts/check-report-in-browser.mjs REPORT_DIR
 //
@@ -95,6 +97,58 @@ async function checkImages(page, blank, problems) {
   return count;
 }
 
+// Longest wait for the 3D view's scene to load and for its animation to move (ms).
+const VIEW_TIMEOUT_MS = 60000;
+
+// The 3D view: the scene loads, the canvas shows something, playing advances the time and
+// moves the robot, the slider seeks, and the clamp labels are there. Returns a description.
+async function checkView(page, blank, problems) {
+  const viewer = page.locator("model-viewer#view");
+  if ((await viewer.count()) === 0) {
+    problems.push("the page has no 3D view");
+    return "no 3D view";
+  }
+  try {
+    await page.waitForFunction(() => document.body.dataset.viewLoaded === "true", null, {
+      timeout: VIEW_TIMEOUT_MS,
+    });
+  } catch {
+    problems.push("the 3D view's scene did not load");
+    return "3D view not loaded";
+  }
+  await viewer.scrollIntoViewIfNeeded();
+  const before = await viewer.screenshot();
+  const share = await drawnShare(blank, before);
+  if (share < MIN_DRAWN_SHARE) problems.push(`3D view: blank (${(100 * share).toFixed(1)} % drawn)`);
+  const labels = await page.locator("model-viewer#view .clamp-label").count();
+  if (labels === 0) problems.push("3D view: no clamp label");
+  const hasAnimation = await page.evaluate(() => !!window.cableDictView.animation);
+  let moved = "no animation";
+  if (hasAnimation) {
+    const t0 = await page.evaluate(() => document.getElementById("view").currentTime);
+    await page.click("#view-play");
+    await page.waitForTimeout(1500);
+    const t1 = await page.evaluate(() => document.getElementById("view").currentTime);
+    await page.click("#view-play");
+    if (!(t1 > t0)) problems.push(`3D view: playing did not advance the time (${t0} → ${t1} s)`);
+    // Seek to the worst moment: the time follows, and the picture changes.
+    const worst = await page.evaluate(() => window.cableDictView.worst?.time_s ?? null);
+    const target = worst ?? t1 / 2;
+    await page.evaluate((t) => {
+      const slider = document.getElementById("view-time");
+      slider.value = String(t);
+      slider.dispatchEvent(new Event("input"));
+    }, target);
+    await page.waitForTimeout(500);
+    const t2 = await page.evaluate(() => document.getElementById("view").currentTime);
+    if (Math.abs(t2 - target) > 0.02) problems.push(`3D view: seeking to ${target} s gave ${t2} s`);
+    const after = await viewer.screenshot();
+    if (after.equals(before)) problems.push("3D view: the picture did not change over the motion");
+    moved = `played ${t0.toFixed(2)} → ${t1.toFixed(2)} s, sought ${target.toFixed(2)} s`;
+  }
+  return `3D view: loaded, ${(100 * share).toFixed(1)} % drawn, ${labels} clamp labels, ${moved}`;
+}
+
 async function main() {
   const dir = process.argv[2];
   const index = dir && path.resolve(dir, "index.html");
@@ -116,13 +170,24 @@ async function main() {
     await watch(page, problems);
     await page.goto(pathToFileURL(index).href, { waitUntil: "load" });
     console.log(`${index}:`);
-    const count = await checkImages(page, blank, problems);
+    let count = await checkImages(page, blank, problems);
+    const view = await checkView(page, blank, problems);
+    console.log(`  ${view}`);
+    // The installation sheet, a page of its own (a report of no path has none).
+    const sheet = path.resolve(dir, "install.html");
+    if (existsSync(sheet)) {
+      const sheetPage = await browser.newPage({ viewport: { width: 1200, height: 900 } });
+      await watch(sheetPage, problems);
+      await sheetPage.goto(pathToFileURL(sheet).href, { waitUntil: "load" });
+      console.log(`${sheet}:`);
+      count += await checkImages(sheetPage, blank, problems);
+    }
     const seconds = ((Date.now() - started) / 1000).toFixed(1);
     for (const problem of problems) console.log(`PROBLEM ${problem}`);
     console.log(
       problems.length
         ? `${problems.length} problem(s) (${seconds} s)`
-        : `ok: ${count} pictures loaded and drawn, no console error, no failed request (${seconds} s)`,
+        : `ok: ${count} pictures loaded and drawn, the 3D view plays, no console error, no failed request (${seconds} s)`,
     );
     return problems.length ? 1 : 0;
   } finally {

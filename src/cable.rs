@@ -17,6 +17,7 @@
 //! density no cable material reaches, a torsion-to-bending ratio far outside measured
 //! cables): the values are still used, but the user is told.
 
+use crate::input::line_of;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
@@ -67,6 +68,12 @@ pub struct CableSpec {
     pub sub_segment_pitch_m: f64,
     /// Axial stiffness `EA` of the model (N); see [`DEFAULT_AXIAL_STIFFNESS_N`].
     pub axial_stiffness_n: f64,
+    /// Cable to cut beyond the last clamp, into the connector at the tool (m); `None` when
+    /// the file does not say. Not part of the physics (nor of a setup's hash).
+    pub tool_end_allowance_m: Option<f64>,
+    /// Cable to cut before the first clamp, to the base or the controller (m); `None` when
+    /// the file does not say.
+    pub base_end_allowance_m: Option<f64>,
 }
 
 impl CableSpec {
@@ -184,6 +191,10 @@ impl CableSpec {
                 Some(value) => file.positive("axial_stiffness_n", value)?,
                 None => DEFAULT_AXIAL_STIFFNESS_N,
             },
+            tool_end_allowance_m: file
+                .allowance("tool_end_allowance_mm", &raw.tool_end_allowance_mm)?,
+            base_end_allowance_m: file
+                .allowance("base_end_allowance_mm", &raw.base_end_allowance_mm)?,
             name: raw.name,
         })
     }
@@ -239,6 +250,8 @@ struct RawCable {
     min_bend_radius_mm: Spanned<f64>,
     sub_segment_pitch_mm: Option<Spanned<f64>>,
     axial_stiffness_n: Option<Spanned<f64>>,
+    tool_end_allowance_mm: Option<Spanned<f64>>,
+    base_end_allowance_mm: Option<Spanned<f64>>,
 }
 
 /// A cable file's text, for messages that name the line of a value.
@@ -270,6 +283,25 @@ impl FileValues<'_> {
                 SUB_SEGMENT_PITCH_RANGE_MM.start(),
                 SUB_SEGMENT_PITCH_RANGE_MM.end()
             ),
+        ))
+    }
+
+    /// An optional cut allowance (mm in the file, m returned): finite and ≥ 0.
+    fn allowance(
+        &self,
+        field: &str,
+        value: &Option<Spanned<f64>>,
+    ) -> Result<Option<f64>, CableError> {
+        let Some(value) = value else {
+            return Ok(None);
+        };
+        let v = *value.get_ref();
+        if v.is_finite() && v >= 0.0 {
+            return Ok(Some(v * 1e-3));
+        }
+        Err(self.error(
+            Some(line_of(self.text, value.span().start)),
+            format!("`{field}` = {v} must be a finite length ≥ 0 (mm)"),
         ))
     }
 
@@ -318,11 +350,6 @@ impl FileValues<'_> {
             )),
         }
     }
-}
-
-/// 1-based line number of a byte offset.
-fn line_of(text: &str, offset: usize) -> usize {
-    text[..offset.min(text.len())].matches('\n').count() + 1
 }
 
 /// A cable file that cannot be used: the file, the line when known, and the problem.

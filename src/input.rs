@@ -139,6 +139,13 @@ pub(crate) fn file_type(meta: &std::fs::Metadata) -> &'static str {
     }
 }
 
+/// 1-based line number of byte `offset` in `text` (the end of the text when beyond it): how
+/// every input error names its place.
+pub(crate) fn line_of(text: &str, offset: usize) -> usize {
+    let head = &text.as_bytes()[..offset.min(text.len())];
+    head.iter().filter(|&&b| b == b'\n').count() + 1
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -72,6 +72,7 @@ pub mod input;
 pub mod json;
 pub mod motion;
 pub mod motion_test;
+pub mod mounting;
 pub mod path;
 pub mod pose;
 pub mod progress;

@@ -220,3 +220,27 @@ fn unknown_and_mistyped_keys_and_missing_files_are_refused() {
         "«{unreadable}»"
     );
 }
+
+/// The cut allowances are optional lengths ≥ 0 in mm: absent they are `None` (never a silent
+/// 0), given they are read in metres, and a negative or non-finite one is refused with its
+/// line.
+#[test]
+fn cut_allowances_are_optional_lengths() {
+    let cable = parse(GOOD).unwrap();
+    assert_eq!(cable.tool_end_allowance_m, None);
+    assert_eq!(cable.base_end_allowance_m, None);
+    let with = format!("{GOOD}tool_end_allowance_mm = 40.0\nbase_end_allowance_mm = 0.0\n");
+    let cable = parse(&with).unwrap();
+    assert!(close(cable.tool_end_allowance_m.unwrap(), 0.040));
+    assert_eq!(cable.base_end_allowance_m, Some(0.0));
+    let lines = GOOD.lines().count();
+    for bad in ["-5.0", "inf", "nan"] {
+        let text = format!("{GOOD}tool_end_allowance_mm = {bad}\n");
+        let message = refusal(&text);
+        assert!(
+            message.starts_with(&format!("c.toml:{}:", lines + 1))
+                && message.contains("tool_end_allowance_mm"),
+            "{message}"
+        );
+    }
+}

@@ -265,14 +265,32 @@ fn help_explains_every_subcommand() {
     }
 }
 
-/// Every subcommand's help agrees with the README: each section it sends the reader to
-/// exists (a heading or a bold paragraph title), and each time range it quotes is the
-/// README's (issue 27: `build --help` cited an explanation that did not exist, `segment
-/// --help` quoted other solver timings).
+/// Every subcommand's help agrees with the documentation it cites: each section it sends
+/// the reader to (`README, "Title"`, `README.md, "Title"` or `docs/page.md, "Title"`, several
+/// titles possible) exists in that file (a heading or a bold paragraph title), and each time
+/// range it quotes is in a file it cites, or in the README or a docs page when it cites none
+/// (issue 27: `build --help` cited an explanation that did not exist, `segment --help`
+/// quoted other solver timings).
 #[test]
 fn every_help_points_to_readme_sections_that_exist_and_quotes_its_timings() {
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).expect("README");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let read = |relative: &str| {
+        std::fs::read_to_string(root.join(relative)).unwrap_or_else(|e| panic!("{relative}: {e}"))
+    };
+    // The whole user documentation: the README and every page under docs/.
+    let mut documentation = vec![("README.md".to_string(), read("README.md"))];
+    for entry in std::fs::read_dir(root.join("docs")).expect("docs/") {
+        let name = entry
+            .expect("docs/ entry")
+            .file_name()
+            .into_string()
+            .expect("UTF-8");
+        if name.ends_with(".md") {
+            let relative = format!("docs/{name}");
+            let text = read(&relative);
+            documentation.push((relative, text));
+        }
+    }
     let top = String::from_utf8_lossy(&run(&["--help"]).stdout).into_owned();
     let commands: Vec<&str> = top
         .lines()
@@ -287,20 +305,44 @@ fn every_help_points_to_readme_sections_that_exist_and_quotes_its_timings() {
     for command in commands {
         let help = String::from_utf8_lossy(&run(&[command, "--help"]).stdout).into_owned();
         let help = help.split_whitespace().collect::<Vec<_>>().join(" ");
-        for cited in help.split("README, ").skip(1) {
-            // `"Dictionaries", "Direction count": why 32` → each quoted title.
-            let titles = cited.split(':').next().unwrap_or_default();
+        // `(docs/dictionaries.md, "Direction count": why 32)` → the file and each quoted title
+        // up to the first ':' or ')'.
+        let mut cited_files = Vec::new();
+        let citations = help
+            .match_indices(".md, \"")
+            .map(|(at, _)| {
+                let file_start = help[..at].rfind([' ', '(']).map_or(0, |i| i + 1);
+                (format!("{}.md", &help[file_start..at]), at)
+            })
+            .chain(
+                help.match_indices("README, \"")
+                    .map(|(at, _)| ("README.md".to_string(), at)),
+            );
+        for (file, at) in citations {
+            let (_, text) = documentation
+                .iter()
+                .find(|(name, _)| *name == file)
+                .unwrap_or_else(|| panic!("`{command} --help` cites {file}, which does not exist"));
+            let rest = &help[help[at..].find('"').expect("a title") + at..];
+            let titles = &rest[..rest.find([':', ')']).unwrap_or(rest.len())];
             for title in titles.split('"').skip(1).step_by(2) {
-                let heading = readme
+                let heading = text
                     .lines()
                     .any(|l| l.starts_with('#') && l.contains(title));
-                let bold = readme.contains(&format!("**{title}.**"));
+                let bold = text.contains(&format!("**{title}.**"));
                 assert!(
                     heading || bold,
-                    "`{command} --help` cites README \"{title}\""
+                    "`{command} --help` cites {file}, \"{title}\", which is no heading there"
                 );
                 references += 1;
             }
+            cited_files.push(text.as_str());
+        }
+        if cited_files.is_empty() {
+            cited_files = documentation
+                .iter()
+                .map(|(_, text)| text.as_str())
+                .collect();
         }
         let words: Vec<&str> = help.split(' ').collect();
         for pair in words
@@ -308,24 +350,27 @@ fn every_help_points_to_readme_sections_that_exist_and_quotes_its_timings() {
             .filter(|w| w[0].contains('–') && w[1] == "ms")
         {
             let range = format!("{} ms", pair[0].trim_start_matches('('));
-            assert!(readme.contains(&range), "`{command} --help` quotes {range}");
+            assert!(
+                cited_files.iter().any(|text| text.contains(&range)),
+                "`{command} --help` quotes {range}, which the pages it cites do not"
+            );
             timings += 1;
         }
     }
     assert!(
         references >= 2,
-        "the help cites the README {references} times"
+        "the help cites the documentation {references} times"
     );
     assert!(timings >= 2, "the help quotes {timings} timings");
 }
 
-/// The README's own segment example is a cable that holds its limits: its static
-/// equilibrium is judged ok, and the start shape (not a cable at rest) is not judged
-/// (issue 18: the example printed "TOO TIGHT").
+/// The documentation's own segment example (docs/commands.md, under `export-scene`) is a
+/// cable that holds its limits: its static equilibrium is judged ok, and the start shape
+/// (not a cable at rest) is not judged (issue 18: the example printed "TOO TIGHT").
 #[test]
 fn the_readme_segment_example_holds_its_limits() {
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).expect("README");
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/commands.md"))
+        .expect("docs/commands.md");
     let start = readme
         .find("cable-dict export-scene segment --cable")
         .expect("the example");

@@ -369,7 +369,7 @@ fn admissible_pairs(setup: &Setup, m: usize) -> Vec<((usize, usize), Vec<usize>)
 /// `solve --dict` and `solve --setup` give the same intra-link D1 and D2 and the same path
 /// on every bundled motion with the hand-written bundled setups, and on two with a coarser
 /// copy of the robot-level one (generated sites, installed twist), each with its own
-/// dictionary (the full robot-level catalogue: README, "Dictionaries"); and with a setup
+/// dictionary (the full robot-level catalogue: docs/dictionaries.md); and with a setup
 /// drawn from the hand-written pick-and-place catalogue (subsets of its places, other
 /// lengths, two clamps on a link the build setup has one on) and the dictionary of that
 /// catalogue.
@@ -575,7 +575,7 @@ fn a_setup_outside_the_catalogue_is_refused_naming_what_differs() {
 /// `info`'s undecided share of a link equals the share counted one lookup at a time through
 /// [`Dictionary::answer_at`] (each call finding its own neighbours) over the same directions,
 /// and it falls as the directions get denser (the hand-written pick-and-place catalogue at 16
-/// and 64 directions; README, "Direction count").
+/// and 64 directions; docs/dictionaries.md, "Direction count").
 #[test]
 fn the_undecided_share_counts_single_lookups() {
     use cable_dict::dictionary::UNDECIDED_SAMPLE_DIRECTIONS;

@@ -10,6 +10,7 @@ use common::run;
 use serde_json::Value;
 use std::collections::BTreeSet;
 use std::path::Path;
+use std::process::Output;
 
 const MOTION: &str = "motions/viper_s850/pick_and_place.csv";
 const SMALL: &str = "tests/data/small_setup.toml";
@@ -83,14 +84,19 @@ fn a_report_folder_holds_every_file_and_the_page_needs_nothing_else() {
         .map(|k| format!("pose-{k}.svg"))
         .collect();
     pictures.push("worst-moment.svg".into());
+    // No installation sheet: nothing passed. The 3D view's files are there.
     let mut expected: BTreeSet<String> = [
         "index.html",
         "joints.svg",
+        "model-viewer-licenses.txt",
+        "model-viewer.min.js",
         "result.json",
         "scene.glb",
         "sets.svg",
         "stress.svg",
         "summary.md",
+        "view-data.js",
+        "view.js",
     ]
     .iter()
     .map(|f| f.to_string())
@@ -121,7 +127,17 @@ fn a_report_folder_holds_every_file_and_the_page_needs_nothing_else() {
         );
     }
     check_pictures(&report, &pictures, &html);
-    for outside in ["http", "<script", "@import", "url("] {
+    // The only scripts are the view's own files, in this order; nothing is fetched.
+    let scripts: Vec<&str> = html
+        .match_indices("<script")
+        .map(|(i, _)| &html[i..])
+        .collect();
+    let sources = ["model-viewer.min.js", "view-data.js", "view.js"];
+    assert_eq!(scripts.len(), sources.len(), "{html}");
+    for (script, source) in scripts.iter().zip(sources) {
+        assert!(script.starts_with(&format!("<script src=\"{source}\"></script>")));
+    }
+    for outside in ["http", "@import", "url("] {
         assert!(!html.contains(outside), "index.html contains {outside}");
     }
 
@@ -355,17 +371,18 @@ fn an_unwritable_report_folder_is_refused() {
     assert!(stderr.contains("report"), "{stderr}");
 }
 
-/// The bundled pick-and-place answer's C2 has no length (G2 and G3 are one clamp): the
-/// pictures say so, and do not call it a piece without a static shape (it read as a failure).
-#[test]
-fn a_piece_of_no_length_is_said_to_join_its_clamps() {
+const ROBOT_LEVEL: &str = "robots/viper_s850/pick_and_place.toml";
+
+/// The robot-level setup's report of `motion`, in a temporary folder (kept as long as the
+/// first value lives), with the command's output.
+fn robot_level_report(motion: &str) -> (tempfile::TempDir, std::path::PathBuf, Output) {
     let dir = tempfile::tempdir().expect("temporary folder");
     let report = dir.path().join("out");
     let output = run(&[
         "solve",
         "--setup",
-        "robots/viper_s850/pick_and_place.toml",
-        MOTION,
+        ROBOT_LEVEL,
+        motion,
         "--report",
         report.to_str().expect("utf-8"),
     ]);
@@ -374,13 +391,26 @@ fn a_piece_of_no_length_is_said_to_join_its_clamps() {
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
+    (dir, report, output)
+}
+
+/// The bundled pick-and-place answer's C2 has no length (G2 and G3 are one clamp): the
+/// pictures say so, and do not call it a piece without a static shape (it read as a failure).
+#[test]
+fn a_piece_of_no_length_is_said_to_join_its_clamps() {
+    let (_dir, report, output) = robot_level_report(MOTION);
+    // The summary counts physical clamps: G2 and G3 are one, and no 0 mm piece is listed.
     let stdout = String::from_utf8_lossy(&output.stdout);
-    let c2 = stdout
-        .lines()
-        .find(|line| line.trim_start().starts_with("C2 "))
-        .expect("a C2 row");
     assert!(
-        c2.contains("intra-link") && c2.ends_with(" 0 mm"),
+        stdout
+            .lines()
+            .any(|line| line.trim_start().starts_with("G2 = G3 ")),
+        "{stdout}"
+    );
+    assert!(
+        !stdout
+            .lines()
+            .any(|line| line.contains('→') && line.contains(" 0 mm")),
         "{stdout}"
     );
     let html = std::fs::read_to_string(report.join("index.html")).expect("index.html");
@@ -389,4 +419,126 @@ fn a_piece_of_no_length_is_said_to_join_its_clamps() {
         "{html}"
     );
     assert!(!html.contains("No static shape found"), "{html}");
+}
+
+/// The rows of `install.html`'s table: (clamp, link, mark) of each.
+fn sheet_rows(html: &str) -> Vec<(String, String, f64)> {
+    html.split("<tr><td>")
+        .skip(1)
+        .map(|row| {
+            // Each cell after the first starts with the rest of its tag (` class="mark">`).
+            let cells: Vec<&str> = row
+                .split("</td><td")
+                .enumerate()
+                .map(|(i, cell)| match (i, cell.split_once('>')) {
+                    (0, _) | (_, None) => cell,
+                    (_, Some((_, text))) => text,
+                })
+                .collect();
+            let mark = cells[2].parse().expect("a mark in mm");
+            (cells[0].to_string(), cells[1].to_string(), mark)
+        })
+        .collect()
+}
+
+/// The installation sheet of a bundled answer against its result JSON: one row per physical
+/// clamp (guides joined by a 0 mm piece are one), on the JSON's link, at the mark the JSON's
+/// piece lengths give summed from the tool end; the picture carries every label and mark.
+/// The 3D view labels the same clamps, at the world positions the robot's kinematics give
+/// for the motion's first pose (in glTF's y-up frame).
+#[test]
+fn the_installation_sheet_and_the_view_agree_with_the_result() {
+    let motion_file = "motions/viper_s850/machine_tending.csv";
+    let (_dir, report, _) = robot_level_report(motion_file);
+    let result: Value =
+        serde_json::from_slice(&std::fs::read(report.join("result.json")).expect("result"))
+            .expect("JSON");
+    assert_eq!(result["status"], "solved");
+    let pieces = result["ecpv"]["segments"].as_array().expect("pieces");
+    let guides = result["ecpv"]["guides"].as_array().expect("guides");
+    // (guides, link, mark) from the JSON alone.
+    let total: f64 = pieces
+        .iter()
+        .map(|p| p["length_mm"].as_f64().expect("mm"))
+        .sum();
+    let mut expected: Vec<(Vec<String>, String, f64)> = Vec::new();
+    let mut from_start = 0.0;
+    for (i, guide) in guides.iter().enumerate() {
+        let name = guide["name"].as_str().expect("name").to_string();
+        let before = i
+            .checked_sub(1)
+            .map(|p| pieces[p]["length_mm"].as_f64().expect("mm"));
+        from_start += before.unwrap_or(0.0);
+        if before == Some(0.0) {
+            expected.last_mut().expect("a clamp").0.push(name);
+        } else {
+            let link = guide["link"].as_str().expect("link").to_string();
+            expected.push((vec![name], link, total - from_start));
+        }
+    }
+    let html = std::fs::read_to_string(report.join("install.html")).expect("install.html");
+    let rows = sheet_rows(&html);
+    assert_eq!(rows.len(), expected.len(), "{html}");
+    let svg = std::fs::read_to_string(report.join("install.svg")).expect("install.svg");
+    for ((label, link, mark), (names, json_link, json_mark)) in rows.iter().zip(&expected) {
+        assert!(
+            label.starts_with(&names.join(" = ")),
+            "{label} against {names:?}"
+        );
+        assert_eq!(link, json_link);
+        assert!(
+            (mark - json_mark.round()).abs() < 0.5,
+            "{label}: {mark} against {json_mark}"
+        );
+        assert!(
+            svg.contains(&format!(">{mark:.0} mm<")),
+            "{label}: no mark in the picture"
+        );
+    }
+
+    // The view's labels: the same clamps, at their places at the motion's first pose.
+    let data = std::fs::read_to_string(report.join("view-data.js")).expect("view-data.js");
+    let json = data
+        .split_once("window.cableDictView = ")
+        .and_then(|(_, rest)| rest.trim_end().strip_suffix(';'))
+        .expect("the data assignment");
+    let view: Value = serde_json::from_str(json).expect("view data JSON");
+    let clamps = view["clamps"].as_array().expect("clamps");
+    assert_eq!(clamps.len(), rows.len());
+    let setup = cable_dict::setup::Setup::from_file(ROBOT_LEVEL).expect("setup");
+    let motion =
+        cable_dict::motion::Motion::from_csv_file(&setup.robot, motion_file).expect("motion");
+    let poses = setup.robot.link_poses(&motion.samples()[0]).expect("poses");
+    for (clamp, (label, _, _)) in clamps.iter().zip(&rows) {
+        assert_eq!(clamp["label"].as_str(), Some(label.as_str()));
+        let first = clamp["label"]
+            .as_str()
+            .expect("label")
+            .split([' ', '('])
+            .next()
+            .expect("name");
+        let guide = setup
+            .guides
+            .iter()
+            .find(|g| g.name == first)
+            .expect("guide");
+        let placement = guides
+            .iter()
+            .find(|g| g["name"] == first)
+            .expect("placement")["configuration"]
+            .clone();
+        let configuration = guide
+            .configurations
+            .iter()
+            .find(|c| c.name == placement)
+            .expect("configuration");
+        let world = poses[guide.link] * configuration.pose * nalgebra::Point3::origin();
+        let shown = &clamp["positions_m"][0];
+        for (axis, value) in [world.x, world.z, -world.y].into_iter().enumerate() {
+            assert!(
+                (shown[axis].as_f64().expect("coordinate") - value).abs() < 1e-9,
+                "{label}"
+            );
+        }
+    }
 }

@@ -8,7 +8,8 @@
 
 use cable_dict::pose::pose_from_mm_deg;
 use cable_dict::report::scene::{
-    CableLine, GuideMark, PoseScene, SceneAnimation, SceneError, SceneSpec, Snapshot, to_glb,
+    CableLine, CableTint, GuideMark, PoseScene, SceneAnimation, SceneError, SceneSpec, Snapshot,
+    to_glb,
 };
 use cable_dict::robot::Robot;
 use gltf::animation::Property;
@@ -120,6 +121,7 @@ fn spec(robot: &Robot) -> SceneSpec<'_> {
                 offset_m: Vector3::new(0.0, -1.5, 0.2),
             },
         ],
+        tints: Vec::new(),
     }
 }
 
@@ -699,6 +701,7 @@ fn spheres_capsules_and_stl_meshes_are_drawn_to_size() {
         guides: Vec::new(),
         animation: None,
         snapshots: Vec::new(),
+        tints: Vec::new(),
     };
     let (doc, blob) = import(&glb_kept(&spec, "CABLE_DICT_SHAPES_OUT"));
     // root, robot, 2 links, 3 colliders: no cable node without cable lines
@@ -735,5 +738,58 @@ fn spheres_capsules_and_stl_meshes_are_drawn_to_size() {
             corners.iter().any(|c| (p - Point3::from(*c)).norm() < 1e-6),
             "{p:?}"
         );
+    }
+}
+
+/// A tinted line's sub-segments, nodes and snapshot tube use its tint's material (its colour
+/// as the scene promises: red for an exceeded limit), untinted lines keep the plain cable
+/// material, and no material is left unused.
+#[test]
+fn tinted_cable_lines_wear_their_margin_colour() {
+    let robot = robot();
+    let mut spec = spec(&robot);
+    spec.tints = vec![("C1".into(), CableTint::Exceeded)];
+    let (doc, _) = import(&glb(&spec));
+    let mut checked = 0;
+    let material_of = |node: &gltf::Node<'_>| {
+        let mesh = node.mesh().expect("a mesh");
+        let primitive = mesh.primitives().next().expect("a primitive");
+        primitive.material().name().unwrap_or_default().to_string()
+    };
+    for node in doc.nodes() {
+        let name = node.name().unwrap_or_default();
+        // Sub-segments, nodes and snapshot tubes; the main lines' holder nodes have no mesh.
+        let line = match name.split_whitespace().next() {
+            Some(line @ ("C1" | "C2")) if node.mesh().is_some() => line,
+            _ => continue,
+        };
+        checked += 1;
+        let expected = if line == "C1" {
+            "cable, limit exceeded"
+        } else {
+            "cable"
+        };
+        assert_eq!(material_of(&node), expected, "{name}");
+    }
+    let snapshots = spec.snapshots.len();
+    let nodes: usize = spec
+        .main
+        .cable
+        .iter()
+        .map(|l| 2 * l.nodes_m.len() - 1)
+        .sum();
+    assert_eq!(checked, nodes + 2 * snapshots);
+    let red = doc
+        .materials()
+        .find(|m| m.name() == Some("cable, limit exceeded"))
+        .expect("the red material");
+    let [r, g, b, _] = red.pbr_metallic_roughness().base_color_factor();
+    assert!(r > 0.5 && g < 0.1 && b < 0.1, "{r} {g} {b}");
+    for material in doc.materials() {
+        let used = doc.meshes().any(|mesh| {
+            mesh.primitives()
+                .any(|p| p.material().index() == material.index())
+        });
+        assert!(used, "{:?} is unused", material.name());
     }
 }

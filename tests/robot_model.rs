@@ -143,17 +143,21 @@ fn malformed_xml_and_xacro_are_refused_with_the_file_name() {
     let message = refusal(xacro);
     assert!(
         message.starts_with("test.urdf:2: <xacro:property> is a xacro element")
-            && message.contains("xacro robot.urdf.xacro"),
+            && message.contains("`pip install xacro`")
+            && message.contains("`xacro test.urdf > test.expanded.urdf`"),
         "{message}"
     );
+    // A file named .xacro is judged by what it holds: one that uses no xacro is a URDF.
     let dir = tempfile::tempdir().expect("temp dir");
     let path = dir.path().join("arm.urdf.xacro");
     std::fs::write(&path, MIXED).expect("write");
-    let message = Robot::from_urdf_file(&path)
-        .expect_err("xacro by name")
-        .to_string();
+    let robot = Robot::from_urdf_file(&path).expect("a .xacro without xacro loads");
+    assert_eq!((robot.name.as_str(), robot.dof()), ("mixed", 2));
+    std::fs::write(&path, xacro).expect("write");
+    let message = Robot::from_urdf_file(&path).expect_err("xacro").to_string();
     assert!(
-        message.contains("arm.urdf.xacro") && message.contains("xacro robot.urdf.xacro"),
+        message.starts_with(&format!("{}:2: <xacro:property>", path.display()))
+            && message.contains("`xacro arm.urdf.xacro > arm.urdf`"),
         "{message}"
     );
     let missing = Robot::from_urdf_file(dir.path().join("none.urdf"))

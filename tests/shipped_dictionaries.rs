@@ -2,7 +2,7 @@
 //! the bundled setups today: each is rebuilt with the parameters its header records (the
 //! direction count) and compared byte for byte. A change to the solver, the metrics or a
 //! bundled setup that alters any result fails here until the files are rebuilt
-//! (README, "Dictionaries").
+//! (docs/dictionaries.md).
 
 use cable_dict::dictionary::{BuildOptions, Dictionary, build};
 use cable_dict::setup::Setup;

@@ -150,7 +150,7 @@ fn directions_are_measured_from_the_links_long_axis() {
 /// tool's derived twist reference of those pieces is within a degree of the hand frames at
 /// every length: the angle it would turn their end clamps by is below 1°. (Across joints 5
 /// and 6, from G3 to G4, the hand frames are 18–44° off the derived reference, and off the
-/// hanging cable's too: that transport was wrong, see README "Design space".)
+/// hanging cable's too: that transport was wrong, see docs/design-space.md.)
 #[test]
 fn derived_twist_references_reproduce_the_hand_transported_frames() {
     let source: PathBuf = root().join("robots/viper_s850/hand_written/pick_and_place.toml");

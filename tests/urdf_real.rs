@@ -362,8 +362,9 @@ fn a_urdf_that_uses_xacro_is_still_refused_naming_the_file_and_the_element() {
         .expect_err("xacro elements are refused")
         .to_string();
     let expected = format!(
-        "{}:4: <xacro:macro> is a xacro element; this is a xacro file, not a URDF; expand it \
-         first (`xacro robot.urdf.xacro > robot.urdf`)",
+        "{}:4: <xacro:macro> is a xacro element; this is a xacro file, not a URDF: expand it \
+         with PyPI's xacro, no ROS needed (`pip install xacro`, then \
+         `xacro robot.urdf > robot.expanded.urdf`",
         path.display()
     );
     assert!(message.starts_with(&expected), "{message}");

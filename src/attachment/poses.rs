@@ -21,7 +21,7 @@ use serde::Serialize;
 /// Two gravity directions in a link's frame closer than this (degrees) count as one for an
 /// intra-link segment's test: the stated resolution of "every direction the motion
 /// produces". Between neighbouring directions a piece's bend radius changes by 0.04 mm per
-/// degree (median) to 0.46 mm per degree (99th percentile; README "Dictionaries"), so a
+/// degree (median) to 0.46 mm per degree (99th percentile; docs/dictionaries.md), so a
 /// direction skipped within 3° moves a 99th-percentile piece by under 1.4 mm; the static
 /// sweep then checks every motion pose of the candidates against every link. The bundled
 /// motions produce 1–120 directions per link at 3° (2°: 1.5× as many, and as many solves).

@@ -103,6 +103,8 @@ pub fn run(args: Args) -> Result<(), Failure> {
         min_bend_radius_m: args.min_bend_radius_mm * 1e-3,
         sub_segment_pitch_m: DEFAULT_SUB_SEGMENT_PITCH_M,
         axial_stiffness_n: DEFAULT_AXIAL_STIFFNESS_N,
+        tool_end_allowance_m: None,
+        base_end_allowance_m: None,
     };
     let measured = match test.tip {
         TipMeasurement::Droop(droop) => format!("droops {} mm", droop * 1e3),

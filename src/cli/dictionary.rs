@@ -23,8 +23,8 @@ pub struct BuildArgs {
     /// The dictionary (or shard) to write; replaced atomically.
     #[arg(short, long, value_name = "DICT.cdict")]
     output: PathBuf,
-    /// Gravity directions sampled on the sphere (README, "Dictionaries", "Direction count":
-    /// why 32).
+    /// Gravity directions sampled on the sphere (docs/dictionaries.md, "Direction count": why
+    /// 32).
     #[arg(long, value_name = "N", default_value_t = DEFAULT_DIRECTION_COUNT)]
     directions: usize,
     /// Worker threads (default: one per core). The bytes do not depend on it.

@@ -106,7 +106,7 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Segment(args) => segment::run(*args),
         Command::Motion(args) => motion::run(args),
         Command::CriticalPoses(args) => solve::run_critical(args),
-        Command::Solve(args) => solve::run(*args),
+        Command::Solve(args) => solve::run(*args, cli.verbose > 0),
         Command::ExportScene(args) => scene::run(args),
         Command::Sites(args) => sites::run(args),
         Command::Build(args) => dictionary::run_build(args),

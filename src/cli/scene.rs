@@ -10,6 +10,7 @@ use cable_dict::path::CablePath;
 use cable_dict::report::scene::{SceneSpec, to_glb};
 use cable_dict::report::views::pose_scene;
 use cable_dict::setup::Setup;
+use cable_dict::solve::shown_index;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -134,10 +135,9 @@ fn path_from_result(
         Some(rank) => candidates
             .iter()
             .find(|c| c["rank"].as_u64() == Some(rank as u64)),
-        None => candidates
-            .iter()
-            .find(|c| c["passed"].as_bool() == Some(true))
-            .or(candidates.last()),
+        None => {
+            shown_index(candidates.iter().map(|c| c["passed"].as_bool())).map(|i| &candidates[i])
+        }
     };
     let chosen = chosen.ok_or_else(|| match rank {
         Some(rank) => fail(format!(

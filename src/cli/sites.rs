@@ -27,8 +27,8 @@ pub struct Args {
     #[arg(long)]
     all: bool,
     /// Print JSON: every guide with its configurations and, for generated ones, every site
-    /// (link, collider, position, surface point, normal, reference axis, directions); the
-    /// format is in the README.
+    /// (link, collider, position, surface point, normal, reference axis, directions; the
+    /// format: docs/commands.md, "cable-dict sites").
     #[arg(long)]
     json: bool,
 }
@@ -51,6 +51,7 @@ pub fn run(args: Args) -> Result<(), Failure> {
             guides: marks(&setup),
             animation: None,
             snapshots: Vec::new(),
+            tints: Vec::new(),
         };
         write_scene(output, &spec)?;
     }

@@ -102,7 +102,8 @@ enum Connect {
     Linear,
 }
 
-pub fn run(args: Args) -> Result<(), Failure> {
+/// Runs `solve`; with `verbose` (`-v`) the printed summary carries the search's details.
+pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
     if let Some(dir) = &args.report {
         check_report_folder(dir).map_err(Failure::input)?;
     }
@@ -185,7 +186,11 @@ pub fn run(args: Args) -> Result<(), Failure> {
     if args.json {
         print_json(&report)?;
     } else {
-        emit(&report.to_string())?;
+        // `-v`: the search's details as well.
+        emit(&match verbose {
+            true => format!("{report:#}"),
+            false => report.to_string(),
+        })?;
     }
     // "No cable path" is an answer, not a failure: exit 0 like "solved" (the status says which).
     Ok(())

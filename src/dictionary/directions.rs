@@ -18,7 +18,7 @@ use std::f64::consts::PI;
 /// and left 9.6, 8.3, 7.5, 7.2, 6.6 % of link_4's lookups undecided (`info`); a solve of the
 /// bundled pick and place with them solved 31, 16, 16, 13, 12 of its C2 pieces exactly, in
 /// the same attachment time (0.32–0.40 s). Most undecided pieces change branch somewhere on
-/// the sphere and stay undecided at any N (README, "Dictionaries", "Direction count").
+/// the sphere and stay undecided at any N (docs/dictionaries.md, "Direction count").
 pub const DEFAULT_DIRECTION_COUNT: usize = 32;
 
 /// Fewest directions a build accepts (fewer would leave hemispheres unsampled).

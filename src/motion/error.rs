@@ -63,9 +63,3 @@ fn location(file: Option<&Path>, line: Option<usize>) -> String {
         (None, _) => String::new(),
     }
 }
-
-/// 1-based line number of a byte offset in `text`.
-pub(crate) fn line_of(text: &str, offset: usize) -> usize {
-    let head = &text.as_bytes()[..offset.min(text.len())];
-    head.iter().filter(|&&b| b == b'\n').count() + 1
-}

@@ -1,7 +1,7 @@
 //! Waypoint files (TOML): what the trajectory generator reads.
 
-use super::error::line_of;
 use super::{MotionError, Profile};
+use crate::input::line_of;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use toml::Spanned;

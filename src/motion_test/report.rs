@@ -298,7 +298,7 @@ impl MotionTestReport {
                     w.time_s, w.segment_name,
                 )
             }
-            None => format!("{label} -"),
+            None => format!("{label}: none"),
         };
         [
             verdict,
@@ -313,9 +313,11 @@ impl MotionTestReport {
                 "mm",
             ),
             format!(
-                "{} steps, {:.2} s simulated in {:.2} s wall{}{}",
+                "{} steps, {:.2} s simulated (the {:.2} s motion, then its last pose held) in \
+                 {:.2} s wall{}{}",
                 self.steps,
                 self.simulated_s,
+                self.motion_duration_s,
                 self.wall_time_s,
                 if self.simulated_s > 0.0 {
                     format!(

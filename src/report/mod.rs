@@ -16,17 +16,20 @@
 //! - `index.html`: the summary, the pictures and the plots on one page needing nothing but
 //!   the folder.
 
+mod install;
 mod page;
 pub mod pictures;
 pub mod plots;
 pub mod scene;
 mod summary;
+mod view;
 pub mod views;
 
 use crate::atomic_file::FolderReplacement;
 use crate::motion::Motion;
 use crate::setup::Setup;
 use crate::solve::SolveReport;
+use crate::text_table::decimal;
 use std::path::{Path, PathBuf};
 
 /// Why the report folder could not be written.
@@ -157,9 +160,28 @@ pub fn write_report(
     let (spec, problems) =
         views::solve_scene(setup, motion, report).map_err(|e| ReportError::Scene(e.to_string()))?;
     let notes = write_scene(&mut folder, &spec, problems)?;
+    for file in view::view_files(setup, report, &spec)? {
+        folder.put(file.name, file.what, &file.bytes)?;
+    }
     let pictures = pictures::pictures(setup, report, &spec);
     for picture in &pictures {
         folder.put(&picture.file, &picture.what, picture.svg.as_bytes())?;
+    }
+    if let Some(plan) = &report.mounting {
+        let title = format!(
+            "Installation sheet: {} mm of cable between the clamps",
+            decimal(plan.length_mm, 0)
+        );
+        folder.put(
+            "install.svg",
+            "the installation sheet's picture: clamp marks on the cable, each clamp on its link",
+            install::install_svg(&title, plan).as_bytes(),
+        )?;
+        folder.put(
+            "install.html",
+            "the installation sheet, printable: every clamp's place and mark",
+            install::install_html(&title, plan).as_bytes(),
+        )?;
     }
     let described: Vec<(&str, &str)> = folder
         .described
@@ -185,12 +207,27 @@ pub fn write_report(
                 .collect(),
         },
         page::Section {
+            heading: "Installation sheet",
+            intro: "Where each clamp grips the cable and where it sits on its link; the \
+                    printable sheet with the table of places is install.html.",
+            figures: report
+                .mounting
+                .as_ref()
+                .map(|_| {
+                    vec![(
+                        "install.svg",
+                        "Clamp marks on the cable and each clamp's place",
+                    )]
+                })
+                .unwrap_or_default(),
+        },
+        page::Section {
             heading: "Plots",
             intro: "",
             figures: plots,
         },
     ];
-    let page = page::index_html(&title, &summary, &sections);
+    let page = page::index_html(&title, &summary, &sections, view::VIEW_HTML);
     folder.put("index.html", "this page", page.as_bytes())?;
     let written = folder.written;
     staging.commit().map_err(write_error)?;
@@ -209,7 +246,7 @@ pub fn check_report_folder(dir: &Path) -> Result<(), ReportError> {
 /// The files a report folder may hold (what [`write_report`] writes, by extension): an
 /// existing folder holding anything else is not replaced.
 pub fn is_report_file(name: &str) -> bool {
-    [".json", ".md", ".html", ".svg", ".glb"]
+    [".json", ".md", ".html", ".svg", ".glb", ".js", ".txt"]
         .iter()
         .any(|extension| name.ends_with(extension))
 }
@@ -289,7 +326,7 @@ fn write_plots(
 
 /// `Motion test of d* (1380 mm)` or `Motion test of candidate 3 (1420 mm), which failed`.
 fn stress_title(report: &SolveReport) -> String {
-    match views::shown_candidate(report) {
+    match report.shown_candidate() {
         Some(c) if c.passed == Some(true) => {
             format!(
                 "Motion test of the path that passed it ({:.0} mm)",

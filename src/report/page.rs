@@ -1,5 +1,6 @@
-//! `index.html`: the summary, the pictures and the plots on one page that needs nothing but
-//! the folder it is in (no scripts, no fonts, no network).
+//! `index.html`: the summary, the 3D view, the pictures and the plots on one page that needs
+//! nothing but the folder it is in (no fonts, no network; the only scripts are the view's own
+//! files in the folder).
 
 use crate::escape::html as escape;
 use pulldown_cmark::{Event, Options, Parser, html};
@@ -14,9 +15,10 @@ pub struct Section<'a> {
     pub figures: Vec<(&'a str, &'a str)>,
 }
 
-/// The page: `summary_md` rendered, then each section that has figures, each figure an image
-/// of the folder with its caption.
-pub fn index_html(title: &str, summary_md: &str, sections: &[Section<'_>]) -> String {
+/// The page: `summary_md` rendered up to its second heading, the 3D view's markup `view`, the
+/// rest of the summary, then each section that has figures, each figure an image of the
+/// folder with its caption.
+pub fn index_html(title: &str, summary_md: &str, sections: &[Section<'_>], view: &str) -> String {
     let mut body = String::new();
     // Raw HTML in the Markdown is shown as text: the summary escapes the names it quotes,
     // and this keeps any it missed from becoming markup.
@@ -27,10 +29,18 @@ pub fn index_html(title: &str, summary_md: &str, sections: &[Section<'_>]) -> St
     html::push_html(&mut body, events);
     let mut page = format!(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
-         <title>{}</title>\n<style>\n{STYLE}</style>\n</head>\n<body>\n<main>\n",
-        escape(title)
+         <title>{}</title>\n<style>\n{STYLE}{}</style>\n</head>\n<body>\n<main>\n",
+        escape(title),
+        super::view::VIEW_STYLE
     );
-    page.push_str(&body);
+    // The view goes right under the summary's first section (the answer), before the tables.
+    let split = body
+        .match_indices("<h2>")
+        .nth(1)
+        .map_or(body.len(), |(at, _)| at);
+    page.push_str(&body[..split]);
+    page.push_str(view);
+    page.push_str(&body[split..]);
     for section in sections.iter().filter(|s| !s.figures.is_empty()) {
         page.push_str(&format!("<h2>{}</h2>\n", escape(section.heading)));
         if !section.intro.is_empty() {

@@ -4,8 +4,10 @@
 use super::Hashed;
 use crate::escape::markdown as text;
 use crate::motion_test::{MotionTestReport, Worst};
+use crate::mounting::MountingPlan;
 use crate::setup::Thresholds;
-use crate::solve::{Ecpv, SolveReport};
+use crate::solve::{NamedPath, SolveReport};
+use crate::text_table::decimal;
 use std::fmt::Write as _;
 
 /// The whole `summary.md`; `files` are the report's other files with what each shows, and
@@ -19,14 +21,18 @@ pub fn summary_markdown(
 ) -> String {
     let mut md = String::new();
     heading(&mut md, report);
+    if let Some(plan) = &report.mounting {
+        mounting_tables(&mut md, plan);
+    }
+    if let Some(test) = &report.motion_test {
+        motion_test_table(&mut md, test, thresholds);
+    }
+    // The search's details, in its own words (the glossary explains them).
     if let (Some(path), Some(total)) = (&report.optimal, report.optimal_length_mm) {
         path_tables(&mut md, path, total);
     }
     sets_table(&mut md, report);
     margins_table(&mut md, report);
-    if let Some(test) = &report.motion_test {
-        motion_test_table(&mut md, test, thresholds);
-    }
     candidates_table(&mut md, report);
     timings_table(&mut md, report);
     inputs_table(&mut md, inputs, report);
@@ -88,8 +94,81 @@ fn heading(md: &mut String, report: &SolveReport) {
     }
 }
 
-fn path_tables(md: &mut String, path: &Ecpv, total_mm: f64) {
-    section(md, &format!("The cable path ({total_mm:.0} mm)"));
+/// The answer as the workshop mounts it: physical clamps, marks, places, pieces, tolerance,
+/// cut length and installation pose.
+fn mounting_tables(md: &mut String, plan: &MountingPlan) {
+    section(md, "How to mount it");
+    let _ = writeln!(
+        md,
+        "Marks are cable lengths from the cable's end at the tool; places are measured on the \
+         link from the axis of the joint that moves it. Printable sheet: \
+         [install.html](install.html).\n"
+    );
+    header(md, &["clamp", "link", "mark (mm)", "place on the link"]);
+    for clamp in &plan.clamps {
+        let place = clamp
+            .place
+            .as_ref()
+            .map_or_else(|| "on the robot's base link".to_string(), |p| p.describe());
+        row(
+            md,
+            &[
+                clamp.label(),
+                clamp.link.clone(),
+                decimal(clamp.mark_mm, 0),
+                place,
+            ],
+        );
+    }
+    let _ = writeln!(md);
+    header(md, &["cable between", "length (mm)", "crosses"]);
+    for piece in &plan.pieces {
+        let (from, to) = (
+            &plan.clamps[piece.from_clamp],
+            &plan.clamps[piece.from_clamp + 1],
+        );
+        row(
+            md,
+            &[
+                format!("{} → {}", from.guides.join(" = "), to.guides.join(" = ")),
+                decimal(piece.length_mm, 0),
+                piece.across_joints.join(", "),
+            ],
+        );
+    }
+    let tolerance = decimal(plan.piece_tolerance_mm, 0);
+    let half = decimal(plan.piece_tolerance_mm / 2.0, 0);
+    let mut notes = vec![format!(
+        "Each piece also held every limit {tolerance} mm shorter and longer: put each mark \
+         within ±{half} mm."
+    )];
+    if let Some(cut) = &plan.cut {
+        notes.push(format!("{}.", capitalized(&cut.describe())));
+    }
+    notes.push(match &plan.installation_pose {
+        Some(pose) => format!(
+            "Lay the cable untwisted along its route with the robot at its installation pose: \
+             {}.",
+            pose.iter()
+                .map(|j| format!("{} {} {}", j.joint, decimal(j.value, 1), j.unit))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        None => "The setup gives no installation pose: each clamp's twist reference is its \
+                 frame's +x axis as written."
+            .into(),
+    });
+    notes.push(
+        "The cable before the first clamp and beyond the last is outside this design.".into(),
+    );
+    let _ = writeln!(md);
+    for note in notes {
+        let _ = writeln!(md, "- {}", text(&note));
+    }
+}
+
+fn path_tables(md: &mut String, path: &NamedPath, total_mm: f64) {
+    section(md, &format!("The path as searched ({total_mm:.0} mm)"));
     header(md, &["piece", "from", "to", "links", "kind", "length (mm)"]);
     for s in &path.segments {
         row(
@@ -137,7 +216,7 @@ fn path_tables(md: &mut String, path: &Ecpv, total_mm: f64) {
 }
 
 fn triple(v: &[f64; 3]) -> String {
-    v.map(|x| crate::text_table::decimal(x, 1)).join(", ")
+    v.map(|x| decimal(x, 1)).join(", ")
 }
 
 fn sets_table(md: &mut String, report: &SolveReport) {
@@ -391,7 +470,7 @@ fn fence_for(content: &str) -> String {
 }
 
 /// `text` with its first letter in upper case.
-fn capitalized(text: &str) -> String {
+pub(super) fn capitalized(text: &str) -> String {
     let mut chars = text.chars();
     chars.next().map_or(String::new(), |first| {
         first.to_uppercase().chain(chars).collect()

@@ -1,7 +1,9 @@
 //! What the scene of a cable path shows: the robot at a pose, the path's static equilibrium
 //! there, its guides, the motion test as an animation, the critical poses as snapshots.
 
-use super::scene::{CableLine, GuideMark, PoseScene, SceneAnimation, SceneSpec, Snapshot};
+use super::scene::{
+    CableLine, CableTint, GuideMark, PoseScene, SceneAnimation, SceneSpec, Snapshot,
+};
 use crate::attachment::{ConnectMethod, Evaluator};
 use crate::motion::Motion;
 use crate::motion_test::{MotionTestReport, SegmentNodes, ShapeFrame};
@@ -9,7 +11,7 @@ use crate::path::{CablePath, Pv};
 use crate::pose::Pose;
 use crate::robot::JointVectorError;
 use crate::setup::Setup;
-use crate::solve::{CandidateOutcome, NearestMiss, SolveReport};
+use crate::solve::{NearestMiss, SolveReport};
 use crate::stress::contact::ContactError;
 use nalgebra::{Point3, Vector3};
 
@@ -101,17 +103,8 @@ fn still_scene<'a>(setup: &'a Setup, path: Option<&CablePath>, main: PoseScene) 
         guides: path.map(|p| guide_marks(setup, p)).unwrap_or_default(),
         animation: None,
         snapshots: Vec::new(),
+        tints: Vec::new(),
     }
-}
-
-/// The candidate a report shows: d*, the untested d̂, or the last one tried when none passed
-/// (the one whose motion test the report keeps).
-pub fn shown_candidate(report: &SolveReport) -> Option<&CandidateOutcome> {
-    report
-        .candidates
-        .iter()
-        .find(|c| c.passed == Some(true))
-        .or_else(|| report.candidates.last())
 }
 
 /// The scene of a solve: the shown candidate at the motion's first pose, animated over its
@@ -122,7 +115,7 @@ pub fn solve_scene<'a>(
     motion: &Motion,
     report: &SolveReport,
 ) -> Result<(SceneSpec<'a>, Vec<String>), ViewError> {
-    let path = shown_candidate(report).map(|c| &c.path);
+    let path = report.shown_candidate().map(|c| &c.path);
     let evaluator = Evaluator::new(setup, ConnectMethod::Hermite)?;
     let at = |joints: &[f64]| -> Result<(PoseScene, Vec<String>), ViewError> {
         let link_poses = setup.robot.link_poses(joints)?;
@@ -141,6 +134,7 @@ pub fn solve_scene<'a>(
         _ => at(&motion.samples()[0])?,
     };
     let mut spec = still_scene(setup, path, main);
+    spec.tints = margin_tints(setup, report);
     if let Some(test) = &report.motion_test {
         spec.animation = motion_test_animation(setup, motion, test)?;
     }
@@ -160,6 +154,68 @@ pub fn solve_scene<'a>(
     }
     lay_out_snapshots(&mut spec);
     Ok((spec, problems))
+}
+
+/// Share of a limit's allowance (bend radius, stretch beyond 1) within which a piece is
+/// drawn as tight.
+const TIGHT_SHARE: f64 = 0.2;
+
+/// Each piece of the shown candidate coloured by how close it came to a limit, at the test
+/// poses and over the motion test: red when a limit is exceeded, amber when closer to the
+/// robot or to itself than one cable diameter or within [`TIGHT_SHARE`] of the bend-radius
+/// or stretch limit, green otherwise.
+pub fn margin_tints(setup: &Setup, report: &SolveReport) -> Vec<(String, CableTint)> {
+    let Some(shown) = report.shown_candidate() else {
+        return Vec::new();
+    };
+    let t = &setup.thresholds;
+    let diameter = setup.cable.diameter_m;
+    // Per limit: the value's margin and the margin below which it is tight.
+    let tight_below = |constraint: &str| match constraint {
+        "contact" => diameter,
+        "bend_radius" => TIGHT_SHARE * t.min_bend_radius_m,
+        _ => TIGHT_SHARE * (t.stretch - 1.0),
+    };
+    let mut tints: Vec<(String, CableTint)> = Vec::new();
+    let mut worsen =
+        |name: String, tint: CableTint| match tints.iter_mut().find(|(n, _)| *n == name) {
+            Some((_, old)) => *old = (*old).max(tint),
+            None => tints.push((name, tint)),
+        };
+    let is_optimal = report.optimal.is_some() && shown.passed != Some(false);
+    for (m, _) in shown.path.pieces() {
+        if is_optimal {
+            worsen(setup.segment_name(m), CableTint::Ample);
+        }
+    }
+    let classify = |margin: f64, tight: f64| match margin {
+        m if m < 0.0 => CableTint::Exceeded,
+        m if m < tight => CableTint::Tight,
+        _ => CableTint::Ample,
+    };
+    if is_optimal {
+        for margin in &report.margins {
+            let tint = classify(margin.margin, tight_below(margin.constraint));
+            worsen(margin.segment.clone(), tint);
+        }
+    }
+    if let Some(test) = &report.motion_test {
+        let worsts = [
+            (&test.worst_clearance, "contact", 1.0, t.contact_clearance_m),
+            (&test.worst_self_clearance, "contact", 1.0, 0.0),
+            (&test.worst_bend, "bend_radius", 1.0, t.min_bend_radius_m),
+            (&test.worst_stretch, "stretch", -1.0, t.stretch),
+        ];
+        for (worst, constraint, sign, limit) in worsts {
+            if let Some(w) = worst {
+                let tint = classify(sign * (w.value - limit), tight_below(constraint));
+                if is_optimal || tint == CableTint::Exceeded {
+                    worsen(setup.segment_name(w.segment), tint);
+                }
+            }
+        }
+    }
+    tints
 }
 
 /// Without a candidate: the robot where the diagnosis's first nearest miss failed, with that

@@ -9,10 +9,9 @@ use nalgebra::{Unit, Vector3};
 use std::collections::HashMap;
 use std::path::Path;
 
+/// A file named `*.xacro` is read like any other: refused at its first use of xacro, loaded
+/// when it has none (it is then a URDF; xacro would output the same robot).
 pub(super) fn from_file(path: &Path) -> Result<Robot, RobotError> {
-    if has_extension(path, "xacro") {
-        return Err(xacro_refusal(path));
-    }
     let text =
         crate::input::read_text(path, crate::input::URDF).map_err(|e| RobotError::file(path, e))?;
     from_str(&text, path, None)
@@ -29,7 +28,7 @@ pub(super) fn from_str(
         return Err(RobotError::at_line(
             source,
             line,
-            format!("{use_of_xacro}; {XACRO_ADVICE}"),
+            format!("{use_of_xacro}; {}", xacro_advice(source)),
         ));
     }
     if let Some(line) = too_deep(text) {
@@ -64,17 +63,51 @@ fn folder_of(path: &Path) -> &Path {
     }
 }
 
-fn has_extension(path: &Path, ext: &str) -> bool {
-    path.extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
+/// What to do with a xacro file: how to expand it without ROS, with PyPI's xacro or, for
+/// `$(find pkg)`, the repository's script (both named after `source`), and where `$(find pkg)`
+/// and `package://` resolution is documented.
+fn xacro_advice(source: &Path) -> String {
+    let name = source
+        .file_name()
+        .map_or_else(|| "robot.urdf.xacro".into(), |n| n.to_string_lossy());
+    let expanded = expanded_name(&name);
+    let (name, expanded) = (shell_word(&name), shell_word(&expanded));
+    format!(
+        "this is a xacro file, not a URDF: expand it with PyPI's xacro, no ROS needed \
+         (`pip install xacro`, then `xacro {name} > {expanded}`, adding `name:=value` for each \
+         argument it needs), and point the setup's `robot` (or the command) at {expanded}; if \
+         it or a file it includes uses `$(find pkg)`, which PyPI's xacro resolves only with ROS, \
+         run `scripts/expand-xacro.sh {name} {expanded}` (cable-dict's repository) instead; how \
+         `$(find pkg)` and `package://` paths resolve: docs/robots.md, \"Xacro packages\""
+    )
 }
 
-/// What to do with a xacro file.
-const XACRO_ADVICE: &str = "this is a xacro file, not a URDF; expand it first \
-     (`xacro robot.urdf.xacro > robot.urdf`) and pass the result";
+/// The name to expand the xacro file `name` into: `robot.urdf.xacro` and `robot.xacro` into
+/// `robot.urdf`; any other name (a `.urdf` that uses xacro) into `….expanded.urdf`, never
+/// itself, which the shell would empty before xacro reads it.
+fn expanded_name(name: &str) -> String {
+    let lower = name.to_ascii_lowercase();
+    let stem_len = |suffix: &str| {
+        (lower.len() > suffix.len() && lower.ends_with(suffix)).then(|| name.len() - suffix.len())
+    };
+    if let Some(len) = stem_len(".urdf.xacro").or_else(|| stem_len(".xacro")) {
+        format!("{}.urdf", &name[..len])
+    } else if let Some(len) = stem_len(".urdf") {
+        format!("{}.expanded.urdf", &name[..len])
+    } else {
+        format!("{name}.expanded.urdf")
+    }
+}
 
-fn xacro_refusal(path: &Path) -> RobotError {
-    RobotError::file(path, XACRO_ADVICE)
+/// `word` as one POSIX shell word: as it is when it holds only characters that need no
+/// quoting, else in single quotes.
+fn shell_word(word: &str) -> String {
+    let plain = |c: char| c.is_ascii_alphanumeric() || "._-+,:=@%/".contains(c);
+    if !word.is_empty() && word.chars().all(plain) {
+        word.to_string()
+    } else {
+        format!("'{}'", word.replace('\'', r"'\''"))
+    }
 }
 
 /// 1-based line of the first `<tag … name="name"` in `text`, for error locations.

@@ -5,6 +5,7 @@
 //! once more and points at the first XML syntax error or malformed number. It also finds the
 //! first use of xacro, which a URDF must not contain.
 
+use crate::input::line_of;
 use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
 use quick_xml::name::QName;
@@ -171,15 +172,6 @@ fn malformed_number(element: &BytesStart<'_>) -> Option<String> {
         }
     }
     None
-}
-
-/// 1-based line number of a byte offset.
-fn line_of(text: &str, offset: usize) -> usize {
-    text.as_bytes()[..offset.min(text.len())]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
-        + 1
 }
 
 #[cfg(test)]

@@ -28,9 +28,9 @@ pub use certify::{Certification, Disagreement};
 pub use diagnosis::{Diagnosis, NearestMiss, SegmentDiagnosis};
 
 pub use report::{
-    CandidateOutcome, DictionarySegmentUse, DictionaryUse, Ecpv, Inputs, Margin, PathGuide,
+    CandidateOutcome, DictionarySegmentUse, DictionaryUse, Inputs, Margin, NamedPath, PathGuide,
     PathSegment, PoseSummary, SegmentReport, SolveReport, Status, SweepRejection, SweepSummary,
-    Timings, ecpv, guide_names, pose_summary,
+    Timings, guide_names, named_path, pose_summary, shown_index,
 };
 
 use crate::attachment::{

@@ -95,8 +95,8 @@ enum Stage {
 #[derive(Debug, Clone, Copy, PartialEq, clap::ValueEnum, Serialize)]
 #[serde(rename_all = "kebab-case")]
 enum Solver {
-    /// Newton's method on the cable's potential energy (0.04–0.14 ms for 250–500 mm; README,
-    /// "Cable physics").
+    /// Newton's method on the cable's potential energy (0.04–0.14 ms for 250–500 mm;
+    /// docs/physics.md, "Cable physics").
     QuasiStatic,
     /// Damped rigid-body relaxation in rapier3d (the paper's baseline; 14–66 ms for 250–500
     /// mm, 340–470× slower).
@@ -199,6 +199,7 @@ fn write_scene(
         ],
         animation: None,
         snapshots: Vec::new(),
+        tints: Vec::new(),
     };
     super::scene::write_scene(file, &spec)
 }

@@ -141,7 +141,7 @@ fn reasons_words(pose: &CriticalPose) -> String {
 
 /// What a critical pose's cable is, and which pieces have no static shape there.
 fn static_shape_words(report: &SolveReport, scene: &PoseScene) -> String {
-    let Some(shown) = views::shown_candidate(report) else {
+    let Some(shown) = report.shown_candidate() else {
         return "No candidate path, so only the robot is drawn.".into();
     };
     let path = &shown.path;
@@ -182,7 +182,7 @@ fn static_shape_words(report: &SolveReport, scene: &PoseScene) -> String {
 
 /// Which path the pictures show, and whether it is a working one.
 fn path_words(report: &SolveReport) -> String {
-    let Some(c) = views::shown_candidate(report) else {
+    let Some(c) = report.shown_candidate() else {
         return String::new();
     };
     let length = c.total_length_mm;
@@ -374,7 +374,7 @@ fn nearest_miss_moment<'s>(
     report: &SolveReport,
     spec: &'s SceneSpec<'_>,
 ) -> Option<Moment<'s>> {
-    if views::shown_candidate(report).is_some() || report.status != Status::NoChain {
+    if report.shown_candidate().is_some() || report.status != Status::NoChain {
         return None;
     }
     let (m, from_guide, miss) = views::first_nearest_miss(report)?;

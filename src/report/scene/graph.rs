@@ -4,7 +4,7 @@
 use super::document::Builder;
 use super::mesh::{TriangleMesh, cable_joint_sphere, collar, shape_mesh, unit_cable_cylinder};
 use super::tube::swept_tube;
-use super::{CableLine, SceneError, SceneSpec, Snapshot};
+use super::{CableTint, SceneError, SceneSpec, Snapshot};
 use crate::pose::Pose;
 use crate::robot::Shape;
 use gltf_json::scene::UnitQuaternion as GltfQuaternion;
@@ -21,8 +21,8 @@ const GUIDE_LENGTH_M: f64 = 0.012;
 pub(super) enum Paint {
     /// Light grey.
     Robot,
-    /// Orange.
-    Cable,
+    /// The cable, orange or by its margin.
+    Cable(CableTint),
     /// Blue.
     Guide,
 }
@@ -32,8 +32,22 @@ impl Paint {
     fn material(self) -> (&'static str, [f32; 4], f32) {
         match self {
             Paint::Robot => ("robot", [0.8, 0.8, 0.8, 1.0], 0.7),
-            Paint::Cable => ("cable", [1.0, 0.45, 0.05, 1.0], 0.5),
+            Paint::Cable(CableTint::Plain) => ("cable", [1.0, 0.45, 0.05, 1.0], 0.5),
+            Paint::Cable(CableTint::Ample) => ("cable, ample margin", [0.1, 0.55, 0.15, 1.0], 0.5),
+            Paint::Cable(CableTint::Tight) => ("cable, tight margin", [1.0, 0.75, 0.0, 1.0], 0.5),
+            Paint::Cable(CableTint::Exceeded) => {
+                ("cable, limit exceeded", [0.85, 0.03, 0.03, 1.0], 0.5)
+            }
             Paint::Guide => ("guide", [0.1, 0.3, 0.9, 1.0], 0.5),
+        }
+    }
+
+    /// The material slot of this paint.
+    fn slot(self) -> usize {
+        match self {
+            Paint::Robot => 0,
+            Paint::Guide => 1,
+            Paint::Cable(tint) => 2 + tint as usize,
         }
     }
 }
@@ -41,13 +55,13 @@ impl Paint {
 /// The scene's materials, each made when first used (so none is left unused).
 #[derive(Default)]
 pub(super) struct Materials {
-    made: [Option<Index<Material>>; 3],
+    made: [Option<Index<Material>>; 2 + CableTint::ALL.len()],
 }
 
 impl Materials {
     /// The material of `paint`.
     pub fn get(&mut self, builder: &mut Builder, paint: Paint) -> Index<Material> {
-        let slot = &mut self.made[paint as usize];
+        let slot = &mut self.made[paint.slot()];
         *slot.get_or_insert_with(|| {
             let (name, rgba, roughness) = paint.material();
             builder.material(name, rgba, roughness)
@@ -61,8 +75,10 @@ pub(super) struct SharedMeshes {
     /// Per link, per collider.
     colliders: Vec<Vec<Index<Mesh>>>,
     guide: Option<Index<Mesh>>,
-    segment: Option<Index<Mesh>>,
-    joint: Option<Index<Mesh>>,
+    /// Per tint (indexed like [`CableTint::ALL`]) used by a main cable line: the unit
+    /// cylinder of a sub-segment and the sphere of a node.
+    segment: [Option<Index<Mesh>>; 4],
+    joint: [Option<Index<Mesh>>; 4],
 }
 
 impl SharedMeshes {
@@ -93,31 +109,37 @@ impl SharedMeshes {
         let mut shared = SharedMeshes {
             colliders,
             guide: None,
-            segment: None,
-            joint: None,
+            segment: [None; 4],
+            joint: [None; 4],
         };
         if !spec.guides.is_empty() {
             let collar = collar(r, GUIDE_OUTER_RADII * r, GUIDE_LENGTH_M);
             let mesh = painted_mesh(builder, materials, "guide marker", &collar, Paint::Guide)?;
             shared.guide = Some(mesh);
         }
-        if !spec.main.cable.is_empty() {
-            let (name, cylinder) = ("cable sub-segment (unit length)", unit_cable_cylinder(r));
-            shared.segment = Some(painted_mesh(
-                builder,
-                materials,
-                name,
-                &cylinder,
-                Paint::Cable,
-            )?);
+        for tint in CableTint::ALL {
+            if !spec
+                .main
+                .cable
+                .iter()
+                .any(|line| spec.tint_of(&line.name) == tint)
+            {
+                continue;
+            }
+            // The plain meshes keep the names they had before tints existed.
+            let suffix = match tint {
+                CableTint::Plain => String::new(),
+                _ => format!(", {}", Paint::Cable(tint).material().0),
+            };
+            let paint = Paint::Cable(tint);
+            let cylinder = unit_cable_cylinder(r);
+            let name = format!("cable sub-segment (unit length){suffix}");
+            shared.segment[tint as usize] =
+                Some(painted_mesh(builder, materials, &name, &cylinder, paint)?);
             let sphere = cable_joint_sphere(r);
-            shared.joint = Some(painted_mesh(
-                builder,
-                materials,
-                "cable node",
-                &sphere,
-                Paint::Cable,
-            )?);
+            let name = format!("cable node{suffix}");
+            shared.joint[tint as usize] =
+                Some(painted_mesh(builder, materials, &name, &sphere, paint)?);
         }
         Ok(shared)
     }
@@ -276,18 +298,20 @@ pub(super) struct LineNodes {
 /// cylinder scaled onto each) and a sphere at every node.
 pub(super) fn main_cable(
     builder: &mut Builder,
-    lines: &[CableLine],
+    spec: &SceneSpec<'_>,
     meshes: &SharedMeshes,
     parent: Index<Node>,
 ) -> Vec<LineNodes> {
+    let lines = &spec.main.cable;
     let mut all = Vec::with_capacity(lines.len());
     for line in lines {
+        let tint = spec.tint_of(&line.name) as usize;
         let line_node = builder.node(line.name.clone(), Node::default());
         builder.add_child(parent, line_node);
         let nodes = &line.nodes_m;
         let mut segments = Vec::with_capacity(nodes.len().saturating_sub(1));
         for (k, pair) in nodes.windows(2).enumerate() {
-            let node = Trs::segment(&pair[0], &pair[1]).node(meshes.segment);
+            let node = Trs::segment(&pair[0], &pair[1]).node(meshes.segment[tint]);
             let segment = builder.node(format!("{} sub-segment {k}", line.name), node);
             builder.add_child(line_node, segment);
             segments.push(segment);
@@ -296,7 +320,7 @@ pub(super) fn main_cable(
         for (k, point) in nodes.iter().enumerate() {
             let joint = builder.node(
                 format!("{} node {k}", line.name),
-                Trs::at(point).node(meshes.joint),
+                Trs::at(point).node(meshes.joint[tint]),
             );
             builder.add_child(line_node, joint);
             joints.push(joint);
@@ -323,7 +347,8 @@ pub(super) fn snapshot(
     for line in &snapshot.scene.cable {
         let tube = swept_tube(&line.nodes_m, spec.cable_radius_m);
         let name = format!("{}: {}", snapshot.name, line.name);
-        let mesh = painted_mesh(builder, materials, &name, &tube, Paint::Cable)?;
+        let paint = Paint::Cable(spec.tint_of(&line.name));
+        let mesh = painted_mesh(builder, materials, &name, &tube, paint)?;
         let line_node = builder.node(
             line.name.clone(),
             Node {

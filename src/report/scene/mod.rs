@@ -49,7 +49,7 @@ pub fn to_glb(spec: &SceneSpec<'_>) -> Result<Vec<u8>, SceneError> {
     if !spec.main.cable.is_empty() {
         let cable = builder.node("cable", gltf_json::Node::default());
         builder.add_child(root, cable);
-        lines = graph::main_cable(&mut builder, &spec.main.cable, &meshes, cable);
+        lines = graph::main_cable(&mut builder, spec, &meshes, cable);
     }
     for snapshot in &spec.snapshots {
         graph::snapshot(&mut builder, spec, snapshot, &meshes, &mut materials, root)?;
@@ -102,6 +102,43 @@ pub struct SceneSpec<'a> {
     pub animation: Option<SceneAnimation>,
     /// Extra static copies of robot and cable, e.g. one per critical pose.
     pub snapshots: Vec<Snapshot>,
+    /// The colour of each cable line by its margin, by line name; lines not named here are
+    /// drawn in the plain cable colour.
+    pub tints: Vec<(String, CableTint)>,
+}
+
+impl SceneSpec<'_> {
+    /// The tint of the cable line `name`.
+    pub fn tint_of(&self, name: &str) -> CableTint {
+        self.tints
+            .iter()
+            .find(|(line, _)| line == name)
+            .map_or(CableTint::Plain, |(_, tint)| *tint)
+    }
+}
+
+/// A cable line's colour: plain, or how close its piece comes to a limit (ordered from no
+/// information to worst).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum CableTint {
+    /// Orange: no margin shown.
+    Plain,
+    /// Green: every limit with room to spare.
+    Ample,
+    /// Amber: close to a limit (the rule: [`crate::report::views::margin_tints`]).
+    Tight,
+    /// Red: a limit is exceeded.
+    Exceeded,
+}
+
+impl CableTint {
+    /// Every tint, in the order of the materials.
+    pub const ALL: [CableTint; 4] = [
+        CableTint::Plain,
+        CableTint::Ample,
+        CableTint::Tight,
+        CableTint::Exceeded,
+    ];
 }
 
 /// The robot and the cable at one instant.

@@ -1,0 +1,112 @@
+// The report page's 3D view: the scene of view-data.js in the page's <model-viewer>, with
+// play, pause, a time slider with the worst moment marked, and clamp labels that follow
+// their links. Written by cable-dict into every report folder; needs nothing outside it.
+//
+// A page opened from file:// may not fetch its neighbours, so the scene comes as base64 in
+// view-data.js (a plain script) and is handed to model-viewer as a blob: URL. Names from the
+// inputs are only ever set as text (textContent), never as markup.
+(function () {
+  "use strict";
+  const data = window.cableDictView;
+  const viewer = document.getElementById("view");
+  if (!data || !viewer) return;
+
+  const bytes = Uint8Array.from(atob(data.glb_base64), (c) => c.charCodeAt(0));
+  viewer.src = URL.createObjectURL(new Blob([bytes], { type: "model/gltf-binary" }));
+
+  const play = document.getElementById("view-play");
+  const slider = document.getElementById("view-time");
+  const readout = document.getElementById("view-readout");
+  const worstButton = document.getElementById("view-worst");
+  const worstTick = document.getElementById("view-worst-tick");
+  const duration = data.times_s.length ? data.times_s[data.times_s.length - 1] : 0;
+
+  data.clamps.forEach((clamp, i) => {
+    const label = document.createElement("div");
+    label.slot = `hotspot-clamp-${i}`;
+    label.className = "clamp-label";
+    label.dataset.position = position(clamp.positions_m[0]);
+    label.textContent = clamp.label;
+    viewer.appendChild(label);
+  });
+
+  function position(p) {
+    return `${p[0]}m ${p[1]}m ${p[2]}m`;
+  }
+
+  // Index of the last keyframe at or before t, and the share of the way to the next one.
+  function keyframe(t) {
+    const times = data.times_s;
+    let lo = 0;
+    let hi = times.length - 1;
+    if (hi <= 0 || t <= times[0]) return [0, 0];
+    if (t >= times[hi]) return [hi, 0];
+    while (hi - lo > 1) {
+      const mid = (lo + hi) >> 1;
+      if (times[mid] <= t) lo = mid;
+      else hi = mid;
+    }
+    return [lo, (t - times[lo]) / (times[lo + 1] - times[lo])];
+  }
+
+  function moveLabels(t) {
+    const [k, s] = keyframe(t);
+    data.clamps.forEach((clamp, i) => {
+      const a = clamp.positions_m[k];
+      const b = clamp.positions_m[Math.min(k + 1, clamp.positions_m.length - 1)];
+      const p = a.map((x, j) => x + s * (b[j] - x));
+      viewer.updateHotspot({ name: `hotspot-clamp-${i}`, position: position(p) });
+    });
+  }
+
+  function show(t) {
+    slider.value = String(t);
+    readout.textContent = `t = ${t.toFixed(2)} s of ${duration.toFixed(2)} s`;
+    moveLabels(t);
+  }
+
+  function tick() {
+    show(viewer.currentTime);
+    if (!viewer.paused) requestAnimationFrame(tick);
+  }
+
+  function seek(t) {
+    viewer.pause();
+    viewer.currentTime = t;
+    play.textContent = "Play";
+    show(t);
+  }
+
+  slider.max = String(duration);
+  slider.step = "0.01";
+  if (data.worst) {
+    worstTick.style.left = `${(100 * data.worst.time_s) / Math.max(duration, 1e-9)}%`;
+    worstTick.title = data.worst.what;
+    worstButton.textContent = `Worst moment: ${data.worst.what}`;
+  } else {
+    worstButton.hidden = true;
+  }
+  if (!data.animation) {
+    for (const control of [play, slider, worstButton]) control.disabled = true;
+  }
+
+  viewer.addEventListener("load", () => {
+    if (data.animation) {
+      viewer.animationName = data.animation;
+      seek(0);
+    }
+    document.body.dataset.viewLoaded = "true";
+  });
+  play.addEventListener("click", () => {
+    if (viewer.paused) {
+      if (viewer.currentTime >= duration) viewer.currentTime = 0;
+      viewer.play();
+      play.textContent = "Pause";
+      requestAnimationFrame(tick);
+    } else {
+      seek(viewer.currentTime);
+    }
+  });
+  slider.addEventListener("input", () => seek(Number(slider.value)));
+  worstButton.addEventListener("click", () => data.worst && seek(data.worst.time_s));
+})();

@@ -1,0 +1,209 @@
+//! The report page's interactive 3D view: the files that make it (the vendored
+//! `@google/model-viewer` web component with its licences, our `view.js`, and `view-data.js`
+//! holding the scene and the clamp labels' tracks) and the page markup that hosts it.
+//!
+//! The scene is the report's main scene without the critical-pose copies: the robot and the
+//! cable at the motion's start, animated over the motion test. A page opened from `file://`
+//! may not read its neighbours, so the `.glb` travels as base64 inside `view-data.js`, a
+//! plain script; everything else is in the folder, nothing is fetched from a network.
+
+use super::ReportError;
+use super::scene::{SceneSpec, to_glb};
+use crate::motion_test::MotionTestReport;
+use crate::pose::Pose;
+use crate::setup::Setup;
+use crate::solve::SolveReport;
+use base64::Engine as _;
+use nalgebra::Point3;
+use serde::Serialize;
+
+/// `@google/model-viewer` 4.4.0, `dist/model-viewer-umd.min.js` from npm (a classic script:
+/// module scripts do not load from `file://`).
+const MODEL_VIEWER_JS: &[u8] = include_bytes!("../../assets/viewer/model-viewer.min.js");
+/// Its licence and those of the libraries it bundles (three.js, lit).
+const MODEL_VIEWER_LICENSES: &[u8] = include_bytes!("../../assets/viewer/LICENSES.txt");
+/// The controls: play, pause, the time slider, the worst moment, the clamp labels.
+const VIEW_JS: &[u8] = include_bytes!("../../assets/viewer/view.js");
+
+/// One file of the view: name, what it is (for the summary's file list) and bytes.
+pub struct ViewFile {
+    /// File name in the report folder.
+    pub name: &'static str,
+    /// What it is.
+    pub what: &'static str,
+    /// Its content.
+    pub bytes: Vec<u8>,
+}
+
+/// What `view.js` reads from `view-data.js` (`window.cableDictView`).
+#[derive(Serialize)]
+struct ViewData {
+    /// The scene, a `.glb` in base64.
+    glb_base64: String,
+    /// The animation's name; `None` when there is nothing to animate.
+    animation: Option<String>,
+    /// Keyframe times (s from the start of the animation); one 0 without animation.
+    times_s: Vec<f64>,
+    /// One label per physical clamp, with its position at each keyframe.
+    clamps: Vec<ClampTrack>,
+    /// The moment to jump to; `None` without a motion test.
+    worst: Option<WorstMoment>,
+}
+
+/// A clamp label and where it is over time.
+#[derive(Serialize)]
+struct ClampTrack {
+    /// `G2 = G3`, `G4 (gripper connector)`.
+    label: String,
+    /// Per keyframe, its position in the glTF frame (m, y up).
+    positions_m: Vec<[f64; 3]>,
+}
+
+/// The worst moment of the motion test.
+#[derive(Serialize)]
+struct WorstMoment {
+    /// Time from the animation's start (s).
+    time_s: f64,
+    /// For people: `closest to the robot: 9.3 mm`.
+    what: String,
+}
+
+/// The view's files for the scene `spec` of `report` (solved with `setup`).
+pub fn view_files(
+    setup: &Setup,
+    report: &SolveReport,
+    spec: &SceneSpec<'_>,
+) -> Result<Vec<ViewFile>, ReportError> {
+    let mut main_only = spec.clone();
+    main_only.snapshots.clear();
+    let glb = to_glb(&main_only).map_err(|e| ReportError::Scene(e.to_string()))?;
+    let frames: Vec<&[Pose]> = match &spec.animation {
+        Some(animation) => animation
+            .frames
+            .iter()
+            .map(|f| f.link_poses.as_slice())
+            .collect(),
+        None => vec![spec.main.link_poses.as_slice()],
+    };
+    let data = ViewData {
+        glb_base64: base64::engine::general_purpose::STANDARD.encode(glb),
+        animation: spec.animation.as_ref().map(|a| a.name.clone()),
+        times_s: spec
+            .animation
+            .as_ref()
+            .map_or_else(|| vec![0.0], |a| a.times_s.clone()),
+        clamps: clamp_tracks(setup, spec, &frames),
+        worst: report.motion_test.as_ref().and_then(worst_moment),
+    };
+    let script = format!(
+        "// The 3D view's scene and clamp labels, written by cable-dict; read by view.js.\n\
+         window.cableDictView = {};\n",
+        serde_json::to_string(&data)?
+    );
+    Ok(vec![
+        ViewFile {
+            name: "model-viewer.min.js",
+            what: "the 3D view's web component (@google/model-viewer 4.4.0, Apache-2.0)",
+            bytes: MODEL_VIEWER_JS.to_vec(),
+        },
+        ViewFile {
+            name: "model-viewer-licenses.txt",
+            what: "the licences of model-viewer and the libraries it bundles",
+            bytes: MODEL_VIEWER_LICENSES.to_vec(),
+        },
+        ViewFile {
+            name: "view.js",
+            what: "the 3D view's controls",
+            bytes: VIEW_JS.to_vec(),
+        },
+        ViewFile {
+            name: "view-data.js",
+            what: "the 3D view's scene and clamp labels",
+            bytes: script.into_bytes(),
+        },
+    ])
+}
+
+/// One track per physical clamp: guides at the same place on the same link (a 0 mm piece
+/// between them) share a label.
+fn clamp_tracks(setup: &Setup, spec: &SceneSpec<'_>, frames: &[&[Pose]]) -> Vec<ClampTrack> {
+    let mut tracks: Vec<(usize, Pose, ClampTrack)> = Vec::new();
+    for mark in &spec.guides {
+        let name = match setup.guides.iter().find(|g| g.name == mark.clamp) {
+            Some(guide) if guide.fixed => mark.name.clone(),
+            _ => mark.clamp.clone(),
+        };
+        if let Some((_, _, track)) = tracks.iter_mut().find(|(link, pose, _)| {
+            *link == mark.link
+                && (pose.translation.vector - mark.pose_in_link.translation.vector).norm() < 1e-9
+        }) {
+            track.label = format!("{} = {name}", track.label);
+            continue;
+        }
+        let positions_m = frames
+            .iter()
+            .map(|poses| {
+                let p = poses[mark.link] * mark.pose_in_link * Point3::origin();
+                // The scene's root turns the robot's z up into glTF's y up.
+                [p.x, p.z, -p.y]
+            })
+            .collect();
+        tracks.push((
+            mark.link,
+            mark.pose_in_link,
+            ClampTrack {
+                label: name,
+                positions_m,
+            },
+        ));
+    }
+    tracks.into_iter().map(|(_, _, track)| track).collect()
+}
+
+/// The failure's moment when the test failed, else the moment closest to the robot.
+fn worst_moment(test: &MotionTestReport) -> Option<WorstMoment> {
+    let start = test.shapes.first().map_or(0.0, |f| f.time_s);
+    if let Some(violation) = &test.first_violation {
+        return Some(WorstMoment {
+            time_s: violation.time_s - start,
+            what: test
+                .failure
+                .as_ref()
+                .map_or_else(|| violation.to_string(), |f| f.reason.clone()),
+        });
+    }
+    let w = test.worst_clearance.as_ref()?;
+    Some(WorstMoment {
+        time_s: w.time_s - start,
+        what: format!(
+            "closest to the robot, {:.1} mm at t = {:.2} s",
+            w.value * 1e3,
+            w.time_s
+        ),
+    })
+}
+
+/// The view's markup for the page: the component, its controls and the scripts.
+pub const VIEW_HTML: &str = "<section id=\"view-section\">\n<h2>3D view</h2>\n\
+<p>Drag to turn, scroll to zoom. The robot's collision shapes, the cable and its clamps over the \
+motion test; play it, or drag the slider to any moment (the red tick is the worst one). Cable \
+pieces: green, every limit with room to spare; amber, closer to the robot or to itself than one \
+cable diameter, or within 20 % of the bend-radius or stretch limit; red, a limit exceeded.</p>\n\
+<model-viewer id=\"view\" camera-controls interaction-prompt=\"none\" shadow-intensity=\"0\" \
+exposure=\"0.6\" alt=\"the robot and the cable in 3D\"></model-viewer>\n\
+<div class=\"view-controls\"><button id=\"view-play\" type=\"button\">Play</button>\
+<span class=\"view-track\"><input id=\"view-time\" type=\"range\" min=\"0\" max=\"0\" value=\"0\" \
+aria-label=\"time\"><span id=\"view-worst-tick\"></span></span>\
+<span id=\"view-readout\"></span></div>\n\
+<p><button id=\"view-worst\" type=\"button\"></button></p>\n\
+<script src=\"model-viewer.min.js\"></script>\n<script src=\"view-data.js\"></script>\n\
+<script src=\"view.js\"></script>\n</section>\n";
+
+/// The view's styling.
+pub const VIEW_STYLE: &str = "model-viewer { width: 100%; height: 560px; background: #f4f6f8; }
+.view-controls { display: flex; gap: 0.8em; align-items: center; margin: 0.4em 0; }
+.view-track { position: relative; flex: 1; }
+.view-track input { width: 100%; }
+#view-worst-tick { position: absolute; top: -4px; width: 3px; height: 22px; background: #d00000; pointer-events: none; }
+.clamp-label { background: #1c4fd8; color: white; border-radius: 4px; padding: 1px 5px; font-size: 12px; pointer-events: none; }
+";

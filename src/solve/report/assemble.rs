@@ -1,0 +1,372 @@
+//! The report assembled from the stages' results: names, counts and the explanation.
+
+use super::super::diagnosis::diagnose;
+use super::super::{MotionSearch, SolveOptions, Tried};
+use super::data::*;
+use super::margins::margins;
+use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, SegmentSets, TestPose};
+use crate::chain::ChainSearch;
+use crate::motion::Motion;
+use crate::mounting::mounting_plan;
+use crate::path::CablePath;
+use crate::setup::Setup;
+use std::collections::BTreeMap;
+
+impl SolveReport {
+    /// Assembles the report from the stages' results.
+    #[allow(clippy::too_many_arguments)]
+    pub(in crate::solve) fn new(
+        setup: &Setup,
+        motion: &Motion,
+        options: &SolveOptions,
+        evaluator: &Evaluator<'_>,
+        poses: &SegmentPoses,
+        sets: &[SegmentSets],
+        search: &ChainSearch,
+        outcome: MotionSearch,
+        timings: Timings,
+    ) -> SolveReport {
+        let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+        let MotionSearch { tried, winner, .. } = &outcome;
+        let winner = *winner;
+        let best = winner.map(|w| tried[w].0.clone());
+        let status = status(options, search, winner);
+        let candidates = candidate_outcomes(tried, pitch_mm);
+        let static_sweep = sweep_summary(setup, &outcome);
+        let motion_test = match winner {
+            Some(w) => tried[w].1.clone(),
+            None => tried.last().and_then(|(_, report)| report.clone()),
+        };
+        let diagnosis = matches!(status, Status::NoChain | Status::NonePassedMotionTest)
+            .then(|| diagnose(setup, motion, poses, sets, &outcome));
+        SolveReport {
+            status,
+            explanation: explanation(
+                status,
+                sets,
+                &candidates,
+                &outcome.stop,
+                &static_sweep,
+                setup,
+            ),
+            inputs: inputs(setup, motion, options),
+            optimal: best.as_ref().map(|p| named_path(setup, p)),
+            mounting: best.as_ref().map(|p| mounting_plan(setup, p)),
+            thresholds: setup.thresholds,
+            sub_segment_pitch_mm: pitch_mm,
+            optimal_length_mm: best
+                .as_ref()
+                .map(|p| p.total_sub_segments() as f64 * pitch_mm),
+            margins: best
+                .as_ref()
+                .map(|p| margins(evaluator, poses, p))
+                .unwrap_or_default(),
+            segments: segment_reports(setup, poses, sets, motion),
+            chains: search.chain_count().to_string(),
+            candidates,
+            static_sweep,
+            motion_test,
+            motion_test_requested: options.motion_test,
+            motion_engine: options.engine,
+            timings,
+            diagnosis,
+        }
+    }
+}
+
+fn status(options: &SolveOptions, search: &ChainSearch, winner: Option<usize>) -> Status {
+    match (search.shortest().is_some(), winner, options.motion_test) {
+        (false, _, _) => Status::NoChain,
+        (true, Some(_), true) => Status::Solved,
+        (true, Some(_), false) => Status::Untested,
+        (true, None, _) => Status::NonePassedMotionTest,
+    }
+}
+
+fn explanation(
+    status: Status,
+    sets: &[SegmentSets],
+    candidates: &[CandidateOutcome],
+    stop: &str,
+    sweep: &SweepSummary,
+    setup: &Setup,
+) -> String {
+    match status {
+        Status::Solved => match candidates.len() {
+            1 => "the shortest cable path, and it held every limit over the motion".into(),
+            n => format!(
+                "the shortest cable path that held every limit over the motion; {} shorter or \
+                 equally long ones did not",
+                n - 1
+            ),
+        },
+        Status::Untested => {
+            "the shortest path of robust cable pieces; not simulated over the motion \
+             (--no-motion-test)"
+                .into()
+        }
+        Status::NonePassedMotionTest if candidates.is_empty() => format!(
+            "every chain of robust candidate pieces has a piece that fails the static sweep \
+             over the motion{}",
+            sweep_note(sweep)
+        ),
+        Status::NonePassedMotionTest => {
+            let reasons: Vec<String> = candidates
+                .iter()
+                .map(|c| {
+                    format!(
+                        "#{}: {}",
+                        c.rank,
+                        c.failure.as_deref().unwrap_or("not tested")
+                    )
+                })
+                .collect();
+            format!(
+                "none of the {} chains tried passed the motion test, and {stop}{} — {}",
+                candidates.len(),
+                sweep_note(sweep),
+                reasons.join("; ")
+            )
+        }
+        Status::NoChain => unsolved_reason(sets, setup),
+    }
+}
+
+/// `; the static sweep over the motion dropped N cable pieces (C1 n1, …)`, or nothing when it
+/// dropped none.
+fn sweep_note(sweep: &SweepSummary) -> String {
+    if sweep.rejected.is_empty() {
+        return String::new();
+    }
+    format!(
+        "; the static sweep over the motion dropped {} cable pieces ({})",
+        sweep.rejected.len(),
+        dropped_per_segment(sweep)
+    )
+}
+
+/// `C1 n1, C2 n2`: cable pieces the sweep dropped per segment.
+pub(super) fn dropped_per_segment(sweep: &SweepSummary) -> String {
+    let mut per_segment: BTreeMap<&str, usize> = BTreeMap::new();
+    for r in &sweep.rejected {
+        *per_segment.entry(r.segment.as_str()).or_insert(0) += 1;
+    }
+    let counts: Vec<String> = per_segment
+        .iter()
+        .map(|(segment, n)| format!("{segment} {n}"))
+        .collect();
+    counts.join(", ")
+}
+
+/// The sweep's counts and dropped PVs, with names.
+fn sweep_summary(setup: &Setup, outcome: &MotionSearch) -> SweepSummary {
+    let rejected = outcome
+        .dropped
+        .iter()
+        .map(|(m, pv, failure)| {
+            let (a, b) = setup.segment_guides(*m);
+            SweepRejection {
+                segment: setup.segment_name(*m),
+                sub_segments: pv.sub_segments,
+                from_configuration: setup.guides[a].configurations[pv.start].name.clone(),
+                to_configuration: setup.guides[b].configurations[pv.end].name.clone(),
+                rejection: failure.rejection,
+                sample: failure.sample,
+                time_s: failure.time_s,
+                detail: failure.detail.clone(),
+            }
+        })
+        .collect();
+    SweepSummary {
+        poses: outcome.sweep_poses,
+        pvs_swept: outcome.swept,
+        rejected,
+    }
+}
+
+/// Which segment has no robust PV and what rejected its candidates most.
+fn unsolved_reason(sets: &[SegmentSets], setup: &Setup) -> String {
+    let empty: Vec<String> = sets
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.d2.is_empty())
+        .map(|(m, s)| {
+            let worst = s
+                .rejections
+                .iter()
+                .max_by_key(|(_, count)| **count)
+                .map(|(r, count)| format!("most rejected by {} ({count})", r.name()))
+                .unwrap_or_else(|| "no candidate left after adjacency pruning".into());
+            let (a, b) = setup.segment_guides(m);
+            format!(
+                "{} ({} → {}) has no robust cable piece: {} hold the limits, {worst}",
+                setup.segment_name(m),
+                setup.guides[a].name,
+                setup.guides[b].name,
+                s.d1
+            )
+        })
+        .collect();
+    if empty.is_empty() {
+        "every segment has robust cable pieces, but none agree on their shared clamps".into()
+    } else {
+        empty.join("; ")
+    }
+}
+
+fn inputs(setup: &Setup, motion: &Motion, options: &SolveOptions) -> Inputs {
+    let method = match (options.method, options.max_guides_per_link) {
+        (ConnectMethod::Linear, _) => "previous method",
+        (ConnectMethod::Hermite, Some(1)) => "one clamp per link",
+        (ConnectMethod::Hermite, _) if setup.max_guides_per_link == 1 => "one clamp per link",
+        (ConnectMethod::Hermite, _) => "up to two clamps per link",
+    };
+    Inputs {
+        setup_file: setup.source.display().to_string(),
+        setup_hash: setup.content_hash_hex(),
+        robot_file: setup.robot_path.display().to_string(),
+        cable_file: setup.cable_path.display().to_string(),
+        cable: setup.cable.name.clone(),
+        motion_file: None,
+        motion_duration_s: motion.duration_s(),
+        motion_samples: motion.len(),
+        method: method.into(),
+        connect: options.method,
+        search: options.search,
+        dictionary: None,
+    }
+}
+
+fn candidate_outcomes(tried: &[Tried], pitch_mm: f64) -> Vec<CandidateOutcome> {
+    tried
+        .iter()
+        .enumerate()
+        .map(|(i, (path, report))| CandidateOutcome {
+            rank: i + 1,
+            total_length_mm: path.total_sub_segments() as f64 * pitch_mm,
+            path: path.clone(),
+            passed: report.as_ref().map(|r| r.passed),
+            failure: report
+                .as_ref()
+                .and_then(|r| r.failure.as_ref())
+                .map(|f| f.reason.clone()),
+        })
+        .collect()
+}
+
+/// Names of segment `m`'s two guides and of their links.
+pub fn guide_names(setup: &Setup, m: usize) -> ([String; 2], [String; 2]) {
+    let (a, b) = setup.segment_guides(m);
+    let link = |g: usize| setup.robot.links[setup.guides[g].link].name.clone();
+    (
+        [setup.guides[a].name.clone(), setup.guides[b].name.clone()],
+        [link(a), link(b)],
+    )
+}
+
+/// `inter-link` or `intra-link`: the result JSON's `kind` of segment `m`.
+fn segment_kind(setup: &Setup, m: usize) -> &'static str {
+    if setup.is_intra_link(m) {
+        "intra-link"
+    } else {
+        "inter-link"
+    }
+}
+
+/// The path with names: piece by piece, and every mounted clamp's configuration.
+pub fn named_path(setup: &Setup, path: &CablePath) -> NamedPath {
+    let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+    let segments = path
+        .pieces()
+        .map(|(m, pv)| {
+            let sub_segments = pv.sub_segments;
+            let ([from_guide, to_guide], [from_link, to_link]) = guide_names(setup, m);
+            PathSegment {
+                name: setup.segment_name(m),
+                from_guide,
+                to_guide,
+                from_link,
+                to_link,
+                kind: segment_kind(setup, m),
+                sub_segments,
+                length_mm: sub_segments as f64 * pitch_mm,
+            }
+        })
+        .collect();
+    let mounted: Vec<usize> = path.guides(setup).collect();
+    let guides = mounted
+        .iter()
+        .zip(&path.configurations)
+        .map(|(&g, &c)| {
+            let guide = &setup.guides[g];
+            let configuration = &guide.configurations[c];
+            PathGuide {
+                name: guide.name.clone(),
+                link: setup.robot.links[guide.link].name.clone(),
+                configuration: configuration.name.clone(),
+                xyz_mm: configuration.position_mm,
+                rpy_deg: configuration.rpy_deg,
+            }
+        })
+        .collect();
+    let left_out = (0..setup.guides.len())
+        .filter(|g| !mounted.contains(g))
+        .map(|g| setup.guides[g].name.clone())
+        .collect();
+    NamedPath {
+        segments,
+        guides,
+        left_out,
+    }
+}
+
+fn segment_reports(
+    setup: &Setup,
+    poses: &SegmentPoses,
+    sets: &[SegmentSets],
+    motion: &Motion,
+) -> Vec<SegmentReport> {
+    sets.iter()
+        .enumerate()
+        .map(|(m, s)| {
+            let ([from_guide, to_guide], _) = guide_names(setup, m);
+            SegmentReport {
+                segment: setup.segment_name(m),
+                from_guide,
+                to_guide,
+                kind: segment_kind(setup, m),
+                traversed_joints: poses.traversed[m]
+                    .iter()
+                    .map(|&j| motion.joint_names()[j].clone())
+                    .collect(),
+                test_poses: poses.poses[m]
+                    .iter()
+                    .map(|p| pose_summary(p, motion))
+                    .collect(),
+                d0: s.d0,
+                d0_pruned: s.d0_pruned,
+                d1: s.d1,
+                d2: s.d2.len(),
+                rejections: s.rejections.clone(),
+                evaluations: s.evaluations,
+                static_solves: s.static_solves,
+            }
+        })
+        .collect()
+}
+
+/// A test pose in the motion's display units (deg / mm).
+pub fn pose_summary(pose: &TestPose, motion: &Motion) -> PoseSummary {
+    let joints = pose
+        .joints
+        .iter()
+        .zip(motion.rotary())
+        .map(|(v, &rotary)| if rotary { v.to_degrees() } else { v * 1e3 })
+        .collect();
+    PoseSummary {
+        sample: pose.sample,
+        time_s: pose.time_s,
+        joints,
+        reason: pose.reason.clone(),
+    }
+}

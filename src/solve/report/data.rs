@@ -1,0 +1,365 @@
+//! What `solve` found, as data: the types of the result, named for people and scripts.
+
+use super::super::SearchKind;
+use super::super::certify::Certification;
+use super::super::diagnosis::Diagnosis;
+use crate::attachment::{ConnectMethod, Rejection};
+use crate::motion_test::{EngineKind, MotionTestReport};
+use crate::mounting::MountingPlan;
+use crate::path::CablePath;
+use crate::setup::Thresholds;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// How the run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    /// d* found: a chain that passed the motion test.
+    Solved,
+    /// Shortest chain found, motion test not run (`--no-motion-test`).
+    Untested,
+    /// No chain: some segment has no robust PV, or no robust PVs agree on shared guides (the
+    /// paper's "None").
+    NoChain,
+    /// Chains exist, but none of the ones tried passed the motion test (the paper's
+    /// "Unsolved").
+    NonePassedMotionTest,
+}
+
+impl Status {
+    /// The result JSON's `status`: `solved`, `untested` or `unsolved` (both ways of failing).
+    pub fn word(self) -> &'static str {
+        match self {
+            Status::Solved => "solved",
+            Status::Untested => "untested",
+            Status::NoChain | Status::NonePassedMotionTest => "unsolved",
+        }
+    }
+
+    /// For people, e.g. `unsolved: no path of robust cable pieces`.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Status::Solved => "solved",
+            Status::Untested => "shortest cable path found, not simulated over the motion",
+            Status::NoChain => "unsolved: no path of robust cable pieces",
+            Status::NonePassedMotionTest => {
+                "unsolved: no path tried held its limits over the motion"
+            }
+        }
+    }
+}
+
+/// Wall-clock time of each stage (s); the result JSON's `timings_s`. The only part of the
+/// report that changes from run to run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Timings {
+    /// Critical and test poses.
+    #[serde(rename = "critical_poses")]
+    pub critical_poses_s: f64,
+    /// Attachment test of every segment.
+    #[serde(rename = "attachment")]
+    pub attachment_s: f64,
+    /// The part of it spent on the intra-link segments (the part a dictionary answers).
+    #[serde(rename = "attachment_intra_link")]
+    pub attachment_intra_link_s: f64,
+    /// Chain search (dynamic programming and counting).
+    #[serde(rename = "chain_search")]
+    pub chain_s: f64,
+    /// Static sweeps of the candidates' PVs over the motion.
+    #[serde(rename = "static_sweep")]
+    pub static_sweep_s: f64,
+    /// Dynamic motion tests of every candidate tried (chain searches between them included).
+    #[serde(rename = "motion_test")]
+    pub motion_test_s: f64,
+    /// Whole run.
+    #[serde(rename = "total")]
+    pub total_s: f64,
+}
+
+/// A cable path ([`CablePath`]) with the names of its pieces, clamps and links: the result
+/// JSON's `ecpv` (the paper's term).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct NamedPath {
+    /// Piece by piece from the base end: declared segments, or spans where optional guides
+    /// are left out.
+    pub segments: Vec<PathSegment>,
+    /// Every clamp the path mounts with its configuration, from the base end.
+    pub guides: Vec<PathGuide>,
+    /// The optional guides the path leaves out.
+    pub left_out: Vec<String>,
+}
+
+/// One segment of a cable path.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PathSegment {
+    /// `C1`, `C2`, …; `C2–C3` for a span over optional guides.
+    pub name: String,
+    /// Start guide.
+    pub from_guide: String,
+    /// End guide.
+    pub to_guide: String,
+    /// Link of the start guide.
+    pub from_link: String,
+    /// Link of the end guide.
+    pub to_link: String,
+    /// `inter-link` or `intra-link`.
+    pub kind: &'static str,
+    /// Length in sub-segments (0: the two guides are one clamp).
+    pub sub_segments: usize,
+    /// Natural length (mm).
+    pub length_mm: f64,
+}
+
+/// One guide of a cable path: where its clamp goes.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PathGuide {
+    /// `G1`, `G2`, …
+    pub name: String,
+    /// The link it is screwed onto.
+    pub link: String,
+    /// The configuration's name (`G2/…` when the guide coincides with G2: no clamp of its own).
+    pub configuration: String,
+    /// Position in the link frame (mm).
+    pub xyz_mm: [f64; 3],
+    /// URDF roll, pitch, yaw in the link frame (deg).
+    pub rpy_deg: [f64; 3],
+}
+
+/// A static stress margin of one segment of d* at its binding test pose (attachment test).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Margin {
+    /// `C1`, `C2`, …
+    pub segment: String,
+    /// `contact`, `stretch` or `bend_radius`.
+    pub constraint: &'static str,
+    /// The value at the binding pose (m for contact and bend radius, 1 for stretch).
+    pub value: f64,
+    /// The limit, same unit.
+    pub threshold: f64,
+    /// Distance to the limit, positive when it holds (same unit).
+    pub margin: f64,
+    /// The binding test pose: sample, time and why it is a test pose.
+    pub sample: usize,
+    /// Time of the pose (s).
+    pub time_s: f64,
+    /// Why the pose was tested.
+    pub reason: String,
+}
+
+/// The attachment-test results of one segment.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SegmentReport {
+    /// `C1`, `C2`, …
+    pub segment: String,
+    /// Start guide.
+    pub from_guide: String,
+    /// End guide.
+    pub to_guide: String,
+    /// `inter-link` or `intra-link`.
+    pub kind: &'static str,
+    /// Joints between the two links (inter-link segments).
+    pub traversed_joints: Vec<String>,
+    /// The test poses (sample, time, reason).
+    pub test_poses: Vec<PoseSummary>,
+    /// |D0|.
+    pub d0: usize,
+    /// |D'0|.
+    pub d0_pruned: usize,
+    /// |D1|.
+    pub d1: usize,
+    /// |D2|.
+    pub d2: usize,
+    /// Rejected PVs of D'0 by first violated limit.
+    pub rejections: BTreeMap<Rejection, usize>,
+    /// (guides, length) combinations evaluated, robustness lengths included.
+    pub evaluations: usize,
+    /// Static solves (Newton's) the attachment test started for this segment, at every test
+    /// pose: the machine-independent measure of its work.
+    pub static_solves: usize,
+}
+
+/// A test pose, without its link poses.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PoseSummary {
+    /// Motion sample.
+    pub sample: usize,
+    /// Time (s).
+    pub time_s: f64,
+    /// Joint values (deg for rotary joints, mm for prismatic ones).
+    pub joints: Vec<f64>,
+    /// Why.
+    pub reason: String,
+}
+
+/// One chain tried in the motion test.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CandidateOutcome {
+    /// 1 for the shortest chain.
+    pub rank: usize,
+    /// Total natural length (mm).
+    pub total_length_mm: f64,
+    /// The path.
+    pub path: CablePath,
+    /// Passed the motion test; `None` when not tested.
+    pub passed: Option<bool>,
+    /// Why it failed.
+    pub failure: Option<String>,
+}
+
+/// What the static sweep in front of the motion test did (result JSON `static_sweep`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepSummary {
+    /// Distinct motion poses each PV was solved at (0: the sweep did not run).
+    pub poses: usize,
+    /// PVs swept.
+    pub pvs_swept: usize,
+    /// PVs dropped, in the order found.
+    pub rejected: Vec<SweepRejection>,
+}
+
+/// A PV the static sweep dropped.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepRejection {
+    /// `C1`, `C2`, …
+    pub segment: String,
+    /// Length in sub-segments.
+    pub sub_segments: usize,
+    /// Start guide's configuration name.
+    pub from_configuration: String,
+    /// End guide's configuration name.
+    pub to_configuration: String,
+    /// The limit violated first.
+    pub rejection: Rejection,
+    /// Motion sample and time (s) of the first pose that fails.
+    pub sample: usize,
+    /// Time of that pose (s).
+    pub time_s: f64,
+    /// Why, for people.
+    pub detail: String,
+}
+
+/// The inputs, named and hashed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Inputs {
+    /// Setup file.
+    pub setup_file: String,
+    /// Content hash of the setup as used (after method restrictions).
+    pub setup_hash: String,
+    /// Robot URDF.
+    pub robot_file: String,
+    /// Cable file and name.
+    pub cable_file: String,
+    /// Cable name.
+    pub cable: String,
+    /// Motion file, filled in by the caller who read it.
+    pub motion_file: Option<String>,
+    /// Motion duration (s).
+    pub motion_duration_s: f64,
+    /// Motion samples.
+    pub motion_samples: usize,
+    /// `method 1`, `method 2` or `previous method` (linear connect).
+    pub method: String,
+    /// `hermite` or `linear`.
+    pub connect: ConnectMethod,
+    /// `lazy` (the pieces the search needs) or `exhaustive` (every candidate first).
+    pub search: SearchKind,
+    /// The dictionary the intra-link sets came from (`None`: tested at their poses).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dictionary: Option<DictionaryUse>,
+}
+
+/// How a dictionary answered for the intra-link segments.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DictionaryUse {
+    /// The dictionary file.
+    pub file: String,
+    /// Gravity directions it stores.
+    pub directions: u32,
+    /// Largest angle from any direction to a stored one (deg).
+    pub covering_radius_deg: f64,
+    /// Per intra-link segment: what the lookup decided.
+    pub segments: Vec<DictionarySegmentUse>,
+    /// The exact checks of the pieces the offered chains took from the file.
+    pub certification: Certification,
+    /// Who signed the file, as the command line checked it; `None`: not checked (a library
+    /// caller's business, [`crate::dictionary::Dictionary::provenance`]).
+    pub provenance: Option<crate::provenance::Provenance>,
+}
+
+/// How a dictionary answered for one intra-link segment.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DictionarySegmentUse {
+    /// `C2`, …
+    pub segment: String,
+    /// Distinct gravity directions of the motion in the segment's link frame.
+    pub gravity_directions: usize,
+    /// Pieces that held or failed by the lookup alone, and those solved exactly.
+    pub pieces: crate::attachment::LookedUp,
+}
+
+/// Everything `solve` found. Serializes as the result JSON (README, "Result JSON"): the names
+/// there are stable, scripts depend on them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolveReport {
+    /// How the run ended.
+    pub status: Status,
+    /// Why, for people.
+    pub explanation: String,
+    /// The inputs.
+    pub inputs: Inputs,
+    /// The optimal path d* (or d̂ when untested).
+    pub optimal: Option<NamedPath>,
+    /// Its total length (mm).
+    pub optimal_length_mm: Option<f64>,
+    /// How to mount it: physical clamps, their places and the cable marks.
+    pub mounting: Option<MountingPlan>,
+    /// The limits the path was held to (quoted by the summaries).
+    pub thresholds: Thresholds,
+    /// The cable model's sub-segment length (mm): places along a piece are counted in it.
+    pub sub_segment_pitch_mm: f64,
+    /// Static margins of every segment of the optimal path at its binding test pose.
+    pub margins: Vec<Margin>,
+    /// Per segment: test poses and set sizes.
+    pub segments: Vec<SegmentReport>,
+    /// |D3|: chains of robust PVs that agree on every shared guide (a decimal string: it can
+    /// exceed 2⁶⁴).
+    pub chains: String,
+    /// The chains tried in the motion test, in the order tried (non-decreasing length).
+    pub candidates: Vec<CandidateOutcome>,
+    /// The static sweep in front of the motion test.
+    pub static_sweep: SweepSummary,
+    /// Motion test of the optimal path, or of the last candidate tried when none passed;
+    /// `None` when none was run.
+    pub motion_test: Option<MotionTestReport>,
+    /// The motion test was asked for.
+    pub motion_test_requested: bool,
+    /// What simulated the cable in the motion tests.
+    pub motion_engine: EngineKind,
+    /// Stage timings (s).
+    pub timings: Timings,
+    /// Why there is no path, and what would help; `None` when solved.
+    pub diagnosis: Option<Diagnosis>,
+}
+
+impl SolveReport {
+    /// The candidate a report shows: the one that passed the motion test, the untested
+    /// shortest one, or the last one tried when none passed (the one whose motion test the
+    /// report keeps). `None` when there is no candidate.
+    pub fn shown_candidate(&self) -> Option<&CandidateOutcome> {
+        let verdicts = self.candidates.iter().map(|c| c.passed);
+        shown_index(verdicts).map(|i| &self.candidates[i])
+    }
+}
+
+/// The index of the candidate to show among candidates with these motion-test verdicts
+/// (`Some(true)` passed, `None` untested), in the order tried: the first that passed, else
+/// the last. The one rule for [`SolveReport::shown_candidate`] and for readers of a result
+/// JSON's `candidates`.
+pub fn shown_index(verdicts: impl ExactSizeIterator<Item = Option<bool>>) -> Option<usize> {
+    let count = verdicts.len();
+    let mut verdicts = verdicts;
+    verdicts
+        .position(|passed| passed == Some(true))
+        .or(count.checked_sub(1))
+}
