@@ -11,7 +11,6 @@ use crate::statics::{RodParameters, SolverOptions, StaticSolver};
 use crate::stress::contact::{
     ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
 };
-use crate::stress::{BendRadius, min_bend_radius, self_contact, stretch};
 use nalgebra::{Point3, Vector3};
 use serde::Serialize;
 use std::borrow::Borrow;
@@ -384,7 +383,6 @@ impl<'a> Evaluator<'a> {
         scene: &Scene<'_>,
     ) -> Check {
         let setup = self.setup;
-        let pitch = setup.cable.sub_segment_pitch_m;
         let (a, b) = setup.segment_guides(m);
         let zones = [
             setup.clamp_zone(GuideEnd::Start, setup.guides[a].link),
@@ -406,25 +404,8 @@ impl<'a> Evaluator<'a> {
             Ok(clearance) => clearance,
             Err(e) => return Check::fail(Rejection::Diverged, e.to_string(), None),
         };
-        let bend: BendRadius = min_bend_radius(
-            nodes,
-            &start.rotation.transform_vector(&Vector3::z()),
-            &end.rotation.transform_vector(&Vector3::z()),
-            pitch,
-        );
-        let itself = self_contact(nodes, setup.cable.diameter_m, pitch);
-        let metrics = Metrics {
-            clearance_m: clearance.map(|c| c.clearance_m),
-            clearance_link: clearance.map(|c| c.link),
-            clearance_sub_segment: clearance.map(|c| c.sub_segment),
-            self_clearance_m: itself.map_or(f64::INFINITY, |c| c.clearance_m),
-            // Sub-segment indices are bounded by the setup's segment lengths (u32 keeps
-            // `Check` small: it is returned by value in every solve).
-            self_contact_sub_segments: itself.map_or([0; 2], |c| c.sub_segments.map(|k| k as u32)),
-            stretch: stretch(nodes, sub_segments as f64 * pitch),
-            min_bend_radius_m: bend.radius_m,
-            min_bend_node: bend.node,
-        };
+        debug_assert_eq!(nodes.len(), sub_segments + 1);
+        let metrics = Metrics::of_shape(&setup.cable, nodes, (start, end), clearance.as_ref());
         verdict(setup, metrics)
     }
 }

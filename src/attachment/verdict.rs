@@ -1,9 +1,13 @@
 //! What one piece at one pose comes to: the limit it violates first, how far past it, and its
 //! margins — the words of every verdict the attachment test, a dictionary and a diagnosis give.
 
+use crate::cable::CableSpec;
 use crate::geometry::ConnectError;
 use crate::pose::Pose;
 use crate::setup::{Setup, Thresholds};
+use crate::stress::contact::Clearance;
+use crate::stress::{min_bend_radius, self_contact, stretch};
+use nalgebra::{Point3, Vector3};
 use serde::Serialize;
 
 /// The stress limit a PV violates first (in the order contact, self-contact, stretch,
@@ -209,6 +213,37 @@ pub struct Metrics {
     pub min_bend_radius_m: f64,
     /// Node of the smallest bend radius (0 = start guide).
     pub min_bend_node: usize,
+}
+
+impl Metrics {
+    /// The metrics of a cable shape: `nodes` of a piece of `cable` held by clamps at `start`
+    /// and `end` (their +z the cable direction), with its lowest clearance to the robot
+    /// (`None` when nothing was checked). The one measure of a shape for every caller: the
+    /// attachment test and `cable-dict segment`.
+    pub fn of_shape(
+        cable: &CableSpec,
+        nodes: &[Point3<f64>],
+        (start, end): (&Pose, &Pose),
+        clearance: Option<&Clearance>,
+    ) -> Metrics {
+        let pitch = cable.sub_segment_pitch_m;
+        let z = |pose: &Pose| pose.rotation.transform_vector(&Vector3::z());
+        let bend = min_bend_radius(nodes, &z(start), &z(end), pitch);
+        let itself = self_contact(nodes, cable.diameter_m, pitch);
+        let sub_segments = nodes.len().saturating_sub(1);
+        Metrics {
+            clearance_m: clearance.map(|c| c.clearance_m),
+            clearance_link: clearance.map(|c| c.link),
+            clearance_sub_segment: clearance.map(|c| c.sub_segment),
+            self_clearance_m: itself.map_or(f64::INFINITY, |c| c.clearance_m),
+            // Sub-segment indices are bounded by the setup's segment lengths (u32 keeps
+            // `Check` small: it is returned by value in every solve).
+            self_contact_sub_segments: itself.map_or([0; 2], |c| c.sub_segments.map(|k| k as u32)),
+            stretch: stretch(nodes, sub_segments as f64 * pitch),
+            min_bend_radius_m: bend.radius_m,
+            min_bend_node: bend.node,
+        }
+    }
 }
 
 /// How far an equilibrium is from each limit, positive when the limit holds: what a

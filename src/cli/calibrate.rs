@@ -1,7 +1,7 @@
 //! `cable-dict calibrate`: a cable file from bench measurements (module
 //! [`cable_dict::calibrate`]).
 
-use super::{Failure, emit};
+use super::{Failure, emit, tidy};
 use cable_dict::atomic_file::write_atomically;
 use cable_dict::cable::{CableSpec, DEFAULT_AXIAL_STIFFNESS_N, DEFAULT_SUB_SEGMENT_PITCH_M};
 use cable_dict::calibrate::{CantileverTest, TipMeasurement, torsion_stiffness};
@@ -107,9 +107,10 @@ pub fn run(args: Args) -> Result<(), Failure> {
         base_end_allowance_m: None,
     };
     let measured = match test.tip {
-        TipMeasurement::Droop(droop) => format!("droops {} mm", droop * 1e3),
+        // As typed: 18 mm, not the 18.000000000000004 of the unit conversions.
+        TipMeasurement::Droop(droop) => format!("droops {} mm", tidy(droop * 1e3)),
         TipMeasurement::EndAngle(angle) => {
-            format!("ends {}° below the horizontal", angle.to_degrees())
+            format!("ends {}° below the horizontal", tidy(angle.to_degrees()))
         }
     };
     let header = format!(

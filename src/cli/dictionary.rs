@@ -1,6 +1,6 @@
 //! `cable-dict build`, `info`, `verify` and `merge`: dictionaries from the command line.
 
-use super::solve::open_verified;
+use super::provenance::open_verified;
 use super::{Failure, emit, print_json, provenance};
 use cable_dict::dictionary::{
     BuildOptions, DEFAULT_DIRECTION_COUNT, Dictionary, Info, RECOMPUTE_TOLERANCE_UNITS,

@@ -166,6 +166,16 @@ fn emit(text: &str) -> Result<(), Failure> {
     }
 }
 
+/// Writes `spec` as a `.glb` file at `output`, atomically (`export-scene`, `sites --gltf`).
+fn write_glb(
+    output: &std::path::Path,
+    spec: &cable_dict::report::scene::SceneSpec<'_>,
+) -> Result<(), Failure> {
+    let bytes = cable_dict::report::scene::to_glb(spec).map_err(Failure::unsolved)?;
+    cable_dict::atomic_file::write_atomically(output, &bytes)
+        .map_err(|e| Failure::input(anyhow::anyhow!("cannot write {}: {e}", output.display())))
+}
+
 /// A number for people: rounded to 1e-9 so that unit conversions print as typed (120, not
 /// 119.99999999999999), and without a negative zero.
 fn tidy(value: f64) -> f64 {

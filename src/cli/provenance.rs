@@ -66,7 +66,7 @@ pub struct SignArgs {
 
 pub fn run_sign(args: SignArgs) -> Result<(), Failure> {
     let key = SecretKey::read(&args.key).map_err(Failure::input)?;
-    let dictionary = super::solve::open_verified(&args.dict)?;
+    let dictionary = open_verified(&args.dict)?;
     let provenance = dictionary.sign(&key).map_err(Failure::input)?;
     emit(&format!(
         "{}: {} ({})\n",
@@ -125,4 +125,12 @@ pub fn check(
             .map_err(Failure::input)?;
     }
     Ok(provenance)
+}
+
+/// Opens a dictionary and checks every byte of it (milliseconds for the bundled ones): a
+/// damaged file is refused before it can decide anything.
+pub(super) fn open_verified(path: &Path) -> Result<Dictionary, Failure> {
+    let dictionary = Dictionary::open(path).map_err(Failure::input)?;
+    dictionary.verify().map_err(Failure::input)?;
+    Ok(dictionary)
 }

@@ -2,12 +2,10 @@
 //! rejected — a whole cable path at a pose, or one `segment`.
 
 use super::fk::joint_vector_si;
-use super::{Failure, args, emit, segment};
-use cable_dict::atomic_file::write_atomically;
+use super::{Failure, args, emit, segment, write_glb};
 use cable_dict::attachment::{ConnectMethod, Evaluator};
 use cable_dict::motion::Motion;
 use cable_dict::path::CablePath;
-use cable_dict::report::scene::{SceneSpec, to_glb};
 use cable_dict::report::views::pose_scene;
 use cable_dict::setup::Setup;
 use cable_dict::solve::shown_index;
@@ -89,18 +87,12 @@ fn run_path(args: PathArgs) -> Result<(), Failure> {
     let (path, motion_test) = chosen_path(&args, &setup)?;
     let joints = chosen_pose(&args, &setup)?;
     let spec = pose_scene(&setup, &path, &joints).map_err(Failure::input)?;
-    write_scene(&args.output, &spec)?;
+    write_glb(&args.output, &spec)?;
     let checks = path_checks(&setup, &path, &spec.main.link_poses)?;
     emit(&(motion_test.map_or(String::new(), |m| m + "\n") + &checks))
 }
 
 /// Writes `spec` as a `.glb` file; an unwritable file is a bad argument.
-pub(super) fn write_scene(output: &Path, spec: &SceneSpec<'_>) -> Result<(), Failure> {
-    let bytes = to_glb(spec).map_err(Failure::unsolved)?;
-    write_atomically(output, &bytes)
-        .map_err(|e| Failure::input(anyhow::anyhow!("cannot write {}: {e}", output.display())))
-}
-
 /// The path of --result or of --lengths-mm / --configurations, checked against the setup,
 /// and (from a result) what the motion test said of it.
 fn chosen_path(args: &PathArgs, setup: &Setup) -> Result<(CablePath, Option<String>), Failure> {

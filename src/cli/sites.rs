@@ -2,8 +2,7 @@
 //! configurations (generated sites with their cable directions, or the written ones), the
 //! number of candidate pieces per segment, and optionally a glTF scene of them all.
 
-use super::scene::write_scene;
-use super::{Failure, emit, print_json, tidy};
+use super::{Failure, emit, print_json, tidy, write_glb};
 use cable_dict::attachment::{ConnectMethod, CostEstimate, Evaluator, SegmentPoses};
 use cable_dict::motion::Motion;
 use cable_dict::report::scene::{GuideMark, PoseScene, SceneSpec};
@@ -53,7 +52,7 @@ pub fn run(args: Args) -> Result<(), Failure> {
             snapshots: Vec::new(),
             tints: Vec::new(),
         };
-        write_scene(output, &spec)?;
+        write_glb(output, &spec)?;
     }
     if args.json {
         print_json(&report(&setup)?)

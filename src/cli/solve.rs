@@ -1,10 +1,10 @@
 //! `cable-dict solve` and `cable-dict critical-poses`: a setup and a motion → the optimal
 //! cable path, or the poses each segment is tested at.
 
+use super::provenance::open_verified;
 use super::{Failure, emit, print_json};
 use cable_dict::atomic_file::write_atomically;
 use cable_dict::attachment::{ConnectMethod, IntraLinkCriterion, SegmentPoses};
-use cable_dict::dictionary::Dictionary;
 use cable_dict::motion::Motion;
 use cable_dict::motion_test::EngineKind;
 use cable_dict::report::{ReportError, check_report_folder, write_report};
@@ -220,14 +220,6 @@ fn write_report_folder(
         clock.elapsed().as_secs_f64()
     );
     Ok(())
-}
-
-/// Opens a dictionary and checks every byte of it (milliseconds for the bundled ones): a
-/// damaged file is refused before it can decide anything.
-pub(super) fn open_verified(path: &Path) -> Result<Dictionary, Failure> {
-    let dictionary = Dictionary::open(path).map_err(Failure::input)?;
-    dictionary.verify().map_err(Failure::input)?;
-    Ok(dictionary)
 }
 
 /// Reads the setup and the motion for its robot.

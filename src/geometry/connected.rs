@@ -28,6 +28,7 @@
 use nalgebra::{Point3, Rotation3, Unit, Vector3};
 
 use super::chain::project_onto_rigid_chain;
+pub use super::error::{ConnectError, MAX_SUB_SEGMENTS};
 use super::frames::guided_frames;
 use super::guides::{GuidePair, check_cable, check_sag};
 use super::hermite::{
@@ -35,8 +36,6 @@ use super::hermite::{
 };
 use crate::pose::Pose;
 
-/// Largest accepted sub-segment count; bounds the memory of one connected geometry.
-pub const MAX_SUB_SEGMENTS: usize = 1_000_000;
 /// A perpendicular component shorter than this (of a unit vector) does not define a bow
 /// direction: the vector is (nearly) along the chord.
 const MIN_BOW_COMPONENT: f64 = 1e-6;
@@ -91,39 +90,6 @@ impl ConnectedGeometry {
     pub fn natural_length_m(&self) -> f64 {
         self.sub_segment_count() as f64 * self.pitch_m
     }
-}
-
-/// Why two guides cannot be connected by the requested cable.
-#[derive(Debug, thiserror::Error, Clone, PartialEq)]
-pub enum ConnectError {
-    /// The guides are farther apart than the cable's natural length.
-    #[error(
-        "segment too short: guides are {distance_mm:.1} mm apart but the cable is {natural_mm:.1} mm long (would need stretch {required_stretch:.3})",
-        distance_mm = .distance_m * 1e3,
-        natural_mm = .natural_length_m * 1e3
-    )]
-    TooShort {
-        /// Distance between the guide origins (m).
-        distance_m: f64,
-        /// Natural cable length `S·l` (m).
-        natural_length_m: f64,
-        /// `distance / (S·l)`: the stretch ratio the cable would need.
-        required_stretch: f64,
-    },
-    /// Zero sub-segments, a non-positive or non-finite pitch, a non-finite guide pose or sag
-    /// direction.
-    #[error("invalid connected-geometry input: {what}")]
-    InvalidInput {
-        /// What is wrong, for people.
-        what: String,
-    },
-    /// No rigid chain found (a single sub-segment between guides not exactly `l` apart, or a
-    /// root find or projection that failed; the latter is not expected for valid input).
-    #[error("no connected geometry found: {reason}")]
-    NoSolution {
-        /// What failed, for people.
-        reason: String,
-    },
 }
 
 /// [`ConnectError::TooShort`] when the guides are farther apart than `S·l` (beyond the

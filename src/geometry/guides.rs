@@ -3,7 +3,7 @@
 
 use nalgebra::{Point3, Rotation3, Unit, UnitQuaternion, Vector3};
 
-use super::connected::{ConnectError, MAX_SUB_SEGMENTS};
+use super::error::{ConnectError, MAX_SUB_SEGMENTS};
 use crate::pose::Pose;
 
 /// Positions, tangents (+z) and reference normals (+x) of the two guides.

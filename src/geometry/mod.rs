@@ -14,6 +14,7 @@
 
 mod chain;
 pub mod connected;
+mod error;
 pub(crate) mod frames;
 mod guides;
 pub mod hermite;

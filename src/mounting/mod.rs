@@ -43,6 +43,40 @@ pub struct CutLength {
     pub total_mm: f64,
 }
 
+impl MountingPlan {
+    /// `each piece also held every limit 20 mm shorter and longer: put each mark within
+    /// ±10 mm` (a mark off by half the tolerance keeps both neighbouring pieces inside it).
+    pub fn tolerance_words(&self) -> String {
+        format!(
+            "each piece also held every limit {} mm shorter and longer: put each mark within \
+             ±{} mm",
+            decimal(self.piece_tolerance_mm, 0),
+            decimal(self.piece_tolerance_mm / 2.0, 0)
+        )
+    }
+
+    /// `lay the cable untwisted along its route with the robot at its installation pose:
+    /// joint_1 0.0 deg, …`, or what stands in for a pose the setup does not give.
+    pub fn installation_words(&self) -> String {
+        match &self.installation_pose {
+            Some(pose) => {
+                let joints: Vec<String> = pose
+                    .iter()
+                    .map(|j| format!("{} {} {}", j.joint, decimal(j.value, 1), j.unit))
+                    .collect();
+                format!(
+                    "lay the cable untwisted along its route with the robot at its installation \
+                     pose: {}",
+                    joints.join(", ")
+                )
+            }
+            None => "the setup gives no installation pose: each clamp's twist reference is its \
+                     frame's +x axis as written"
+                .into(),
+        }
+    }
+}
+
 impl CutLength {
     /// `cut 2160 mm: 620 mm between the clamps, 40 mm into the connector at the tool,
     /// 1500 mm from the first clamp to the base (the cable file's allowances)`.

@@ -98,11 +98,9 @@ fn cable_strip(svg: &mut String, plan: &MountingPlan, top: f64) {
     let _ = writeln!(
         svg,
         "<text class=\"note\" x=\"12\" y=\"{:.1}\">Marks: cable length from its end at the \
-         tool (left). Each piece between two marks also held every limit {} mm shorter and \
-         longer: mark within ±{} mm.</text>",
+         tool (left); {}.</text>",
         top + STRIP_PX - 24.0,
-        decimal(plan.piece_tolerance_mm, 0),
-        decimal(plan.piece_tolerance_mm / 2.0, 0)
+        escape(&plan.tolerance_words())
     );
 }
 
@@ -233,14 +231,6 @@ pub fn install_html(title: &str, plan: &MountingPlan) -> String {
             triple(&clamp.rpy_deg)
         );
     }
-    let pose = match &plan.installation_pose {
-        Some(joints) => joints
-            .iter()
-            .map(|j| format!("{} {} {}", escape(&j.joint), decimal(j.value, 1), j.unit))
-            .collect::<Vec<_>>()
-            .join(", "),
-        None => "not given: each clamp's twist reference is its frame's +x axis".into(),
-    };
     let cut = plan
         .cut
         .as_ref()
@@ -250,10 +240,7 @@ pub fn install_html(title: &str, plan: &MountingPlan) -> String {
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
          <title>{title}</title>\n<style>\n{PAGE_STYLE}</style>\n</head>\n<body>\n\
          <h1>{title}</h1>\n<p>Cable between the first and the last clamp: <b>{length} mm</b>. \
-         Lay it untwisted along its route with the robot at its installation pose: {pose}.</p>\n\
-         {cut}\
-         <p>Each piece between two clamps also held every limit {tol} mm shorter and longer: \
-         put each mark within ±{half} mm. The cable before the first clamp and beyond the last \
+         {pose}.</p>\n{cut}<p>{tolerance}. The cable before the first clamp and beyond the last \
          is outside this design.</p>\n<img src=\"install.svg\" alt=\"the cable with its clamp \
          marks, and each clamp's place on its link\">\n<table>\n<tr><th>clamp</th><th>link</th>\
          <th>mark (mm from the tool end)</th><th>place on the link</th><th>placement</th>\
@@ -261,8 +248,8 @@ pub fn install_html(title: &str, plan: &MountingPlan) -> String {
          </body>\n</html>\n",
         title = escape(title),
         length = decimal(plan.length_mm, 0),
-        tol = decimal(plan.piece_tolerance_mm, 0),
-        half = decimal(plan.piece_tolerance_mm / 2.0, 0),
+        pose = escape(&capitalized(&plan.installation_words())),
+        tolerance = escape(&capitalized(&plan.tolerance_words())),
     )
 }
 

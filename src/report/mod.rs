@@ -227,7 +227,7 @@ pub fn write_report(
             figures: plots,
         },
     ];
-    let page = page::index_html(&title, &summary, &sections, view::VIEW_HTML);
+    let page = page::index_html(&title, &summary, &sections, &view::view_html());
     folder.put("index.html", "this page", page.as_bytes())?;
     let written = folder.written;
     staging.commit().map_err(write_error)?;

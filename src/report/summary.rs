@@ -136,28 +136,11 @@ fn mounting_tables(md: &mut String, plan: &MountingPlan) {
             ],
         );
     }
-    let tolerance = decimal(plan.piece_tolerance_mm, 0);
-    let half = decimal(plan.piece_tolerance_mm / 2.0, 0);
-    let mut notes = vec![format!(
-        "Each piece also held every limit {tolerance} mm shorter and longer: put each mark \
-         within ±{half} mm."
-    )];
+    let mut notes = vec![format!("{}.", capitalized(&plan.tolerance_words()))];
     if let Some(cut) = &plan.cut {
         notes.push(format!("{}.", capitalized(&cut.describe())));
     }
-    notes.push(match &plan.installation_pose {
-        Some(pose) => format!(
-            "Lay the cable untwisted along its route with the robot at its installation pose: \
-             {}.",
-            pose.iter()
-                .map(|j| format!("{} {} {}", j.joint, decimal(j.value, 1), j.unit))
-                .collect::<Vec<_>>()
-                .join(", ")
-        ),
-        None => "The setup gives no installation pose: each clamp's twist reference is its \
-                 frame's +x axis as written."
-            .into(),
-    });
+    notes.push(format!("{}.", capitalized(&plan.installation_words())));
     notes.push(
         "The cable before the first clamp and beyond the last is outside this design.".into(),
     );

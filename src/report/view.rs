@@ -9,6 +9,7 @@
 
 use super::ReportError;
 use super::scene::{SceneSpec, to_glb};
+use super::views::TIGHT_SHARE;
 use crate::motion_test::MotionTestReport;
 use crate::pose::Pose;
 use crate::setup::Setup;
@@ -184,12 +185,14 @@ fn worst_moment(test: &MotionTestReport) -> Option<WorstMoment> {
 }
 
 /// The view's markup for the page: the component, its controls and the scripts.
-pub const VIEW_HTML: &str = "<section id=\"view-section\">\n<h2>3D view</h2>\n\
+pub fn view_html() -> String {
+    format!(
+        "<section id=\"view-section\">\n<h2>3D view</h2>\n\
 <p>Drag to turn, scroll to zoom. The robot's collision shapes, the cable and its clamps over the \
 motion test; play it, or drag the slider to any moment (the red tick is the worst one). Cable \
 pieces: green, every limit with room to spare; amber, closer to the robot or to itself than one \
-cable diameter, or within 20 % of the bend-radius or stretch limit; red, a limit exceeded.</p>\n\
-<model-viewer id=\"view\" camera-controls interaction-prompt=\"none\" shadow-intensity=\"0\" \
+cable diameter, or within {:.0} % of the bend-radius or stretch limit; red, a limit exceeded.</p>\n\
+<model-viewer id=\"view\" camera-controls camera-orbit=\"-40deg 70deg auto\" interaction-prompt=\"none\" shadow-intensity=\"0\" \
 exposure=\"0.6\" alt=\"the robot and the cable in 3D\"></model-viewer>\n\
 <div class=\"view-controls\"><button id=\"view-play\" type=\"button\">Play</button>\
 <span class=\"view-track\"><input id=\"view-time\" type=\"range\" min=\"0\" max=\"0\" value=\"0\" \
@@ -197,7 +200,10 @@ aria-label=\"time\"><span id=\"view-worst-tick\"></span></span>\
 <span id=\"view-readout\"></span></div>\n\
 <p><button id=\"view-worst\" type=\"button\"></button></p>\n\
 <script src=\"model-viewer.min.js\"></script>\n<script src=\"view-data.js\"></script>\n\
-<script src=\"view.js\"></script>\n</section>\n";
+<script src=\"view.js\"></script>\n</section>\n",
+        100.0 * TIGHT_SHARE
+    )
+}
 
 /// The view's styling.
 pub const VIEW_STYLE: &str = "model-viewer { width: 100%; height: 560px; background: #f4f6f8; }

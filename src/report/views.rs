@@ -158,7 +158,7 @@ pub fn solve_scene<'a>(
 
 /// Share of a limit's allowance (bend radius, stretch beyond 1) within which a piece is
 /// drawn as tight.
-const TIGHT_SHARE: f64 = 0.2;
+pub const TIGHT_SHARE: f64 = 0.2;
 
 /// Each piece of the shown candidate coloured by how close it came to a limit, at the test
 /// poses and over the motion test: red when a limit is exceeded, amber when closer to the

@@ -371,10 +371,11 @@ fn motion_diagnosis(
                     (0, n) => format!(
                         "the static sweep over the motion dropped {n} of its candidate pieces"
                     ),
-                    (k, 0) => format!("{k} chains failed here in the motion test"),
+                    (k, 0) => format!("{} here in the motion test", paths_failed(k)),
                     (k, n) => format!(
-                        "{k} chains failed here in the motion test, and the static sweep over \
-                         the motion dropped {n} of its candidate pieces"
+                        "{} here in the motion test, and the static sweep over the motion \
+                         dropped {n} of its candidate pieces",
+                        paths_failed(k)
                     ),
                 },
                 nearest_misses: Vec::new(),
@@ -431,4 +432,12 @@ fn fastest_joint_move(motion: &Motion, t_s: f64) -> Option<(String, f64, f64, f6
         to,
         speed(joint, k).to_degrees(),
     ))
+}
+
+/// `1 path failed` or `3 paths failed`.
+fn paths_failed(count: usize) -> String {
+    match count {
+        1 => "1 path failed".into(),
+        n => format!("{n} paths failed"),
+    }
 }

@@ -201,7 +201,7 @@ fn write_scene(
         snapshots: Vec::new(),
         tints: Vec::new(),
     };
-    super::scene::write_scene(file, &spec)
+    super::write_glb(file, &spec)
 }
 
 /// The number of sub-segments in `length_mm`, refusing lengths that are not a whole number.

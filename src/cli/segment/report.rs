@@ -4,10 +4,10 @@ use super::super::Failure;
 use super::obstacles::{ContactMetric, Scene};
 use super::shape::{Connected, Converged};
 use super::{Args, Solver, Stage};
+use cable_dict::attachment::Metrics as ShapeMetrics;
 use cable_dict::cable::CableSpec;
-use cable_dict::pose::{Pose, matrix_rows};
-use cable_dict::stress::{min_bend_radius, self_contact, stretch};
-use nalgebra::{Point3, Rotation3, Vector3};
+use cable_dict::pose::matrix_rows;
+use nalgebra::{Point3, Rotation3};
 use serde::Serialize;
 use std::fmt;
 
@@ -159,26 +159,28 @@ impl Metrics {
         nodes: &[Point3<f64>],
         scene: Option<&Scene>,
     ) -> Result<Self, Failure> {
-        let z = |pose: &Pose| pose.rotation * Vector3::z();
-        let pitch = cable.sub_segment_pitch_m;
-        let bend = min_bend_radius(nodes, &z(&args.start), &z(&args.end), pitch);
-        let natural = natural_length_m(cable, nodes.len().saturating_sub(1));
         let contact = match scene {
             Some(scene) => scene.contact(nodes)?,
             None => None,
         };
-        let self_contact =
-            self_contact(nodes, cable.diameter_m, pitch).map(|c| SelfContactMetric {
-                min_clearance_mm: c.clearance_m * 1e3,
-                violation: c.is_violated(),
-                sub_segments: c.sub_segments,
+        // The attachment test's own measure of a shape (its robot clearance is the setup's;
+        // here the scene's, reported apart).
+        let shape = ShapeMetrics::of_shape(cable, nodes, (&args.start, &args.end), None);
+        let self_contact = shape
+            .self_clearance_m
+            .is_finite()
+            .then(|| SelfContactMetric {
+                min_clearance_mm: shape.self_clearance_m * 1e3,
+                violation: shape.self_clearance_m < 0.0,
+                sub_segments: shape.self_contact_sub_segments.map(|k| k as usize),
             });
+        let bend_m = shape.min_bend_radius_m;
         Ok(Metrics {
             self_contact,
-            min_bend_radius_mm: bend.radius_m.is_finite().then_some(bend.radius_m * 1e3),
-            min_bend_radius_node: bend.node,
+            min_bend_radius_mm: bend_m.is_finite().then_some(bend_m * 1e3),
+            min_bend_radius_node: shape.min_bend_node,
             cable_min_bend_radius_mm: cable.min_bend_radius_m * 1e3,
-            stretch: stretch(nodes, natural),
+            stretch: shape.stretch,
             contact,
         })
     }

@@ -110,24 +110,16 @@ fn explanation(
              over the motion{}",
             sweep_note(sweep)
         ),
-        Status::NonePassedMotionTest => {
-            let reasons: Vec<String> = candidates
-                .iter()
-                .map(|c| {
-                    format!(
-                        "#{}: {}",
-                        c.rank,
-                        c.failure.as_deref().unwrap_or("not tested")
-                    )
-                })
-                .collect();
-            format!(
-                "none of the {} chains tried passed the motion test, and {stop}{} — {}",
-                candidates.len(),
-                sweep_note(sweep),
-                reasons.join("; ")
-            )
-        }
+        // Each candidate's failure is in `candidates` (and `solve -v`), the per-piece story
+        // in the diagnosis: the reason stays one sentence.
+        Status::NonePassedMotionTest => format!(
+            "{}, and {stop}{}",
+            match candidates.len() {
+                1 => "1 path was tried".to_string(),
+                n => format!("{n} paths were tried"),
+            },
+            sweep_note(sweep),
+        ),
         Status::NoChain => unsolved_reason(sets, setup),
     }
 }

@@ -298,7 +298,7 @@ pub struct DictionarySegmentUse {
     pub pieces: crate::attachment::LookedUp,
 }
 
-/// Everything `solve` found. Serializes as the result JSON (README, "Result JSON"): the names
+/// Everything `solve` found. Serializes as the result JSON (docs/commands.md, "Result JSON"): the names
 /// there are stable, scripts depend on them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SolveReport {

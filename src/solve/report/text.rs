@@ -1,25 +1,13 @@
-//! The summary `solve` prints: [`SolveReport`] as text for people.
+//! The detailed summary `solve -v` prints: the search's counts, margins, sweep, motion test
+//! and timings in its own words.
 
 use super::assemble::dropped_per_segment;
 use super::data::*;
 use std::fmt;
 
-impl fmt::Display for SolveReport {
-    /// The summary for the people who mount the cable (`{}`): the clamps, their places and
-    /// cable marks, the installation pose, the tolerance and the worst values over the
-    /// motion; with `{:#}` (`solve -v`) the search's details: every candidate count, the
-    /// margins at the test poses, the static sweep and the timings.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if f.alternate() {
-            self.write_details(f)
-        } else {
-            super::workshop_text::write_summary(self, f)
-        }
-    }
-}
-
 impl SolveReport {
-    fn write_details(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+    /// The search's details (`solve -v`).
+    pub(super) fn write_details(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let i = &self.inputs;
         writeln!(f, "{} — {}", self.status.describe(), self.explanation)?;
         writeln!(
@@ -68,6 +56,18 @@ impl SolveReport {
                 self.motion_engine,
                 report.summary()
             )?;
+        }
+        if self.candidates.len() > 1 {
+            writeln!(f, "\nchains tried in the motion test")?;
+            for c in &self.candidates {
+                let outcome = match (c.passed, &c.failure) {
+                    (Some(true), _) => "passed".to_string(),
+                    (_, Some(failure)) => failure.clone(),
+                    (None, None) => "not tested".to_string(),
+                    (Some(false), None) => "failed".to_string(),
+                };
+                writeln!(f, "  #{} ({:.0} mm): {outcome}", c.rank, c.total_length_mm)?;
+            }
         }
         if let Some(diagnosis) = &self.diagnosis {
             writeln!(f, "\nwhy there is no path")?;

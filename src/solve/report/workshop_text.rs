@@ -96,11 +96,9 @@ fn role_note(clamp: &PhysicalClamp) -> &'static str {
 fn write_pieces(f: &mut fmt::Formatter<'_>, plan: &MountingPlan) -> fmt::Result {
     writeln!(
         f,
-        "\ncable between the clamps: {} mm; each piece also held every limit {} mm shorter and \
-         longer, so a mark may be off by up to ±{} mm",
+        "\ncable between the clamps: {} mm; {}",
         decimal(plan.length_mm, 0),
-        decimal(plan.piece_tolerance_mm, 0),
-        decimal(plan.piece_tolerance_mm / 2.0, 0)
+        plan.tolerance_words()
     )?;
     if let Some(cut) = &plan.cut {
         writeln!(f, "  {}", cut.describe())?;
@@ -126,25 +124,7 @@ fn write_pieces(f: &mut fmt::Formatter<'_>, plan: &MountingPlan) -> fmt::Result 
 }
 
 fn write_installation(f: &mut fmt::Formatter<'_>, plan: &MountingPlan) -> fmt::Result {
-    match &plan.installation_pose {
-        Some(pose) => {
-            let joints: Vec<String> = pose
-                .iter()
-                .map(|j| format!("{} {} {}", j.joint, decimal(j.value, 1), j.unit))
-                .collect();
-            writeln!(
-                f,
-                "\nlay the cable untwisted along its route with the robot at its installation \
-                 pose: {}",
-                joints.join(", ")
-            )
-        }
-        None => writeln!(
-            f,
-            "\nthe setup gives no installation pose: each clamp's twist reference is its frame's \
-             +x axis as written"
-        ),
-    }
+    writeln!(f, "\n{}", plan.installation_words())
 }
 
 /// The worst value of each limit over the motion test, against its limit.
