@@ -146,6 +146,31 @@ async function checkView(page, blank, problems) {
     if (after.equals(before)) problems.push("3D view: the picture did not change over the motion");
     moved = `played ${t0.toFixed(2)} → ${t1.toFixed(2)} s, sought ${target.toFixed(2)} s`;
   }
+  // The installation pose: its animation takes over, and the picture still shows something.
+  const installation = await page.evaluate(() => window.cableDictView.installation);
+  if (installation) {
+    await page.click("#view-install");
+    await page.waitForTimeout(500);
+    const shown = await page.evaluate(() => document.getElementById("view").animationName);
+    if (shown !== installation) problems.push(`3D view: the installation pose shows '${shown}'`);
+    const still = await drawnShare(blank, await viewer.screenshot());
+    if (still < MIN_DRAWN_SHARE) problems.push("3D view: blank at the installation pose");
+    moved += ", installation pose shown";
+    if (hasAnimation) {
+      // And back to the motion test by the slider.
+      const back = await page.evaluate(async () => {
+        const slider = document.getElementById("view-time");
+        slider.value = "0.5";
+        slider.dispatchEvent(new Event("input"));
+        await new Promise((resolve) => setTimeout(resolve, 500));
+        const v = document.getElementById("view");
+        return { name: v.animationName, t: v.currentTime, want: window.cableDictView.animation };
+      });
+      if (back.name !== back.want || Math.abs(back.t - 0.5) > 0.02) {
+        problems.push(`3D view: back from the installation pose shows '${back.name}' at ${back.t} s`);
+      }
+    }
+  }
   return `3D view: loaded, ${(100 * share).toFixed(1)} % drawn, ${labels} clamp labels, ${moved}`;
 }
 

@@ -445,7 +445,7 @@ fn sheet_rows(html: &str) -> Vec<(String, String, f64)> {
 /// clamp (guides joined by a 0 mm piece are one), on the JSON's link, at the mark the JSON's
 /// piece lengths give summed from the tool end; the picture carries every label and mark.
 /// The 3D view labels the same clamps, at the world positions the robot's kinematics give
-/// for the motion's first pose (in glTF's y-up frame).
+/// for the motion's first pose and for the installation pose (in glTF's y-up frame).
 #[test]
 fn the_installation_sheet_and_the_view_agree_with_the_result() {
     let motion_file = "motions/viper_s850/machine_tending.csv";
@@ -532,13 +532,22 @@ fn the_installation_sheet_and_the_view_agree_with_the_result() {
             .iter()
             .find(|c| c.name == placement)
             .expect("configuration");
-        let world = poses[guide.link] * configuration.pose * nalgebra::Point3::origin();
-        let shown = &clamp["positions_m"][0];
-        for (axis, value) in [world.x, world.z, -world.y].into_iter().enumerate() {
-            assert!(
-                (shown[axis].as_f64().expect("coordinate") - value).abs() < 1e-9,
-                "{label}"
-            );
+        let installed = &setup
+            .installation
+            .as_ref()
+            .expect("installation")
+            .link_poses;
+        for (poses, shown) in [
+            (&poses, &clamp["positions_m"][0]),
+            (installed, &clamp["installation_m"]),
+        ] {
+            let world = poses[guide.link] * configuration.pose * nalgebra::Point3::origin();
+            for (axis, value) in [world.x, world.z, -world.y].into_iter().enumerate() {
+                assert!(
+                    (shown[axis].as_f64().expect("coordinate") - value).abs() < 1e-9,
+                    "{label}"
+                );
+            }
         }
     }
 }

@@ -8,8 +8,8 @@
 
 use cable_dict::pose::pose_from_mm_deg;
 use cable_dict::report::scene::{
-    CableLine, CableTint, GuideMark, PoseScene, SceneAnimation, SceneError, SceneSpec, Snapshot,
-    to_glb,
+    CableLine, CableTint, GuideMark, INSTALLATION_ANIMATION, PoseScene, SceneAnimation, SceneError,
+    SceneSpec, Snapshot, to_glb,
 };
 use cable_dict::robot::Robot;
 use gltf::animation::Property;
@@ -122,6 +122,7 @@ fn spec(robot: &Robot) -> SceneSpec<'_> {
             },
         ],
         tints: Vec::new(),
+        installation: None,
     }
 }
 
@@ -465,14 +466,45 @@ fn animated_nodes_follow_the_frames() {
     let spec = spec(&robot);
     let animation = spec.animation.as_ref().expect("animated");
     let (doc, blob) = import(&glb(&spec));
+    assert_eq!(doc.animations().count(), 1);
     let anim = doc.animations().next().expect("one animation");
-    let root = root(&doc);
+    assert_follows(&doc, &blob, &anim, &spec, animation);
+}
+
+/// The installation pose is a second animation, by its name: two keyframes holding the main
+/// copy's links and cable pieces at the given pose.
+#[test]
+fn the_installation_pose_is_a_still_animation() {
+    let robot = robot();
+    let mut spec = spec(&robot);
+    spec.installation = Some(pose_scene(&robot, &JOINTS[2], 0.9));
+    let (doc, blob) = import(&glb(&spec));
+    let names: Vec<&str> = doc.animations().filter_map(|a| a.name()).collect();
+    assert_eq!(names, ["motion test", INSTALLATION_ANIMATION]);
+    let anim = doc.animations().nth(1).expect("the installation pose");
+    let still = spec.installation_animation().expect("an installation pose");
+    assert_eq!(still.times_s, [0.0, 1.0]);
+    assert_follows(&doc, &blob, &anim, &spec, &still);
+    // A pose whose pieces differ from the main scene's is refused.
+    spec.installation.as_mut().expect("pose").cable.pop();
+    assert!(to_glb(&spec).is_err());
+}
+
+/// Every link node and cable piece of the main copy follows `animation`'s frames in `anim`.
+fn assert_follows(
+    doc: &gltf::Document,
+    blob: &[u8],
+    anim: &gltf::Animation<'_>,
+    spec: &SceneSpec<'_>,
+    animation: &SceneAnimation,
+) {
+    let root = root(doc);
     let mut checked = 0;
     for (i, line) in spec.main.cable.iter().enumerate() {
         let line_node = child(&child(&root, "cable"), &line.name);
         for k in 0..line.nodes_m.len() - 1 {
             let node = child(&line_node, &format!("{} sub-segment {k}", line.name));
-            let channels = channel_values(&anim, &blob, node.index());
+            let channels = channel_values(anim, blob, node.index());
             assert_eq!(channels.len(), 3, "T, R and S of sub-segment {k}");
             for (f, frame) in animation.frames.iter().enumerate() {
                 let m = animated_matrix(&node, &channels, f);
@@ -493,7 +525,7 @@ fn animated_nodes_follow_the_frames() {
         }
         for k in 0..line.nodes_m.len() {
             let node = child(&line_node, &format!("{} node {k}", line.name));
-            let channels = channel_values(&anim, &blob, node.index());
+            let channels = channel_values(anim, blob, node.index());
             for (f, frame) in animation.frames.iter().enumerate() {
                 let got = animated_matrix(&node, &channels, f).transform_point(&Point3::origin());
                 assert!(
@@ -504,9 +536,9 @@ fn animated_nodes_follow_the_frames() {
             }
         }
     }
-    assert_eq!(checked, 3 * (NODES[0] + NODES[1] - 2));
+    assert_eq!(checked, animation.frames.len() * (NODES[0] + NODES[1] - 2));
     for (l, link_node) in child(&root, "robot").children().enumerate() {
-        let channels = channel_values(&anim, &blob, link_node.index());
+        let channels = channel_values(anim, blob, link_node.index());
         assert_eq!(channels.len(), 2, "T and R of link {l}");
         for (f, frame) in animation.frames.iter().enumerate() {
             let m = animated_matrix(&link_node, &channels, f);
@@ -702,6 +734,7 @@ fn spheres_capsules_and_stl_meshes_are_drawn_to_size() {
         animation: None,
         snapshots: Vec::new(),
         tints: Vec::new(),
+        installation: None,
     };
     let (doc, blob) = import(&glb_kept(&spec, "CABLE_DICT_SHAPES_OUT"));
     // root, robot, 2 links, 3 colliders: no cable node without cable lines

@@ -14,6 +14,7 @@
   const bytes = Uint8Array.from(atob(data.glb_base64), (c) => c.charCodeAt(0));
   viewer.src = URL.createObjectURL(new Blob([bytes], { type: "model/gltf-binary" }));
 
+  const install = document.getElementById("view-install");
   const play = document.getElementById("view-play");
   const slider = document.getElementById("view-time");
   const readout = document.getElementById("view-readout");
@@ -70,11 +71,44 @@
     if (!viewer.paused) requestAnimationFrame(tick);
   }
 
-  function seek(t) {
+  // Makes `name` the current animation. model-viewer applies a newly chosen clip only while
+  // it plays (with no cross-fade: the element says so), so it plays for two frames first.
+  function useAnimation(name) {
+    if (viewer.animationName === name) return Promise.resolve();
+    viewer.animationName = name;
+    viewer.play();
+    return new Promise((resolve) =>
+      requestAnimationFrame(() =>
+        requestAnimationFrame(() => {
+          viewer.pause();
+          resolve();
+        }),
+      ),
+    );
+  }
+
+  // The motion test at time t, paused.
+  async function seek(t) {
     viewer.pause();
+    if (data.animation) await useAnimation(data.animation);
     viewer.currentTime = t;
     play.textContent = "Play";
+    install.classList.remove("active");
     show(t);
+  }
+
+  // The robot at the installation pose with the cable laid there (a still animation), the
+  // labels at their places in it.
+  async function showInstallation() {
+    viewer.pause();
+    await useAnimation(data.installation);
+    viewer.currentTime = 0;
+    play.textContent = "Play";
+    install.classList.add("active");
+    readout.textContent = "installation pose";
+    data.clamps.forEach((clamp, i) => {
+      viewer.updateHotspot({ name: `hotspot-clamp-${i}`, position: position(clamp.installation_m) });
+    });
   }
 
   slider.max = String(duration);
@@ -89,15 +123,15 @@
   if (!data.animation) {
     for (const control of [play, slider, worstButton]) control.disabled = true;
   }
+  install.hidden = !data.installation;
 
-  viewer.addEventListener("load", () => {
-    if (data.animation) {
-      viewer.animationName = data.animation;
-      seek(0);
-    }
+  viewer.addEventListener("load", async () => {
+    if (data.animation) await seek(0);
     document.body.dataset.viewLoaded = "true";
   });
-  play.addEventListener("click", () => {
+  install.addEventListener("click", showInstallation);
+  play.addEventListener("click", async () => {
+    if (viewer.animationName !== data.animation) await seek(Number(slider.value));
     if (viewer.paused) {
       if (viewer.currentTime >= duration) viewer.currentTime = 0;
       viewer.play();

@@ -51,6 +51,7 @@ pub fn run(args: Args) -> Result<(), Failure> {
             animation: None,
             snapshots: Vec::new(),
             tints: Vec::new(),
+            installation: None,
         };
         write_glb(output, &spec)?;
     }

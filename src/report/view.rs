@@ -8,7 +8,7 @@
 //! plain script; everything else is in the folder, nothing is fetched from a network.
 
 use super::ReportError;
-use super::scene::{SceneSpec, to_glb};
+use super::scene::{INSTALLATION_ANIMATION, SceneSpec, to_glb};
 use super::views::TIGHT_SHARE;
 use crate::motion_test::MotionTestReport;
 use crate::pose::Pose;
@@ -43,6 +43,9 @@ struct ViewData {
     glb_base64: String,
     /// The animation's name; `None` when there is nothing to animate.
     animation: Option<String>,
+    /// The name of the one-keyframe animation holding the installation pose; `None` when
+    /// the scene has none.
+    installation: Option<&'static str>,
     /// Keyframe times (s from the start of the animation); one 0 without animation.
     times_s: Vec<f64>,
     /// One label per physical clamp, with its position at each keyframe.
@@ -58,6 +61,8 @@ struct ClampTrack {
     label: String,
     /// Per keyframe, its position in the glTF frame (m, y up).
     positions_m: Vec<[f64; 3]>,
+    /// Its position at the installation pose (same frame); `None` without one.
+    installation_m: Option<[f64; 3]>,
 }
 
 /// The worst moment of the motion test.
@@ -89,6 +94,7 @@ pub fn view_files(
     let data = ViewData {
         glb_base64: base64::engine::general_purpose::STANDARD.encode(glb),
         animation: spec.animation.as_ref().map(|a| a.name.clone()),
+        installation: spec.installation.as_ref().map(|_| INSTALLATION_ANIMATION),
         times_s: spec
             .animation
             .as_ref()
@@ -141,22 +147,17 @@ fn clamp_tracks(setup: &Setup, spec: &SceneSpec<'_>, frames: &[&[Pose]]) -> Vec<
             track.label = format!("{} = {name}", track.label);
             continue;
         }
-        let positions_m = frames
-            .iter()
-            .map(|poses| {
-                let p = poses[mark.link] * mark.pose_in_link * Point3::origin();
-                // The scene's root turns the robot's z up into glTF's y up.
-                [p.x, p.z, -p.y]
-            })
-            .collect();
-        tracks.push((
-            mark.link,
-            mark.pose_in_link,
-            ClampTrack {
-                label: name,
-                positions_m,
-            },
-        ));
+        // The scene's root turns the robot's z up into glTF's y up.
+        let at = |poses: &[Pose]| {
+            let p = poses[mark.link] * mark.pose_in_link * Point3::origin();
+            [p.x, p.z, -p.y]
+        };
+        let track = ClampTrack {
+            label: name,
+            positions_m: frames.iter().map(|poses| at(poses)).collect(),
+            installation_m: spec.installation.as_ref().map(|i| at(&i.link_poses)),
+        };
+        tracks.push((mark.link, mark.pose_in_link, track));
     }
     tracks.into_iter().map(|(_, _, track)| track).collect()
 }
@@ -189,12 +190,14 @@ pub fn view_html() -> String {
     format!(
         "<section id=\"view-section\">\n<h2>3D view</h2>\n\
 <p>Drag to turn, scroll to zoom. The robot's collision shapes, the cable and its clamps over the \
-motion test; play it, or drag the slider to any moment (the red tick is the worst one). Cable \
+motion test; play it, or drag the slider to any moment (the red tick is the worst one); \
+<i>Installation pose</i> shows the robot where the cable is laid untwisted, with its shape there. Cable \
 pieces: green, every limit with room to spare; amber, closer to the robot or to itself than one \
 cable diameter, or within {:.0} % of the bend-radius or stretch limit; red, a limit exceeded.</p>\n\
-<model-viewer id=\"view\" camera-controls camera-orbit=\"-40deg 70deg auto\" interaction-prompt=\"none\" shadow-intensity=\"0\" \
+<model-viewer id=\"view\" camera-controls camera-orbit=\"-40deg 70deg auto\" animation-crossfade-duration=\"0\" interaction-prompt=\"none\" shadow-intensity=\"0\" \
 exposure=\"0.6\" alt=\"the robot and the cable in 3D\"></model-viewer>\n\
-<div class=\"view-controls\"><button id=\"view-play\" type=\"button\">Play</button>\
+<div class=\"view-controls\"><button id=\"view-install\" type=\"button\">Installation pose</button>\
+<button id=\"view-play\" type=\"button\">Play</button>\
 <span class=\"view-track\"><input id=\"view-time\" type=\"range\" min=\"0\" max=\"0\" value=\"0\" \
 aria-label=\"time\"><span id=\"view-worst-tick\"></span></span>\
 <span id=\"view-readout\"></span></div>\n\
@@ -211,5 +214,6 @@ pub const VIEW_STYLE: &str = "model-viewer { width: 100%; height: 560px; backgro
 .view-track { position: relative; flex: 1; }
 .view-track input { width: 100%; }
 #view-worst-tick { position: absolute; top: -4px; width: 3px; height: 22px; background: #d00000; pointer-events: none; }
+#view-install.active { background: #1c4fd8; color: white; }
 .clamp-label { background: #1c4fd8; color: white; border-radius: 4px; padding: 1px 5px; font-size: 12px; pointer-events: none; }
 ";

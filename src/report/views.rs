@@ -104,6 +104,7 @@ fn still_scene<'a>(setup: &'a Setup, path: Option<&CablePath>, main: PoseScene) 
         animation: None,
         snapshots: Vec::new(),
         tints: Vec::new(),
+        installation: None,
     }
 }
 
@@ -142,6 +143,23 @@ pub fn solve_scene<'a>(
         // The animated cable is the simulated one: it starts from the same equilibrium.
         spec.main = animation.frames[0].clone();
     }
+    if let (Some(path), Some(installation)) = (path, &setup.installation) {
+        let cable = static_cable(&evaluator, path, &installation.link_poses);
+        let scene = PoseScene {
+            link_poses: installation.link_poses.clone(),
+            cable: cable.lines,
+        };
+        problems.extend(
+            cable
+                .problems
+                .iter()
+                .map(|p| format!("installation pose: {p}")),
+        );
+        // The view moves the main copy's pieces there: the same pieces must have a shape.
+        if same_lines(&scene, &spec.main) {
+            spec.installation = Some(scene);
+        }
+    }
     for (i, pose) in critical_poses(report).into_iter().enumerate() {
         let name = pose.scene_name(i + 1);
         let (scene, missing) = at(&motion.samples()[pose.sample])?;
@@ -154,6 +172,15 @@ pub fn solve_scene<'a>(
     }
     lay_out_snapshots(&mut spec);
     Ok((spec, problems))
+}
+
+/// Whether two scenes have the same cable lines with the same node counts.
+fn same_lines(a: &PoseScene, b: &PoseScene) -> bool {
+    let shape = |scene: &PoseScene| -> Vec<(String, usize)> {
+        let lines = scene.cable.iter();
+        lines.map(|l| (l.name.clone(), l.nodes_m.len())).collect()
+    };
+    shape(a) == shape(b)
 }
 
 /// Share of a limit's allowance (bend radius, stretch beyond 1) within which a piece is

@@ -200,6 +200,7 @@ fn write_scene(
         animation: None,
         snapshots: Vec::new(),
         tints: Vec::new(),
+        installation: None,
     };
     super::write_glb(file, &spec)
 }

@@ -27,8 +27,13 @@ pub(super) fn check_spec(spec: &SceneSpec<'_>) -> Result<(), SceneError> {
             &guide.pose_in_link,
         )?;
     }
-    if let Some(animation) = &spec.animation {
-        check_animation(animation, spec)?;
+    for animation in spec
+        .animation
+        .iter()
+        .cloned()
+        .chain(spec.installation_animation())
+    {
+        check_animation(&animation, spec)?;
     }
     for snapshot in &spec.snapshots {
         let scene = format!("snapshot '{}'", snapshot.name);

@@ -54,8 +54,13 @@ pub fn to_glb(spec: &SceneSpec<'_>) -> Result<Vec<u8>, SceneError> {
     for snapshot in &spec.snapshots {
         graph::snapshot(&mut builder, spec, snapshot, &meshes, &mut materials, root)?;
     }
-    if let Some(animation) = &spec.animation {
-        animation::add_animation(&mut builder, animation, &links, &lines);
+    let animations = spec
+        .animation
+        .iter()
+        .cloned()
+        .chain(spec.installation_animation());
+    for animation in animations {
+        animation::add_animation(&mut builder, &animation, &links, &lines);
     }
     builder.finish(vec![root])
 }
@@ -100,6 +105,10 @@ pub struct SceneSpec<'a> {
     pub guides: Vec<GuideMark>,
     /// Robot and cable over time (the motion test); `None` when there is nothing to animate.
     pub animation: Option<SceneAnimation>,
+    /// Robot and cable at the installation pose, written as a still animation named
+    /// [`INSTALLATION_ANIMATION`] that moves the main copy there (so that a viewer can show
+    /// it); same cable lines and node counts as [`SceneSpec::main`]. `None`: not shown.
+    pub installation: Option<PoseScene>,
     /// Extra static copies of robot and cable, e.g. one per critical pose.
     pub snapshots: Vec<Snapshot>,
     /// The colour of each cable line by its margin, by line name; lines not named here are
@@ -182,6 +191,21 @@ pub struct SceneAnimation {
     /// Per keyframe, the robot and the cable. Every frame has the same cable lines with the
     /// same node counts as [`SceneSpec::main`].
     pub frames: Vec<PoseScene>,
+}
+
+/// The name of the animation that holds the installation pose.
+pub const INSTALLATION_ANIMATION: &str = "installation pose";
+
+impl SceneSpec<'_> {
+    /// The installation pose as the animation the scene writes: the pose held for one
+    /// second (two equal keyframes: a clip of no duration is not played by every viewer).
+    pub fn installation_animation(&self) -> Option<SceneAnimation> {
+        self.installation.as_ref().map(|pose| SceneAnimation {
+            name: INSTALLATION_ANIMATION.into(),
+            times_s: vec![0.0, 1.0],
+            frames: vec![pose.clone(), pose.clone()],
+        })
+    }
 }
 
 /// A static copy of robot and cable, shifted so that it does not overlap the main one.
