@@ -6,6 +6,7 @@
 mod common;
 mod svg_pictures;
 
+use base64::Engine as _;
 use common::run;
 use serde_json::Value;
 use std::collections::BTreeSet;
@@ -445,7 +446,8 @@ fn sheet_rows(html: &str) -> Vec<(String, String, f64)> {
 /// clamp (guides joined by a 0 mm piece are one), on the JSON's link, at the mark the JSON's
 /// piece lengths give summed from the tool end; the picture carries every label and mark.
 /// The 3D view labels the same clamps, at the world positions the robot's kinematics give
-/// for the motion's first pose and for the installation pose (in glTF's y-up frame).
+/// for the motion's first pose and for the installation pose (in glTF's y-up frame), and the
+/// piece the motion test found within one cable diameter of the robot wears the tight colour.
 #[test]
 fn the_installation_sheet_and_the_view_agree_with_the_result() {
     let motion_file = "motions/viper_s850/machine_tending.csv";
@@ -503,6 +505,25 @@ fn the_installation_sheet_and_the_view_agree_with_the_result() {
         .and_then(|(_, rest)| rest.trim_end().strip_suffix(';'))
         .expect("the data assignment");
     let view: Value = serde_json::from_str(json).expect("view data JSON");
+    // The piece that came within one cable diameter (8 mm) of the robot is drawn as tight.
+    let worst = &result["motion_test"]["worst_clearance"];
+    let clearance = worst["value"].as_f64().expect("clearance");
+    assert!(
+        (0.0..0.008).contains(&clearance),
+        "{clearance}: not a tight case"
+    );
+    let glb = base64::engine::general_purpose::STANDARD
+        .decode(view["glb_base64"].as_str().expect("scene"))
+        .expect("base64");
+    let line = worst["segment_name"].as_str().expect("piece");
+    let scene = gltf::Gltf::from_slice(&glb).expect("the view's scene");
+    let tight = scene
+        .nodes()
+        .find(|n| n.name() == Some(&format!("{line} sub-segment 0")))
+        .and_then(|n| n.mesh())
+        .and_then(|m| m.primitives().next())
+        .and_then(|p| p.material().name().map(str::to_string));
+    assert_eq!(tight.as_deref(), Some("cable, tight margin"));
     let clamps = view["clamps"].as_array().expect("clamps");
     assert_eq!(clamps.len(), rows.len());
     let setup = cable_dict::setup::Setup::from_file(ROBOT_LEVEL).expect("setup");

@@ -70,7 +70,7 @@ struct ClampTrack {
 struct WorstMoment {
     /// Time from the animation's start (s).
     time_s: f64,
-    /// For people: `closest to the robot: 9.3 mm`.
+    /// For people: `closest to the robot, 9.3 mm at t = 5.10 s`, or the failure.
     what: String,
 }
 

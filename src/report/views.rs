@@ -197,7 +197,7 @@ pub fn margin_tints(setup: &Setup, report: &SolveReport) -> Vec<(String, CableTi
     };
     let t = &setup.thresholds;
     let diameter = setup.cable.diameter_m;
-    // Per limit: the value's margin and the margin below which it is tight.
+    // The margin below which a limit is tight.
     let tight_below = |constraint: &str| match constraint {
         "contact" => diameter,
         "bend_radius" => TIGHT_SHARE * t.min_bend_radius_m,
@@ -209,18 +209,17 @@ pub fn margin_tints(setup: &Setup, report: &SolveReport) -> Vec<(String, CableTi
             Some((_, old)) => *old = (*old).max(tint),
             None => tints.push((name, tint)),
         };
-    let is_optimal = report.optimal.is_some() && shown.passed != Some(false);
-    for (m, _) in shown.path.pieces() {
-        if is_optimal {
-            worsen(setup.segment_name(m), CableTint::Ample);
-        }
-    }
     let classify = |margin: f64, tight: f64| match margin {
         m if m < 0.0 => CableTint::Exceeded,
         m if m < tight => CableTint::Tight,
         _ => CableTint::Ample,
     };
-    if is_optimal {
+    // The answer's pieces are all judged; of a failed candidate only the failing one is.
+    let is_answer = report.optimal.is_some() && shown.passed != Some(false);
+    if is_answer {
+        for (m, _) in shown.path.pieces() {
+            worsen(setup.segment_name(m), CableTint::Ample);
+        }
         for margin in &report.margins {
             let tint = classify(margin.margin, tight_below(margin.constraint));
             worsen(margin.segment.clone(), tint);
@@ -236,7 +235,7 @@ pub fn margin_tints(setup: &Setup, report: &SolveReport) -> Vec<(String, CableTi
         for (worst, constraint, sign, limit) in worsts {
             if let Some(w) = worst {
                 let tint = classify(sign * (w.value - limit), tight_below(constraint));
-                if is_optimal || tint == CableTint::Exceeded {
+                if is_answer || tint == CableTint::Exceeded {
                     worsen(setup.segment_name(w.segment), tint);
                 }
             }
