@@ -11,6 +11,7 @@ use super::ReportError;
 use super::scene::{INSTALLATION_ANIMATION, SceneSpec, to_glb};
 use super::views::TIGHT_SHARE;
 use crate::motion_test::MotionTestReport;
+use crate::mounting::mounting_plan;
 use crate::pose::Pose;
 use crate::setup::Setup;
 use crate::solve::SolveReport;
@@ -99,7 +100,7 @@ pub fn view_files(
             .animation
             .as_ref()
             .map_or_else(|| vec![0.0], |a| a.times_s.clone()),
-        clamps: clamp_tracks(setup, spec, &frames),
+        clamps: clamp_tracks(setup, report, spec, &frames),
         worst: report.motion_test.as_ref().and_then(worst_moment),
     };
     let script = format!(
@@ -131,35 +132,36 @@ pub fn view_files(
     ])
 }
 
-/// One track per physical clamp: guides at the same place on the same link (a 0 mm piece
-/// between them) share a label.
-fn clamp_tracks(setup: &Setup, spec: &SceneSpec<'_>, frames: &[&[Pose]]) -> Vec<ClampTrack> {
-    let mut tracks: Vec<(usize, Pose, ClampTrack)> = Vec::new();
-    for mark in &spec.guides {
-        let name = match setup.guides.iter().find(|g| g.name == mark.clamp) {
-            Some(guide) if guide.fixed => mark.name.clone(),
-            _ => mark.clamp.clone(),
-        };
-        if let Some((_, _, track)) = tracks.iter_mut().find(|(link, pose, _)| {
-            *link == mark.link
-                && (pose.translation.vector - mark.pose_in_link.translation.vector).norm() < 1e-9
-        }) {
-            track.label = format!("{} = {name}", track.label);
-            continue;
-        }
-        // The scene's root turns the robot's z up into glTF's y up.
-        let at = |poses: &[Pose]| {
-            let p = poses[mark.link] * mark.pose_in_link * Point3::origin();
-            [p.x, p.z, -p.y]
-        };
-        let track = ClampTrack {
-            label: name,
-            positions_m: frames.iter().map(|poses| at(poses)).collect(),
-            installation_m: spec.installation.as_ref().map(|i| at(&i.link_poses)),
-        };
-        tracks.push((mark.link, mark.pose_in_link, track));
-    }
-    tracks.into_iter().map(|(_, _, track)| track).collect()
+/// One track per physical clamp of the shown candidate, labelled as the mounting plan names
+/// it (guides joined by a 0 mm piece are one clamp; a fitting carries its name).
+fn clamp_tracks(
+    setup: &Setup,
+    report: &SolveReport,
+    spec: &SceneSpec<'_>,
+    frames: &[&[Pose]],
+) -> Vec<ClampTrack> {
+    let Some(shown) = report.shown_candidate() else {
+        return Vec::new();
+    };
+    let plan = mounting_plan(setup, &shown.path);
+    let marks = plan.clamps.iter().filter_map(|clamp| {
+        let mark = spec.guides.iter().find(|m| m.clamp == clamp.guides[0])?;
+        Some((clamp.label(), mark))
+    });
+    marks
+        .map(|(label, mark)| {
+            // The scene's root turns the robot's z up into glTF's y up.
+            let at = |poses: &[Pose]| {
+                let p = poses[mark.link] * mark.pose_in_link * Point3::origin();
+                [p.x, p.z, -p.y]
+            };
+            ClampTrack {
+                label,
+                positions_m: frames.iter().map(|poses| at(poses)).collect(),
+                installation_m: spec.installation.as_ref().map(|i| at(&i.link_poses)),
+            }
+        })
+        .collect()
 }
 
 /// The failure's moment when the test failed, else the moment closest to the robot.
@@ -194,7 +196,7 @@ motion test; play it, or drag the slider to any moment (the red tick is the wors
 <i>Installation pose</i> shows the robot where the cable is laid untwisted, with its shape there. Cable \
 pieces: green, every limit with room to spare; amber, closer to the robot or to itself than one \
 cable diameter, or within {:.0} % of the bend-radius or stretch limit; red, a limit exceeded.</p>\n\
-<model-viewer id=\"view\" camera-controls camera-orbit=\"-40deg 70deg auto\" animation-crossfade-duration=\"0\" interaction-prompt=\"none\" shadow-intensity=\"0\" \
+<model-viewer id=\"view\" camera-controls camera-orbit=\"-40deg 70deg auto\" animation-crossfade-duration=\"0\" loading=\"eager\" interaction-prompt=\"none\" shadow-intensity=\"0\" \
 exposure=\"0.6\" alt=\"the robot and the cable in 3D\"></model-viewer>\n\
 <div class=\"view-controls\"><button id=\"view-install\" type=\"button\">Installation pose</button>\
 <button id=\"view-play\" type=\"button\">Play</button>\

@@ -66,11 +66,13 @@ fn write_clamps(f: &mut fmt::Formatter<'_>, plan: &MountingPlan) -> fmt::Result 
         )?;
         match &clamp.place {
             Some(place) => writeln!(f, "      {}", place.describe())?,
-            None => writeln!(
-                f,
-                "      on the robot's base link, at {:?} mm",
-                clamp.xyz_mm
-            )?,
+            None => {
+                let xyz = clamp.xyz_mm.map(|v| decimal(v, 1)).join(", ");
+                writeln!(
+                    f,
+                    "      on the robot's base link, at ({xyz}) mm in its frame"
+                )?
+            }
         }
     }
     Ok(())
