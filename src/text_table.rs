@@ -95,6 +95,12 @@ pub fn decimal(value: f64, digits: usize) -> String {
     }
 }
 
+/// `values` each to `digits` decimals ([`decimal`]), comma-separated: `-156.3, 48.2, 71.2`.
+pub fn decimals(values: &[f64], digits: usize) -> String {
+    let texts: Vec<String> = values.iter().map(|&v| decimal(v, digits)).collect();
+    texts.join(", ")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

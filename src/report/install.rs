@@ -9,7 +9,7 @@
 use super::summary::capitalized;
 use crate::escape::html as escape;
 use crate::mounting::{LinkPlace, MountingPlan, PhysicalClamp};
-use crate::text_table::decimal;
+use crate::text_table::{decimal, decimals};
 use std::fmt::Write;
 
 /// Width of the sheet (px).
@@ -121,7 +121,7 @@ fn clamp_sketch(svg: &mut String, clamp: &PhysicalClamp, top: f64) {
             "<text class=\"note\" x=\"12\" y=\"{:.1}\">on the robot's base link at {} mm \
              (link frame)</text>",
             top + 36.0,
-            triple(&clamp.xyz_mm)
+            decimals(&clamp.xyz_mm, 1)
         );
         return;
     };
@@ -205,10 +205,6 @@ fn cross_section(svg: &mut String, place: &LinkPlace, cx: f64, cy: f64) {
     );
 }
 
-fn triple(v: &[f64; 3]) -> String {
-    v.map(|x| decimal(x, 1)).join(", ")
-}
-
 /// `install.html`: the sheet's picture and the table of places, for printing.
 pub fn install_html(title: &str, plan: &MountingPlan) -> String {
     let mut rows = String::new();
@@ -227,8 +223,8 @@ pub fn install_html(title: &str, plan: &MountingPlan) -> String {
             decimal(clamp.mark_mm, 0),
             escape(&place),
             escape(&clamp.placement),
-            triple(&clamp.xyz_mm),
-            triple(&clamp.rpy_deg)
+            decimals(&clamp.xyz_mm, 1),
+            decimals(&clamp.rpy_deg, 1)
         );
     }
     let cut = plan

@@ -24,6 +24,7 @@ pub mod scene;
 mod summary;
 mod view;
 pub mod views;
+mod worst;
 
 use crate::atomic_file::FolderReplacement;
 use crate::motion::Motion;

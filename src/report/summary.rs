@@ -7,7 +7,7 @@ use crate::motion_test::{MotionTestReport, Worst};
 use crate::mounting::MountingPlan;
 use crate::setup::Thresholds;
 use crate::solve::{NamedPath, SolveReport};
-use crate::text_table::decimal;
+use crate::text_table::{decimal, decimals};
 use std::fmt::Write as _;
 
 /// The whole `summary.md`; `files` are the report's other files with what each shows, and
@@ -184,8 +184,8 @@ fn path_tables(md: &mut String, path: &NamedPath, total_mm: f64) {
                 g.name.clone(),
                 g.link.clone(),
                 g.configuration.clone(),
-                triple(&g.xyz_mm),
-                triple(&g.rpy_deg),
+                decimals(&g.xyz_mm, 1),
+                decimals(&g.rpy_deg, 1),
             ],
         );
     }
@@ -196,10 +196,6 @@ fn path_tables(md: &mut String, path: &NamedPath, total_mm: f64) {
             text(&path.left_out.join(", "))
         );
     }
-}
-
-fn triple(v: &[f64; 3]) -> String {
-    v.map(|x| decimal(x, 1)).join(", ")
 }
 
 fn sets_table(md: &mut String, report: &SolveReport) {

@@ -10,6 +10,7 @@
 use super::ReportError;
 use super::scene::{INSTALLATION_ANIMATION, SceneSpec, to_glb};
 use super::views::TIGHT_SHARE;
+use super::worst::{limit_words, smallest_margin};
 use crate::motion_test::MotionTestReport;
 use crate::mounting::mounting_plan;
 use crate::pose::Pose;
@@ -18,6 +19,7 @@ use crate::solve::SolveReport;
 use base64::Engine as _;
 use nalgebra::Point3;
 use serde::Serialize;
+use std::borrow::Cow;
 
 /// `@google/model-viewer` 4.4.0, `dist/model-viewer-umd.min.js` from npm (a classic script:
 /// module scripts do not load from `file://`).
@@ -33,8 +35,8 @@ pub struct ViewFile {
     pub name: &'static str,
     /// What it is.
     pub what: &'static str,
-    /// Its content.
-    pub bytes: Vec<u8>,
+    /// Its content (the vendored files borrowed, not copied).
+    pub bytes: Cow<'static, [u8]>,
 }
 
 /// What `view.js` reads from `view-data.js` (`window.cableDictView`).
@@ -71,7 +73,8 @@ struct ClampTrack {
 struct WorstMoment {
     /// Time from the animation's start (s).
     time_s: f64,
-    /// For people: `closest to the robot, 9.3 mm at t = 5.10 s`, or the failure.
+    /// For people: `smallest margin: bend radius 63.6 mm (limit 48.0 mm) on cable piece C1
+    /// at t = 4.91 s`, or what failed.
     what: String,
 }
 
@@ -101,7 +104,10 @@ pub fn view_files(
             .as_ref()
             .map_or_else(|| vec![0.0], |a| a.times_s.clone()),
         clamps: clamp_tracks(setup, report, spec, &frames),
-        worst: report.motion_test.as_ref().and_then(worst_moment),
+        worst: report
+            .motion_test
+            .as_ref()
+            .and_then(|test| worst_moment(setup, test)),
     };
     let script = format!(
         "// The 3D view's scene and clamp labels, written by cable-dict; read by view.js.\n\
@@ -112,22 +118,22 @@ pub fn view_files(
         ViewFile {
             name: "model-viewer.min.js",
             what: "the 3D view's web component (@google/model-viewer 4.4.0, Apache-2.0)",
-            bytes: MODEL_VIEWER_JS.to_vec(),
+            bytes: Cow::Borrowed(MODEL_VIEWER_JS),
         },
         ViewFile {
             name: "model-viewer-licenses.txt",
             what: "the licences of model-viewer and the libraries it bundles",
-            bytes: MODEL_VIEWER_LICENSES.to_vec(),
+            bytes: Cow::Borrowed(MODEL_VIEWER_LICENSES),
         },
         ViewFile {
             name: "view.js",
             what: "the 3D view's controls",
-            bytes: VIEW_JS.to_vec(),
+            bytes: Cow::Borrowed(VIEW_JS),
         },
         ViewFile {
             name: "view-data.js",
             what: "the 3D view's scene and clamp labels",
-            bytes: script.into_bytes(),
+            bytes: Cow::Owned(script.into_bytes()),
         },
     ])
 }
@@ -164,25 +170,23 @@ fn clamp_tracks(
         .collect()
 }
 
-/// The failure's moment when the test failed, else the moment closest to the robot.
-fn worst_moment(test: &MotionTestReport) -> Option<WorstMoment> {
+/// The report's worst moment of the motion test ([`smallest_margin`]), from the
+/// animation's start.
+fn worst_moment(setup: &Setup, test: &MotionTestReport) -> Option<WorstMoment> {
     let start = test.shapes.first().map_or(0.0, |f| f.time_s);
-    if let Some(violation) = &test.first_violation {
-        return Some(WorstMoment {
-            time_s: violation.time_s - start,
-            what: test
-                .failure
-                .as_ref()
-                .map_or_else(|| violation.to_string(), |f| f.reason.clone()),
-        });
-    }
-    let w = test.worst_clearance.as_ref()?;
+    let worst = smallest_margin(test, &setup.thresholds, setup.cable.diameter_m)?;
+    let verdict = if worst.violated {
+        "failed"
+    } else {
+        "smallest margin"
+    };
     Some(WorstMoment {
-        time_s: w.time_s - start,
+        time_s: worst.time_s - start,
         what: format!(
-            "closest to the robot, {:.1} mm at t = {:.2} s",
-            w.value * 1e3,
-            w.time_s
+            "{verdict}: {} on cable piece {} at t = {:.2} s",
+            limit_words(worst.constraint, worst.value, worst.limit),
+            setup.segment_name(worst.segment),
+            worst.time_s
         ),
     })
 }

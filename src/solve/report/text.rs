@@ -90,8 +90,8 @@ impl SolveReport {
 }
 
 fn write_path(f: &mut fmt::Formatter<'_>, path: &NamedPath) -> fmt::Result {
-    use crate::text_table::{Align, TextTable, decimal};
-    let triple = |v: [f64; 3]| format!("({})", v.map(|x| decimal(x, 1)).join(", "));
+    use crate::text_table::{Align, TextTable, decimals};
+    let triple = |v: [f64; 3]| format!("({})", decimals(&v, 1));
     let mut pieces = TextTable::new(
         2,
         &[

@@ -6,7 +6,7 @@
 use super::data::SolveReport;
 use crate::motion_test::{MotionTestReport, Worst};
 use crate::mounting::{MountingPlan, PhysicalClamp};
-use crate::text_table::decimal;
+use crate::text_table::{decimal, decimals};
 use std::fmt;
 
 /// Writes the summary of `report`.
@@ -67,7 +67,7 @@ fn write_clamps(f: &mut fmt::Formatter<'_>, plan: &MountingPlan) -> fmt::Result 
         match &clamp.place {
             Some(place) => writeln!(f, "      {}", place.describe())?,
             None => {
-                let xyz = clamp.xyz_mm.map(|v| decimal(v, 1)).join(", ");
+                let xyz = decimals(&clamp.xyz_mm, 1);
                 writeln!(
                     f,
                     "      on the robot's base link, at ({xyz}) mm in its frame"
