@@ -1,6 +1,6 @@
 //! Names from inputs are shown, never obeyed. The bundled robot-level setup with a guide named
 //! like an HTML script injection and a clamp named with Markdown and an ANSI escape sequence
-//! is solved with `--report`: the terminal summary carries no control character, `summary.md`
+//! is solved with `--report`: the terminal summary and `solve -v` carry no control character, `summary.md`
 //! no raw HTML (rendered by a Markdown renderer that passes raw HTML through, it makes no
 //! tag), `index.html` and the SVG pictures no tag from a name, and the result JSON gives the
 //! names back exactly. With `$CABLE_DICT_HOSTILE_REPORT_OUT` set, the report folder is left
@@ -76,7 +76,19 @@ fn names_from_inputs_are_shown_and_never_obeyed() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(output.status.success(), "{stderr}");
 
-    assert!(stdout.contains(INJECTION), "the name is shown: {stdout}");
+    // The summary names clamps by number and fittings by name; the guides' names are the
+    // search's, shown by `solve -v`.
+    let verbose = common::run(&[
+        "solve",
+        "-v",
+        "--no-motion-test",
+        "--setup",
+        setup.to_str().expect("utf-8"),
+        "motions/viper_s850/pick_and_place.csv",
+    ]);
+    let details = String::from_utf8_lossy(&verbose.stdout);
+    assert!(details.contains(INJECTION), "the name is shown: {details}");
+    assert!(!details.contains('\u{1b}'), "{details}");
     assert!(!stdout.contains('\u{1b}'), "{stdout}");
     assert!(!stderr.contains('\u{1b}'), "{stderr}");
     assert!(stdout.contains("\\u{1b}[31mred"), "{stdout}");

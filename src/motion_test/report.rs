@@ -192,6 +192,21 @@ pub struct SegmentNodes {
     pub nodes_m: Vec<[f64; 3]>,
 }
 
+impl Violation {
+    /// The violation as the worst value of its limit at that instant (a violation is the
+    /// worst so far when it happens), so that it is worded as the worst values are.
+    pub fn to_worst(&self) -> Worst {
+        Worst {
+            value: self.value,
+            unit: self.unit,
+            time_s: self.time_s,
+            segment: self.segment,
+            segment_name: self.segment_name.clone(),
+            place: self.place.clone(),
+        }
+    }
+}
+
 impl fmt::Display for Constraint {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {

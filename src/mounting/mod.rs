@@ -1,21 +1,38 @@
 //! The answer as the workshop mounts it: physical clamps (guides that coincide on a 0 mm
-//! piece are one clamp), each with its place on the link measured from the link's features
+//! piece are one clamp; a clamp that coincides with a fixed guide is that fitting), numbered
+//! 1…n from the base side, each with its place on the link measured from the link's features
 //! ([`place`]), the mark on the cable where it grips (length from the cable's end at the
 //! tool), the robot pose to lay the cable at, and the length tolerance the search tested.
+//!
+//! The plan is also where the fitter's names come from ([`MountingPlan::clamp_of_guide`],
+//! [`MountingPlan::piece_name`]): clamp numbers and fitting names, pieces named by their two
+//! ends. The search's names (guides G…, pieces C…) stay in `solve -v` and the JSON.
 
+mod features;
 pub mod place;
+pub mod rows;
 
 use crate::path::CablePath;
+use crate::pose::Pose;
 use crate::robot::{JointKind, Robot};
-use crate::setup::Setup;
+use crate::setup::{ConfigurationOrigin, Setup};
+use crate::stress::contact::{Obstacles, min_clearance};
 use crate::text_table::decimal;
-pub use place::{LinkPlace, link_place};
+use nalgebra::Point3;
+pub use place::{
+    AlongFrom, LinkFeatures, LinkKind, LinkPlace, Turn, ZeroSide, link_features, link_place,
+};
 use serde::Serialize;
+
+/// A fitting whose cable axis is farther than this (mm) from every collision surface at the
+/// installation pose has nothing modelled to be mounted on: the tool is missing from the
+/// setup, and the cable near it may run where the real tool is.
+pub const FREE_SPACE_MM: f64 = 25.0;
 
 /// What a fitter needs to mount one answer.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MountingPlan {
-    /// Physical clamps from the cable's start (base side) to its end (tool side).
+    /// Physical clamps and fittings from the cable's start (base side) to its end (tool side).
     pub clamps: Vec<PhysicalClamp>,
     /// The cable between consecutive physical clamps, from the start.
     pub pieces: Vec<MountedPiece>,
@@ -41,6 +58,140 @@ pub struct CutLength {
     pub base_end_mm: f64,
     /// The sum with the length between the clamps.
     pub total_mm: f64,
+}
+
+/// Where a physical clamp is on the cable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Role {
+    /// The first: the cable before it is outside this design.
+    Start,
+    /// Between the first and the last.
+    #[serde(rename = "clamp")]
+    Middle,
+    /// The last: the cable beyond it is outside this design, unless it is the end's fitting.
+    End,
+}
+
+/// One clamp (or fitting) on the robot.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PhysicalClamp {
+    /// The fitter's number, 1…n from the base side, for a clamp to mount; `None` for a
+    /// fitting (a connector or bracket the setup fixes), which is named instead.
+    pub number: Option<usize>,
+    /// The setup's guides it stands for, e.g. `["G2", "G3"]` when G3 coincides with G2.
+    pub guides: Vec<String>,
+    /// The setup's 0 mm pieces that make those guides one clamp (`C2`).
+    pub joined_by: Vec<String>,
+    /// First, middle or last on the cable.
+    pub role: Role,
+    /// For a fitting (a fixed guide, or a clamp that coincides with one), its name as written,
+    /// e.g. `gripper connector`; `None` for a clamp placed by the search.
+    pub fitting: Option<String>,
+    /// The link it is screwed onto (the fitting's link for a fitting).
+    pub link: String,
+    /// The placement's name (generated site or configuration).
+    pub placement: String,
+    /// Position in the frame of `link` (mm).
+    pub xyz_mm: [f64; 3],
+    /// URDF roll, pitch, yaw in the frame of `link` (deg); +z of that frame is the cable
+    /// direction toward the tool.
+    pub rpy_deg: [f64; 3],
+    /// The place measured from the link's features; `None` where the link has no axis to
+    /// measure about.
+    pub place: Option<LinkPlace>,
+    /// Height of the cable's axis above the link's surface (mm): the clamp height plus the
+    /// cable's radius, for a generated site; `None` for a placement written by hand.
+    pub surface_to_cable_axis_mm: Option<f64>,
+    /// Where it grips the cable: cable length from the end at the tool (mm).
+    pub mark_mm: f64,
+    /// For a fitting with no collision surface within [`FREE_SPACE_MM`] of its cable axis at
+    /// the installation pose: the distance to the nearest (mm). Nothing holds it there.
+    pub free_space_mm: Option<f64>,
+}
+
+impl PhysicalClamp {
+    /// The fitter's name: `clamp 2`, or the fitting's name (`gripper connector`).
+    pub fn name(&self) -> String {
+        match (&self.fitting, self.number) {
+            (Some(fitting), _) => fitting.clone(),
+            (None, Some(n)) => format!("clamp {n}"),
+            (None, None) => self.guides.join(" = "),
+        }
+    }
+
+    /// The name in a sentence: `clamp 2`, `the gripper connector`.
+    pub fn in_words(&self) -> String {
+        match &self.fitting {
+            Some(fitting) => format!("the {fitting}"),
+            None => self.name(),
+        }
+    }
+
+    /// The short name pictures and pieces use: `2`, or the fitting's name.
+    pub fn short_name(&self) -> String {
+        match (&self.fitting, self.number) {
+            (None, Some(n)) => n.to_string(),
+            _ => self.name(),
+        }
+    }
+
+    /// The search's names of its guides: `G2 = G3`.
+    pub fn guides_label(&self) -> String {
+        self.guides.join(" = ")
+    }
+
+    /// What the ends of the design mean for this clamp, if anything: `the cable before it is
+    /// outside this design`.
+    pub fn role_note(&self) -> Option<&'static str> {
+        match (self.role, self.fitting.is_some()) {
+            (Role::Start, false) => Some("the cable before it is outside this design"),
+            (Role::Start, true) => Some("the cable's start: a fitting, not a clamp to mount"),
+            (Role::End, true) => Some("the cable's end: a fitting, not a clamp to mount"),
+            (Role::End, false) => Some("the cable beyond it is outside this design"),
+            (Role::Middle, true) => Some("a fitting, not a clamp to mount"),
+            (Role::Middle, false) => None,
+        }
+    }
+
+    /// `the gripper connector (G4) hangs in free space, 58 mm from the nearest collision
+    /// surface: …` when nothing modelled holds it.
+    pub fn free_space_warning(&self) -> Option<String> {
+        let distance = self.free_space_mm?;
+        Some(format!(
+            "{} ({}) hangs in free space, {} mm from the nearest collision surface at the \
+             installation pose: model the tool with [[bodies]] in the setup, or the cable near \
+             it may run where the real tool is",
+            self.in_words(),
+            self.guides_label(),
+            decimal(distance, 0)
+        ))
+    }
+}
+
+/// The cable between two physical clamps.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MountedPiece {
+    /// Index into [`MountingPlan::clamps`] of its start clamp; it ends at the next one.
+    pub from_clamp: usize,
+    /// Natural length (mm).
+    pub length_mm: f64,
+    /// The joints it crosses, base side first (empty when both clamps are on one link).
+    pub across_joints: Vec<String>,
+    /// The setup's cable piece (`C3`) it is: pieces of 0 mm are inside a physical clamp, so
+    /// every mounted piece is one of the setup's.
+    pub segment: String,
+}
+
+/// One joint of the installation pose, in display units.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct JointValue {
+    /// The joint's name.
+    pub joint: String,
+    /// Its value (deg for rotary joints, mm for prismatic ones).
+    pub value: f64,
+    /// `deg` or `mm`.
+    pub unit: &'static str,
 }
 
 impl MountingPlan {
@@ -75,6 +226,61 @@ impl MountingPlan {
                 .into(),
         }
     }
+
+    /// The clamps to mount (fittings are not).
+    pub fn clamps_to_mount(&self) -> usize {
+        self.clamps.iter().filter(|c| c.fitting.is_none()).count()
+    }
+
+    /// The physical clamp guide `guide` (a setup guide name) is part of.
+    pub fn clamp_of_guide(&self, guide: &str) -> Option<&PhysicalClamp> {
+        self.clamps
+            .iter()
+            .find(|c| c.guides.iter().any(|g| g == guide))
+    }
+
+    /// The fitter's name of the piece starting at clamp `from_clamp`: `1 → 2`,
+    /// `2 → gripper connector`.
+    pub fn piece_name(&self, from_clamp: usize) -> String {
+        let name = |i: usize| self.clamps.get(i).map(PhysicalClamp::short_name);
+        format!(
+            "{} → {}",
+            name(from_clamp).unwrap_or_default(),
+            name(from_clamp + 1).unwrap_or_default()
+        )
+    }
+
+    /// The mounted piece that is the setup's piece `segment` (`C3`); `None` for a 0 mm piece
+    /// (inside a clamp) or one not on this path.
+    pub fn piece_of_segment(&self, segment: &str) -> Option<&MountedPiece> {
+        self.pieces.iter().find(|piece| piece.segment == segment)
+    }
+
+    /// Where on the mounted cable the setup's piece `segment` is, `along_mm` from its start
+    /// (when known): `on piece 2 → gripper connector, 25 mm from clamp 2`, or `at clamp 2`
+    /// for a 0 mm piece inside a clamp; `None` for a piece not on this path.
+    pub fn place_on_cable(&self, segment: &str, along_mm: Option<f64>) -> Option<String> {
+        if let Some(piece) = self.piece_of_segment(segment) {
+            let mut words = format!("on piece {}", self.piece_name(piece.from_clamp));
+            if let Some(along) = along_mm {
+                let from = &self.clamps[piece.from_clamp];
+                words += &format!(", {} mm from {}", decimal(along, 0), from.in_words());
+            }
+            return Some(words);
+        }
+        self.clamps
+            .iter()
+            .find(|c| c.joined_by.iter().any(|s| s == segment))
+            .map(|clamp| format!("at {}", clamp.in_words()))
+    }
+
+    /// The warnings a fitter must read before mounting: fittings that hang in free space.
+    pub fn warnings(&self) -> Vec<String> {
+        self.clamps
+            .iter()
+            .filter_map(PhysicalClamp::free_space_warning)
+            .collect()
+    }
 }
 
 impl CutLength {
@@ -93,62 +299,18 @@ impl CutLength {
     }
 }
 
-/// One clamp (or fitting) on the robot.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct PhysicalClamp {
-    /// The setup's guides it stands for, e.g. `["G2", "G3"]` when G3 coincides with G2.
-    pub guides: Vec<String>,
-    /// `start`, `clamp` or `end`: the first and last of the path are the cable's ends.
-    pub role: &'static str,
-    /// For a fixed guide (a connector or fitting), its name as written, e.g. `gripper
-    /// connector`; `None` for a clamp placed by the search.
-    pub fitting: Option<String>,
-    /// The link it is screwed onto.
-    pub link: String,
-    /// The placement's name (generated site or configuration).
-    pub placement: String,
-    /// Position in the link frame (mm).
-    pub xyz_mm: [f64; 3],
-    /// URDF roll, pitch, yaw in the link frame (deg); +z of that frame is the cable
-    /// direction toward the tool.
-    pub rpy_deg: [f64; 3],
-    /// The place measured from the link's features; `None` on the robot's root link.
-    pub place: Option<LinkPlace>,
-    /// Where it grips the cable: cable length from the end at the tool (mm).
-    pub mark_mm: f64,
-}
-
-impl PhysicalClamp {
-    /// `G2 = G3`, or `G4 (gripper connector)`.
-    pub fn label(&self) -> String {
-        let guides = self.guides.join(" = ");
-        match &self.fitting {
-            Some(fitting) => format!("{guides} ({fitting})"),
-            None => guides,
-        }
+/// The words for the cut length: the rule with the file's allowances, or which allowances
+/// would give it.
+pub fn cut_words(plan: &MountingPlan) -> String {
+    match &plan.cut {
+        Some(cut) => cut.describe(),
+        None => format!(
+            "cut {} mm plus what the cable needs beyond the last clamp and before the first: \
+             give tool_end_allowance_mm and base_end_allowance_mm in the cable file to have \
+             the cut length computed",
+            decimal(plan.length_mm, 0)
+        ),
     }
-}
-
-/// The cable between two physical clamps.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct MountedPiece {
-    /// Index into [`MountingPlan::clamps`] of its start clamp; it ends at the next one.
-    pub from_clamp: usize,
-    /// Natural length (mm).
-    pub length_mm: f64,
-    /// The joints it crosses, base side first (empty when both clamps are on one link).
-    pub across_joints: Vec<String>,
-}
-
-/// One joint of the installation pose, in display units.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct JointValue {
-    /// The joint's name.
-    pub joint: String,
-    /// Its value (deg for rotary joints, mm for prismatic ones).
-    pub value: f64,
-    /// `deg` or `mm`.
-    pub unit: &'static str,
 }
 
 /// The mounting plan of `path` in `setup`.
@@ -158,45 +320,64 @@ pub fn mounting_plan(setup: &Setup, path: &CablePath) -> MountingPlan {
         .guides(setup)
         .zip(path.configurations.iter().copied())
         .collect();
-    let lengths_mm: Vec<f64> = path
+    let segments: Vec<(String, f64)> = path
         .pieces()
-        .map(|(_, pv)| pv.sub_segments as f64 * pitch_mm)
+        .map(|(m, pv)| (setup.segment_name(m), pv.sub_segments as f64 * pitch_mm))
         .collect();
-    let length_mm: f64 = lengths_mm.iter().sum();
+    let length_mm: f64 = segments.iter().map(|(_, l)| l).sum();
     let link_poses = installation_link_poses(setup);
-    let mut clamps: Vec<PhysicalClamp> = Vec::new();
+    // Per physical clamp, the (guide, configuration) pairs it stands for.
+    let mut groups: Vec<Vec<(usize, usize)>> = Vec::new();
     let mut pieces: Vec<MountedPiece> = Vec::new();
-    // The body and the distance from the start of the last physical clamp.
-    let mut last: Option<(usize, f64)> = None;
+    let mut marks: Vec<f64> = Vec::new();
+    let mut joined: Vec<Vec<String>> = Vec::new();
     let mut from_start_mm = 0.0;
     for (i, &(g, c)) in mounted.iter().enumerate() {
-        let before_mm = i.checked_sub(1).map(|p| lengths_mm[p]);
-        from_start_mm += before_mm.unwrap_or(0.0);
-        if let (Some(0.0), Some(clamp)) = (before_mm, clamps.last_mut()) {
-            // A 0 mm piece: the two guides are one clamp.
-            clamp.guides.push(setup.guides[g].name.clone());
-            continue;
-        }
-        let body = setup.guides[g].body;
-        if let Some((start_body, start_mm)) = last {
+        let before = i.checked_sub(1).map(|p| &segments[p]);
+        from_start_mm += before.map_or(0.0, |(_, l)| *l);
+        if let (Some((name, length)), Some(group)) = (before, groups.last_mut()) {
+            if *length == 0.0 {
+                // A 0 mm piece: the two guides are one clamp.
+                group.push((g, c));
+                if let Some(joined_by) = joined.last_mut() {
+                    joined_by.push(name.clone());
+                }
+                continue;
+            }
+            let start_body = setup.guides[group[0].0].body;
             pieces.push(MountedPiece {
-                from_clamp: clamps.len() - 1,
-                length_mm: from_start_mm - start_mm,
-                across_joints: joints_between(&setup.robot, start_body, body),
+                from_clamp: groups.len() - 1,
+                length_mm: *length,
+                across_joints: joints_between(&setup.robot, start_body, setup.guides[g].body),
+                segment: name.clone(),
             });
         }
-        last = Some((body, from_start_mm));
-        let mark_mm = length_mm - from_start_mm;
-        clamps.push(physical_clamp(setup, g, c, &link_poses, mark_mm));
+        groups.push(vec![(g, c)]);
+        joined.push(Vec::new());
+        marks.push(length_mm - from_start_mm);
     }
-    let count = clamps.len();
-    for (i, clamp) in clamps.iter_mut().enumerate() {
-        clamp.role = match i {
-            0 => "start",
-            i if i + 1 == count => "end",
-            _ => "clamp",
-        };
-    }
+    let count = groups.len();
+    let mut number = 0;
+    let clamps = groups
+        .iter()
+        .zip(&marks)
+        .zip(joined)
+        .enumerate()
+        .map(|(i, ((group, &mark_mm), joined_by))| {
+            let role = match i {
+                0 => Role::Start,
+                i if i + 1 == count => Role::End,
+                _ => Role::Middle,
+            };
+            let mut clamp = physical_clamp(setup, group, &link_poses, mark_mm, role);
+            clamp.joined_by = joined_by;
+            if clamp.fitting.is_none() {
+                number += 1;
+                clamp.number = Some(number);
+            }
+            clamp
+        })
+        .collect();
     MountingPlan {
         clamps,
         pieces,
@@ -210,27 +391,77 @@ pub fn mounting_plan(setup: &Setup, path: &CablePath) -> MountingPlan {
     }
 }
 
+/// One physical clamp from the guides of `group` (one, or several joined by 0 mm pieces): a
+/// fixed guide among them makes it that fitting, placed as the fitting is declared.
 fn physical_clamp(
     setup: &Setup,
-    g: usize,
-    c: usize,
-    link_poses: &[crate::pose::Pose],
+    group: &[(usize, usize)],
+    link_poses: &[Pose],
     mark_mm: f64,
+    role: Role,
 ) -> PhysicalClamp {
+    let &(g, c) = group
+        .iter()
+        .find(|&&(g, _)| setup.guides[g].fixed)
+        .unwrap_or(&group[0]);
     let guide = &setup.guides[g];
     let configuration = &guide.configurations[c];
     let clamp_in_body = guide.link_in_body * configuration.pose;
+    let free_space_mm = guide
+        .fixed
+        .then(|| fitting_free_space_mm(setup, g, c, link_poses))
+        .flatten();
     PhysicalClamp {
-        guides: vec![guide.name.clone()],
-        role: "clamp",
+        number: None,
+        joined_by: Vec::new(),
+        guides: group
+            .iter()
+            .map(|&(g, _)| setup.guides[g].name.clone())
+            .collect(),
+        role,
         fitting: guide.fixed.then(|| configuration.name.clone()),
         link: setup.robot.links[guide.link].name.clone(),
         placement: configuration.name.clone(),
         xyz_mm: configuration.position_mm,
         rpy_deg: configuration.rpy_deg,
         place: link_place(&setup.robot, guide.body, &clamp_in_body, link_poses),
+        surface_to_cable_axis_mm: surface_to_cable_axis_mm(setup, g, c),
         mark_mm,
+        free_space_mm,
     }
+}
+
+/// Height of the cable axis above the surface for a generated site (or a copy of one).
+fn surface_to_cable_axis_mm(setup: &Setup, g: usize, c: usize) -> Option<f64> {
+    let (g, _) = match setup.guides[g].configurations[c].origin {
+        ConfigurationOrigin::Generated { .. } => (g, c),
+        ConfigurationOrigin::Coincident {
+            guide,
+            configuration,
+        } => match setup.guides[guide]
+            .configurations
+            .get(configuration)?
+            .origin
+        {
+            ConfigurationOrigin::Generated { .. } => (guide, configuration),
+            _ => return None,
+        },
+        ConfigurationOrigin::Declared { .. } => return None,
+    };
+    let spec = &setup.guides[g].generated.as_ref()?.spec;
+    Some((spec.clamp_height_m + 0.5 * setup.cable.diameter_m) * 1e3)
+}
+
+/// For fixed guide `g`'s configuration `c`: the distance (mm) from its cable axis to the
+/// nearest collision surface at the installation pose when that is more than
+/// [`FREE_SPACE_MM`]; `None` when something is near (or the geometry cannot be measured).
+fn fitting_free_space_mm(setup: &Setup, g: usize, c: usize, link_poses: &[Pose]) -> Option<f64> {
+    let guide = &setup.guides[g];
+    let at = link_poses.get(guide.link)? * guide.configurations[c].pose * Point3::origin();
+    let obstacles = Obstacles::from_robot(&setup.robot).ok()?;
+    let nearest = min_clearance(&obstacles, link_poses, &[at, at], 0.0, &[]).ok()??;
+    let distance_mm = nearest.clearance_m * 1e3;
+    (distance_mm > FREE_SPACE_MM).then_some(distance_mm)
 }
 
 /// The cut length when the cable file gives an allowance.
@@ -250,13 +481,13 @@ fn cut_length(setup: &Setup, length_mm: f64) -> Option<CutLength> {
 
 /// The link poses at the installation pose, or with every joint at 0 when the setup has
 /// none (the "top" of a link is then its top at the zero pose).
-fn installation_link_poses(setup: &Setup) -> Vec<crate::pose::Pose> {
+pub fn installation_link_poses(setup: &Setup) -> Vec<Pose> {
     match &setup.installation {
         Some(installation) => installation.link_poses.clone(),
         None => setup
             .robot
             .link_poses(&vec![0.0; setup.robot.dof()])
-            .unwrap_or_else(|_| vec![crate::pose::Pose::identity(); setup.robot.links.len()]),
+            .unwrap_or_else(|_| vec![Pose::identity(); setup.robot.links.len()]),
     }
 }
 

@@ -90,7 +90,7 @@ fn cable_strip(svg: &mut String, plan: &MountingPlan, top: f64) {
              <text x=\"{x_text:.1}\" y=\"{label_y:.1}\" text-anchor=\"{anchor}\">{} mm</text>",
             y - 14.0,
             y + 14.0,
-            escape(&clamp.label()),
+            escape(&clamp.name()),
             decimal(clamp.mark_mm, 0)
         );
     }
@@ -111,7 +111,7 @@ fn clamp_sketch(svg: &mut String, clamp: &PhysicalClamp, top: f64) {
         svg,
         "<text class=\"clamp\" x=\"12\" y=\"{:.1}\">{} on {}, mark {} mm</text>",
         top + 16.0,
-        escape(&clamp.label()),
+        escape(&clamp.name()),
         escape(&clamp.link),
         decimal(clamp.mark_mm, 0)
     );
@@ -127,12 +127,13 @@ fn clamp_sketch(svg: &mut String, clamp: &PhysicalClamp, top: f64) {
     };
     let (x0, y) = (40.0, top + 60.0);
     // The axis spans the link to its next joint, or 1.25 × the clamp's distance.
+    let along_mm = place.along_mm.unwrap_or(0.0);
     let span_mm = place
         .next_joint_mm
-        .unwrap_or(place.along_mm.abs() * 1.25)
-        .max(place.along_mm.abs())
+        .unwrap_or(along_mm.abs() * 1.25)
+        .max(along_mm.abs())
         .max(1.0);
-    let x = x0 + AXIS_PX * (place.along_mm / span_mm).clamp(-0.1, 1.0);
+    let x = x0 + AXIS_PX * (along_mm / span_mm).clamp(-0.1, 1.0);
     let _ = writeln!(
         svg,
         "<line class=\"axis\" x1=\"{x0}\" y1=\"{y}\" x2=\"{:.1}\" y2=\"{y}\"/>\
@@ -140,9 +141,9 @@ fn clamp_sketch(svg: &mut String, clamp: &PhysicalClamp, top: f64) {
          <text class=\"note\" x=\"{x0}\" y=\"{:.1}\" text-anchor=\"middle\">{} axis</text>",
         x0 + AXIS_PX,
         y + 26.0,
-        escape(&place.from_joint)
+        escape(&place.joint)
     );
-    if let Some(next) = &place.toward {
+    if let Some(next) = &place.next_joint {
         let _ = writeln!(
             svg,
             "<circle class=\"joint\" cx=\"{x1:.1}\" cy=\"{y}\" r=\"7\"/>\
@@ -160,13 +161,7 @@ fn clamp_sketch(svg: &mut String, clamp: &PhysicalClamp, top: f64) {
          <text class=\"note\" x=\"{:.1}\" y=\"{:.1}\">{}</text>",
         x0 + AXIS_PX + 120.0,
         y - 10.0,
-        escape(&format!(
-            "{} mm along, {} mm off the axis, at {}° clockwise from the {}",
-            decimal(place.along_mm, 0),
-            decimal(place.off_axis_mm, 0),
-            decimal(place.around_deg, 0),
-            place.zero_side
-        )),
+        escape(&place.along_words()),
         x0 + AXIS_PX + 120.0,
         y + 10.0,
         escape(&format!("cable {}", place.cable_direction()))
@@ -199,7 +194,7 @@ fn cross_section(svg: &mut String, place: &LinkPlace, cx: f64, cy: f64) {
          <line class=\"mark\" x1=\"{cx:.1}\" y1=\"{:.1}\" x2=\"{cx:.1}\" y2=\"{:.1}\" stroke=\"#2f3a45\"/>\
          <circle cx=\"{px:.1}\" cy=\"{py:.1}\" r=\"6\" fill=\"#1c4fd8\"/>",
         cy - 36.0,
-        place.zero_side,
+        place.zero_side.word(),
         cy - 28.0,
         cy - 20.0,
     );
@@ -218,7 +213,7 @@ pub fn install_html(title: &str, plan: &MountingPlan) -> String {
             rows,
             "<tr><td>{}</td><td>{}</td><td class=\"mark\">{}</td><td>{}</td><td>{}</td>\
              <td>{}</td><td>{}</td></tr>",
-            escape(&clamp.label()),
+            escape(&clamp.name()),
             escape(&clamp.link),
             decimal(clamp.mark_mm, 0),
             escape(&place),

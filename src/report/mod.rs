@@ -189,13 +189,8 @@ pub fn write_report(
         .iter()
         .map(|(file, what)| (file.as_str(), what.as_str()))
         .collect();
-    let summary = summary::summary_markdown(
-        report,
-        &setup.thresholds,
-        &input_hashes(setup, report),
-        &described,
-        &notes,
-    );
+    let summary =
+        summary::summary_markdown(report, &input_hashes(setup, report), &described, &notes);
     folder.put("summary.md", "this summary as Markdown", summary.as_bytes())?;
     let title = format!("cable-dict: {}", report.status.describe());
     let sections = [

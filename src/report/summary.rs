@@ -3,18 +3,16 @@
 
 use super::Hashed;
 use crate::escape::markdown as text;
-use crate::motion_test::{MotionTestReport, Worst};
-use crate::mounting::MountingPlan;
-use crate::setup::Thresholds;
-use crate::solve::{NamedPath, SolveReport};
-use crate::text_table::{decimal, decimals};
+use crate::motion_test::MotionTestReport;
+use crate::mounting::{self, MountingPlan, rows};
+use crate::solve::{NamedPath, SolveReport, verdict_words, worst_rows};
+use crate::text_table::decimals;
 use std::fmt::Write as _;
 
 /// The whole `summary.md`; `files` are the report's other files with what each shows, and
 /// `notes` anything the report could not draw.
 pub fn summary_markdown(
     report: &SolveReport,
-    thresholds: &Thresholds,
     inputs: &[Hashed],
     files: &[(&str, &str)],
     notes: &[String],
@@ -25,7 +23,7 @@ pub fn summary_markdown(
         mounting_tables(&mut md, plan);
     }
     if let Some(test) = &report.motion_test {
-        motion_test_table(&mut md, test, thresholds);
+        motion_test_table(&mut md, report, test);
     }
     // The search's details, in its own words (the glossary explains them).
     if let (Some(path), Some(total)) = (&report.optimal, report.optimal_length_mm) {
@@ -100,50 +98,41 @@ fn mounting_tables(md: &mut String, plan: &MountingPlan) {
     section(md, "How to mount it");
     let _ = writeln!(
         md,
-        "Marks are cable lengths from the cable's end at the tool; places are measured on the \
-         link from the axis of the joint that moves it. Printable sheet: \
-         [install.html](install.html).\n"
+        "{}. Printable sheet: [install.html](install.html).\n",
+        text(&capitalized(&rows::count_words(plan)))
     );
-    header(md, &["clamp", "link", "mark (mm)", "place on the link"]);
-    for clamp in &plan.clamps {
-        let place = clamp
-            .place
-            .as_ref()
-            .map_or_else(|| "on the robot's base link".to_string(), |p| p.describe());
-        row(
-            md,
-            &[
-                clamp.label(),
-                clamp.link.clone(),
-                decimal(clamp.mark_mm, 0),
-                place,
-            ],
-        );
+    for warning in plan.warnings() {
+        let _ = writeln!(md, "**Warning:** {}.\n", text(&warning));
+    }
+    header(
+        md,
+        &["clamp", "link", "mark (mm)", "place on the link", "cable"],
+    );
+    for clamp in rows::clamp_rows(plan) {
+        let place = [clamp.along, clamp.around]
+            .into_iter()
+            .filter(|s| !s.is_empty())
+            .collect::<Vec<_>>()
+            .join("; ");
+        let cable = [clamp.cable, clamp.height]
+            .into_iter()
+            .filter(|s| !s.is_empty())
+            .collect::<Vec<_>>()
+            .join("; ");
+        row(md, &[clamp.name, clamp.link, clamp.mark_mm, place, cable]);
     }
     let _ = writeln!(md);
-    header(md, &["cable between", "length (mm)", "crosses"]);
-    for piece in &plan.pieces {
-        let (from, to) = (
-            &plan.clamps[piece.from_clamp],
-            &plan.clamps[piece.from_clamp + 1],
-        );
-        row(
-            md,
-            &[
-                format!("{} → {}", from.guides.join(" = "), to.guides.join(" = ")),
-                decimal(piece.length_mm, 0),
-                piece.across_joints.join(", "),
-            ],
-        );
+    header(md, &["piece", "length (mm)", "crosses"]);
+    for piece in rows::piece_rows(plan) {
+        row(md, &[piece.name, piece.length_mm, piece.across]);
     }
-    let mut notes = vec![format!("{}.", capitalized(&plan.tolerance_words()))];
-    if let Some(cut) = &plan.cut {
-        notes.push(format!("{}.", capitalized(&cut.describe())));
-    }
-    notes.push(format!("{}.", capitalized(&plan.installation_words())));
-    notes.push(
+    let notes = [
+        format!("{}.", capitalized(&rows::length_words(plan))),
+        format!("{}.", capitalized(&plan.tolerance_words())),
+        format!("{}.", capitalized(&mounting::cut_words(plan))),
+        format!("{}.", capitalized(&plan.installation_words())),
         "The cable before the first clamp and beyond the last is outside this design.".into(),
-    );
+    ];
     let _ = writeln!(md);
     for note in notes {
         let _ = writeln!(md, "- {}", text(&note));
@@ -270,101 +259,41 @@ fn margins_table(md: &mut String, report: &SolveReport) {
     }
 }
 
-fn motion_test_table(md: &mut String, test: &MotionTestReport, t: &Thresholds) {
+fn motion_test_table(md: &mut String, report: &SolveReport, test: &MotionTestReport) {
     section(md, "Motion test");
-    let verdict = match &test.failure {
-        None => "passed".to_string(),
-        Some(f) => format!("failed: {}", text(&f.reason)),
-    };
+    let plan = report.mounting.as_ref();
     let _ = writeln!(
         md,
-        "{verdict} ({:.2} s simulated in {:.1} s).\n",
-        test.simulated_s, test.wall_time_s
+        "{} ({:.2} s simulated in {:.1} s).\n",
+        text(&capitalized(&verdict_words(report, test, plan))),
+        test.simulated_s,
+        test.wall_time_s
     );
-    header(md, &["metric", "worst", "limit", "margin", "when, where"]);
-    let mm = |v: f64| format!("{:.1} mm", v * 1e3);
-    worst_row(
-        md,
-        "min clearance",
-        test.worst_clearance.as_ref(),
-        t.contact_clearance_m,
-        1.0,
-        mm,
-    );
-    worst_row(
-        md,
-        "max stretch",
-        test.worst_stretch.as_ref(),
-        t.stretch,
-        -1.0,
-        |v| format!("{v:.4}"),
-    );
-    worst_row(
-        md,
-        "min bend radius",
-        test.worst_bend.as_ref(),
-        t.min_bend_radius_m,
-        1.0,
-        mm,
-    );
+    header(md, &["limit", "worst", "limit", "margin", "when, where"]);
+    for w in worst_rows(report, test, plan) {
+        row(
+            md,
+            &[
+                w.what.into(),
+                w.value,
+                w.limit.trim_start_matches("limit ").to_string(),
+                w.margin,
+                format!("{}, {}", w.when, w.place),
+            ],
+        );
+    }
     if let Some(w) = &test.worst_contact_force {
         row(
             md,
             &[
-                "max contact force".into(),
+                "largest contact force".into(),
                 format!("{:.3} N", w.value),
                 "0 N".into(),
                 "—".into(),
-                place(w),
+                format!("t = {:.2} s, cable piece {}", w.time_s, w.segment_name),
             ],
         );
     }
-}
-
-/// One metric's worst value; `sign` +1 when the value must stay above the limit.
-fn worst_row(
-    md: &mut String,
-    metric: &str,
-    worst: Option<&Worst>,
-    limit: f64,
-    sign: f64,
-    show: impl Fn(f64) -> String,
-) {
-    let Some(w) = worst else {
-        row(
-            md,
-            &[
-                metric.into(),
-                "—".into(),
-                show(limit),
-                "—".into(),
-                "—".into(),
-            ],
-        );
-        return;
-    };
-    let margin = sign * (w.value - limit);
-    let margin = if margin.is_finite() {
-        show(margin)
-    } else {
-        "∞".into()
-    };
-    let value = if w.value.is_finite() {
-        show(w.value)
-    } else {
-        "∞ (straight)".into()
-    };
-    row(md, &[metric.into(), value, show(limit), margin, place(w)]);
-}
-
-fn place(w: &Worst) -> String {
-    let at = w.place.to_string();
-    let at = if at.is_empty() {
-        String::new()
-    } else {
-        format!(", {at}")
-    };
-    format!("t = {:.2} s, {}{at}", w.time_s, w.segment_name)
 }
 
 fn candidates_table(md: &mut String, report: &SolveReport) {

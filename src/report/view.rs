@@ -152,7 +152,7 @@ fn clamp_tracks(
     let plan = mounting_plan(setup, &shown.path);
     let marks = plan.clamps.iter().filter_map(|clamp| {
         let mark = spec.guides.iter().find(|m| m.clamp == clamp.guides[0])?;
-        Some((clamp.label(), mark))
+        Some((clamp.name(), mark))
     });
     marks
         .map(|(label, mark)| {

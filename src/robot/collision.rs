@@ -67,6 +67,28 @@ impl TriMesh {
 }
 
 impl Shape {
+    /// How far a shape posed at `pose` reaches along the unit direction `d` (m): the largest
+    /// `d·x` over its points.
+    pub fn support_m(&self, pose: &Pose, d: &Vector3<f64>) -> f64 {
+        let centre = pose.translation.vector.dot(d);
+        let local = pose.rotation.inverse() * d;
+        centre
+            + match self {
+                Shape::Box { half_extents_m: h } => h.dot(&local.abs()),
+                Shape::Cylinder { radius_m, length_m } => {
+                    radius_m * (1.0 - local.z * local.z).max(0.0).sqrt()
+                        + 0.5 * length_m * local.z.abs()
+                }
+                Shape::Sphere { radius_m } => *radius_m,
+                Shape::Capsule { radius_m, length_m } => radius_m + 0.5 * length_m * local.z.abs(),
+                Shape::Mesh(mesh) => mesh
+                    .vertices
+                    .iter()
+                    .map(|v| v.coords.dot(&local))
+                    .fold(f64::NEG_INFINITY, f64::max),
+            }
+    }
+
     /// One-line human description with dimensions in millimetres.
     pub fn describe(&self) -> String {
         let mm = |v: f64| v * 1e3;

@@ -229,28 +229,6 @@ fn triangle_moments(a: &Vector3<f64>, b: &Vector3<f64>, c: &Vector3<f64>) -> Sur
     }
 }
 
-/// How far a shape posed at `pose` reaches along the unit direction `d` (m): the largest
-/// `d·x` over its points.
-pub fn support_m(shape: &Shape, pose: &Pose, d: &Vector3<f64>) -> f64 {
-    let centre = pose.translation.vector.dot(d);
-    let local = pose.rotation.inverse() * d;
-    centre
-        + match shape {
-            Shape::Box { half_extents_m: h } => h.dot(&local.abs()),
-            Shape::Cylinder { radius_m, length_m } => {
-                radius_m * (1.0 - local.z * local.z).max(0.0).sqrt()
-                    + 0.5 * length_m * local.z.abs()
-            }
-            Shape::Sphere { radius_m } => *radius_m,
-            Shape::Capsule { radius_m, length_m } => radius_m + 0.5 * length_m * local.z.abs(),
-            Shape::Mesh(mesh) => mesh
-                .vertices
-                .iter()
-                .map(|v| v.coords.dot(&local))
-                .fold(f64::NEG_INFINITY, f64::max),
-        }
-}
-
 /// A link's geometry as the reference rules see it: its surface moments and how far it
 /// reaches along a direction (link frame).
 pub struct LinkGeometry<'a> {
@@ -272,7 +250,7 @@ impl LinkGeometry<'_> {
         let reach = |d: &Vector3<f64>| {
             self.shapes
                 .iter()
-                .map(|(shape, pose)| support_m(shape, pose, d))
+                .map(|(shape, pose)| shape.support_m(pose, d))
                 .fold(f64::NEG_INFINITY, f64::max)
         };
         reach(d) + reach(&-d)

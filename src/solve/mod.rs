@@ -30,7 +30,8 @@ pub use diagnosis::{Diagnosis, NearestMiss, SegmentDiagnosis};
 pub use report::{
     CandidateOutcome, DictionarySegmentUse, DictionaryUse, Inputs, Margin, NamedPath, PathGuide,
     PathSegment, PoseSummary, SegmentReport, SolveReport, Status, SweepRejection, SweepSummary,
-    Timings, guide_names, named_path, pose_summary, shown_index,
+    Timings, WorstRow, guide_names, named_path, pose_summary, shown_index, verdict_words,
+    worst_rows,
 };
 
 use crate::attachment::{

@@ -11,13 +11,14 @@
 mod projection;
 mod svg;
 
-use super::scene::{self, PoseScene, SceneSpec};
+use super::scene::{self, CableTint, PoseScene, SceneSpec};
 use super::views::{self, CriticalPose};
 use super::worst::{limit_words, smallest_margin};
+use crate::mounting::{MountingPlan, mounting_plan};
 use crate::setup::Setup;
 use crate::solve::{SolveReport, Status};
 use nalgebra::Point3;
-use svg::{Drawing, Layout, picture_svg};
+use svg::{CablePiece, Drawing, Layout, picture_svg};
 
 /// One picture of the report folder.
 #[derive(Debug, Clone, PartialEq)]
@@ -37,19 +38,26 @@ pub struct Picture {
 /// moment of the motion test when the test kept the cable's shapes (`worst-moment.svg`),
 /// and one of the nearest miss when there is no candidate path (`nearest-miss.svg`).
 pub fn pictures(setup: &Setup, report: &SolveReport, spec: &SceneSpec<'_>) -> Vec<Picture> {
-    let mut moments = critical_pose_moments(report, spec);
-    moments.extend(worst_moment(setup, report, spec));
+    let plan = report
+        .shown_candidate()
+        .map(|c| mounting_plan(setup, &c.path));
+    let names = Names {
+        setup,
+        plan: plan.as_ref(),
+    };
+    let mut moments = critical_pose_moments(report, spec, &names);
+    moments.extend(worst_moment(setup, report, spec, &names));
     moments.extend(nearest_miss_moment(setup, report, spec));
-    let drawings: Vec<Drawing> = moments.iter().map(|m| drawing(spec, m)).collect();
-    let layout = Layout::around(&drawings, 2e3 * spec.cable_radius_m);
+    let drawings: Vec<Drawing> = moments.iter().map(|m| drawing(spec, m, &names)).collect();
+    let layouts = Layout::for_each(&drawings, 2e3 * spec.cable_radius_m);
     moments
         .into_iter()
-        .zip(&drawings)
-        .map(|(moment, drawing)| Picture {
+        .zip(drawings.iter().zip(&layouts))
+        .map(|(moment, (drawing, layout))| Picture {
             file: moment.file,
             what: moment.what,
             caption: moment.caption,
-            svg: picture_svg(drawing, &layout),
+            svg: picture_svg(drawing, layout),
         })
         .collect()
 }
@@ -66,38 +74,96 @@ struct Moment<'s> {
     marker_m: Option<Point3<f64>>,
 }
 
+/// The fitter's names of the shown candidate's clamps and pieces (the search's when it has
+/// no mounting plan).
+struct Names<'a> {
+    setup: &'a Setup,
+    plan: Option<&'a MountingPlan>,
+}
+
+impl Names<'_> {
+    /// `1`, `gripper connector`: the physical clamp guide `guide` belongs to.
+    fn clamp(&self, guide: &str) -> String {
+        self.plan
+            .and_then(|plan| plan.clamp_of_guide(guide))
+            .map_or_else(|| guide.to_string(), |clamp| clamp.short_name())
+    }
+
+    /// `piece 1 → 2`, `clamp 2` (a 0 mm piece inside it), or `cable piece C3`.
+    fn piece(&self, segment: usize) -> String {
+        let name = self.setup.segment_name(segment);
+        self.plan
+            .and_then(|plan| plan.place_on_cable(&name, None))
+            .map(|words| {
+                words
+                    .trim_start_matches("on ")
+                    .trim_start_matches("at ")
+                    .to_string()
+            })
+            .unwrap_or_else(|| format!("cable piece {name}"))
+    }
+}
+
 /// What is drawn of `moment`, in millimetres.
-fn drawing(spec: &SceneSpec<'_>, moment: &Moment<'_>) -> Drawing {
+fn drawing(spec: &SceneSpec<'_>, moment: &Moment<'_>, names: &Names<'_>) -> Drawing {
     let mm = |p: &Point3<f64>| p * 1e3;
     let scene = moment.scene;
     let colliders = scene::collider_points(spec.robot, &scene.link_poses)
         .into_iter()
         .map(|c| c.points_m.iter().map(mm).collect())
         .collect();
-    let cable = scene
+    let cable: Vec<CablePiece> = scene
         .cable
         .iter()
-        .map(|line| (line.name.clone(), line.nodes_m.iter().map(mm).collect()))
-        .collect();
-    let clamps = spec
-        .guides
-        .iter()
-        .filter_map(|mark| {
-            let at = scene.link_poses.get(mark.link)? * mark.pose_in_link;
-            Some((mark.clamp.clone(), mm(&Point3::from(at.translation.vector))))
+        .map(|line| CablePiece {
+            name: names
+                .plan
+                .and_then(|plan| plan.piece_of_segment(&line.name))
+                .and_then(|piece| names.plan.map(|plan| plan.piece_name(piece.from_clamp)))
+                .unwrap_or_else(|| line.name.clone()),
+            nodes: line.nodes_m.iter().map(mm).collect(),
+            colour: spec.tint_of(&line.name).css(),
         })
         .collect();
+    let mut cable_legend: Vec<(String, &'static str)> = Vec::new();
+    for tint in CableTint::ALL {
+        if scene
+            .cable
+            .iter()
+            .any(|line| spec.tint_of(&line.name) == tint)
+        {
+            cable_legend.push((tint.css(), tint.legend()));
+        }
+    }
+    // One dot per physical clamp: guides joined by a 0 mm piece share a place and a name.
+    let mut clamps: Vec<(String, Point3<f64>)> = Vec::new();
+    for mark in &spec.guides {
+        let Some(link_pose) = scene.link_poses.get(mark.link) else {
+            continue;
+        };
+        let name = names.clamp(&mark.clamp);
+        if clamps.iter().any(|(n, _)| *n == name) {
+            continue;
+        }
+        let at = link_pose * mark.pose_in_link;
+        clamps.push((name, mm(&Point3::from(at.translation.vector))));
+    }
     Drawing {
         heading: moment.heading.clone(),
         colliders,
         cable,
         clamps,
+        cable_legend,
         marker: moment.marker_m.as_ref().map(mm),
     }
 }
 
 /// One moment per critical pose, with the scene's snapshot of it.
-fn critical_pose_moments<'s>(report: &SolveReport, spec: &'s SceneSpec<'_>) -> Vec<Moment<'s>> {
+fn critical_pose_moments<'s>(
+    report: &SolveReport,
+    spec: &'s SceneSpec<'_>,
+    names: &Names<'_>,
+) -> Vec<Moment<'s>> {
     let poses = views::critical_poses(report);
     let count = poses.len();
     let path = path_words(report);
@@ -107,7 +173,7 @@ fn critical_pose_moments<'s>(report: &SolveReport, spec: &'s SceneSpec<'_>) -> V
         .enumerate()
         .map(|(i, (pose, snapshot))| {
             let n = i + 1;
-            let shape = static_shape_words(report, &snapshot.scene);
+            let shape = static_shape_words(report, &snapshot.scene, names);
             Moment {
                 file: format!("pose-{n}.svg"),
                 heading: format!("Critical pose {n} of {count}, t = {:.2} s", pose.time_s),
@@ -118,7 +184,7 @@ fn critical_pose_moments<'s>(report: &SolveReport, spec: &'s SceneSpec<'_>) -> V
                 caption: format!(
                     "Critical pose {n} of {count}, t = {:.2} s, tested for {}. {shape} {path}",
                     pose.time_s,
-                    reasons_words(pose)
+                    reasons_words(pose, names)
                 )
                 .trim_end()
                 .to_string(),
@@ -129,51 +195,39 @@ fn critical_pose_moments<'s>(report: &SolveReport, spec: &'s SceneSpec<'_>) -> V
         .collect()
 }
 
-/// `cable piece C1: joint_4 max; cable piece C3: joint_6 min`.
-fn reasons_words(pose: &CriticalPose) -> String {
+/// `piece 1 → 2: joint_4 max; piece 2 → gripper connector: joint_6 min`.
+fn reasons_words(pose: &CriticalPose, names: &Names<'_>) -> String {
     let reasons: Vec<String> = pose
         .reasons
         .iter()
-        .map(|(piece, reason)| format!("cable piece {piece}: {reason}"))
+        .map(|(piece, reason)| {
+            let segment =
+                (0..names.setup.segments.len()).find(|&m| names.setup.segment_name(m) == *piece);
+            let name = segment.map_or_else(|| format!("cable piece {piece}"), |m| names.piece(m));
+            format!("{name}: {reason}")
+        })
         .collect();
     reasons.join("; ")
 }
 
 /// What a critical pose's cable is, and which pieces have no static shape there.
-fn static_shape_words(report: &SolveReport, scene: &PoseScene) -> String {
+fn static_shape_words(report: &SolveReport, scene: &PoseScene, names: &Names<'_>) -> String {
     let Some(shown) = report.shown_candidate() else {
         return "No candidate path, so only the robot is drawn.".into();
     };
-    let path = &shown.path;
-    let zero_length = |m: usize| {
-        path.segments
-            .iter()
-            .zip(&path.lengths)
-            .any(|(&segment, &length)| segment == m && length == 0)
-    };
-    let (mut coincident, mut missing) = (Vec::new(), Vec::new());
-    for (m, s) in report.segments.iter().enumerate() {
-        let piece = s.segment.as_str();
-        if zero_length(m) {
-            coincident.push(piece);
-        } else if !scene.cable.iter().any(|line| line.name == piece) {
-            missing.push(piece);
-        }
-    }
+    let missing: Vec<String> = shown
+        .path
+        .pieces()
+        .filter(|(m, pv)| {
+            let name = names.setup.segment_name(*m);
+            pv.sub_segments > 0 && !scene.cable.iter().any(|line| line.name == name)
+        })
+        .map(|(m, _)| names.piece(m))
+        .collect();
     let mut words = "The cable is drawn in its static shape at this pose.".to_string();
-    match coincident.as_slice() {
-        [] => {}
-        [one] => words += &format!(" Cable piece {one} has no length: its two clamps are one."),
-        many => {
-            words += &format!(
-                " Cable pieces {} have no length: the two clamps of each are one.",
-                many.join(", ")
-            )
-        }
-    }
     if !missing.is_empty() {
         words += &format!(
-            " No static shape found for cable piece {}: not drawn.",
+            " No static shape found for {}: not drawn.",
             missing.join(", ")
         );
     }
@@ -207,6 +261,7 @@ fn worst_moment<'s>(
     setup: &Setup,
     report: &SolveReport,
     spec: &'s SceneSpec<'_>,
+    names: &Names<'_>,
 ) -> Option<Moment<'s>> {
     let test = report.motion_test.as_ref()?;
     let frames = &spec.animation.as_ref()?.frames;
@@ -241,9 +296,9 @@ fn worst_moment<'s>(
         format!("at t = {:.2} s, the nearest kept shape", shape.time_s)
     };
     let caption = format!(
-        "{what} {} on cable piece {}{ring}. The cable is drawn as simulated {drawn_at}. {}",
+        "{what} {} on {}{ring}. The cable is drawn as simulated {drawn_at}. {}",
         limit_words(worst.constraint, worst.value, worst.limit),
-        setup.segment_name(worst.segment),
+        names.piece(worst.segment),
         path_words(report)
     )
     .trim_end()

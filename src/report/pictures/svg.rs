@@ -30,8 +30,20 @@ const HEADING_PX: f64 = 30.0;
 const GAP_PX: f64 = 24.0;
 /// Space right of the side view (px).
 const RIGHT_PX: f64 = 12.0;
-/// Empty space around the drawn geometry inside a panel (mm).
-const PAD_MM: f64 = 40.0;
+/// Room around the cable inside a panel, so that the arm around it shows (mm): at least
+/// this, or [`PAD_SHARE`] of the cable's largest extent.
+const PAD_MM: f64 = 150.0;
+/// Share of the cable's largest extent left around it.
+const PAD_SHARE: f64 = 0.25;
+/// Font size of the labels in the views (px) and the width of one of their characters, as a
+/// share of it (sans-serif digits and lower case are narrower; this errs wide).
+const LABEL_PX: f64 = 12.0;
+const CHAR_SHARE: f64 = 0.62;
+/// Radius of a clamp's dot (px).
+const DOT_PX: f64 = 5.0;
+/// Distances from its dot a label may be put at, each a label's height and a fifth farther
+/// than the one before; beyond the first a thin line leads from the dot to the label.
+const LABEL_RINGS: usize = 12;
 /// Tick spacings to choose from (mm): the smallest that leaves at most [`MAX_TICKS`].
 const TICK_STEPS_MM: [f64; 9] = [
     50.0, 100.0, 200.0, 250.0, 500.0, 1000.0, 2000.0, 5000.0, 10000.0,
@@ -48,9 +60,9 @@ const STYLE: &str = "text{fill:#222}\
 .grid{stroke:#e4e4e4;fill:none}\
 .robot polygon{fill:#8d99a6;fill-opacity:0.45;stroke:#2f3a45;stroke-linejoin:round}\
 .cable polyline{fill:none;stroke:#e8590c;stroke-linecap:round;stroke-linejoin:round}\
-.cable text{fill:#a33b00;font-weight:bold}\
 .clamps circle{fill:#1c4fd8;stroke:white}\
 .clamps text{fill:#1c4fd8;font-weight:bold}\
+.clamps .leader{stroke:#1c4fd8;stroke-width:0.6px;vector-effect:non-scaling-stroke}\
 .view text{paint-order:stroke;stroke:white;stroke-linejoin:round}\
 .worst{fill:none;stroke:#d00000}";
 
@@ -61,20 +73,40 @@ pub(super) struct Drawing {
     pub heading: String,
     /// The robot's colliders, each as the vertices of its tessellation (mm).
     pub colliders: Vec<Vec<Point3<f64>>>,
-    /// The cable pieces: name (`C1`) and nodes (mm).
-    pub cable: Vec<(String, Vec<Point3<f64>>)>,
-    /// The clamps: name (`G1`) and the cable axis's point at the clamp (mm).
+    /// The cable pieces: the fitter's name (`1 → 2`), nodes (mm) and colour (`#rrggbb`).
+    pub cable: Vec<CablePiece>,
+    /// The physical clamps: the fitter's name (`1`, `gripper connector`) and the cable
+    /// axis's point at the clamp (mm).
     pub clamps: Vec<(String, Point3<f64>)>,
+    /// The legend's lines for the cable's colours: colour and meaning.
+    pub cable_legend: Vec<(String, &'static str)>,
     /// Where the smallest margin is (mm), ringed in red.
     pub marker: Option<Point3<f64>>,
 }
 
+/// One cable piece as drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct CablePiece {
+    /// The fitter's name (`1 → 2`), kept as the polyline's `data-piece`.
+    pub name: String,
+    /// Its nodes (mm).
+    pub nodes: Vec<Point3<f64>>,
+    /// Its colour (`#rrggbb`).
+    pub colour: String,
+}
+
 impl Drawing {
-    /// Every point drawn.
-    fn points(&self) -> impl Iterator<Item = &Point3<f64>> {
-        let cable = self.cable.iter().flat_map(|(_, nodes)| nodes);
+    /// The points the views are cropped to: the cable, its clamps and the ringed place; the
+    /// robot's when there is no cable.
+    fn focus(&self) -> Vec<&Point3<f64>> {
+        let cable = self.cable.iter().flat_map(|piece| &piece.nodes);
         let clamps = self.clamps.iter().map(|(_, p)| p);
-        self.colliders.iter().flatten().chain(cable).chain(clamps)
+        let focus: Vec<&Point3<f64>> = cable.chain(clamps).chain(&self.marker).collect();
+        if focus.is_empty() {
+            self.colliders.iter().flatten().collect()
+        } else {
+            focus
+        }
     }
 }
 
@@ -95,19 +127,42 @@ pub(super) struct Layout {
 }
 
 impl Layout {
-    /// The box around everything in `drawings` with [`PAD_MM`] to spare, and the scale that
-    /// fits the picture into [`WIDTH_PX`] × [`MAX_HEIGHT_PX`].
-    pub fn around(drawings: &[Drawing], cable_diameter_mm: f64) -> Layout {
+    /// One layout per drawing: the box around its cable (its clamps and ringed place; the
+    /// robot where there is no cable) with [`PAD_MM`] or [`PAD_SHARE`] to spare, all at the
+    /// one scale that fits the largest of them into [`WIDTH_PX`] × [`MAX_HEIGHT_PX`], so that
+    /// the pictures compare side by side. The robot is drawn cut at the box: the pictures
+    /// show the cable and the arm around it.
+    pub fn for_each(drawings: &[Drawing], cable_diameter_mm: f64) -> Vec<Layout> {
+        let mut layouts: Vec<Layout> = drawings.iter().map(Layout::around).collect();
+        let px_per_mm = layouts
+            .iter()
+            .map(|l| l.px_per_mm)
+            .fold(f64::INFINITY, f64::min);
+        for layout in &mut layouts {
+            layout.px_per_mm = px_per_mm;
+            layout.cable_width_mm = cable_diameter_mm.max(MIN_CABLE_PX / px_per_mm);
+        }
+        layouts
+    }
+
+    /// The box around `drawing`'s cable and the scale that fits it alone.
+    fn around(drawing: &Drawing) -> Layout {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
-        for p in drawings.iter().flat_map(Drawing::points) {
+        for p in drawing.focus() {
             for axis in 0..3 {
-                lo[axis] = lo[axis].min(p[axis] - PAD_MM);
-                hi[axis] = hi[axis].max(p[axis] + PAD_MM);
+                lo[axis] = lo[axis].min(p[axis]);
+                hi[axis] = hi[axis].max(p[axis]);
             }
         }
         if lo.iter().chain(&hi).any(|v| !v.is_finite()) {
             (lo, hi) = ([-500.0; 3], [500.0; 3]);
+        }
+        let extent = (0..3).map(|a| hi[a] - lo[a]).fold(0.0, f64::max);
+        let pad = PAD_MM.max(PAD_SHARE * extent);
+        for axis in 0..3 {
+            lo[axis] -= pad;
+            hi[axis] += pad;
         }
         let longest = (0..3).map(|a| hi[a] - lo[a]).fold(0.0, f64::max);
         let tick_mm = TICK_STEPS_MM
@@ -125,7 +180,7 @@ impl Layout {
             hi_mm,
             tick_mm,
             px_per_mm,
-            cable_width_mm: cable_diameter_mm.max(MIN_CABLE_PX / px_per_mm),
+            cable_width_mm: MIN_CABLE_PX / px_per_mm,
         }
     }
 
@@ -333,42 +388,181 @@ fn open_group(svg: &mut String, layout: &Layout, class: &str, stroke_width_mm: f
     );
 }
 
-/// Each cable piece as a polyline through its nodes, named at its middle node.
+/// Each cable piece as a polyline through its nodes, in its margin colour. The pieces are
+/// not labelled: the numbered clamps at their ends name them.
 fn push_cable(svg: &mut String, drawing: &Drawing, layout: &Layout, view: View) {
     if drawing.cable.is_empty() {
         return;
     }
     open_group(svg, layout, "cable", layout.cable_width_mm);
-    for (name, nodes) in &drawing.cable {
-        let projected: Vec<[f64; 2]> = nodes.iter().map(|p| view.project(p)).collect();
+    for piece in &drawing.cable {
+        let projected: Vec<[f64; 2]> = piece.nodes.iter().map(|p| view.project(p)).collect();
         let _ = writeln!(
             svg,
-            "<polyline data-piece=\"{}\" points=\"{}\"/>",
-            escape(name),
+            "<polyline data-piece=\"{}\" style=\"stroke:{}\" points=\"{}\"/>",
+            escape(&piece.name),
+            escape(&piece.colour),
             point_list(&projected)
         );
-    }
-    for (name, nodes) in &drawing.cable {
-        if let Some(middle) = nodes.get(nodes.len() / 2) {
-            push_label(svg, layout, view.project(middle), name);
-        }
     }
     svg.push_str("</g>\n");
 }
 
-/// A dot and the name of every clamp.
+/// A dot and the name of every clamp, the names placed where they overlap neither each other
+/// nor a dot, inside the panel.
 fn push_clamps(svg: &mut String, drawing: &Drawing, layout: &Layout, view: View) {
     if drawing.clamps.is_empty() {
         return;
     }
     open_group(svg, layout, "clamps", layout.mm(1.5));
+    let anchors: Vec<[f64; 2]> = drawing
+        .clamps
+        .iter()
+        .map(|(_, at)| {
+            let [x, y] = view.project(at);
+            [x, -y]
+        })
+        .collect();
     for (_, at) in &drawing.clamps {
-        push_circle(svg, view.project(at), layout.mm(5.0), "");
+        push_circle(svg, view.project(at), layout.mm(DOT_PX), "");
     }
-    for (name, at) in &drawing.clamps {
-        push_label(svg, layout, view.project(at), name);
+    let (right, up) = view.axes();
+    let bounds = LabelBox {
+        x: layout.lo_mm[right],
+        y: -layout.hi_mm[up],
+        w: layout.span_mm(right),
+        h: layout.span_mm(up),
+    };
+    let texts: Vec<&str> = drawing
+        .clamps
+        .iter()
+        .map(|(name, _)| name.as_str())
+        .collect();
+    let boxes = place_labels(&texts, &anchors, layout.mm(1.0), &bounds);
+    for (b, [x, y]) in boxes.iter().zip(&anchors) {
+        // A leader from the dot to the nearest point of a label set apart from it.
+        let (nx, ny) = (x.clamp(b.x, b.x + b.w), y.clamp(b.y, b.y + b.h));
+        if (nx - x).hypot(ny - y) > layout.mm(DOT_PX + 14.0) {
+            let _ = writeln!(
+                svg,
+                "<line class=\"leader\" x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"/>",
+                num(*x),
+                num(*y),
+                num(nx),
+                num(ny)
+            );
+        }
+    }
+    for (text, b) in texts.iter().zip(&boxes) {
+        let _ = writeln!(
+            svg,
+            "<text x=\"{}\" y=\"{}\" stroke-width=\"{}\" data-box=\"{} {} {} {}\">{}</text>",
+            num(b.x),
+            num(b.y + 0.8 * b.h),
+            num(layout.mm(3.0)),
+            num(b.x),
+            num(b.y),
+            num(b.w),
+            num(b.h),
+            escape(text)
+        );
     }
     svg.push_str("</g>\n");
+}
+
+/// A label's box in a panel's drawn coordinates (mm; x right, y down): its top-left corner
+/// and size.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct LabelBox {
+    pub x: f64,
+    pub y: f64,
+    pub w: f64,
+    pub h: f64,
+}
+
+impl LabelBox {
+    /// The area two boxes share.
+    fn overlap(&self, other: &LabelBox) -> f64 {
+        let w = (self.x + self.w).min(other.x + other.w) - self.x.max(other.x);
+        let h = (self.y + self.h).min(other.y + other.h) - self.y.max(other.y);
+        w.max(0.0) * h.max(0.0)
+    }
+
+    /// Whether it lies wholly inside `bounds`.
+    fn inside(&self, bounds: &LabelBox) -> bool {
+        self.x >= bounds.x
+            && self.y >= bounds.y
+            && self.x + self.w <= bounds.x + bounds.w
+            && self.y + self.h <= bounds.y + bounds.h
+    }
+}
+
+/// Boxes for `texts` next to their `anchors` (drawn coordinates, mm; `mm_per_px` the scale):
+/// each at the first of eight places around its anchor, at growing distances, that lies
+/// inside `bounds` and overlaps neither an earlier label nor any anchor's dot; where none
+/// does, the place inside the bounds that overlaps least.
+pub(super) fn place_labels(
+    texts: &[&str],
+    anchors: &[[f64; 2]],
+    mm_per_px: f64,
+    bounds: &LabelBox,
+) -> Vec<LabelBox> {
+    let h = LABEL_PX * mm_per_px;
+    let r = DOT_PX * mm_per_px;
+    let dots: Vec<LabelBox> = anchors
+        .iter()
+        .map(|[x, y]| LabelBox {
+            x: x - r,
+            y: y - r,
+            w: 2.0 * r,
+            h: 2.0 * r,
+        })
+        .collect();
+    let mut placed: Vec<LabelBox> = Vec::new();
+    for (text, &[x, y]) in texts.iter().zip(anchors) {
+        let w = text.chars().count().max(1) as f64 * CHAR_SHARE * h;
+        let candidates = (1..=LABEL_RINGS).flat_map(|ring| {
+            let d = r + 2.0 * mm_per_px + (ring - 1) as f64 * 1.2 * h;
+            [
+                (x + d, y - h - 0.3 * d),
+                (x + d, y + 0.3 * d),
+                (x - d - w, y - h - 0.3 * d),
+                (x - d - w, y + 0.3 * d),
+                (x - 0.5 * w, y - d - h),
+                (x - 0.5 * w, y + d),
+                (x + d, y - 0.5 * h),
+                (x - d - w, y - 0.5 * h),
+            ]
+        });
+        let mut best: Option<(f64, LabelBox)> = None;
+        for (bx, by) in candidates {
+            let b = LabelBox { x: bx, y: by, w, h };
+            if !b.inside(bounds) {
+                continue;
+            }
+            let cost: f64 = placed
+                .iter()
+                .chain(&dots)
+                .map(|other| b.overlap(other))
+                .sum();
+            if cost == 0.0 {
+                best = Some((0.0, b));
+                break;
+            }
+            if best.is_none_or(|(c, _)| cost < c) {
+                best = Some((cost, b));
+            }
+        }
+        // A label wider than the panel: at the anchor, pulled inside as far as it goes.
+        let b = best.map(|(_, b)| b).unwrap_or(LabelBox {
+            x: (x + r).min(bounds.x + bounds.w - w).max(bounds.x),
+            y: (y - h).clamp(bounds.y, bounds.y + (bounds.h - h).max(0.0)),
+            w,
+            h,
+        });
+        placed.push(b);
+    }
+    placed
 }
 
 /// A circle of `radius_mm` around the projected point `at`, with more `attributes` (each
@@ -380,19 +574,6 @@ fn push_circle(svg: &mut String, at: [f64; 2], radius_mm: f64, attributes: &str)
         num(at[0]),
         num(-at[1]),
         num(radius_mm)
-    );
-}
-
-/// `text` up and right of the projected point `at`, with a thin white halo that keeps it
-/// readable over lines.
-fn push_label(svg: &mut String, layout: &Layout, at: [f64; 2], text: &str) {
-    let _ = writeln!(
-        svg,
-        "<text x=\"{}\" y=\"{}\" stroke-width=\"{}\">{}</text>",
-        num(at[0] + layout.mm(7.0)),
-        num(-at[1] - layout.mm(5.0)),
-        num(layout.mm(3.0)),
-        escape(text)
     );
 }
 
@@ -408,25 +589,28 @@ fn push_marker(svg: &mut String, drawing: &Drawing, layout: &Layout, view: View)
 fn push_legend(svg: &mut String, drawing: &Drawing, layout: &Layout) {
     let [side_x, _] = layout.panel_origin_px(View::Side);
     let [_, top_y] = layout.panel_origin_px(View::Top);
-    let mut entries = vec![(
-        "<rect width=\"22\" height=\"12\" y=\"-10\" fill=\"#8d99a6\" fill-opacity=\"0.45\" stroke=\"#2f3a45\"/>",
+    let mut entries: Vec<(String, &str)> = vec![(
+        "<rect width=\"22\" height=\"12\" y=\"-10\" fill=\"#8d99a6\" fill-opacity=\"0.45\" stroke=\"#2f3a45\"/>".into(),
         "robot (collision shapes)",
     )];
-    if !drawing.cable.is_empty() {
+    for (colour, words) in &drawing.cable_legend {
         entries.push((
-            "<path d=\"M0 -4H22\" stroke=\"#e8590c\" stroke-width=\"4\"/>",
-            "cable, pieces named C1, C2, …",
+            format!(
+                "<path d=\"M0 -4H22\" stroke=\"{}\" stroke-width=\"4\"/>",
+                escape(colour)
+            ),
+            words,
         ));
     }
     if !drawing.clamps.is_empty() {
         entries.push((
-            "<circle cx=\"11\" cy=\"-4\" r=\"5\" fill=\"#1c4fd8\"/>",
-            "clamps, named G1, G2, …",
+            "<circle cx=\"11\" cy=\"-4\" r=\"5\" fill=\"#1c4fd8\"/>".into(),
+            "clamps, numbered as on the installation sheet",
         ));
     }
     if drawing.marker.is_some() {
         entries.push((
-            "<circle cx=\"11\" cy=\"-4\" r=\"8\" fill=\"none\" stroke=\"#d00000\" stroke-width=\"2.5\"/>",
+            "<circle cx=\"11\" cy=\"-4\" r=\"8\" fill=\"none\" stroke=\"#d00000\" stroke-width=\"2.5\"/>".into(),
             "where a limit is closest or broken",
         ));
     }
@@ -477,13 +661,15 @@ mod tests {
         Drawing {
             heading: "a box & a cable".into(),
             colliders: vec![corners],
-            cable: vec![(
-                "C1".into(),
-                vec![
+            cable: vec![CablePiece {
+                name: "1 → 2".into(),
+                nodes: vec![
                     Point3::new(850.0, 1950.0, 2750.0),
                     Point3::new(1150.04, 2050.0, 3250.0),
                 ],
-            )],
+                colour: "#e8590c".into(),
+            }],
+            cable_legend: vec![("#e8590c".into(), "cable")],
             clamps: vec![("G1".into(), Point3::new(850.0, 1950.0, 2750.0))],
             marker: None,
         }
@@ -519,11 +705,13 @@ mod tests {
 
     #[test]
     fn the_box_spans_whole_ticks_with_padding_at_one_scale() {
-        let layout = Layout::around(&[box_drawing()], 8.0);
-        // 600 mm + 2 × 40 mm of padding is at most 10 ticks of 100 mm.
+        let layout = Layout::for_each(&[box_drawing()], 8.0).remove(0);
+        // The cable spans 500 mm at most, so 150 mm of padding around it: 800 mm is at most
+        // 10 ticks of 100 mm.
         assert_eq!(layout.tick_mm, 100.0);
         assert_eq!(layout.lo_mm, [700.0, 1800.0, 2600.0]);
-        assert_eq!(layout.hi_mm, [1300.0, 2200.0, 3400.0]);
+        // The cable reaches x = 1150.04 mm: 1300.04 with the padding, up to the next tick.
+        assert_eq!(layout.hi_mm, [1400.0, 2200.0, 3400.0]);
         // One scale: every panel's pixels per mm are the same on both of its axes.
         for view in View::ALL {
             let (right, up) = view.axes();
@@ -540,7 +728,8 @@ mod tests {
 
     #[test]
     fn the_picture_draws_the_outline_cable_and_clamp_in_world_millimetres() {
-        let svg = picture_svg(&box_drawing(), &Layout::around(&[box_drawing()], 8.0));
+        let layout = Layout::for_each(&[box_drawing()], 8.0).remove(0);
+        let svg = picture_svg(&box_drawing(), &layout);
         // Each view's outline is the box's rectangle in that view's world axes (vertical
         // negated): front x–z, side y–z, top x–y.
         let rectangle = |(r0, r1): (f64, f64), (u0, u1): (f64, f64)| {
@@ -567,5 +756,45 @@ mod tests {
         }
         assert!(svg.contains("a box &amp; a cable"));
         assert!(!svg.contains("class=\"worst\""));
+    }
+
+    /// Eight labels crowded on one point near a panel's corner, and long ones: no two boxes
+    /// overlap, none covers a dot, every one lies inside the panel.
+    #[test]
+    fn crowded_labels_neither_overlap_nor_leave_the_panel() {
+        let bounds = LabelBox {
+            x: 0.0,
+            y: 0.0,
+            w: 400.0,
+            h: 300.0,
+        };
+        let anchors: Vec<[f64; 2]> = (0..8).map(|i| [12.0 + i as f64, 10.0]).collect();
+        let texts = [
+            "1",
+            "2",
+            "gripper connector",
+            "3",
+            "4",
+            "connector",
+            "5",
+            "bracket",
+        ];
+        let boxes = place_labels(&texts, &anchors, 1.0, &bounds);
+        assert_eq!(boxes.len(), texts.len());
+        for (i, a) in boxes.iter().enumerate() {
+            assert!(a.inside(&bounds), "{i}: {a:?}");
+            for b in &boxes[i + 1..] {
+                assert_eq!(a.overlap(b), 0.0, "{a:?} and {b:?}");
+            }
+            for [x, y] in &anchors {
+                let dot = LabelBox {
+                    x: x - DOT_PX,
+                    y: y - DOT_PX,
+                    w: 2.0 * DOT_PX,
+                    h: 2.0 * DOT_PX,
+                };
+                assert_eq!(a.overlap(&dot), 0.0, "{a:?} covers the dot at {x}, {y}");
+            }
+        }
     }
 }

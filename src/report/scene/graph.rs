@@ -32,11 +32,15 @@ impl Paint {
     fn material(self) -> (&'static str, [f32; 4], f32) {
         match self {
             Paint::Robot => ("robot", [0.8, 0.8, 0.8, 1.0], 0.7),
-            Paint::Cable(CableTint::Plain) => ("cable", [1.0, 0.45, 0.05, 1.0], 0.5),
-            Paint::Cable(CableTint::Ample) => ("cable, ample margin", [0.1, 0.55, 0.15, 1.0], 0.5),
-            Paint::Cable(CableTint::Tight) => ("cable, tight margin", [1.0, 0.75, 0.0, 1.0], 0.5),
-            Paint::Cable(CableTint::Exceeded) => {
-                ("cable, limit exceeded", [0.85, 0.03, 0.03, 1.0], 0.5)
+            Paint::Cable(tint) => {
+                let name = match tint {
+                    CableTint::Plain => "cable",
+                    CableTint::Ample => "cable, ample margin",
+                    CableTint::Tight => "cable, tight margin",
+                    CableTint::Exceeded => "cable, limit exceeded",
+                };
+                let [r, g, b] = tint.linear_rgb();
+                (name, [r, g, b, 1.0], 0.5)
             }
             Paint::Guide => ("guide", [0.1, 0.3, 0.9, 1.0], 0.5),
         }

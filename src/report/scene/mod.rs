@@ -148,6 +148,41 @@ impl CableTint {
         CableTint::Tight,
         CableTint::Exceeded,
     ];
+
+    /// Its colour as the scene's material gives it (linear RGB, 0–1).
+    pub fn linear_rgb(self) -> [f32; 3] {
+        match self {
+            CableTint::Plain => [1.0, 0.45, 0.05],
+            CableTint::Ample => [0.1, 0.55, 0.15],
+            CableTint::Tight => [1.0, 0.75, 0.0],
+            CableTint::Exceeded => [0.85, 0.03, 0.03],
+        }
+    }
+
+    /// The same colour for a page or a picture (`#rrggbb`, sRGB): what the 3D view shows.
+    pub fn css(self) -> String {
+        let srgb = |c: f32| {
+            let c = f64::from(c.clamp(0.0, 1.0));
+            let v = if c <= 0.003_130_8 {
+                12.92 * c
+            } else {
+                1.055 * c.powf(1.0 / 2.4) - 0.055
+            };
+            (v * 255.0).round() as u8
+        };
+        let [r, g, b] = self.linear_rgb();
+        format!("#{:02x}{:02x}{:02x}", srgb(r), srgb(g), srgb(b))
+    }
+
+    /// What the colour says, for a legend.
+    pub fn legend(self) -> &'static str {
+        match self {
+            CableTint::Plain => "cable",
+            CableTint::Ample => "cable: every limit with room to spare",
+            CableTint::Tight => "cable: close to a limit",
+            CableTint::Exceeded => "cable: a limit exceeded",
+        }
+    }
 }
 
 /// The robot and the cable at one instant.

@@ -4,9 +4,9 @@
 //! No search vocabulary: that is `solve -v` ([`SolveReport`]'s `{:#}`) and the JSON.
 
 use super::data::SolveReport;
-use crate::motion_test::{MotionTestReport, Worst};
-use crate::mounting::{MountingPlan, PhysicalClamp};
-use crate::text_table::{decimal, decimals};
+use crate::motion_test::{Constraint, MotionTestReport, Worst};
+use crate::mounting::{self, MountingPlan, rows};
+use crate::text_table::decimal;
 use std::fmt;
 
 /// Writes the summary of `report`.
@@ -49,80 +49,62 @@ pub(super) fn write_summary(report: &SolveReport, f: &mut fmt::Formatter<'_>) ->
 }
 
 fn write_clamps(f: &mut fmt::Formatter<'_>, plan: &MountingPlan) -> fmt::Result {
-    let mounted = plan.clamps.iter().filter(|c| c.fitting.is_none()).count();
-    writeln!(
-        f,
-        "\nclamps to mount: {mounted}; mark on the cable = length from its end at {}",
-        plan.clamps.last().map(end_name).unwrap_or_default()
-    )?;
-    for clamp in &plan.clamps {
+    writeln!(f, "\n{}", rows::count_words(plan))?;
+    let clamp_rows = rows::clamp_rows(plan);
+    let width = clamp_rows
+        .iter()
+        .map(|r| r.name.chars().count())
+        .max()
+        .unwrap_or(0);
+    let link_width = clamp_rows
+        .iter()
+        .map(|r| r.link.chars().count())
+        .max()
+        .unwrap_or(0);
+    for row in clamp_rows {
+        let note = row.note.map(|n| format!("  ({n})")).unwrap_or_default();
         writeln!(
             f,
-            "  {:<28} on {:<10} mark {:>5} mm{}",
-            clamp.label(),
-            clamp.link,
-            decimal(clamp.mark_mm, 0),
-            role_note(clamp)
+            "  {:<width$}  on {:<link_width$}  mark {:>5} mm{note}",
+            row.name, row.link, row.mark_mm
         )?;
-        match &clamp.place {
-            Some(place) => writeln!(f, "      {}", place.describe())?,
-            None => {
-                let xyz = decimals(&clamp.xyz_mm, 1);
-                writeln!(
-                    f,
-                    "      on the robot's base link, at ({xyz}) mm in its frame"
-                )?
-            }
+        let around = if row.around.is_empty() {
+            String::new()
+        } else {
+            format!("; {}", row.around)
+        };
+        writeln!(f, "      {}{around}", row.along)?;
+        if !row.cable.is_empty() {
+            writeln!(f, "      cable {}; {}", row.cable, row.height)?;
         }
     }
+    for warning in plan.warnings() {
+        writeln!(f, "  warning: {warning}")?;
+    }
     Ok(())
-}
-
-/// `the gripper connector` for a fitting, else the clamp's label.
-fn end_name(clamp: &PhysicalClamp) -> String {
-    match &clamp.fitting {
-        Some(fitting) => format!("the {fitting} ({})", clamp.guides.join(" = ")),
-        None => clamp.label(),
-    }
-}
-
-fn role_note(clamp: &PhysicalClamp) -> &'static str {
-    match (clamp.role, clamp.fitting.is_some()) {
-        ("start", _) => "  (first clamp: the cable before it is outside this design)",
-        ("end", true) => "  (the cable's end: a fixed fitting, not a clamp to place)",
-        ("end", false) => "  (last clamp: the cable beyond it is outside this design)",
-        _ => "",
-    }
 }
 
 fn write_pieces(f: &mut fmt::Formatter<'_>, plan: &MountingPlan) -> fmt::Result {
     writeln!(
         f,
-        "\ncable between the clamps: {} mm; {}",
-        decimal(plan.length_mm, 0),
+        "\ncable: {}; {}",
+        rows::length_words(plan),
         plan.tolerance_words()
     )?;
-    if let Some(cut) = &plan.cut {
-        writeln!(f, "  {}", cut.describe())?;
-    }
-    for piece in &plan.pieces {
-        let (from, to) = (
-            &plan.clamps[piece.from_clamp],
-            &plan.clamps[piece.from_clamp + 1],
-        );
-        let across = if piece.across_joints.is_empty() {
-            "on one link".to_string()
-        } else {
-            format!("across {}", piece.across_joints.join(", "))
-        };
+    let pieces = rows::piece_rows(plan);
+    let width = pieces
+        .iter()
+        .map(|p| p.name.chars().count())
+        .max()
+        .unwrap_or(0);
+    for piece in pieces {
         writeln!(
             f,
-            "  {:<28} {:>5} mm  {across}",
-            format!("{} → {}", from.guides.join(" = "), to.guides.join(" = ")),
-            decimal(piece.length_mm, 0)
+            "  {:<width$}  {:>5} mm  {}",
+            piece.name, piece.length_mm, piece.across
         )?;
     }
-    Ok(())
+    writeln!(f, "  {}", mounting::cut_words(plan))
 }
 
 fn write_installation(f: &mut fmt::Formatter<'_>, plan: &MountingPlan) -> fmt::Result {
@@ -136,86 +118,162 @@ fn write_worst(
     test: &MotionTestReport,
     plan: &MountingPlan,
 ) -> fmt::Result {
-    let verdict = match &test.failure {
-        None => "held every limit".to_string(),
-        Some(failure) => format!("failed: {}", failure.reason),
-    };
-    writeln!(f, "\nover the motion (simulated): {verdict}")?;
-    let t = &report.thresholds;
-    let rows: [(&str, &Option<Worst>, String); 4] = [
-        (
-            "closest to the robot",
-            &test.worst_clearance,
-            format!("limit {} mm", decimal(t.contact_clearance_m * 1e3, 1)),
-        ),
-        (
-            "closest to itself",
-            &test.worst_self_clearance,
-            "limit 0.0 mm".to_string(),
-        ),
-        (
-            "tightest bend radius",
-            &test.worst_bend,
-            format!("limit {} mm", decimal(t.min_bend_radius_m * 1e3, 1)),
-        ),
-        (
-            "most stretched",
-            &test.worst_stretch,
-            format!("limit {}", t.stretch),
-        ),
-    ];
-    for (what, worst, limit) in rows {
-        if let Some(w) = worst {
-            let value = match w.unit {
-                "m" => format!("{} mm", decimal(w.value * 1e3, 1)),
-                _ => decimal(w.value, 4),
-            };
-            writeln!(
-                f,
-                "  {what:<21} {value:>9} ({limit}) at t = {:.2} s, {}",
-                w.time_s,
-                where_on_cable(report, plan, w)
-            )?;
-        }
+    writeln!(
+        f,
+        "\nover the motion (simulated): {}",
+        verdict_words(report, test, Some(plan))
+    )?;
+    for row in worst_rows(report, test, Some(plan)) {
+        writeln!(
+            f,
+            "  {:<21} {:>9} ({}) at {}, {}",
+            row.what, row.value, row.limit, row.when, row.place
+        )?;
     }
     Ok(())
 }
 
-/// `between G2 = G3 and G4, 25 mm from G2 = G3, near link_4`: the place of a worst value
-/// on the mounted cable.
-fn where_on_cable(report: &SolveReport, plan: &MountingPlan, w: &Worst) -> String {
-    let pitch_mm = report.sub_segment_pitch_mm;
-    let segment = report
-        .optimal
-        .as_ref()
-        .and_then(|p| p.segments.iter().find(|s| s.name == w.segment_name));
-    let clamp_of = |guide: &str| {
-        plan.clamps
-            .iter()
-            .find(|c| c.guides.iter().any(|g| g == guide))
-            .map(|c| c.guides.join(" = "))
-            .unwrap_or_else(|| guide.to_string())
-    };
-    let mut words = match segment {
-        Some(s) => format!(
-            "between {} and {}",
-            clamp_of(&s.from_guide),
-            clamp_of(&s.to_guide)
+/// One limit's worst value over the motion test, in words.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorstRow {
+    /// `closest to the robot`.
+    pub what: &'static str,
+    /// `9.3 mm`, `1.0000`, or `none` for a cable that never approaches itself.
+    pub value: String,
+    /// `limit 0.0 mm`.
+    pub limit: String,
+    /// What is left to the limit: `9.3 mm`, `∞`.
+    pub margin: String,
+    /// `t = 5.10 s`.
+    pub when: String,
+    /// `on piece 2 → gripper connector, 25 mm from clamp 2, near link_4`.
+    pub place: String,
+}
+
+/// `held every limit`, or what failed and where, in the fitter's names when `plan` is the
+/// tested path's.
+pub fn verdict_words(
+    report: &SolveReport,
+    test: &MotionTestReport,
+    plan: Option<&MountingPlan>,
+) -> String {
+    match (&test.failure, &test.first_violation) {
+        (None, _) => "held every limit".to_string(),
+        (Some(_), Some(v)) => {
+            let row = worst_row_of(report, plan, v.constraint, &v.to_worst(), v.threshold);
+            format!(
+                "failed: {} {} ({}) at {}, {}",
+                row.what, row.value, row.limit, row.when, row.place
+            )
+        }
+        (Some(failure), None) => format!("failed: {}", failure.reason),
+    }
+}
+
+/// The worst value of each limit over `test`, places in the fitter's names when `plan` is
+/// the tested path's (else the setup's piece names).
+pub fn worst_rows(
+    report: &SolveReport,
+    test: &MotionTestReport,
+    plan: Option<&MountingPlan>,
+) -> Vec<WorstRow> {
+    let t = &report.thresholds;
+    [
+        (
+            Constraint::Contact,
+            &test.worst_clearance,
+            t.contact_clearance_m,
         ),
-        None => format!("on {}", w.segment_name),
+        (Constraint::SelfContact, &test.worst_self_clearance, 0.0),
+        (
+            Constraint::BendRadius,
+            &test.worst_bend,
+            t.min_bend_radius_m,
+        ),
+        (Constraint::Stretch, &test.worst_stretch, t.stretch),
+    ]
+    .into_iter()
+    .filter_map(|(constraint, worst, limit)| {
+        Some(worst_row_of(
+            report,
+            plan,
+            constraint,
+            worst.as_ref()?,
+            limit,
+        ))
+    })
+    .collect()
+}
+
+/// One row: `w`, the worst of `constraint`, against `limit`.
+fn worst_row_of(
+    report: &SolveReport,
+    plan: Option<&MountingPlan>,
+    constraint: Constraint,
+    w: &Worst,
+    limit: f64,
+) -> WorstRow {
+    let length = |v: f64| {
+        if v.is_finite() {
+            format!("{} mm", decimal(v * 1e3, 1))
+        } else {
+            "∞".to_string()
+        }
     };
+    let (what, value, limit_text, margin) = match constraint {
+        Constraint::Contact => (
+            "closest to the robot",
+            length(w.value),
+            length(limit),
+            length(w.value - limit),
+        ),
+        Constraint::SelfContact => (
+            "closest to itself",
+            length(w.value),
+            length(limit),
+            length(w.value - limit),
+        ),
+        Constraint::BendRadius => (
+            "tightest bend radius",
+            length(w.value),
+            length(limit),
+            length(w.value - limit),
+        ),
+        Constraint::Stretch => (
+            "most stretched",
+            decimal(w.value, 4),
+            decimal(limit, 2),
+            decimal(limit - w.value, 4),
+        ),
+        Constraint::ContactForce => (
+            "largest contact force",
+            format!("{} N", decimal(w.value, 3)),
+            "0 N".to_string(),
+            format!("{} N", decimal(-w.value, 3)),
+        ),
+    };
+    WorstRow {
+        what,
+        value,
+        limit: format!("limit {limit_text}"),
+        margin,
+        when: format!("t = {:.2} s", w.time_s),
+        place: where_on_cable(report, plan, w),
+    }
+}
+
+/// `on piece 2 → gripper connector, 25 mm from clamp 2, near link_4`: the place of a worst
+/// value on the mounted cable, in the fitter's names.
+fn where_on_cable(report: &SolveReport, plan: Option<&MountingPlan>, w: &Worst) -> String {
+    let pitch_mm = report.sub_segment_pitch_mm;
     let along = w
         .place
         .sub_segment
         .map(|k| (k as f64 + 0.5) * pitch_mm)
         .or(w.place.node.map(|n| n as f64 * pitch_mm));
-    if let (Some(along), Some(s)) = (along, segment) {
-        words.push_str(&format!(
-            ", {} mm from {}",
-            decimal(along, 0),
-            clamp_of(&s.from_guide)
-        ));
-    }
+    let mut words = plan
+        .and_then(|plan| plan.place_on_cable(&w.segment_name, along))
+        .unwrap_or_else(|| format!("on cable piece {}", w.segment_name));
     if let Some(link) = &w.place.link {
         words.push_str(&format!(", near {link}"));
     }
