@@ -9,7 +9,7 @@ mod reference;
 use cable_dict::geometry::connect;
 use cable_dict::pose::{Pose, pose_from_xyz_rpy};
 use cable_dict::statics::{
-    Equilibrium, FarEnd, RodParameters, SolverOptions, StaticsError, potential_energy,
+    Equilibrium, FarEnd, RodParameters, SolverOptions, StaticsError, clamp_loads, potential_energy,
     solve_segment,
 };
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
@@ -310,6 +310,27 @@ fn a_twisted_u_loop_is_in_force_and_moment_equilibrium() {
     // The cable twists the start guide one way and the end guide the other.
     assert!((start_moment.dot(&start_axis) + torsion).abs() < 1e-6 * torsion.abs());
     assert!((end_moment.dot(&end_axis) - torsion).abs() < 1e-6 * torsion.abs());
+
+    // `statics::clamp_loads` (the terms that move with a clamp only) gives the opposite of
+    // these reactions of the whole energy, plus the half sub-segment hanging on each clamp.
+    let (at_start, at_end) = clamp_loads(
+        &params,
+        &start,
+        Some(&end),
+        &solution.nodes,
+        solution.twist_rad,
+    );
+    let at_end = at_end.expect("clamped");
+    let hanging = 0.5 * node_weight;
+    for (load, force, moment) in [
+        (at_start, start_force, start_moment),
+        (at_end, end_force, end_moment),
+    ] {
+        let force_error = Vector3::from(load.force_n) - (hanging - force);
+        let moment_error = Vector3::from(load.moment_n_m) + moment;
+        assert!(force_error.norm() < 1e-5 * scale, "{force_error}");
+        assert!(moment_error.norm() < 1e-5 * scale * 0.1, "{moment_error}");
+    }
 }
 
 /// The shapes the attachment test meets converge from the connected geometry: a sagging
@@ -578,5 +599,92 @@ fn rapier_relaxation_agrees_with_the_quasi_static_solution() {
             relaxed.steps
         );
         assert!(difference < 1e-3, "{name}: {difference} m");
+    }
+}
+
+/// The load a horizontal cantilever puts on its clamp (`statics::clamp_loads`), against the
+/// closed form of a beam under its own weight: a force of its weight ρ L g straight down and a
+/// moment ρ g L² / 2 about the horizontal square to it. Gravity is scaled down until the tip
+/// sags by 1e-3 L, so the arms of the weights are their unsagged distances to ~1e-6.
+#[test]
+fn a_horizontal_cantilever_loads_its_clamp_with_its_weight_and_its_moment() {
+    let length: f64 = 0.5;
+    let sub_segments = 50;
+    // Tip deflection ρ g L⁴ / 8 EI = 1e-3 L.
+    let g = 1e-3 * length * 8.0 * EI / (RHO * length.powi(4));
+    let params = cable(g);
+    let start = planar_guide(0.0, 0.0, 0.0, 0.0);
+    let nodes = straight_nodes(
+        Point3::origin(),
+        Point3::new(length, 0.0, 0.0),
+        sub_segments,
+    );
+    let solution = solve(&params, &start, &FarEnd::Free, &nodes, 1e-10);
+    let (load, end) = clamp_loads(&params, &start, None, &solution.nodes, solution.twist_rad);
+    assert!(end.is_none());
+    let weight = RHO * length * g;
+    let force = Vector3::from(load.force_n);
+    // Within the solver's force tolerance (1e-10 N) of the 16 µN weight.
+    assert!(
+        (force - Vector3::new(0.0, 0.0, -weight)).norm() < 1e-5 * weight,
+        "{force}"
+    );
+    // The weight at +x pulling down turns the clamp about +y: x × (−z) = +y.
+    let moment = Vector3::from(load.moment_n_m);
+    let closed_form = RHO * g * length * length / 2.0;
+    assert!(
+        (moment - Vector3::new(0.0, closed_form, 0.0)).norm() < 1e-5 * closed_form,
+        "{moment} vs {closed_form}"
+    );
+}
+
+/// A straight cable between two clamps, the end clamp turned by a known angle about the
+/// cable's axis, without gravity: its twist is that angle (uniform, angle / L per length)
+/// and each clamp carries the torsion moment GJ θ / L about the axis, opposite at the two
+/// ends (the end clamp held back, the start clamp dragged along), and no force.
+#[test]
+fn a_straight_cable_turned_at_one_end_twists_by_the_angle_and_loads_both_clamps() {
+    let params = cable(0.0);
+    let sub_segments = 40;
+    let length = sub_segments as f64 * PITCH;
+    for angle in [0.3, -1.2, 2.5] {
+        let start = planar_guide(0.0, 0.0, 0.0, 0.0);
+        let end = planar_guide(length, 0.0, 0.0, angle);
+        let nodes = straight_nodes(
+            Point3::origin(),
+            Point3::new(length, 0.0, 0.0),
+            sub_segments,
+        );
+        let solution = solve(&params, &start, &FarEnd::Clamped(end), &nodes, 1e-11);
+        assert!(
+            (solution.twist_rad - angle).abs() < 1e-9,
+            "{}",
+            solution.twist_rad
+        );
+        let (at_start, at_end) = clamp_loads(
+            &params,
+            &start,
+            Some(&end),
+            &solution.nodes,
+            solution.twist_rad,
+        );
+        let at_end = at_end.expect("clamped");
+        let torsion = 1.5 * PITCH * angle / length;
+        let axis = Vector3::x();
+        let start_moment = Vector3::from(at_start.moment_n_m);
+        let end_moment = Vector3::from(at_end.moment_n_m);
+        // The turned end clamp is held back by the cable (−θ about the axis), the start
+        // clamp dragged along (+θ).
+        assert!(
+            (start_moment - torsion * axis).norm() < 1e-6 * torsion.abs(),
+            "{start_moment}"
+        );
+        assert!(
+            (end_moment + torsion * axis).norm() < 1e-6 * torsion.abs(),
+            "{end_moment}"
+        );
+        for force in [at_start.force_n, at_end.force_n] {
+            assert!(Vector3::from(force).norm() < 1e-6, "{force:?}");
+        }
     }
 }

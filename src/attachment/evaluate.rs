@@ -405,7 +405,19 @@ impl<'a> Evaluator<'a> {
             Err(e) => return Check::fail(Rejection::Diverged, e.to_string(), None),
         };
         debug_assert_eq!(nodes.len(), sub_segments + 1);
-        let metrics = Metrics::of_shape(&setup.cable, nodes, (start, end), clearance.as_ref());
+        // The stored margin is the lower of the clearances to the robot and to itself: an
+        // approach to itself farther than the robot's clearance changes nothing.
+        let limit = setup.thresholds.contact_clearance_m;
+        let within = clearance.as_ref().map_or(f64::INFINITY, |c| {
+            (c.clearance_m - limit).max(0.0) + setup.cable.diameter_m
+        });
+        let metrics = Metrics::of_shape(
+            &setup.cable,
+            nodes,
+            (start, end),
+            clearance.as_ref(),
+            within,
+        );
         verdict(setup, metrics)
     }
 }

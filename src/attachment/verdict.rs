@@ -6,7 +6,7 @@ use crate::geometry::ConnectError;
 use crate::pose::Pose;
 use crate::setup::{Setup, Thresholds};
 use crate::stress::contact::Clearance;
-use crate::stress::{min_bend_radius, self_contact, stretch};
+use crate::stress::{min_bend_radius, self_contact_within, stretch};
 use nalgebra::{Point3, Vector3};
 use serde::Serialize;
 
@@ -202,8 +202,9 @@ pub struct Metrics {
     pub clearance_link: Option<usize>,
     /// Sub-segment of the lowest clearance.
     pub clearance_sub_segment: Option<usize>,
-    /// The cable's clearance to itself (m, [`crate::stress::self_contact`]); infinite for a
-    /// piece too short to meet itself.
+    /// The cable's clearance to itself (m, [`crate::stress::self_contact`]); infinite when no
+    /// part of the piece comes back toward another closer than it was asked to look
+    /// (`self_within_m` of [`Metrics::of_shape`]).
     pub self_clearance_m: f64,
     /// The two sub-segments of the lowest clearance to itself (0, 0 when not measured).
     pub self_contact_sub_segments: [u32; 2],
@@ -218,18 +219,22 @@ pub struct Metrics {
 impl Metrics {
     /// The metrics of a cable shape: `nodes` of a piece of `cable` held by clamps at `start`
     /// and `end` (their +z the cable direction), with its lowest clearance to the robot
-    /// (`None` when nothing was checked). The one measure of a shape for every caller: the
-    /// attachment test and `cable-dict segment`.
+    /// (`None` when nothing was checked); approaches of the cable to itself are looked for
+    /// where its centreline comes closer than `self_within_m` (touching is always found: pass
+    /// at least the diameter). The one measure of a shape for every caller: the attachment
+    /// test and `cable-dict segment`.
     pub fn of_shape(
         cable: &CableSpec,
         nodes: &[Point3<f64>],
         (start, end): (&Pose, &Pose),
         clearance: Option<&Clearance>,
+        self_within_m: f64,
     ) -> Metrics {
         let pitch = cable.sub_segment_pitch_m;
         let z = |pose: &Pose| pose.rotation.transform_vector(&Vector3::z());
         let bend = min_bend_radius(nodes, &z(start), &z(end), pitch);
-        let itself = self_contact(nodes, cable.diameter_m, pitch);
+        let within = self_within_m.max(cable.diameter_m);
+        let itself = self_contact_within(nodes, cable.diameter_m, pitch, within);
         let sub_segments = nodes.len().saturating_sub(1);
         Metrics {
             clearance_m: clearance.map(|c| c.clearance_m),

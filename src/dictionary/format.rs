@@ -39,7 +39,9 @@ pub const ALIGNMENT: usize = 16;
 /// ([`crate::stress::ClampZone`]); a mesh is the union of its shells' solids.
 /// 7: the clearance margin is also the cable's clearance to itself
 /// ([`crate::stress::self_contact`]).
-pub const PHYSICS_VERSION: u32 = 7;
+/// 8: the clearance to itself counts only where the cable comes back toward itself (a local
+/// minimum of the distance between its parts), not its own neighbourhood.
+pub const PHYSICS_VERSION: u32 = 8;
 /// Largest header accepted when decoding (the URDF text dominates it).
 pub const HEADER_LIMIT: usize = 64 << 20;
 

@@ -23,6 +23,9 @@ pub(super) struct SegmentState {
     /// Largest joint gap (m): the rigid chain's constraint error; 0 for the implicit engine,
     /// whose sub-segments are one energy, not jointed bodies.
     pub max_joint_gap_m: f64,
+    /// Total twist Ψ between the clamps (rad), relative to the cable as installed; `None`
+    /// where the engine does not model it as the statics do (the rigid chain).
+    pub twist_rad: Option<f64>,
 }
 
 /// The contact force on one sub-segment (rigid chain).
@@ -149,6 +152,7 @@ impl Cable {
                         nodes: segment.nodes(),
                         contact: None,
                         max_joint_gap_m: 0.0,
+                        twist_rad: Some(segment.twist_rad()),
                     })
                     .collect()))
             }
@@ -180,6 +184,7 @@ impl Cable {
                             contact: force_outside_zones(&rec.contact, *zone_sub_segments),
                             max_joint_gap_m: rec.max_joint_gap_m,
                             nodes,
+                            twist_rad: None,
                         }
                     })
                     .collect()))

@@ -33,6 +33,13 @@ pub struct MotionTestReport {
     /// [`crate::stress::self_contact`]; < 0 the cable passes through itself), at the first of
     /// the two sub-segments; `None` for a cable too short to meet itself.
     pub worst_self_clearance: Option<Worst>,
+    /// Per simulated piece, its largest twist over the run (the implicit engine; empty for
+    /// the rigid chain, which does not model twist as the statics do).
+    pub twists: Vec<PieceTwist>,
+    /// Per clamp of the simulated cable (guides joined by a 0 mm piece are one), the largest
+    /// force and moment the cable puts on it, sampled every 20 ms of the motion (the
+    /// implicit engine; empty for the rigid chain).
+    pub clamp_loads: Vec<ClampLoadPeak>,
     /// Largest gap between the anchors of two joined bodies over the run (m): the solver's
     /// constraint error, ≈ 0.1 mm at the default settings.
     pub max_joint_gap_m: f64,
@@ -55,6 +62,42 @@ pub struct MotionTestReport {
     pub simulated_s: f64,
     /// Wall-clock time of the whole test, setup of the simulation included (s).
     pub wall_time_s: f64,
+}
+
+/// The largest twist of one piece of cable over the motion test.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PieceTwist {
+    /// Index into the setup's segments.
+    pub segment: usize,
+    /// The segment's name (`C3`).
+    pub segment_name: String,
+    /// The total twist between its clamps at its largest (deg, signed: right-handed about
+    /// the cable toward the tool), relative to the cable as installed (laid untwisted at the
+    /// installation pose).
+    pub twist_deg: f64,
+    /// The same per length of the piece (deg/m): the twist is uniform along a piece.
+    pub twist_deg_per_m: f64,
+    /// When (s, the motion's time axis).
+    pub time_s: f64,
+}
+
+/// The largest load the cable puts on one clamp over the motion test, world frame.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ClampLoadPeak {
+    /// The setup's guides at this clamp (two when a 0 mm piece joins them).
+    pub guides: Vec<String>,
+    /// The largest force (N) and when (s).
+    pub max_force_n: f64,
+    /// When the force was largest (s).
+    pub force_time_s: f64,
+    /// The force then (N, world frame).
+    pub force_n: [f64; 3],
+    /// The largest moment about the clamp's point (N·m).
+    pub max_moment_n_m: f64,
+    /// When the moment was largest (s).
+    pub moment_time_s: f64,
+    /// The moment then (N·m, world frame).
+    pub moment_n_m: [f64; 3],
 }
 
 /// Why a candidate failed the motion test.

@@ -12,8 +12,12 @@ use crate::motion::Motion;
 use crate::pose::Pose;
 use crate::progress;
 use crate::setup::Setup;
+use crate::statics::{RodParameters, clamp_loads};
 use crate::stress::{min_bend_radius, stretch};
 use nalgebra::Vector3;
+
+/// How often (s of the motion) the loads on the clamps are taken.
+pub(super) const LOAD_SAMPLE_S: f64 = 0.02;
 
 /// Slack (in steps) when rounding a duration to whole steps, so that a duration of exactly
 /// `n` steps is not rounded up to `n + 1` by floating-point noise.
@@ -58,6 +62,7 @@ impl Context<'_> {
                 nodes: shape.nodes.clone(),
                 contact: None,
                 max_joint_gap_m: 0.0,
+                twist_rad: Some(shape.twist_rad),
             })
             .collect();
         let start = Cable::start(
@@ -75,6 +80,7 @@ impl Context<'_> {
         let total = self.step_count();
         progress::begin("motion test", total as u64);
         let mut result = Ok(ended(None, total));
+        let mut loads_due_s = f64::NEG_INFINITY;
         for k in 0..=total {
             let t = t0 + k as f64 * dt;
             if k > 0 {
@@ -90,7 +96,14 @@ impl Context<'_> {
                     }
                 };
             }
-            tracker.record(t, &self.measure(&links, &guides, &mut states, t)?);
+            // Clamp loads cost a dozen energy evaluations per clamp: taken every
+            // LOAD_SAMPLE_S of the motion, not every step.
+            let with_loads = t >= loads_due_s - 1e-9 || k == total;
+            if with_loads {
+                loads_due_s = t + LOAD_SAMPLE_S;
+            }
+            let measures = self.measure(&links, &guides, &mut states, t, with_loads)?;
+            tracker.record(t, &measures);
             if self.options.stop_at_first_violation && tracker.violated() {
                 result = Ok(ended(None, k));
                 break;
@@ -116,22 +129,32 @@ impl Context<'_> {
     }
 
     /// The three metrics of every segment, from its nodes alone, as the attachment test
-    /// judges a static shape (the nodes move into the measure).
+    /// judges a static shape (the nodes move into the measure), its twist, and `with_loads`
+    /// the loads on its clamps.
     fn measure(
         &self,
         links: &[Pose],
         guides: &[Pose],
         states: &mut [SegmentState],
         time_s: f64,
+        with_loads: bool,
     ) -> Result<Vec<SegmentMeasure>, MotionTestError> {
         let pitch = self.setup.cable.sub_segment_pitch_m;
         let axis = |pose: &Pose| pose.rotation * Vector3::z();
+        let params = RodParameters::new(&self.setup.cable, self.setup.gravity_m_s2);
         let mut measures = Vec::with_capacity(states.len());
         for (j, (planned, state)) in self.plan.segments.iter().zip(states).enumerate() {
             let segment = planned.setup_index;
             let nodes = std::mem::take(&mut state.nodes);
             let natural = planned.sub_segments as f64 * pitch;
+            let loads = state.twist_rad.filter(|_| with_loads).and_then(|twist| {
+                let (start, end) =
+                    clamp_loads(&params, &guides[j], Some(&guides[j + 1]), &nodes, twist);
+                Some((start, end?))
+            });
             measures.push(SegmentMeasure {
+                twist_rad: state.twist_rad,
+                loads,
                 segment,
                 clearance: self.clearance.segment(links, j, &nodes).map_err(|source| {
                     MotionTestError::Clearance {

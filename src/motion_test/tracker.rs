@@ -2,11 +2,12 @@
 
 use super::engine::ForceAt;
 use super::report::{
-    Constraint, Failure, FailureCause, MotionTestReport, Place, SegmentNodes, SeriesPoint,
-    ShapeFrame, Violation, Worst,
+    ClampLoadPeak, Constraint, Failure, FailureCause, MotionTestReport, PieceTwist, Place,
+    SegmentNodes, SeriesPoint, ShapeFrame, Violation, Worst,
 };
 use crate::setup::{Setup, Thresholds};
-use crate::stress::{BendRadius, Clearance, self_contact};
+use crate::statics::ClampLoad;
+use crate::stress::{BendRadius, Clearance, self_contact_within};
 use nalgebra::Point3;
 
 /// The metrics of one segment at one instant.
@@ -25,6 +26,10 @@ pub(super) struct SegmentMeasure {
     pub contact: Option<ForceAt>,
     /// Largest joint gap (m); 0 for a shape that was not simulated.
     pub max_joint_gap_m: f64,
+    /// Total twist between the clamps (rad); `None` where the engine does not model it.
+    pub twist_rad: Option<f64>,
+    /// The loads on its start and end clamps, when taken at this instant.
+    pub loads: Option<(ClampLoad, ClampLoad)>,
 }
 
 /// Everything the report keeps, accumulated over the run.
@@ -37,7 +42,12 @@ pub(super) struct Tracker<'a> {
     worst_bend: Option<Worst>,
     worst_contact_force: Option<Worst>,
     worst_self_clearance: Option<Worst>,
+    /// When the next search for any approach of the cable to itself is due (s), while none
+    /// is known (see [`Tracker::keep_self_contact`]).
+    self_search_due_s: f64,
     first_violation: Option<Violation>,
+    twists: Vec<PieceTwist>,
+    clamp_loads: Vec<ClampLoadPeak>,
     max_joint_gap_m: f64,
     series: Vec<SeriesPoint>,
     final_shape: Vec<SegmentNodes>,
@@ -58,7 +68,10 @@ impl<'a> Tracker<'a> {
             worst_bend: None,
             worst_contact_force: None,
             worst_self_clearance: None,
+            self_search_due_s: f64::NEG_INFINITY,
             first_violation: None,
+            twists: Vec::new(),
+            clamp_loads: Vec::new(),
             max_joint_gap_m: 0.0,
             series: Vec::new(),
             final_shape: Vec::new(),
@@ -86,6 +99,8 @@ impl<'a> Tracker<'a> {
             self.record_segment(time_s, measure);
         }
         self.keep_self_contact(time_s, measures);
+        self.keep_twists(time_s, measures);
+        self.keep_clamp_loads(time_s, measures);
         if self.record_series {
             self.series.push(series_point(time_s, measures));
         }
@@ -148,6 +163,8 @@ impl<'a> Tracker<'a> {
             worst_bend: self.worst_bend,
             worst_contact_force: self.worst_contact_force,
             worst_self_clearance: self.worst_self_clearance,
+            twists: self.twists,
+            clamp_loads: self.clamp_loads,
             max_joint_gap_m: self.max_joint_gap_m,
             series: self.series,
             final_shape: self.final_shape,
@@ -263,11 +280,24 @@ impl<'a> Tracker<'a> {
 
     /// The whole cable's clearance to itself: the segments' shapes joined where they meet at
     /// a clamp, so that parts of different segments are checked against each other too.
+    ///
+    /// Touching is looked for at every step. Approaches closer than the closest one so far are
+    /// too, so the closest over the motion is exact once one is known; while none is, a
+    /// search for any approach runs every [`SELF_APPROACH_SEARCH_S`] of the motion (the
+    /// search for every approach costs several times the search for touching).
     fn keep_self_contact(&mut self, time_s: f64, measures: &[SegmentMeasure]) {
         let cable = &self.setup.cable;
         let (diameter, pitch) = (cable.diameter_m, cable.sub_segment_pitch_m);
+        let within = match &self.worst_self_clearance {
+            Some(worst) => worst.value.max(0.0) + diameter,
+            None if time_s >= self.self_search_due_s => {
+                self.self_search_due_s = time_s + SELF_APPROACH_SEARCH_S;
+                f64::INFINITY
+            }
+            None => diameter,
+        };
         for run in joined_runs(measures) {
-            let Some(itself) = self_contact(&run.nodes, diameter, pitch) else {
+            let Some(itself) = self_contact_within(&run.nodes, diameter, pitch, within) else {
                 continue;
             };
             let name = |segment| self.setup.segment_name(segment);
@@ -284,6 +314,86 @@ impl<'a> Tracker<'a> {
                 self.violate(Constraint::SelfContact, 0.0, &worst);
             }
             keep(&mut self.worst_self_clearance, worst, |new, old| new < old);
+        }
+    }
+
+    /// Each piece's largest twist so far (by its magnitude; ties keep the earliest).
+    fn keep_twists(&mut self, time_s: f64, measures: &[SegmentMeasure]) {
+        for m in measures {
+            let Some(twist) = m.twist_rad else {
+                continue;
+            };
+            let length_m =
+                m.nodes.len().saturating_sub(1) as f64 * self.setup.cable.sub_segment_pitch_m;
+            let twist_deg = twist.to_degrees();
+            let candidate = PieceTwist {
+                segment: m.segment,
+                segment_name: self.setup.segment_name(m.segment),
+                twist_deg,
+                twist_deg_per_m: if length_m > 0.0 {
+                    twist_deg / length_m
+                } else {
+                    0.0
+                },
+                time_s,
+            };
+            match self.twists.iter_mut().find(|t| t.segment == m.segment) {
+                Some(old) if twist_deg.abs() > old.twist_deg.abs() => *old = candidate,
+                Some(_) => {}
+                None => self.twists.push(candidate),
+            }
+        }
+    }
+
+    /// Each clamp's largest force and moment so far: a clamp between two simulated pieces
+    /// carries the end of the one and the start of the other.
+    fn keep_clamp_loads(&mut self, time_s: f64, measures: &[SegmentMeasure]) {
+        let Some(loads) = measures.iter().map(|m| m.loads).collect::<Option<Vec<_>>>() else {
+            return;
+        };
+        if loads.is_empty() {
+            return;
+        }
+        for clamp in 0..=loads.len() {
+            let before = clamp.checked_sub(1).map(|j| loads[j].1);
+            let after = loads.get(clamp).map(|l| l.0);
+            let total = before
+                .unwrap_or(ClampLoad::ZERO)
+                .plus(&after.unwrap_or(ClampLoad::ZERO));
+            let mut guides = Vec::new();
+            if let Some(j) = clamp.checked_sub(1) {
+                let (_, b) = self.setup.segment_guides(measures[j].segment);
+                guides.push(self.setup.guides[b].name.clone());
+            }
+            if let Some(m) = measures.get(clamp) {
+                let (a, _) = self.setup.segment_guides(m.segment);
+                let name = &self.setup.guides[a].name;
+                if !guides.contains(name) {
+                    guides.push(name.clone());
+                }
+            }
+            let (force, moment) = (total.force_magnitude_n(), total.moment_magnitude_n_m());
+            match self.clamp_loads.get_mut(clamp) {
+                Some(peak) => {
+                    if force > peak.max_force_n {
+                        (peak.max_force_n, peak.force_time_s, peak.force_n) =
+                            (force, time_s, total.force_n);
+                    }
+                    if moment > peak.max_moment_n_m {
+                        (peak.max_moment_n_m, peak.moment_time_s, peak.moment_n_m) =
+                            (moment, time_s, total.moment_n_m);
+                    }
+                }
+                None => self.clamp_loads.push(ClampLoadPeak {
+                    guides,
+                    max_force_n: force,
+                    force_time_s: time_s,
+                    force_n: total.force_n,
+                    max_moment_n_m: moment,
+                    moment_time_s: time_s,
+                    moment_n_m: total.moment_n_m,
+                }),
+            }
         }
     }
 
@@ -311,6 +421,10 @@ impl<'a> Tracker<'a> {
             .map_or_else(|| format!("link #{link}"), |l| l.name.clone())
     }
 }
+
+/// While no approach of the cable to itself is known, how often (s of the motion) a search
+/// for one runs; touching is checked at every step.
+const SELF_APPROACH_SEARCH_S: f64 = 0.05;
 
 /// Facts about the run the tracker does not see.
 pub(super) struct RunFacts {
@@ -479,6 +593,8 @@ mod tests {
             },
             contact: None,
             max_joint_gap_m: 0.0,
+            twist_rad: None,
+            loads: None,
         };
         let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
         let first = along(&[p(0.0, 0.0), p(0.3, 0.0)], pitch);
@@ -495,7 +611,8 @@ mod tests {
         );
         let diameter = setup.cable.diameter_m;
         for alone in [&first, &second] {
-            assert!(self_contact(alone, diameter, pitch).is_none_or(|c| !c.is_violated()));
+            let alone = crate::stress::self_contact(alone, diameter, pitch);
+            assert!(alone.is_none_or(|c| !c.is_violated()));
         }
         let mut tracker = Tracker::new(&setup, false, false);
         tracker.record(0.5, &[measure(1, first), measure(2, second)]);

@@ -278,7 +278,10 @@ fn motion_test_table(md: &mut String, report: &SolveReport, test: &MotionTestRep
                 w.value,
                 w.limit.trim_start_matches("limit ").to_string(),
                 w.margin,
-                format!("{}, {}", w.when, w.place),
+                match &w.when {
+                    Some(when) => format!("{when}, {}", w.place),
+                    None => w.place.clone(),
+                },
             ],
         );
     }

@@ -28,10 +28,10 @@ pub use certify::{Certification, Disagreement};
 pub use diagnosis::{Diagnosis, NearestMiss, SegmentDiagnosis};
 
 pub use report::{
-    CandidateOutcome, DictionarySegmentUse, DictionaryUse, Inputs, Margin, NamedPath, PathGuide,
-    PathSegment, PoseSummary, SegmentReport, SolveReport, Status, SweepRejection, SweepSummary,
-    Timings, WorstRow, guide_names, named_path, pose_summary, shown_index, verdict_words,
-    worst_rows,
+    CandidateOutcome, DictionarySegmentUse, DictionaryUse, Inputs, LoadRow, Margin, NamedPath,
+    PathGuide, PathSegment, PoseSummary, SegmentReport, SolveReport, Status, SweepRejection,
+    SweepSummary, Timings, WorstRow, guide_names, load_rows, named_path, pose_summary, shown_index,
+    verdict_words, worst_rows,
 };
 
 use crate::attachment::{

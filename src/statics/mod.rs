@@ -18,11 +18,13 @@
 mod banded;
 pub mod continuation;
 mod joint;
+mod loads;
 pub(crate) mod newton;
 mod retract;
 pub(crate) mod rod;
 pub mod turns;
 
+pub use loads::{ClampLoad, clamp_loads};
 pub use rod::{EnergyTerms, RodParameters};
 
 use nalgebra::{Point3, Rotation3, Vector3};

@@ -442,6 +442,56 @@ impl Rod {
         energy
     }
 
+    /// The part of the potential energy that depends on the pose of the start clamp (or,
+    /// `at_end`, the end clamp) with the free nodes `x` held: the stretch of the edge that
+    /// leaves the clamp, the bending of the two joints nearest it and the twist (J). Its
+    /// derivatives with respect to the clamp's pose are those of the whole energy, at a
+    /// fraction of the cost ([`super::loads`]).
+    pub(crate) fn clamp_energy(&self, x: &[f64], twist_reference: f64, at_end: bool) -> f64 {
+        let nodes = self.nodes(x);
+        let edges: Vec<Edge> = nodes.windows(2).map(|w| Edge::new(w[1] - w[0])).collect();
+        let count = edges.len();
+        if count == 0 {
+            return 0.0;
+        }
+        let kb = self.params.bending_stiffness_n_m2 / self.params.pitch_m;
+        let k = self.params.axial_stiffness_n / self.params.pitch_m;
+        let end_axis = self.end.as_ref().map(|end| end.rotation * Vector3::z());
+        let edge = if at_end { count - 1 } else { 0 };
+        let extension = edges[edge].length - self.params.pitch_m;
+        let mut energy = 0.5 * k * extension * extension;
+        let joints = if at_end {
+            [count.saturating_sub(1), count]
+        } else {
+            [0, 1.min(count)]
+        };
+        let mut seen = None;
+        for joint in joints {
+            if seen == Some(joint) {
+                continue;
+            }
+            seen = Some(joint);
+            let incoming = match joint {
+                0 => Side::Guide(self.start_axis()),
+                j => Side::Cable(j - 1),
+            };
+            let outgoing = match (joint < count, end_axis) {
+                (true, _) => Side::Cable(joint),
+                (false, Some(axis)) => Side::Guide(axis),
+                (false, None) => continue,
+            };
+            let at_guide = matches!(incoming, Side::Guide(_)) || matches!(outgoing, Side::Guide(_));
+            let stiffness = if at_guide { 2.0 * kb } else { kb };
+            let (a, b) = (side_edge(incoming, &edges), side_edge(outgoing, &edges));
+            energy += bending(&a, &b, stiffness, false).value;
+        }
+        if let Some(end) = &self.end {
+            let twist = unwrap_near(self.transported_twist(&edges, end), twist_reference);
+            energy += 0.5 * self.twist_stiffness() * twist * twist;
+        }
+        energy
+    }
+
     /// Ψ on the principal branch `(−π, π]`: the end guide's x axis measured about its z axis
     /// from the start guide's x axis transported along the cable.
     fn transported_twist(&self, edges: &[Edge], end: &Pose) -> f64 {

@@ -12,5 +12,7 @@ pub use bend::{BendRadius, min_bend_radius};
 pub use contact::{
     ClampZone, Clearance, ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
 };
-pub use self_contact::{FirstSelfContact, SelfContact, self_contact, self_contact_gap_m};
+pub use self_contact::{
+    FirstSelfContact, SelfContact, self_contact, self_contact_gap_m, self_contact_within,
+};
 pub use stretch::stretch;

@@ -79,9 +79,29 @@ pub fn self_contact_gap_m(diameter_m: f64) -> f64 {
 }
 
 /// The closest approach of the polyline `nodes` (sub-segments of about `pitch_m`) to itself,
-/// for a cable of `diameter_m`; `None` when it is too short to have two sub-segments far
-/// enough apart along it.
+/// for a cable of `diameter_m`; `None` when no part of it comes back toward another (a straight
+/// or gently bent cable) or it is too short to have two sub-segments far enough apart.
+///
+/// An approach is a pair of sub-segments at least [`self_contact_gap_m`] apart along the
+/// cable whose distance is a local minimum over the pairs next to it (one step along the cable
+/// at either end): where two parts of the cable come back toward each other, as across a loop
+/// or the two legs of a U-turn. Pairs at the edge of the excluded gap are not approaches (a
+/// cable's distance to its own neighbourhood grows away from it), unless the cable reaches its
+/// end there. A pair closer than the diameter is always one: the cable touches itself.
 pub fn self_contact(nodes: &[Point3<f64>], diameter_m: f64, pitch_m: f64) -> Option<SelfContact> {
+    self_contact_within(nodes, diameter_m, pitch_m, f64::INFINITY)
+}
+
+/// [`self_contact`] for approaches whose centreline distance is below `within_m` only: the
+/// closest approach when it is, `None` otherwise. Cheaper where only near approaches matter
+/// (a piece's stored clearance margin is the lower of its clearance to the robot and to
+/// itself).
+pub fn self_contact_within(
+    nodes: &[Point3<f64>],
+    diameter_m: f64,
+    pitch_m: f64,
+    within_m: f64,
+) -> Option<SelfContact> {
     let segments = nodes.len().checked_sub(1)?;
     let skip = skipped_neighbours(diameter_m, pitch_m);
     if segments <= skip + 1 {
@@ -91,16 +111,20 @@ pub fn self_contact(nodes: &[Point3<f64>], diameter_m: f64, pitch_m: f64) -> Opt
     let mut pairs = run_pairs(&runs, skip);
     pairs.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
     let mut best: Option<(f64, [usize; 2])> = None;
+    let mut block = Block::default();
     for (lower, a, b) in pairs {
-        if best.is_some_and(|(distance, _)| lower >= distance) {
+        let bound = best.map_or(within_m, |(d, _)| d.min(within_m));
+        if lower >= bound {
             break;
         }
+        block.fill(nodes, &runs[a].range, &runs[b].range, segments);
         for i in runs[a].range.clone() {
             let first_j = runs[b].range.start.max(i + skip + 1);
             for j in first_j..runs[b].range.end {
-                let distance = segment_distance(&nodes[i], &nodes[i + 1], &nodes[j], &nodes[j + 1]);
-                if best.is_none_or(|(d, _)| distance < d) {
-                    best = Some((distance, [i, j]));
+                let d = block.get(i, j);
+                let better = d < within_m && best.is_none_or(|(b, _)| d < b);
+                if better && is_approach(&block, (i, j), d, (skip, segments, diameter_m)) {
+                    best = Some((d, [i, j]));
                 }
             }
         }
@@ -109,6 +133,73 @@ pub fn self_contact(nodes: &[Point3<f64>], diameter_m: f64, pitch_m: f64) -> Opt
         clearance_m: distance - diameter_m,
         sub_segments,
     })
+}
+
+/// Whether the pair `(i, j)` at distance `d` is an approach: closer than the diameter, or
+/// off the domain's inner edge `j = i + skip + 1` with no pair one step away in the domain
+/// (`j ≥ i + skip + 1`, both below `segments`) closer.
+fn is_approach(
+    block: &Block,
+    (i, j): (usize, usize),
+    d: f64,
+    (skip, segments, diameter_m): (usize, usize, f64),
+) -> bool {
+    if d < diameter_m {
+        return true;
+    }
+    if j == i + skip + 1 {
+        return false;
+    }
+    let neighbours = [
+        i.checked_sub(1).map(|p| (p, j)),
+        (i + 1 + skip < j).then_some((i + 1, j)),
+        Some((i, j - 1)),
+        (j + 1 < segments).then_some((i, j + 1)),
+    ];
+    neighbours
+        .into_iter()
+        .flatten()
+        .all(|(a, b)| block.get(a, b) >= d)
+}
+
+/// The distances of a run pair's sub-segments and their neighbours one step away, each
+/// computed once.
+#[derive(Default)]
+struct Block {
+    rows: std::ops::Range<usize>,
+    columns: std::ops::Range<usize>,
+    distances: Vec<f64>,
+}
+
+impl Block {
+    /// The distances for rows `a` and columns `b`, each widened by one sub-segment.
+    fn fill(
+        &mut self,
+        nodes: &[Point3<f64>],
+        a: &std::ops::Range<usize>,
+        b: &std::ops::Range<usize>,
+        segments: usize,
+    ) {
+        self.rows = a.start.saturating_sub(1)..(a.end + 1).min(segments);
+        self.columns = b.start.saturating_sub(1)..(b.end + 1).min(segments);
+        self.distances.clear();
+        for i in self.rows.clone() {
+            for j in self.columns.clone() {
+                self.distances.push(segment_distance(
+                    &nodes[i],
+                    &nodes[i + 1],
+                    &nodes[j],
+                    &nodes[j + 1],
+                ));
+            }
+        }
+    }
+
+    /// The distance of sub-segments `i` and `j` (within the filled rows and columns).
+    fn get(&self, i: usize, j: usize) -> f64 {
+        let width = self.columns.len();
+        self.distances[(i - self.rows.start) * width + (j - self.columns.start)]
+    }
 }
 
 /// How many sub-segments on either side of one are the same stretch of cable: those whose
@@ -263,34 +354,98 @@ mod tests {
         }
     }
 
-    /// The bounded search finds the same closest pair as trying every pair.
+    /// The closest approach by trying every pair, with the rule written out on the whole
+    /// distance matrix: a pair in the domain that is closer than the diameter, or off the
+    /// domain's inner edge with no pair one step away in the domain closer.
+    fn brute_force(nodes: &[Point3<f64>], diameter: f64, skip: usize) -> Option<(f64, [usize; 2])> {
+        let n = nodes.len() - 1;
+        let d = |i: usize, j: usize| {
+            segment_distance(&nodes[i], &nodes[i + 1], &nodes[j], &nodes[j + 1])
+        };
+        let in_domain = |i: isize, j: isize| i >= 0 && j < n as isize && j > i + skip as isize;
+        let mut best: Option<(f64, [usize; 2])> = None;
+        for i in 0..n {
+            for j in i + skip + 1..n {
+                let here = d(i, j);
+                let minimum = j > i + skip + 1
+                    && [(-1, 0), (1, 0), (0, -1), (0, 1)].iter().all(|(di, dj)| {
+                        let (a, b) = (i as isize + di, j as isize + dj);
+                        !in_domain(a, b) || d(a as usize, b as usize) >= here
+                    });
+                if (here < diameter || minimum) && best.is_none_or(|(b, _)| here < b) {
+                    best = Some((here, [i, j]));
+                }
+            }
+        }
+        best
+    }
+
+    /// The bounded search finds the same closest approach as trying every pair, on a figure
+    /// eight whose lobes cross, on the same lifted clear of each other, and on a hanging loop.
     #[test]
     fn the_bounded_search_equals_trying_every_pair() {
         let (diameter, pitch) = (0.008, 0.005);
         let skip = skipped_neighbours(diameter, pitch);
-        // A cable that loops through itself: a planar figure eight with a lift at the cross.
-        let nodes: Vec<Point3<f64>> = (0..=157)
-            .map(|k| {
-                let s = 2.0 * PI * k as f64 / 157.0;
-                Point3::new(0.1 * s.sin(), 0.05 * (2.0 * s).sin(), 0.003 * s.cos())
-            })
-            .collect();
-        let mut brute: Option<(f64, [usize; 2])> = None;
-        for i in 0..nodes.len() - 1 {
-            for j in i + skip + 1..nodes.len() - 1 {
-                let d = segment_distance(&nodes[i], &nodes[i + 1], &nodes[j], &nodes[j + 1]);
-                if brute.is_none_or(|(b, _)| d < b) {
-                    brute = Some((d, [i, j]));
-                }
-            }
+        for lift in [0.003, 0.02] {
+            // Most of a planar figure eight (its ends 100 mm apart) with a lift at the cross.
+            let nodes: Vec<Point3<f64>> = (0..=118)
+                .map(|k| {
+                    let s = -0.25 * PI + 1.5 * PI * k as f64 / 118.0;
+                    Point3::new(0.1 * s.sin(), 0.05 * (2.0 * s).sin(), lift * s.cos())
+                })
+                .collect();
+            let (distance, pair) = brute_force(&nodes, diameter, skip).expect("an approach");
+            let found = self_contact(&nodes, diameter, pitch).expect("long enough");
+            assert_eq!(found.sub_segments, pair, "lift {lift}");
+            assert_eq!(found.clearance_m, distance - diameter);
+            assert_eq!(
+                found.is_violated(),
+                2.0 * lift < diameter,
+                "lift {lift}: {distance}"
+            );
         }
-        let (distance, pair) = brute.expect("pairs");
-        let found = self_contact(&nodes, diameter, pitch).expect("long enough");
-        assert_eq!(found.sub_segments, pair);
-        assert_eq!(found.clearance_m, distance - diameter);
+        let helix = helix(0.05, 0.03, 2.2, pitch);
+        let (distance, pair) = brute_force(&helix, diameter, skip).expect("an approach");
+        let found = self_contact(&helix, diameter, pitch).expect("long enough");
+        assert_eq!(
+            (found.sub_segments, found.clearance_m),
+            (pair, distance - diameter)
+        );
+    }
+
+    /// A straight cable does not come back toward itself: no approach at all (the old rule
+    /// reported its neighbourhood, (3 − 1) pitches less the diameter, for every straight
+    /// cable). A U-turn's legs, 2R apart, are its closest approach; a searched `within` below
+    /// it finds nothing, above it the same.
+    #[test]
+    fn a_straight_cable_has_no_approach_and_a_u_turn_its_legs() {
+        let (diameter, pitch) = (0.008, 0.01);
+        let straight: Vec<Point3<f64>> = (0..=60)
+            .map(|k| Point3::new(k as f64 * pitch, 0.0, 0.0))
+            .collect();
+        assert_eq!(self_contact(&straight, diameter, pitch), None);
+        // Legs 300 mm long along x, 2R = 100 mm apart, joined by a half circle of R = 50 mm.
+        let radius = 0.05;
+        let mut u_turn: Vec<Point3<f64>> = (0..=30)
+            .map(|k| Point3::new(0.3 - k as f64 * pitch, radius, 0.0))
+            .collect();
+        let arc = (PI * radius / pitch).round() as usize;
+        u_turn.extend((1..arc).map(|k| {
+            let phase = PI / 2.0 + PI * k as f64 / arc as f64;
+            Point3::new(radius * phase.cos(), radius * phase.sin(), 0.0)
+        }));
+        u_turn.extend((0..=30).map(|k| Point3::new(k as f64 * pitch, -radius, 0.0)));
+        let found = self_contact(&u_turn, diameter, pitch).expect("the legs");
         assert!(
-            found.is_violated(),
-            "the lobes cross 6 mm apart: {distance}"
+            (found.clearance_m - (2.0 * radius - diameter)).abs() < 1e-9,
+            "{found:?}"
+        );
+        let [i, j] = found.sub_segments;
+        assert!(i < 30 && j > 30 + arc, "both on the legs: {i} {j}");
+        assert_eq!(self_contact_within(&u_turn, diameter, pitch, 0.09), None);
+        assert_eq!(
+            self_contact_within(&u_turn, diameter, pitch, 0.11),
+            Some(found)
         );
     }
 

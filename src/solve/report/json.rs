@@ -2,7 +2,7 @@
 
 use super::super::diagnosis::Diagnosis;
 use super::data::*;
-use crate::motion_test::{EngineKind, MotionTestReport, Worst};
+use crate::motion_test::{ClampLoadPeak, EngineKind, MotionTestReport, PieceTwist, Worst};
 use serde::Serialize;
 
 #[derive(Serialize)]
@@ -16,10 +16,19 @@ struct MotionTestJson<'a> {
     min_clearance_mm: Option<f64>,
     max_stretch: Option<f64>,
     min_bend_radius_mm: Option<f64>,
+    /// The closest approach of the cable to itself (centreline distance − diameter, mm);
+    /// `None` when no part of it comes back toward another.
+    min_self_clearance_mm: Option<f64>,
     worst_clearance: Option<&'a Worst>,
     worst_stretch: Option<&'a Worst>,
     worst_bend_radius: Option<&'a Worst>,
     worst_contact_force: Option<&'a Worst>,
+    worst_self_clearance: Option<&'a Worst>,
+    /// Per piece, its largest twist over the motion (deg and deg/m), relative to the cable
+    /// as installed.
+    twists: Option<&'a [PieceTwist]>,
+    /// Per clamp, the largest force and moment the cable puts on it.
+    clamp_loads: Option<&'a [ClampLoadPeak]>,
     simulated_s: Option<f64>,
     wall_time_s: Option<f64>,
 }
@@ -44,10 +53,14 @@ impl<'a> MotionTestJson<'a> {
                 .and_then(|r| r.worst_stretch.as_ref())
                 .map(|w| w.value),
             min_bend_radius_mm: report.and_then(|r| mm(&r.worst_bend)),
+            min_self_clearance_mm: report.and_then(|r| mm(&r.worst_self_clearance)),
             worst_clearance: report.and_then(|r| r.worst_clearance.as_ref()),
             worst_stretch: report.and_then(|r| r.worst_stretch.as_ref()),
             worst_bend_radius: report.and_then(|r| r.worst_bend.as_ref()),
             worst_contact_force: report.and_then(|r| r.worst_contact_force.as_ref()),
+            worst_self_clearance: report.and_then(|r| r.worst_self_clearance.as_ref()),
+            twists: report.map(|r| r.twists.as_slice()),
+            clamp_loads: report.map(|r| r.clamp_loads.as_slice()),
             simulated_s: report.map(|r| r.simulated_s),
             wall_time_s: report.map(|r| r.wall_time_s),
         }

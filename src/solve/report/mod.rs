@@ -12,7 +12,7 @@ mod workshop_text;
 
 pub use assemble::{guide_names, named_path, pose_summary};
 pub use data::*;
-pub use workshop_text::{WorstRow, verdict_words, worst_rows};
+pub use workshop_text::{LoadRow, WorstRow, load_rows, verdict_words, worst_rows};
 
 use std::fmt;
 

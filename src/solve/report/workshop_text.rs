@@ -123,14 +123,84 @@ fn write_worst(
         "\nover the motion (simulated): {}",
         verdict_words(report, test, Some(plan))
     )?;
-    for row in worst_rows(report, test, Some(plan)) {
+    let rows = worst_rows(report, test, Some(plan));
+    for row in rows {
+        match &row.when {
+            Some(when) => writeln!(
+                f,
+                "  {:<21} {:>9} ({}) at {when}, {}",
+                row.what, row.value, row.limit, row.place
+            )?,
+            None => writeln!(f, "  {:<21} {:>9}: {}", row.what, row.value, row.place)?,
+        }
+    }
+    let loads = load_rows(test, Some(plan));
+    if !loads.is_empty() {
         writeln!(
             f,
-            "  {:<21} {:>9} ({}) at {}, {}",
-            row.what, row.value, row.limit, row.when, row.place
+            "\ntwist of each piece (from the cable as laid) and loads on each clamp, over the \
+             motion:"
         )?;
+        let width = loads
+            .iter()
+            .map(|r| r.name.chars().count())
+            .max()
+            .unwrap_or(0);
+        for row in loads {
+            writeln!(f, "  {:<width$}  {}", row.name, row.words)?;
+        }
     }
     Ok(())
+}
+
+/// One piece's largest twist or one clamp's largest loads over the motion test, in words.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadRow {
+    /// `piece 1 → 2`, `clamp 1`, `gripper connector`.
+    pub name: String,
+    /// `largest twist −35° (−125°/m) at t = 4.91 s`.
+    pub words: String,
+}
+
+/// The largest twist of every piece and the largest loads on every clamp over `test`, named
+/// as the fitter names them when `plan` is the tested path's.
+pub fn load_rows(test: &MotionTestReport, plan: Option<&MountingPlan>) -> Vec<LoadRow> {
+    let mut rows: Vec<LoadRow> = test
+        .twists
+        .iter()
+        .map(|t| {
+            let name = plan
+                .and_then(|p| p.place_on_cable(&t.segment_name, None))
+                .map(|words| words.trim_start_matches("on ").to_string())
+                .unwrap_or_else(|| format!("cable piece {}", t.segment_name));
+            LoadRow {
+                name,
+                words: format!(
+                    "largest twist {}° ({}°/m) at t = {:.2} s",
+                    decimal(t.twist_deg, 0),
+                    decimal(t.twist_deg_per_m, 0),
+                    t.time_s
+                ),
+            }
+        })
+        .collect();
+    rows.extend(test.clamp_loads.iter().map(|c| {
+        let name = plan
+            .and_then(|p| c.guides.iter().find_map(|g| p.clamp_of_guide(g)))
+            .map(|clamp| clamp.name())
+            .unwrap_or_else(|| c.guides.join(" = "));
+        LoadRow {
+            name,
+            words: format!(
+                "largest force {} N at t = {:.2} s, largest moment {} N·m at t = {:.2} s",
+                decimal(c.max_force_n, 2),
+                c.force_time_s,
+                decimal(c.max_moment_n_m, 3),
+                c.moment_time_s
+            ),
+        }
+    }));
+    rows
 }
 
 /// One limit's worst value over the motion test, in words.
@@ -144,8 +214,9 @@ pub struct WorstRow {
     pub limit: String,
     /// What is left to the limit: `9.3 mm`, `∞`.
     pub margin: String,
-    /// `t = 5.10 s`.
-    pub when: String,
+    /// `t = 5.10 s`; `None` for a limit never approached (no part of the cable comes back
+    /// toward another).
+    pub when: Option<String>,
     /// `on piece 2 → gripper connector, 25 mm from clamp 2, near link_4`.
     pub place: String,
 }
@@ -163,7 +234,11 @@ pub fn verdict_words(
             let row = worst_row_of(report, plan, v.constraint, &v.to_worst(), v.threshold);
             format!(
                 "failed: {} {} ({}) at {}, {}",
-                row.what, row.value, row.limit, row.when, row.place
+                row.what,
+                row.value,
+                row.limit,
+                row.when.unwrap_or_default(),
+                row.place
             )
         }
         (Some(failure), None) => format!("failed: {}", failure.reason),
@@ -193,14 +268,18 @@ pub fn worst_rows(
         (Constraint::Stretch, &test.worst_stretch, t.stretch),
     ]
     .into_iter()
-    .filter_map(|(constraint, worst, limit)| {
-        Some(worst_row_of(
-            report,
-            plan,
-            constraint,
-            worst.as_ref()?,
-            limit,
-        ))
+    .filter_map(|(constraint, worst, limit)| match worst {
+        Some(w) => Some(worst_row_of(report, plan, constraint, w, limit)),
+        // No approach to itself is an answer too: the cable never comes back toward itself.
+        None if constraint == Constraint::SelfContact && test.steps > 0 => Some(WorstRow {
+            what: "closest to itself",
+            value: "none".into(),
+            limit: "limit 0.0 mm".into(),
+            margin: "∞".into(),
+            when: None,
+            place: "no part of the cable comes back toward another".into(),
+        }),
+        None => None,
     })
     .collect()
 }
@@ -257,7 +336,7 @@ fn worst_row_of(
         value,
         limit: format!("limit {limit_text}"),
         margin,
-        when: format!("t = {:.2} s", w.time_s),
+        when: Some(format!("t = {:.2} s", w.time_s)),
         place: where_on_cable(report, plan, w),
     }
 }
