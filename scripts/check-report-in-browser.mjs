@@ -2,8 +2,10 @@
 // see: the page loads with no console error, no uncaught exception and no failed request,
 // asks for nothing outside the folder, runs no script from an input (a dialog is a problem:
 // markup from an input ran), every picture shows something, and the 3D view loads its scene,
-// draws it, plays (the time advances and the picture changes) and seeks. The installation
-// sheet (install.html), when there is one, is checked like the page.
+// draws it, plays (the time advances and the picture changes) and seeks, and its worst-moment
+// button turns the camera to the worst spot and rings it. The installation sheet
+// (install.html), when there is one, is checked like the page and printed to PDF: it must fit
+// one A4 landscape page.
 //
 //   node scripts/check-report-in-browser.mjs REPORT_DIR
 //
@@ -171,7 +173,44 @@ async function checkView(page, blank, problems) {
       }
     }
   }
+  moved += await checkWorstButton(page, viewer, problems);
   return `3D view: loaded, ${(100 * share).toFixed(1)} % drawn, ${labels} clamp labels, ${moved}`;
+}
+
+// The worst-moment button: the time goes there, the camera turns to the spot (its target moves
+// onto it) and the red ring is shown there; the picture changes.
+async function checkWorstButton(page, viewer, problems) {
+  const worst = await page.evaluate(() => window.cableDictView.worst);
+  if (!worst || !worst.spot_m) return ", no worst spot to show";
+  const before = await viewer.screenshot();
+  await page.click("#view-worst");
+  await page.waitForTimeout(1500);
+  const state = await page.evaluate(() => {
+    const v = document.getElementById("view");
+    const target = v.getCameraTarget();
+    const ring = v.querySelector(".worst-ring");
+    return {
+      t: v.currentTime,
+      target: [target.x, target.y, target.z],
+      ringShown: !!ring && !ring.hidden && ring.getBoundingClientRect().width > 0,
+    };
+  });
+  if (Math.abs(state.t - worst.time_s) > 0.02) {
+    problems.push(`3D view: the worst-moment button went to ${state.t} s, not ${worst.time_s} s`);
+  }
+  const off = Math.hypot(...state.target.map((v, i) => v - worst.spot_m[i]));
+  if (off > 0.005) problems.push(`3D view: the camera looks ${off.toFixed(3)} m away from the worst spot`);
+  if (!state.ringShown) problems.push("3D view: the worst spot is not ringed");
+  const after = await viewer.screenshot();
+  if (after.equals(before)) problems.push("3D view: the worst-moment button changed nothing");
+  return `, worst spot shown at ${state.t.toFixed(2)} s (camera ${(1000 * off).toFixed(1)} mm from it)`;
+}
+
+// The sheet printed as its page asks (A4 landscape): the number of pages of the PDF.
+async function printedPages(page) {
+  await page.emulateMedia({ media: "print" });
+  const pdf = await page.pdf({ preferCSSPageSize: true, printBackground: true });
+  return (pdf.toString("latin1").match(/\/Type\s*\/Page[^s]/g) || []).length;
 }
 
 async function main() {
@@ -206,6 +245,9 @@ async function main() {
       await sheetPage.goto(pathToFileURL(sheet).href, { waitUntil: "load" });
       console.log(`${sheet}:`);
       count += await checkImages(sheetPage, blank, problems);
+      const pages = await printedPages(sheetPage);
+      if (pages !== 1) problems.push(`install.html prints on ${pages} pages, not one`);
+      console.log(`  printed: ${pages} A4 landscape page(s)`);
     }
     const seconds = ((Date.now() - started) / 1000).toFixed(1);
     for (const problem of problems) console.log(`PROBLEM ${problem}`);

@@ -49,6 +49,9 @@ pub const PLAUSIBLE_DENSITY_KG_M3: (f64, f64) = (700.0, 6000.0);
 /// probably entered in the wrong unit or convention.
 pub const PLAUSIBLE_TORSION_TO_BENDING: (f64, f64) = (0.3, 5.0);
 
+/// Longest part number a cable file may give (characters).
+pub const MAX_PART_NUMBER_CHARS: usize = 100;
+
 /// A cable's physical values and its discretization, in SI units.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CableSpec {
@@ -74,6 +77,9 @@ pub struct CableSpec {
     /// Cable to cut before the first clamp, to the base or the controller (m); `None` when
     /// the file does not say.
     pub base_end_allowance_m: Option<f64>,
+    /// The maker's part number, for the installation sheet; `None` when the file does not
+    /// say. Not part of the physics.
+    pub part_number: Option<String>,
 }
 
 impl CableSpec {
@@ -195,6 +201,7 @@ impl CableSpec {
                 .allowance("tool_end_allowance_mm", &raw.tool_end_allowance_mm)?,
             base_end_allowance_m: file
                 .allowance("base_end_allowance_mm", &raw.base_end_allowance_mm)?,
+            part_number: file.part_number(&raw.part_number)?,
             name: raw.name,
         })
     }
@@ -252,6 +259,7 @@ struct RawCable {
     axial_stiffness_n: Option<Spanned<f64>>,
     tool_end_allowance_mm: Option<Spanned<f64>>,
     base_end_allowance_mm: Option<Spanned<f64>>,
+    part_number: Option<Spanned<String>>,
 }
 
 /// A cable file's text, for messages that name the line of a value.
@@ -284,6 +292,30 @@ impl FileValues<'_> {
                 SUB_SEGMENT_PITCH_RANGE_MM.end()
             ),
         ))
+    }
+
+    /// The optional part number: one line of at most [`MAX_PART_NUMBER_CHARS`] characters.
+    fn part_number(&self, value: &Option<Spanned<String>>) -> Result<Option<String>, CableError> {
+        let Some(value) = value else {
+            return Ok(None);
+        };
+        let text = value.get_ref().trim();
+        let problem = if text.is_empty() {
+            Some("is empty (leave the key out when there is none)".to_string())
+        } else if text.chars().count() > MAX_PART_NUMBER_CHARS {
+            Some(format!("is longer than {MAX_PART_NUMBER_CHARS} characters"))
+        } else if text.chars().any(char::is_control) {
+            Some("holds a line break or another control character".to_string())
+        } else {
+            None
+        };
+        match problem {
+            Some(problem) => Err(self.error(
+                Some(line_of(self.text, value.span().start)),
+                format!("`part_number` {problem}"),
+            )),
+            None => Ok(Some(text.to_string())),
+        }
     }
 
     /// An optional cut allowance (mm in the file, m returned): finite and ≥ 0.

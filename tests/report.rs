@@ -396,18 +396,29 @@ fn robot_level_report(motion: &str) -> (tempfile::TempDir, std::path::PathBuf, O
 }
 
 /// The bundled pick-and-place answer's C2 has no length (G2 and G3 are one clamp): the
-/// pictures say so, and do not call it a piece without a static shape (it read as a failure).
+/// summary lists one clamp for both and no 0 mm piece, the JSON's mounting plan joins them,
+/// and the pictures do not call the piece one without a static shape (it read as a failure).
 #[test]
 fn a_piece_of_no_length_is_said_to_join_its_clamps() {
     let (_dir, report, output) = robot_level_report(MOTION);
-    // The summary counts physical clamps: G2 and G3 are one, and no 0 mm piece is listed.
+    let result: Value =
+        serde_json::from_slice(&std::fs::read(report.join("result.json")).expect("result"))
+            .expect("JSON");
+    let clamps = result["mounting"]["clamps"].as_array().expect("clamps");
+    let joined = clamps
+        .iter()
+        .find(|c| c["guides"] == serde_json::json!(["G2", "G3"]))
+        .expect("G2 and G3 are one clamp");
+    assert_eq!(joined["joined_by"], serde_json::json!(["C2"]));
+    let name = format!("clamp {}", joined["number"]);
     let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        stdout
-            .lines()
-            .any(|line| line.trim_start().starts_with("G2 = G3 ")),
-        "{stdout}"
-    );
+    let listed = stdout
+        .lines()
+        .filter(|line| {
+            line.trim_start().starts_with(&format!("{name} ")) && line.contains(" mark ")
+        })
+        .count();
+    assert_eq!(listed, 1, "{stdout}");
     assert!(
         !stdout
             .lines()
@@ -415,29 +426,63 @@ fn a_piece_of_no_length_is_said_to_join_its_clamps() {
         "{stdout}"
     );
     let html = std::fs::read_to_string(report.join("index.html")).expect("index.html");
-    assert!(
-        html.contains("Cable piece C2 has no length: its two clamps are one."),
-        "{html}"
-    );
     assert!(!html.contains("No static shape found"), "{html}");
 }
 
-/// The rows of `install.html`'s table: (clamp, link, mark) of each.
+/// The rows of `install.html`'s clamp table: (name, link, mark) of each.
 fn sheet_rows(html: &str) -> Vec<(String, String, f64)> {
-    html.split("<tr><td>")
+    let table = &html[html
+        .find("<table class=\"clamps\">")
+        .expect("the clamp table")..];
+    let table = &table[..table.find("</table>").expect("its end")];
+    table
+        .split("<tr><td>")
         .skip(1)
         .map(|row| {
-            // Each cell after the first starts with the rest of its tag (` class="mark">`).
+            let name = row
+                .split_once("<span class=\"name\">")
+                .and_then(|(_, rest)| rest.split_once("</span>"))
+                .expect("a name")
+                .0;
             let cells: Vec<&str> = row
                 .split("</td><td")
-                .enumerate()
-                .map(|(i, cell)| match (i, cell.split_once('>')) {
-                    (0, _) | (_, None) => cell,
-                    (_, Some((_, text))) => text,
-                })
+                .map(|cell| cell.split_once('>').map_or(cell, |(_, text)| text))
                 .collect();
             let mark = cells[2].parse().expect("a mark in mm");
-            (cells[0].to_string(), cells[1].to_string(), mark)
+            (name.to_string(), cells[1].to_string(), mark)
+        })
+        .collect()
+}
+
+/// The boxes of the clamp labels of every view panel of an SVG picture (`data-box`: x, y,
+/// width, height in the panel's units) with the panel's view box.
+fn label_boxes(svg: &str) -> Vec<([f64; 4], Vec<[f64; 4]>)> {
+    let numbers = |text: &str| -> [f64; 4] {
+        let v: Vec<f64> = text
+            .split_whitespace()
+            .map(|n| n.parse().expect("a number"))
+            .collect();
+        [v[0], v[1], v[2], v[3]]
+    };
+    svg.split("<svg class=\"view ")
+        .skip(1)
+        .map(|panel| {
+            let view_box = panel
+                .split_once("viewBox=\"")
+                .and_then(|(_, rest)| rest.split_once('"'))
+                .expect("a view box")
+                .0;
+            let clamps = panel
+                .split_once("class=\"clamps\"")
+                .map_or("", |(_, rest)| {
+                    rest.split_once("</g>").map_or(rest, |(group, _)| group)
+                });
+            let boxes = clamps
+                .split("data-box=\"")
+                .skip(1)
+                .map(|rest| numbers(rest.split_once('"').expect("closed").0))
+                .collect();
+            (numbers(view_box), boxes)
         })
         .collect()
 }
@@ -463,7 +508,10 @@ fn the_installation_sheet_and_the_view_agree_with_the_result() {
         .iter()
         .map(|p| p["length_mm"].as_f64().expect("mm"))
         .sum();
-    let mut expected: Vec<(Vec<String>, String, f64)> = Vec::new();
+    // (guides, the fitter's name, link, mark) from the JSON's path and the setup alone: a
+    // fixed guide is a fitting named as the setup names it, the others are numbered.
+    let setup = cable_dict::setup::Setup::from_file(ROBOT_LEVEL).expect("setup");
+    let mut expected: Vec<(Vec<String>, String, String, f64)> = Vec::new();
     let mut from_start = 0.0;
     for (i, guide) in guides.iter().enumerate() {
         let name = guide["name"].as_str().expect("name").to_string();
@@ -471,31 +519,96 @@ fn the_installation_sheet_and_the_view_agree_with_the_result() {
             .checked_sub(1)
             .map(|p| pieces[p]["length_mm"].as_f64().expect("mm"));
         from_start += before.unwrap_or(0.0);
+        let link = guide["link"].as_str().expect("link").to_string();
+        let fitting = setup
+            .guides
+            .iter()
+            .find(|g| g.name == name && g.fixed)
+            .map(|g| g.configurations[0].name.clone());
         if before == Some(0.0) {
-            expected.last_mut().expect("a clamp").0.push(name);
+            let last = expected.last_mut().expect("a clamp");
+            last.0.push(name);
+            if let Some(fitting) = fitting {
+                (last.1, last.2) = (fitting, link);
+            }
         } else {
-            let link = guide["link"].as_str().expect("link").to_string();
-            expected.push((vec![name], link, total - from_start));
+            expected.push((
+                vec![name],
+                fitting.unwrap_or_default(),
+                link,
+                total - from_start,
+            ));
+        }
+    }
+    let mut number = 0;
+    for clamp in &mut expected {
+        if clamp.1.is_empty() {
+            number += 1;
+            clamp.1 = format!("clamp {number}");
         }
     }
     let html = std::fs::read_to_string(report.join("install.html")).expect("install.html");
     let rows = sheet_rows(&html);
     assert_eq!(rows.len(), expected.len(), "{html}");
     let svg = std::fs::read_to_string(report.join("install.svg")).expect("install.svg");
-    for ((label, link, mark), (names, json_link, json_mark)) in rows.iter().zip(&expected) {
-        assert!(
-            label.starts_with(&names.join(" = ")),
-            "{label} against {names:?}"
-        );
+    for ((name, link, mark), (_, json_name, json_link, json_mark)) in rows.iter().zip(&expected) {
+        assert_eq!(name, json_name);
         assert_eq!(link, json_link);
         assert!(
             (mark - json_mark.round()).abs() < 0.5,
-            "{label}: {mark} against {json_mark}"
+            "{name}: {mark} against {json_mark}"
         );
         assert!(
-            svg.contains(&format!(">{mark:.0} mm<")),
-            "{label}: no mark in the picture"
+            svg.contains(&format!(">{mark:.0} mm<")) && svg.contains(&format!(">{name}<")),
+            "{name}: no mark in the strip"
         );
+    }
+    // The title block ties the sheet to the job: the setup's hash as the result gives it.
+    let hash = result["inputs"]["setup_hash"].as_str().expect("hash");
+    assert!(html.contains(&format!("<td>{hash}</td>")), "{html}");
+    // Each clamp's largest force and each piece's largest twist, as the JSON gives them.
+    for load in result["motion_test"]["clamp_loads"]
+        .as_array()
+        .expect("loads")
+    {
+        let force = load["max_force_n"].as_f64().expect("force");
+        assert!(
+            html.contains(&format!("{force:.2} N (t = ")),
+            "{force} in {html}"
+        );
+    }
+    for twist in result["motion_test"]["twists"].as_array().expect("twists") {
+        let degrees = twist["twist_deg"].as_f64().expect("twist");
+        let per_m = twist["twist_deg_per_m"].as_f64().expect("twist");
+        let said = format!("largest twist {}° ({}°/m)", degrees.round(), per_m.round());
+        assert!(
+            html.contains(&said.replace("-0°", "0°")),
+            "{said} in {html}"
+        );
+    }
+    // Every picture's clamp labels: inside their panel, no two overlapping.
+    for entry in std::fs::read_dir(&report).expect("report") {
+        let path = entry.expect("entry").path();
+        if path.extension().is_none_or(|e| e != "svg") {
+            continue;
+        }
+        let svg = std::fs::read_to_string(&path).expect("svg");
+        for ([vx, vy, vw, vh], boxes) in label_boxes(&svg) {
+            for (i, [x, y, w, h]) in boxes.iter().enumerate() {
+                let inside = *x >= vx - 0.05
+                    && *y >= vy - 0.05
+                    && x + w <= vx + vw + 0.05
+                    && y + h <= vy + vh + 0.05;
+                assert!(inside, "{path:?}: label {i} leaves its panel");
+                for [a, b, c, d] in &boxes[i + 1..] {
+                    let apart = x + w <= a + 0.05
+                        || a + c <= x + 0.05
+                        || y + h <= b + 0.05
+                        || b + d <= y + 0.05;
+                    assert!(apart, "{path:?}: labels overlap");
+                }
+            }
+        }
     }
 
     // The view's labels: the same clamps, at their places at the motion's first pose.
@@ -526,18 +639,13 @@ fn the_installation_sheet_and_the_view_agree_with_the_result() {
     assert_eq!(tight.as_deref(), Some("cable, tight margin"));
     let clamps = view["clamps"].as_array().expect("clamps");
     assert_eq!(clamps.len(), rows.len());
-    let setup = cable_dict::setup::Setup::from_file(ROBOT_LEVEL).expect("setup");
     let motion =
         cable_dict::motion::Motion::from_csv_file(&setup.robot, motion_file).expect("motion");
     let poses = setup.robot.link_poses(&motion.samples()[0]).expect("poses");
-    for (clamp, (label, _, _)) in clamps.iter().zip(&rows) {
+    for (clamp, ((label, _, _), (names, _, _, _))) in clamps.iter().zip(rows.iter().zip(&expected))
+    {
         assert_eq!(clamp["label"].as_str(), Some(label.as_str()));
-        let first = clamp["label"]
-            .as_str()
-            .expect("label")
-            .split([' ', '('])
-            .next()
-            .expect("name");
+        let first = names[0].as_str();
         let guide = setup
             .guides
             .iter()

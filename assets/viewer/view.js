@@ -1,6 +1,6 @@
 // The report page's 3D view: the scene of view-data.js in the page's <model-viewer>, with
-// play, pause, a time slider with the worst moment marked, and clamp labels that follow
-// their links. Written by cable-dict into every report folder; needs nothing outside it.
+// play, pause, a time slider with the worst moment marked, a button that turns the camera to
+// the worst spot and rings it, and clamp labels that follow their links. Written by cable-dict into every report folder; needs nothing outside it.
 //
 // A page opened from file:// may not fetch its neighbours, so the scene comes as base64 in
 // view-data.js (a plain script) and is handed to model-viewer as a blob: URL. Names from the
@@ -35,6 +35,17 @@
     return `${p[0]}m ${p[1]}m ${p[2]}m`;
   }
 
+  // The red ring at the worst spot, shown at the worst moment only.
+  const ring = document.createElement("div");
+  ring.slot = "hotspot-worst";
+  ring.className = "worst-ring";
+  ring.hidden = true;
+  if (data.worst && data.worst.spot_m) {
+    ring.dataset.position = position(data.worst.spot_m);
+    viewer.appendChild(ring);
+  }
+  const RING_WITHIN_S = 0.05;
+
   // Index of the last keyframe at or before t, and the share of the way to the next one.
   function keyframe(t) {
     const times = data.times_s;
@@ -62,7 +73,13 @@
 
   function show(t) {
     slider.value = String(t);
-    readout.textContent = `t = ${t.toFixed(2)} s of ${duration.toFixed(2)} s`;
+    const end = data.motion_end_s;
+    const held = end !== null && end !== undefined && t > end + 1e-6;
+    const motionEnd = end !== null && end !== undefined ? `; the motion ends at ${end.toFixed(2)} s` : "";
+    readout.textContent = held
+      ? `t = ${t.toFixed(2)} s: the motion's last pose held, the cable coming to rest${motionEnd}`
+      : `t = ${t.toFixed(2)} s of ${duration.toFixed(2)} s${motionEnd}`;
+    ring.hidden = !(data.worst && Math.abs(t - data.worst.time_s) <= RING_WITHIN_S);
     moveLabels(t);
   }
 
@@ -106,6 +123,7 @@
     play.textContent = "Play";
     install.classList.add("active");
     readout.textContent = "installation pose";
+    ring.hidden = true;
     data.clamps.forEach((clamp, i) => {
       viewer.updateHotspot({ name: `hotspot-clamp-${i}`, position: position(clamp.installation_m) });
     });
@@ -142,5 +160,14 @@
     }
   });
   slider.addEventListener("input", () => seek(Number(slider.value)));
-  worstButton.addEventListener("click", () => data.worst && seek(data.worst.time_s));
+  // The worst moment: the time there, the camera turned to the spot from outside the arm.
+  worstButton.addEventListener("click", async () => {
+    if (!data.worst) return;
+    await seek(data.worst.time_s);
+    if (data.worst.spot_m && data.worst.orbit) {
+      const [azimuth, polar, distance] = data.worst.orbit;
+      viewer.cameraTarget = position(data.worst.spot_m);
+      viewer.cameraOrbit = `${azimuth}deg ${polar}deg ${distance}m`;
+    }
+  });
 })();

@@ -105,6 +105,7 @@ pub fn run(args: Args) -> Result<(), Failure> {
         axial_stiffness_n: DEFAULT_AXIAL_STIFFNESS_N,
         tool_end_allowance_m: None,
         base_end_allowance_m: None,
+        part_number: None,
     };
     let measured = match test.tip {
         // As typed: 18 mm, not the 18.000000000000004 of the unit conversions.

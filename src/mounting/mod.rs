@@ -183,6 +183,23 @@ pub struct MountedPiece {
     pub segment: String,
 }
 
+impl JointValue {
+    /// `joint_2 -68.6 deg`, with the pendant's angle when known: `joint_2 -68.6 deg
+    /// (pendant 158.6)`.
+    pub fn words(&self) -> String {
+        let pendant = self
+            .pendant
+            .map(|p| format!(" (pendant {})", decimal(p, 1)))
+            .unwrap_or_default();
+        format!(
+            "{} {} {}{pendant}",
+            self.joint,
+            decimal(self.value, 1),
+            self.unit
+        )
+    }
+}
+
 /// One joint of the installation pose, in display units.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct JointValue {
@@ -192,6 +209,9 @@ pub struct JointValue {
     pub value: f64,
     /// `deg` or `mm`.
     pub unit: &'static str,
+    /// The angle the robot's pendant shows (deg), where the setup gives the conversion
+    /// (`[pendant_angles]`).
+    pub pendant: Option<f64>,
 }
 
 impl MountingPlan {
@@ -211,13 +231,16 @@ impl MountingPlan {
     pub fn installation_words(&self) -> String {
         match &self.installation_pose {
             Some(pose) => {
-                let joints: Vec<String> = pose
-                    .iter()
-                    .map(|j| format!("{} {} {}", j.joint, decimal(j.value, 1), j.unit))
-                    .collect();
+                let joints: Vec<String> = pose.iter().map(JointValue::words).collect();
+                let pendant = if pose.iter().any(|j| j.pendant.is_some()) {
+                    "; angles of the robot description (URDF), the pendant's in brackets"
+                } else {
+                    "; angles of the robot description (URDF): a pendant may count them from \
+                     another zero or the other way (give [pendant_angles] in the setup)"
+                };
                 format!(
                     "lay the cable untwisted along its route with the robot at its installation \
-                     pose: {}",
+                     pose: {}{pendant}",
                     joints.join(", ")
                 )
             }
@@ -305,9 +328,9 @@ pub fn cut_words(plan: &MountingPlan) -> String {
     match &plan.cut {
         Some(cut) => cut.describe(),
         None => format!(
-            "cut {} mm plus what the cable needs beyond the last clamp and before the first: \
-             give tool_end_allowance_mm and base_end_allowance_mm in the cable file to have \
-             the cut length computed",
+            "cut {} mm plus what the cable needs beyond the last clamp and before the first \
+             (tool_end_allowance_mm and base_end_allowance_mm in the cable file give the cut \
+             length)",
             decimal(plan.length_mm, 0)
         ),
     }
@@ -534,10 +557,12 @@ fn joint_values(setup: &Setup, joints: &[f64]) -> Vec<JointValue> {
         .map(|(i, &value)| {
             let joint = setup.robot.actuated_joint(i);
             let (scale, unit) = joint.kind.display_unit();
+            let pendant = setup.pendant_angles.iter().find(|p| p.joint == i);
             JointValue {
                 joint: joint.name.clone(),
                 value: value * scale,
                 unit,
+                pendant: pendant.map(|p| p.of(value * scale)),
             }
         })
         .collect()

@@ -27,6 +27,8 @@ pub struct ClampRow {
     /// How high the cable's axis stands off the surface: `the cable's axis 12 mm off the
     /// surface (clamp and cable radius)`, or that the placement was written by hand.
     pub height: String,
+    /// The same height alone, `12` (mm), for a generated site.
+    pub height_mm: Option<String>,
     /// The search's names of its guides and placement, for `-v` and the JSON's readers.
     pub search_names: String,
     /// Position and orientation in the link frame, for CAD: `x, y, z mm; r, p, y deg`.
@@ -86,6 +88,7 @@ fn clamp_row(clamp: &PhysicalClamp) -> ClampRow {
         around,
         cable,
         height,
+        height_mm: clamp.surface_to_cable_axis_mm.map(|h| decimal(h, 0)),
         search_names: format!("{} ({})", clamp.guides_label(), clamp.placement),
         link_frame: format!(
             "{} mm; {} deg",

@@ -1,254 +1,314 @@
-//! The installation sheet: `install.svg` (the cable laid out straight with a mark where each
-//! physical clamp grips it, and one sketch per clamp of its place on the link) and
-//! `install.html` (the same picture with the table of places, printable, no scripts).
+//! The installation sheet, one printed A4 landscape page a fitter mounts the cable from
+//! alone: `install.html` (no script) with a title block that ties it to its job, the arm at
+//! the installation pose from three sides with the clamps numbered (`installation-pose.svg`),
+//! the steps, one row per clamp (its place in words, how the cable leaves it, how high its
+//! axis stands off the surface, the largest load on it), the cable laid out straight with its
+//! marks (`install.svg`), the pieces with their largest twist, and the cut.
 //!
-//! Everything comes from the answer's [`MountingPlan`]: coincident guides are one clamp, the
-//! marks are cable lengths from the end at the tool, places are measured from the link's
-//! joint axes (see [`crate::mounting::place`]).
+//! Every wording comes from the answer's [`MountingPlan`] and its rows
+//! ([`crate::mounting::rows`]), and from the motion test's twist and load rows
+//! ([`crate::solve::load_rows`]): the sheet says nothing of its own about a clamp.
 
 use super::summary::capitalized;
 use crate::escape::html as escape;
-use crate::mounting::{LinkPlace, MountingPlan, PhysicalClamp};
-use crate::text_table::{decimal, decimals};
+use crate::mounting::{self, MountingPlan, rows};
+use crate::solve::LoadRow;
 use std::fmt::Write;
 
-/// Width of the sheet (px).
-const WIDTH_PX: f64 = 960.0;
+/// Width of the strip picture (px).
+const WIDTH_PX: f64 = 1000.0;
 /// Margin left and right of the cable strip (px).
-const SIDE_PX: f64 = 70.0;
-/// Height of the cable strip with its marks (px).
-const STRIP_PX: f64 = 150.0;
-/// Height of one clamp's sketch (px).
-const SKETCH_PX: f64 = 120.0;
-/// Length of the link axis in a sketch (px).
-const AXIS_PX: f64 = 360.0;
+const SIDE_PX: f64 = 90.0;
+/// Height of the strip picture (px).
+const STRIP_PX: f64 = 86.0;
+/// Height of the arm's picture on the page with no clamp rows (mm), what each row takes from
+/// it, and the least it keeps.
+const PICTURE_MM: f64 = 88.0;
+const PICTURE_PER_ROW_MM: f64 = 6.0;
+const MIN_PICTURE_MM: f64 = 45.0;
 
-const STYLE: &str = "text{fill:#222;font-family:sans-serif;font-size:13px}\
-.heading{font-size:15px;font-weight:bold}\
-.cable{stroke:#e8590c;stroke-width:8;stroke-linecap:round}\
-.mark line{stroke:#1c4fd8;stroke-width:2}\
-.mark text,.clamp{fill:#1c4fd8;font-weight:bold}\
-.section{fill:#eef1f4;stroke:#2f3a45;stroke-width:1.5}\
-.axis{stroke:#2f3a45;stroke-width:2;stroke-dasharray:8 4}\
-.joint{fill:white;stroke:#2f3a45;stroke-width:2}\
-.arrow{stroke:#e8590c;stroke-width:3;marker-end:url(#head)}\
-.note{fill:#555;font-size:12px}";
-
-/// `install.svg` for `plan`; `title` heads it.
-pub fn install_svg(title: &str, plan: &MountingPlan) -> String {
-    let height = 40.0 + STRIP_PX + SKETCH_PX * plan.clamps.len() as f64 + 20.0;
-    let mut svg = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{WIDTH_PX}\" height=\"{height}\" \
-         viewBox=\"0 0 {WIDTH_PX} {height}\">\n<style>{STYLE}</style>\n<defs><marker id=\"head\" \
-         viewBox=\"0 0 10 10\" refX=\"8\" refY=\"5\" markerWidth=\"5\" markerHeight=\"5\" \
-         orient=\"auto\"><path d=\"M0,0 L10,5 L0,10 z\" fill=\"#e8590c\"/></marker></defs>\n\
-         <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n\
-         <text class=\"heading\" x=\"12\" y=\"24\">{}</text>\n",
-        escape(title)
-    );
-    cable_strip(&mut svg, plan, 40.0);
-    for (i, clamp) in plan.clamps.iter().enumerate() {
-        clamp_sketch(&mut svg, clamp, 40.0 + STRIP_PX + SKETCH_PX * i as f64);
-    }
-    svg.push_str("</svg>\n");
-    svg
+/// What the sheet is about, for its title block.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TitleBlock {
+    /// `viper_s850 (robots/viper_s850/viper_s850.urdf)`.
+    pub robot: String,
+    /// `SMC LE-CP (8 mm), part number …`.
+    pub cable: String,
+    /// The motion file, or what stands in for it.
+    pub motion: String,
+    /// The setup file.
+    pub setup: String,
+    /// The setup's content hash (16 hexadecimal digits).
+    pub setup_hash: String,
+    /// `2026-11-28`: the day the sheet was made (`SOURCE_DATE_EPOCH` when set).
+    pub date: String,
 }
 
-/// The cable drawn straight, its end at the tool on the left, a mark per clamp.
-fn cable_strip(svg: &mut String, plan: &MountingPlan, top: f64) {
+/// The sheet's inputs besides the plan.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sheet<'a> {
+    /// The answer as mounted.
+    pub plan: &'a MountingPlan,
+    /// The title block.
+    pub title: TitleBlock,
+    /// The picture of the arm at the installation pose, if the report has one.
+    pub picture: Option<&'a str>,
+    /// The largest twist per piece and load per clamp over the motion test.
+    pub loads: Vec<LoadRow>,
+}
+
+const STRIP_STYLE: &str = "text{fill:#222;font-family:sans-serif;font-size:15px}\
+.mark line{stroke:#1c4fd8;stroke-width:2}\
+.mark text{fill:#1c4fd8;font-weight:bold}\
+.note{fill:#555;font-size:13px}";
+
+/// `install.svg`: the cable drawn straight, its end at the tool on the left, a mark per
+/// physical clamp with its number and its mark.
+pub fn install_svg(plan: &MountingPlan, cable_colour: &str) -> String {
+    let mut svg = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{WIDTH_PX}\" height=\"{STRIP_PX}\" \
+         viewBox=\"0 0 {WIDTH_PX} {STRIP_PX}\">\n<style>{STRIP_STYLE}</style>\n\
+         <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    );
     let scale = (WIDTH_PX - 2.0 * SIDE_PX) / plan.length_mm.max(1.0);
-    let y = top + 60.0;
+    let y = 44.0;
     let _ = writeln!(
         svg,
-        "<line class=\"cable\" x1=\"{SIDE_PX}\" y1=\"{y}\" x2=\"{:.1}\" y2=\"{y}\"/>",
-        WIDTH_PX - SIDE_PX
+        "<line x1=\"{SIDE_PX}\" y1=\"{y}\" x2=\"{:.1}\" y2=\"{y}\" stroke=\"{}\" \
+         stroke-width=\"9\" stroke-linecap=\"round\"/>",
+        WIDTH_PX - SIDE_PX,
+        escape(cable_colour)
+    );
+    let _ = writeln!(
+        svg,
+        "<text class=\"note\" x=\"4\" y=\"{:.1}\">tool end</text>\
+         <text class=\"note\" x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">base end</text>",
+        y + 4.0,
+        WIDTH_PX - 4.0,
+        y + 4.0
     );
     svg.push_str("<g class=\"mark\">\n");
-    for (i, clamp) in plan.clamps.iter().enumerate() {
-        let x = SIDE_PX + clamp.mark_mm * scale;
-        // Labels alternate above and below so that close marks stay readable; those at the
-        // ends run inward.
-        let (label_y, mark_y) = if i % 2 == 0 {
-            (y - 26.0, y - 42.0)
+    for (i, row) in rows::clamp_rows(plan).iter().enumerate() {
+        let x = SIDE_PX + plan.clamps[i].mark_mm * scale;
+        // Names above, marks below; neighbours closer than a label alternate up and down.
+        let crowded = i % 2 == 1;
+        let (name_y, mark_y) = if crowded {
+            (y - 28.0, y + 34.0)
         } else {
-            (y + 34.0, y + 50.0)
+            (y - 14.0, y + 20.0)
         };
         let anchor = match x {
-            x if x < WIDTH_PX / 4.0 => "start",
-            x if x > WIDTH_PX * 0.75 => "end",
+            x if x < WIDTH_PX * 0.2 => "start",
+            x if x > WIDTH_PX * 0.8 => "end",
             _ => "middle",
-        };
-        let x_text = match anchor {
-            "start" => x - 12.0,
-            "end" => x + 12.0,
-            _ => x,
         };
         let _ = writeln!(
             svg,
             "<line x1=\"{x:.1}\" y1=\"{:.1}\" x2=\"{x:.1}\" y2=\"{:.1}\"/>\
-             <text x=\"{x_text:.1}\" y=\"{mark_y:.1}\" text-anchor=\"{anchor}\">{}</text>\
-             <text x=\"{x_text:.1}\" y=\"{label_y:.1}\" text-anchor=\"{anchor}\">{} mm</text>",
-            y - 14.0,
-            y + 14.0,
-            escape(&clamp.name()),
-            decimal(clamp.mark_mm, 0)
+             <text x=\"{x:.1}\" y=\"{name_y:.1}\" text-anchor=\"{anchor}\">{}</text>\
+             <text x=\"{x:.1}\" y=\"{mark_y:.1}\" text-anchor=\"{anchor}\">{} mm</text>",
+            y - 10.0,
+            y + 10.0,
+            escape(&row.name),
+            row.mark_mm
         );
     }
-    svg.push_str("</g>\n");
-    let _ = writeln!(
-        svg,
-        "<text class=\"note\" x=\"12\" y=\"{:.1}\">Marks: cable length from its end at the \
-         tool (left); {}.</text>",
-        top + STRIP_PX - 24.0,
-        escape(&plan.tolerance_words())
-    );
+    svg.push_str("</g>\n</svg>\n");
+    svg
 }
 
-/// One clamp: its link's long axis from the joint it is measured from, the clamp at its
-/// distance along it, the cable's direction as an arrow, and the place in words.
-fn clamp_sketch(svg: &mut String, clamp: &PhysicalClamp, top: f64) {
-    let _ = writeln!(
-        svg,
-        "<text class=\"clamp\" x=\"12\" y=\"{:.1}\">{} on {}, mark {} mm</text>",
-        top + 16.0,
-        escape(&clamp.name()),
-        escape(&clamp.link),
-        decimal(clamp.mark_mm, 0)
-    );
-    let Some(place) = &clamp.place else {
-        let _ = writeln!(
-            svg,
-            "<text class=\"note\" x=\"12\" y=\"{:.1}\">on the robot's base link at {} mm \
-             (link frame)</text>",
-            top + 36.0,
-            decimals(&clamp.xyz_mm, 1)
-        );
-        return;
-    };
-    let (x0, y) = (40.0, top + 60.0);
-    // The axis spans the link to its next joint, or 1.25 × the clamp's distance.
-    let along_mm = place.along_mm.unwrap_or(0.0);
-    let span_mm = place
-        .next_joint_mm
-        .unwrap_or(along_mm.abs() * 1.25)
-        .max(along_mm.abs())
-        .max(1.0);
-    let x = x0 + AXIS_PX * (along_mm / span_mm).clamp(-0.1, 1.0);
-    let _ = writeln!(
-        svg,
-        "<line class=\"axis\" x1=\"{x0}\" y1=\"{y}\" x2=\"{:.1}\" y2=\"{y}\"/>\
-         <circle class=\"joint\" cx=\"{x0}\" cy=\"{y}\" r=\"7\"/>\
-         <text class=\"note\" x=\"{x0}\" y=\"{:.1}\" text-anchor=\"middle\">{} axis</text>",
-        x0 + AXIS_PX,
-        y + 26.0,
-        escape(&place.joint)
-    );
-    if let Some(next) = &place.next_joint {
-        let _ = writeln!(
-            svg,
-            "<circle class=\"joint\" cx=\"{x1:.1}\" cy=\"{y}\" r=\"7\"/>\
-             <text class=\"note\" x=\"{x1:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{} axis</text>",
-            y + 26.0,
-            escape(next),
-            x1 = x0 + AXIS_PX * (place.next_joint_mm.unwrap_or(span_mm) / span_mm),
-        );
-    }
-    cable_arrow(svg, place, x, y);
-    cross_section(svg, place, x0 + AXIS_PX + 70.0, y);
-    let _ = writeln!(
-        svg,
-        "<text class=\"note\" x=\"{:.1}\" y=\"{:.1}\">{}</text>\
-         <text class=\"note\" x=\"{:.1}\" y=\"{:.1}\">{}</text>",
-        x0 + AXIS_PX + 120.0,
-        y - 10.0,
-        escape(&place.along_words()),
-        x0 + AXIS_PX + 120.0,
-        y + 10.0,
-        escape(&format!("cable {}", place.cable_direction()))
-    );
-}
-
-/// The clamp as a dot on the axis and the cable's direction (toward the tool) as an arrow at
-/// its angle to the axis.
-fn cable_arrow(svg: &mut String, place: &LinkPlace, x: f64, y: f64) {
-    let angle = place.cable_to_axis_deg.to_radians();
-    let (dx, dy) = (40.0 * angle.cos(), -40.0 * angle.sin());
-    let _ = writeln!(
-        svg,
-        "<line class=\"arrow\" x1=\"{x:.1}\" y1=\"{y:.1}\" x2=\"{:.1}\" y2=\"{:.1}\"/>\
-         <circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"6\" fill=\"#1c4fd8\"/>",
-        x + dx,
-        y + dy
-    );
-}
-
-/// The link seen along its long axis: a circle with the zero side marked and the clamp at its
-/// angle, clockwise (the view looks along the axis, so clockwise on paper is clockwise).
-fn cross_section(svg: &mut String, place: &LinkPlace, cx: f64, cy: f64) {
-    let angle = place.around_deg.to_radians();
-    let (px, py) = (cx + 30.0 * angle.sin(), cy - 30.0 * angle.cos());
-    let _ = writeln!(
-        svg,
-        "<circle class=\"section\" cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"24\"/>\
-         <text class=\"note\" x=\"{cx:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>\
-         <line class=\"mark\" x1=\"{cx:.1}\" y1=\"{:.1}\" x2=\"{cx:.1}\" y2=\"{:.1}\" stroke=\"#2f3a45\"/>\
-         <circle cx=\"{px:.1}\" cy=\"{py:.1}\" r=\"6\" fill=\"#1c4fd8\"/>",
-        cy - 36.0,
-        place.zero_side.word(),
-        cy - 28.0,
-        cy - 20.0,
-    );
-}
-
-/// `install.html`: the sheet's picture and the table of places, for printing.
-pub fn install_html(title: &str, plan: &MountingPlan) -> String {
-    let mut rows = String::new();
-    for clamp in &plan.clamps {
-        let place = clamp
-            .place
-            .as_ref()
-            .map(LinkPlace::describe)
-            .unwrap_or_else(|| "on the robot's base link".into());
-        let _ = writeln!(
-            rows,
-            "<tr><td>{}</td><td>{}</td><td class=\"mark\">{}</td><td>{}</td><td>{}</td>\
-             <td>{}</td><td>{}</td></tr>",
-            escape(&clamp.name()),
-            escape(&clamp.link),
-            decimal(clamp.mark_mm, 0),
-            escape(&place),
-            escape(&clamp.placement),
-            decimals(&clamp.xyz_mm, 1),
-            decimals(&clamp.rpy_deg, 1)
-        );
-    }
-    let cut = plan
-        .cut
-        .as_ref()
-        .map(|cut| format!("<p><b>{}</b>.</p>\n", escape(&capitalized(&cut.describe()))))
-        .unwrap_or_default();
-    format!(
+/// `install.html`: the sheet, one A4 landscape page, no script.
+pub fn install_html(sheet: &Sheet<'_>) -> String {
+    let plan = sheet.plan;
+    let mut html = String::new();
+    let title = "Cable installation sheet";
+    let _ = write!(
+        html,
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
-         <title>{title}</title>\n<style>\n{PAGE_STYLE}</style>\n</head>\n<body>\n\
-         <h1>{title}</h1>\n<p>Cable between the first and the last clamp: <b>{length} mm</b>. \
-         {pose}.</p>\n{cut}<p>{tolerance}. The cable before the first clamp and beyond the last \
-         is outside this design.</p>\n<img src=\"install.svg\" alt=\"the cable with its clamp \
-         marks, and each clamp's place on its link\">\n<table>\n<tr><th>clamp</th><th>link</th>\
-         <th>mark (mm from the tool end)</th><th>place on the link</th><th>placement</th>\
-         <th>xyz in the link frame (mm)</th><th>rpy (deg)</th></tr>\n{rows}</table>\n\
-         </body>\n</html>\n",
-        title = escape(title),
-        length = decimal(plan.length_mm, 0),
-        pose = escape(&capitalized(&plan.installation_words())),
-        tolerance = escape(&capitalized(&plan.tolerance_words())),
-    )
+         <title>{title}</title>\n<style>\n{PAGE_STYLE}</style>\n</head>\n<body>\n"
+    );
+    title_block(&mut html, title, &sheet.title);
+    html.push_str("<div class=\"top\">\n");
+    if let Some(picture) = sheet.picture {
+        // The picture gives way to the table's rows: one page holds both.
+        let height_mm =
+            (PICTURE_MM - PICTURE_PER_ROW_MM * plan.clamps.len() as f64).max(MIN_PICTURE_MM);
+        let _ = writeln!(
+            html,
+            "<figure class=\"arm\"><img style=\"max-height: {height_mm:.0}mm\" src=\"{}\" alt=\"the robot at the installation pose \
+             from the front, the side and above, the clamps numbered\"><figcaption>The robot at \
+             the installation pose, the cable laid there; clamps numbered as below.\
+             </figcaption></figure>",
+            escape(picture)
+        );
+    }
+    steps(&mut html, plan);
+    html.push_str("</div>\n");
+    clamp_table(&mut html, plan, &sheet.loads);
+    for warning in plan.warnings() {
+        let _ = writeln!(
+            html,
+            "<p class=\"warning\"><b>Warning:</b> {}.</p>",
+            escape(&capitalized(&warning))
+        );
+    }
+    html.push_str(
+        "<img class=\"strip\" src=\"install.svg\" alt=\"the cable laid out straight, each \
+         clamp's mark from the tool end\">\n",
+    );
+    pieces_and_cut(&mut html, plan, &sheet.loads);
+    html.push_str("</body>\n</html>\n");
+    html
 }
 
-/// Print-friendly styling; system fonts only.
-const PAGE_STYLE: &str = "body { font-family: sans-serif; margin: 1em 2em; color: #222; }
-table { border-collapse: collapse; margin: 1em 0; }
-th, td { border: 1px solid #999; padding: 0.3em 0.6em; text-align: left; vertical-align: top; }
-td.mark { text-align: right; font-weight: bold; }
-img { max-width: 100%; }
-@media print { body { margin: 0; } }
+/// Robot, cable, motion, setup and its hash, date, tool version.
+fn title_block(html: &mut String, title: &str, t: &TitleBlock) {
+    let cells = [
+        ("robot", t.robot.as_str()),
+        ("cable", t.cable.as_str()),
+        ("motion", t.motion.as_str()),
+        ("setup", t.setup.as_str()),
+        ("setup hash", t.setup_hash.as_str()),
+        ("date", t.date.as_str()),
+        ("made by", concat!("cable-dict ", env!("CARGO_PKG_VERSION"))),
+    ];
+    let _ = write!(
+        html,
+        "<table class=\"title\"><tr><th class=\"name\" rowspan=\"2\">{title}</th>"
+    );
+    for (label, _) in &cells {
+        let _ = write!(html, "<th>{label}</th>");
+    }
+    html.push_str("</tr>\n<tr>");
+    for (_, value) in &cells {
+        let _ = write!(html, "<td>{}</td>", escape(value));
+    }
+    html.push_str("</tr></table>\n");
+}
+
+/// What to do, in order.
+fn steps(html: &mut String, plan: &MountingPlan) {
+    let end = plan.clamps.last().map(|c| c.in_words()).unwrap_or_default();
+    let fitting_end = plan.clamps.last().is_some_and(|c| c.fitting.is_some());
+    let mut steps = vec![format!("{}.", capitalized(&plan.installation_words()))];
+    steps.push(format!(
+        "Mark the cable at each clamp's mark, its length from the end at {end} (strip \
+         below); {}.",
+        plan.tolerance_words()
+    ));
+    if fitting_end {
+        steps.push(format!("Plug the cable's end into {end}."));
+    }
+    steps.push(
+        "Mount each clamp as its row says (distances are to the cable's axis, not the clamp's \
+         foot) and close it on its mark, the cable leaving as the row says."
+            .into(),
+    );
+    steps.push(format!("{}.", capitalized(&mounting::cut_words(plan))));
+    html.push_str("<section class=\"steps\"><h2>Steps</h2>\n<ol>\n");
+    for step in steps {
+        let _ = writeln!(html, "<li>{}</li>", escape(&step));
+    }
+    html.push_str("</ol>\n</section>\n");
+}
+
+/// One row per clamp or fitting.
+fn clamp_table(html: &mut String, plan: &MountingPlan, loads: &[LoadRow]) {
+    html.push_str(
+        "<table class=\"clamps\">\n<tr><th>clamp</th><th>on</th><th>mark (mm from the tool \
+         end)</th><th>along the link</th><th>around it (distances to the cable's axis)</th>\
+         <th>the cable leaves</th><th>the cable's axis above the surface (clamp and cable \
+         radius)</th><th>largest load in the motion test</th></tr>\n",
+    );
+    for row in rows::clamp_rows(plan) {
+        let note = row
+            .note
+            .map(|n| format!("<br><span class=\"note\">{}</span>", escape(n)))
+            .unwrap_or_default();
+        let load = loads
+            .iter()
+            .find(|l| l.name == row.name)
+            .map(|l| escape(&l.short))
+            .unwrap_or_default();
+        let height = match &row.height_mm {
+            Some(mm) => format!("{mm} mm"),
+            None => escape(&row.height),
+        };
+        let _ = writeln!(
+            html,
+            "<tr><td><span class=\"name\">{}</span>{note}</td><td>{}</td>\
+             <td class=\"mark\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{height}</td>\
+             <td>{load}</td></tr>",
+            escape(&row.name),
+            escape(&row.link),
+            row.mark_mm,
+            escape(&row.along),
+            escape(&row.around),
+            escape(&row.cable),
+        );
+    }
+    html.push_str("</table>\n");
+}
+
+/// The pieces with their largest twist, and the length.
+fn pieces_and_cut(html: &mut String, plan: &MountingPlan, loads: &[LoadRow]) {
+    html.push_str("<p class=\"pieces\">");
+    let pieces: Vec<String> = rows::piece_rows(plan)
+        .into_iter()
+        .map(|piece| {
+            let twist = loads
+                .iter()
+                .find(|l| l.name == format!("piece {}", piece.name))
+                .map(|l| format!(", largest twist {}", l.short))
+                .unwrap_or_default();
+            format!(
+                "<b>{}</b>: {} mm {}{}",
+                escape(&piece.name),
+                piece.length_mm,
+                escape(&piece.across),
+                escape(&twist)
+            )
+        })
+        .collect();
+    let _ = writeln!(
+        html,
+        "{}. Pieces (twist from the cable as laid): {}.</p>",
+        escape(&capitalized(&rows::length_words(plan))),
+        pieces.join("; ")
+    );
+    html.push_str(
+        "<p class=\"small\">The cable before the first clamp and beyond the last is outside \
+         this design. A joint's axis is the centre of its housing; a seam is where a link \
+         turns against the one before it. Placements in the link frames for CAD: \
+         result.json, \"mounting\".</p>\n",
+    );
+}
+
+/// Print styling for one A4 landscape page; system fonts only.
+const PAGE_STYLE: &str = "@page { size: A4 landscape; margin: 8mm; }
+* { box-sizing: border-box; }
+body { font-family: sans-serif; font-size: 8.5pt; color: #222; margin: 0 auto; max-width: 281mm; }
+h2 { font-size: 10pt; margin: 0 0 1mm 0; }
+table { border-collapse: collapse; width: 100%; }
+th, td { border: 1px solid #999; padding: 0.6mm 1.2mm; text-align: left; vertical-align: top; }
+table.title { margin-bottom: 2mm; font-size: 8.5pt; }
+table.title th { background: #eef1f4; font-weight: normal; font-size: 8pt; }
+table.title th.name { font-size: 12pt; font-weight: bold; background: white; }
+.top { display: flex; gap: 4mm; align-items: flex-start; }
+figure.arm { margin: 0; flex: 0 0 auto; }
+figure.arm img { width: 170mm; object-fit: contain; object-position: left top; display: block; }
+figcaption { font-size: 8pt; color: #555; }
+.steps { flex: 1 1 auto; }
+.steps ol { margin: 0; padding-left: 5mm; font-size: 8pt; }
+.steps li { margin-bottom: 1mm; }
+.warning { color: #a40000; margin: 1mm 0; }
+table.clamps { margin-top: 2mm; font-size: 8pt; }
+table.clamps th { background: #eef1f4; }
+.name { font-weight: bold; color: #1c4fd8; white-space: nowrap; }
+td.mark { text-align: right; font-weight: bold; white-space: nowrap; }
+.note { font-weight: normal; color: #555; font-size: 8pt; }
+img.strip { width: 100%; max-height: 16mm; object-fit: contain; display: block; margin: 1mm 0; }
+p { margin: 1mm 0; }
+.small { font-size: 8pt; color: #555; }
+@media print { body { max-width: none; } }
 ";

@@ -30,7 +30,6 @@ use crate::atomic_file::FolderReplacement;
 use crate::motion::Motion;
 use crate::setup::Setup;
 use crate::solve::SolveReport;
-use crate::text_table::decimal;
 use std::path::{Path, PathBuf};
 
 /// Why the report folder could not be written.
@@ -169,19 +168,29 @@ pub fn write_report(
         folder.put(&picture.file, &picture.what, picture.svg.as_bytes())?;
     }
     if let Some(plan) = &report.mounting {
-        let title = format!(
-            "Installation sheet: {} mm of cable between the clamps",
-            decimal(plan.length_mm, 0)
-        );
+        let picture = pictures::installation_picture(setup, report, &spec);
+        if let Some(picture) = &picture {
+            folder.put(&picture.file, &picture.what, picture.svg.as_bytes())?;
+        }
+        let sheet = install::Sheet {
+            plan,
+            title: title_block(setup, report),
+            picture: picture.as_ref().map(|p| p.file.as_str()),
+            loads: report
+                .motion_test
+                .as_ref()
+                .map(|test| crate::solve::load_rows(test, Some(plan)))
+                .unwrap_or_default(),
+        };
         folder.put(
             "install.svg",
-            "the installation sheet's picture: clamp marks on the cable, each clamp on its link",
-            install::install_svg(&title, plan).as_bytes(),
+            "the installation sheet's strip: the cable laid out straight with each clamp's mark",
+            install::install_svg(plan, &scene::CableTint::Plain.css()).as_bytes(),
         )?;
         folder.put(
             "install.html",
-            "the installation sheet, printable: every clamp's place and mark",
-            install::install_html(&title, plan).as_bytes(),
+            "the installation sheet, one printed A4 landscape page: every clamp's place and mark",
+            install::install_html(&sheet).as_bytes(),
         )?;
     }
     let described: Vec<(&str, &str)> = folder
@@ -204,15 +213,16 @@ pub fn write_report(
         },
         page::Section {
             heading: "Installation sheet",
-            intro: "Where each clamp grips the cable and where it sits on its link; the \
-                    printable sheet with the table of places is install.html.",
+            intro: "Where each clamp grips the cable; the printable sheet, one A4 page with \
+                    the arm at the installation pose and every clamp's place, is install.html \
+                    in this folder.",
             figures: report
                 .mounting
                 .as_ref()
                 .map(|_| {
                     vec![(
                         "install.svg",
-                        "Clamp marks on the cable and each clamp's place",
+                        "Each clamp's mark: cable length from the end at the tool",
                     )]
                 })
                 .unwrap_or_default(),
@@ -228,6 +238,56 @@ pub fn write_report(
     let written = folder.written;
     staging.commit().map_err(write_error)?;
     Ok(written)
+}
+
+/// What ties the installation sheet to its job: robot, cable, motion, setup, its hash, the
+/// date.
+fn title_block(setup: &Setup, report: &SolveReport) -> install::TitleBlock {
+    let cable = &setup.cable;
+    install::TitleBlock {
+        robot: format!("{} ({})", setup.robot.name, setup.robot_path.display()),
+        cable: match &cable.part_number {
+            Some(part) => format!("{}, part number {part}", cable.name),
+            None => cable.name.clone(),
+        },
+        motion: report
+            .inputs
+            .motion_file
+            .clone()
+            .unwrap_or_else(|| "(none)".into()),
+        setup: report.inputs.setup_file.clone(),
+        setup_hash: report.inputs.setup_hash.clone(),
+        date: sheet_date(),
+    }
+}
+
+/// The date the sheet is made, `YYYY-MM-DD` (UTC): from `SOURCE_DATE_EPOCH` (seconds) when
+/// it is set, so that a report can be made again byte for byte, else today.
+fn sheet_date() -> String {
+    let seconds = std::env::var("SOURCE_DATE_EPOCH")
+        .ok()
+        .and_then(|v| v.trim().parse::<i64>().ok())
+        .unwrap_or_else(|| {
+            std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map_or(0, |d| d.as_secs() as i64)
+        });
+    let (year, month, day) = civil_date(seconds.div_euclid(86_400));
+    format!("{year:04}-{month:02}-{day:02}")
+}
+
+/// The proleptic Gregorian date of `days` since 1970-01-01 (H. Hinnant's `civil_from_days`).
+fn civil_date(days: i64) -> (i64, u32, u32) {
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z.rem_euclid(146_097);
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = (doy - (153 * mp + 2) / 5 + 1) as u32;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 } as u32;
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    (year, month, day)
 }
 
 /// `Ok` when [`write_report`] will be able to put its folder at `dir` (checked before a

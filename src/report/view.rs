@@ -8,9 +8,10 @@
 //! plain script; everything else is in the folder, nothing is fetched from a network.
 
 use super::ReportError;
-use super::scene::{INSTALLATION_ANIMATION, SceneSpec, to_glb};
+use super::scene::{CableTint, INSTALLATION_ANIMATION, SceneSpec, to_glb};
 use super::views::TIGHT_SHARE;
 use super::worst::{limit_words, smallest_margin};
+use crate::escape::html as escape;
 use crate::motion_test::MotionTestReport;
 use crate::mounting::mounting_plan;
 use crate::pose::Pose;
@@ -55,6 +56,9 @@ struct ViewData {
     clamps: Vec<ClampTrack>,
     /// The moment to jump to; `None` without a motion test.
     worst: Option<WorstMoment>,
+    /// When the motion ends (s from the animation's start): the test runs on, the motion's
+    /// last pose held, so that the cable settles.
+    motion_end_s: Option<f64>,
 }
 
 /// A clamp label and where it is over time.
@@ -73,9 +77,15 @@ struct ClampTrack {
 struct WorstMoment {
     /// Time from the animation's start (s).
     time_s: f64,
-    /// For people: `smallest margin: bend radius 63.6 mm (limit 48.0 mm) on cable piece C1
-    /// at t = 4.91 s`, or what failed.
+    /// For people: `smallest margin: bend radius 63.6 mm (limit 48.0 mm) on piece 1 → 2 at
+    /// t = 4.91 s`, or what failed.
     what: String,
+    /// Where on the cable (glTF frame, m, y up), for the camera and the red ring; `None` when
+    /// the place is not known.
+    spot_m: Option<[f64; 3]>,
+    /// The camera's orbit to look at the spot from outside the arm: azimuth and polar angle
+    /// (deg, model-viewer's), distance (m).
+    orbit: Option<[f64; 3]>,
 }
 
 /// The view's files for the scene `spec` of `report` (solved with `setup`).
@@ -107,7 +117,13 @@ pub fn view_files(
         worst: report
             .motion_test
             .as_ref()
-            .and_then(|test| worst_moment(setup, test)),
+            .and_then(|test| worst_moment(setup, report, test)),
+        // The animation starts at the motion's start.
+        motion_end_s: report
+            .motion_test
+            .as_ref()
+            .filter(|_| spec.animation.is_some())
+            .map(|test| test.motion_duration_s),
     };
     let script = format!(
         "// The 3D view's scene and clamp labels, written by cable-dict; read by view.js.\n\
@@ -171,8 +187,12 @@ fn clamp_tracks(
 }
 
 /// The report's worst moment of the motion test ([`smallest_margin`]), from the
-/// animation's start.
-fn worst_moment(setup: &Setup, test: &MotionTestReport) -> Option<WorstMoment> {
+/// animation's start, with where it is and a camera looking at it from outside the arm.
+fn worst_moment(
+    setup: &Setup,
+    report: &SolveReport,
+    test: &MotionTestReport,
+) -> Option<WorstMoment> {
     let start = test.shapes.first().map_or(0.0, |f| f.time_s);
     let worst = smallest_margin(test, &setup.thresholds, setup.cable.diameter_m)?;
     let verdict = if worst.violated {
@@ -180,26 +200,67 @@ fn worst_moment(setup: &Setup, test: &MotionTestReport) -> Option<WorstMoment> {
     } else {
         "smallest margin"
     };
+    let piece = setup.segment_name(worst.segment);
+    let plan = report
+        .shown_candidate()
+        .map(|c| mounting_plan(setup, &c.path));
+    let place = plan
+        .as_ref()
+        .and_then(|plan| plan.place_on_cable(&piece, None))
+        .unwrap_or_else(|| format!("on cable piece {piece}"));
+    // The scene's root turns the robot's z up into glTF's y up.
+    let spot_m = worst.position_m.map(|[x, y, z]| [x, z, -y]);
     Some(WorstMoment {
         time_s: worst.time_s - start,
         what: format!(
-            "{verdict}: {} on cable piece {} at t = {:.2} s",
+            "{verdict}: {} {place} at t = {:.2} s",
             limit_words(worst.constraint, worst.value, worst.limit),
-            setup.segment_name(worst.segment),
             worst.time_s
         ),
+        orbit: spot_m.map(outside_orbit),
+        spot_m,
     })
 }
 
-/// The view's markup for the page: the component, its controls and the scripts.
+/// Distance of the camera from the worst spot (m).
+const WORST_CAMERA_M: f64 = 0.9;
+/// Polar angle the worst spot is seen at (deg from straight above).
+const WORST_POLAR_DEG: f64 = 65.0;
+
+/// A camera orbit around `spot` (glTF frame) that looks at it from outside the arm: from the
+/// side away from the robot's base axis (glTF y), a little from above.
+fn outside_orbit(spot: [f64; 3]) -> [f64; 3] {
+    let [x, _, z] = spot;
+    // model-viewer's azimuth θ is measured about +y from +z toward +x.
+    let azimuth = if x.hypot(z) > 1e-6 {
+        x.atan2(z).to_degrees()
+    } else {
+        0.0
+    };
+    [azimuth, WORST_POLAR_DEG, WORST_CAMERA_M]
+}
+
+/// The view's markup for the page: the component, its controls, the colours' legend and the
+/// scripts.
 pub fn view_html() -> String {
+    let swatch = |tint: CableTint| {
+        format!(
+            "<span class=\"swatch\" style=\"background:{}\"></span>{}",
+            tint.css(),
+            escape(tint.legend())
+        )
+    };
     format!(
         "<section id=\"view-section\">\n<h2>3D view</h2>\n\
-<p>Drag to turn, scroll to zoom. The robot's collision shapes, the cable and its clamps over the \
-motion test; play it, or drag the slider to any moment (the red tick is the worst one); \
-<i>Installation pose</i> shows the robot where the cable is laid untwisted, with its shape there. Cable \
-pieces: green, every limit with room to spare; amber, closer to the robot or to itself than one \
-cable diameter, or within {:.0} % of the bend-radius or stretch limit; red, a limit exceeded.</p>\n\
+<p>Drag to turn, scroll to zoom. The robot's collision shapes, the cable and its numbered clamps \
+over the motion test; play it, or drag the slider to any moment (the red tick is the worst one); \
+<i>Worst moment</i> turns the camera to it and rings the spot on the cable in red; \
+<i>Installation pose</i> shows the robot where the cable is laid untwisted, with its shape there. \
+The test runs on after the motion ends, its last pose held, so that the cable comes to rest: the \
+time under the slider says where the motion ends.</p>\n\
+<p class=\"view-legend\">{} (closer to the robot or to itself than one cable diameter, or within \
+{:.0} % of the bend-radius or stretch limit) {} {} <span class=\"swatch ring\"></span>the worst \
+spot</p>\n\
 <model-viewer id=\"view\" camera-controls camera-orbit=\"-40deg 70deg auto\" animation-crossfade-duration=\"0\" loading=\"eager\" interaction-prompt=\"none\" shadow-intensity=\"0\" \
 exposure=\"0.6\" alt=\"the robot and the cable in 3D\"></model-viewer>\n\
 <div class=\"view-controls\"><button id=\"view-install\" type=\"button\">Installation pose</button>\
@@ -210,7 +271,10 @@ aria-label=\"time\"><span id=\"view-worst-tick\"></span></span>\
 <p><button id=\"view-worst\" type=\"button\"></button></p>\n\
 <script src=\"model-viewer.min.js\"></script>\n<script src=\"view-data.js\"></script>\n\
 <script src=\"view.js\"></script>\n</section>\n",
-        100.0 * TIGHT_SHARE
+        swatch(CableTint::Tight),
+        100.0 * TIGHT_SHARE,
+        swatch(CableTint::Ample),
+        swatch(CableTint::Exceeded),
     )
 }
 
@@ -222,4 +286,9 @@ pub const VIEW_STYLE: &str = "model-viewer { width: 100%; height: 560px; backgro
 #view-worst-tick { position: absolute; top: -4px; width: 3px; height: 22px; background: #d00000; pointer-events: none; }
 #view-install.active { background: #1c4fd8; color: white; }
 .clamp-label { background: #1c4fd8; color: white; border-radius: 4px; padding: 1px 5px; font-size: 12px; pointer-events: none; }
+.worst-ring { width: 34px; height: 34px; border: 3px solid #d00000; border-radius: 50%; pointer-events: none; }
+.worst-ring[hidden] { display: none; }
+.view-legend { font-size: 0.9em; }
+.swatch { display: inline-block; width: 1.6em; height: 0.7em; margin: 0 0.3em 0 0.8em; vertical-align: middle; border-radius: 2px; }
+.swatch.ring { width: 0.9em; height: 0.9em; border: 2px solid #d00000; border-radius: 50%; background: none; }
 ";

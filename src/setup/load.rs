@@ -4,8 +4,8 @@ use super::error::{Source, newline_offsets};
 use super::raw::{BendRadiusSetting, RawRobustness, RawSetup, RawThresholds};
 use super::sites::SiteContext;
 use super::{
-    BendRadiusSource, Installation, MAX_SUB_SEGMENTS, Robustness, Setup, SetupError, Thresholds,
-    bodies, coincide, guides, hash, segments,
+    BendRadiusSource, Installation, MAX_SUB_SEGMENTS, PendantAngle, Robustness, Setup, SetupError,
+    Thresholds, bodies, coincide, guides, hash, segments,
 };
 use crate::cable::CableSpec;
 use crate::input::{self, FileKind};
@@ -65,6 +65,7 @@ pub(super) fn from_str(
         raw.guides.get_ref(),
         &segments,
     )?);
+    let pendant_angles = pendant_angles(src, &robot, raw.pendant_angles.as_ref())?;
     let mut setup = Setup {
         source: path.to_path_buf(),
         text: text.to_string(),
@@ -82,6 +83,7 @@ pub(super) fn from_str(
         thresholds,
         robustness,
         installation,
+        pendant_angles,
         content_hash: 0,
     };
     setup.content_hash = hash::fnv1a64(&hash::canonical_bytes(&setup));
@@ -130,6 +132,64 @@ fn read_or_given(path: &Path, given: Option<&str>, kind: FileKind) -> Result<Str
         Some(text) => Ok(text.to_string()),
         None => input::read_text(path, kind),
     }
+}
+
+/// `[pendant_angles]`: per named rotary joint, `sign` (±1) and `offset_deg` (finite, within
+/// ±360°), in the joint vector's order.
+fn pendant_angles(
+    src: Source,
+    robot: &Robot,
+    raw: Option<&Spanned<std::collections::BTreeMap<String, Spanned<super::raw::RawPendant>>>>,
+) -> Result<Vec<PendantAngle>, SetupError> {
+    let Some(raw) = raw else {
+        return Ok(Vec::new());
+    };
+    let mut angles = Vec::new();
+    for (name, entry) in raw.get_ref() {
+        let key = format!("pendant_angles.{name}");
+        let joint = robot
+            .actuated_index(name)
+            .filter(|&i| robot.actuated_joint(i).kind.is_rotary())
+            .ok_or_else(|| {
+                let rotary: Vec<&str> = (0..robot.dof())
+                    .map(|i| robot.actuated_joint(i))
+                    .filter(|j| j.kind.is_rotary())
+                    .map(|j| j.name.as_str())
+                    .collect();
+                src.error(
+                    entry.span(),
+                    key.clone(),
+                    format!(
+                        "the robot has no rotary joint called \"{name}\" (rotary joints: {})",
+                        rotary.join(", ")
+                    ),
+                )
+            })?;
+        let entry = entry.get_ref();
+        let sign = *entry.sign.get_ref();
+        if sign != 1.0 && sign != -1.0 {
+            return Err(src.error(
+                entry.sign.span(),
+                format!("{key}.sign"),
+                format!("{sign} is neither 1 nor -1"),
+            ));
+        }
+        let offset = *entry.offset_deg.get_ref();
+        if !offset.is_finite() || offset.abs() > 360.0 {
+            return Err(src.error(
+                entry.offset_deg.span(),
+                format!("{key}.offset_deg"),
+                format!("{offset} is not an angle within ±360°"),
+            ));
+        }
+        angles.push(PendantAngle {
+            joint,
+            sign,
+            offset_deg: offset,
+        });
+    }
+    angles.sort_by_key(|a| a.joint);
+    Ok(angles)
 }
 
 /// `install_joints_deg`: a joint vector in degrees (millimetres for prismatic joints) within

@@ -132,8 +132,29 @@ pub struct Setup {
     /// twist references of the clamps are derived from it. `None`: the configurations'
     /// declared +x axes are the twist references.
     pub installation: Option<Installation>,
+    /// How the robot's pendant shows the angles of some joints (`[pendant_angles]`), so that
+    /// the installation pose is printed as the fitter enters it; not part of the physics.
+    pub pendant_angles: Vec<PendantAngle>,
     /// FNV-1a 64 of [`Setup::canonical_bytes`].
     pub content_hash: u64,
+}
+
+/// The pendant's angle of a joint from the robot description's: `sign × URDF + offset`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PendantAngle {
+    /// Index into the joint vector.
+    pub joint: usize,
+    /// +1 or −1.
+    pub sign: f64,
+    /// Added after the sign (deg).
+    pub offset_deg: f64,
+}
+
+impl PendantAngle {
+    /// The pendant's angle (deg) of the description's `urdf_deg`.
+    pub fn of(&self, urdf_deg: f64) -> f64 {
+        self.sign * urdf_deg + self.offset_deg
+    }
 }
 
 /// A guide (clamp) and the configurations it may take.

@@ -21,6 +21,16 @@ pub(super) struct RawSetup {
     pub segments: Spanned<Vec<Spanned<RawSegment>>>,
     #[serde(default)]
     pub bodies: Option<Spanned<Vec<Spanned<RawBody>>>>,
+    #[serde(default)]
+    pub pendant_angles: Option<Spanned<std::collections::BTreeMap<String, Spanned<RawPendant>>>>,
+}
+
+/// One `[pendant_angles]` entry: how the robot's pendant shows a joint's angle.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawPendant {
+    pub sign: Spanned<f64>,
+    pub offset_deg: Spanned<f64>,
 }
 
 /// One `[[bodies]]` entry: a shape a link carries (see `bodies.rs`).

@@ -62,6 +62,48 @@ pub fn pictures(setup: &Setup, report: &SolveReport, spec: &SceneSpec<'_>) -> Ve
         .collect()
 }
 
+/// The robot and the cable at the installation pose, for the installation sheet
+/// (`installation-pose.svg`): front, side and top, the clamps numbered as the sheet numbers
+/// them. `None` without an installation pose in the setup or a shown path.
+pub fn installation_picture(
+    setup: &Setup,
+    report: &SolveReport,
+    spec: &SceneSpec<'_>,
+) -> Option<Picture> {
+    let scene = spec.installation.as_ref()?;
+    let plan = report
+        .shown_candidate()
+        .map(|c| mounting_plan(setup, &c.path))?;
+    let names = Names {
+        setup,
+        plan: Some(&plan),
+    };
+    let moment = Moment {
+        file: "installation-pose.svg".into(),
+        heading: "The robot at the installation pose, the cable laid untwisted".into(),
+        what: "the robot and the cable at the installation pose, front, side and top, for \
+               the installation sheet"
+            .into(),
+        caption: "The robot at the installation pose with the cable as laid there: clamps \
+                  numbered as on the installation sheet."
+            .into(),
+        scene,
+        marker_m: None,
+    };
+    let drawing = drawing(spec, &moment, &names);
+    let layout = Layout::in_a_row(&drawing, 2e3 * spec.cable_radius_m, SHEET_LABEL_PX);
+    Some(Picture {
+        svg: picture_svg(&drawing, &layout),
+        file: moment.file,
+        what: moment.what,
+        caption: moment.caption,
+    })
+}
+
+/// Font size of the clamp labels in the installation sheet's picture (px of a 960 px wide
+/// picture printed about 190 mm wide: about 9 pt).
+const SHEET_LABEL_PX: f64 = 18.0;
+
 /// One instant to draw and the words that go with it.
 struct Moment<'s> {
     file: String,

@@ -39,6 +39,8 @@ const PAD_SHARE: f64 = 0.25;
 /// share of it (sans-serif digits and lower case are narrower; this errs wide).
 const LABEL_PX: f64 = 12.0;
 const CHAR_SHARE: f64 = 0.62;
+/// Largest height of a picture of three views in a row (px).
+const ROW_HEIGHT_PX: f64 = 420.0;
 /// Radius of a clamp's dot (px).
 const DOT_PX: f64 = 5.0;
 /// Distances from its dot a label may be put at, each a label's height and a fifth farther
@@ -124,6 +126,11 @@ pub(super) struct Layout {
     px_per_mm: f64,
     /// Drawn cable width (mm): the cable's diameter, or [`MIN_CABLE_PX`] if that is wider.
     cable_width_mm: f64,
+    /// The three views side by side in one row (the installation sheet), not front and side
+    /// over top.
+    in_a_row: bool,
+    /// Font size of the clamp labels (px).
+    label_px: f64,
 }
 
 impl Layout {
@@ -181,7 +188,24 @@ impl Layout {
             tick_mm,
             px_per_mm,
             cable_width_mm: MIN_CABLE_PX / px_per_mm,
+            in_a_row: false,
+            label_px: LABEL_PX,
         }
+    }
+
+    /// The three views of `drawing` side by side in [`WIDTH_PX`], at most [`ROW_HEIGHT_PX`]
+    /// high, the clamp labels `label_px` high: a picture printed across a page, whose labels
+    /// stay readable there.
+    pub fn in_a_row(drawing: &Drawing, cable_diameter_mm: f64, label_px: f64) -> Layout {
+        let mut layout = Layout::around(drawing);
+        let [x, y, z] = [0, 1, 2].map(|a| layout.span_mm(a));
+        let across = (WIDTH_PX - 3.0 * LEFT_PX - 2.0 * GAP_PX - RIGHT_PX) / (2.0 * x + y);
+        let down = (ROW_HEIGHT_PX - HEADING_PX - TITLE_PX - BOTTOM_PX) / z.max(y);
+        layout.px_per_mm = across.min(down);
+        layout.cable_width_mm = cable_diameter_mm.max(MIN_CABLE_PX / layout.px_per_mm);
+        layout.in_a_row = true;
+        layout.label_px = label_px;
+        layout
     }
 
     /// Span of world axis `axis` (mm).
@@ -198,6 +222,16 @@ impl Layout {
     /// Top-left corner of `view`'s panel (px).
     fn panel_origin_px(&self, view: View) -> [f64; 2] {
         let [front_w, front_h] = self.panel_px(View::Front);
+        if self.in_a_row {
+            let [side_w, _] = self.panel_px(View::Side);
+            let y = HEADING_PX + TITLE_PX;
+            let side_x = LEFT_PX + front_w + GAP_PX + LEFT_PX;
+            return match view {
+                View::Front => [LEFT_PX, y],
+                View::Side => [side_x, y],
+                View::Top => [side_x + side_w + GAP_PX + LEFT_PX, y],
+            };
+        }
         match view {
             View::Front => [LEFT_PX, HEADING_PX + TITLE_PX],
             View::Side => [LEFT_PX + front_w + GAP_PX + LEFT_PX, HEADING_PX + TITLE_PX],
@@ -210,6 +244,18 @@ impl Layout {
 
     /// Size of the whole picture (px).
     fn size_px(&self) -> [f64; 2] {
+        if self.in_a_row {
+            let [top_x, top_y] = self.panel_origin_px(View::Top);
+            let [top_w, _] = self.panel_px(View::Top);
+            let tallest = View::ALL
+                .iter()
+                .map(|&v| self.panel_px(v)[1])
+                .fold(0.0, f64::max);
+            return [
+                (top_x + top_w + RIGHT_PX).ceil(),
+                (top_y + tallest + BOTTOM_PX).ceil(),
+            ];
+        }
         let [side_x, _] = self.panel_origin_px(View::Side);
         let [_, top_y] = self.panel_origin_px(View::Top);
         let [side_w, _] = self.panel_px(View::Side);
@@ -241,7 +287,9 @@ pub(super) fn picture_svg(drawing: &Drawing, layout: &Layout) -> String {
     for view in View::ALL {
         push_view(&mut svg, drawing, layout, view);
     }
-    push_legend(&mut svg, drawing, layout);
+    if !layout.in_a_row {
+        push_legend(&mut svg, drawing, layout);
+    }
     svg.push_str("</svg>\n");
     svg
 }
@@ -384,7 +432,7 @@ fn open_group(svg: &mut String, layout: &Layout, class: &str, stroke_width_mm: f
         svg,
         "<g class=\"{class}\" stroke-width=\"{}\" font-size=\"{}\">",
         num(stroke_width_mm),
-        num(layout.mm(12.0))
+        num(layout.mm(layout.label_px))
     );
 }
 
@@ -438,7 +486,7 @@ fn push_clamps(svg: &mut String, drawing: &Drawing, layout: &Layout, view: View)
         .iter()
         .map(|(name, _)| name.as_str())
         .collect();
-    let boxes = place_labels(&texts, &anchors, layout.mm(1.0), &bounds);
+    let boxes = place_labels(&texts, &anchors, layout.mm(1.0), layout.label_px, &bounds);
     for (b, [x, y]) in boxes.iter().zip(&anchors) {
         // A leader from the dot to the nearest point of a label set apart from it.
         let (nx, ny) = (x.clamp(b.x, b.x + b.w), y.clamp(b.y, b.y + b.h));
@@ -456,9 +504,11 @@ fn push_clamps(svg: &mut String, drawing: &Drawing, layout: &Layout, view: View)
     for (text, b) in texts.iter().zip(&boxes) {
         let _ = writeln!(
             svg,
-            "<text x=\"{}\" y=\"{}\" stroke-width=\"{}\" data-box=\"{} {} {} {}\">{}</text>",
+            "<text x=\"{}\" y=\"{}\" font-size=\"{}\" stroke-width=\"{}\" \
+             data-box=\"{} {} {} {}\">{}</text>",
             num(b.x),
             num(b.y + 0.8 * b.h),
+            num(b.h),
             num(layout.mm(3.0)),
             num(b.x),
             num(b.y),
@@ -469,6 +519,41 @@ fn push_clamps(svg: &mut String, drawing: &Drawing, layout: &Layout, view: View)
     }
     svg.push_str("</g>\n");
 }
+
+/// The place for a `w` × `h` label inside `bounds`, on a grid of half a label's height, that
+/// `free` accepts and that is nearest to `anchor`.
+fn nearest_free_place(
+    bounds: &LabelBox,
+    (x, y): (f64, f64),
+    (w, h): (f64, f64),
+    free: impl Fn(&LabelBox) -> bool,
+) -> Option<LabelBox> {
+    let step = 0.5 * h;
+    let columns = ((bounds.w - w) / step).floor().max(0.0) as usize;
+    let rows = ((bounds.h - h) / step).floor().max(0.0) as usize;
+    let mut best: Option<(f64, LabelBox)> = None;
+    for i in 0..=columns.min(MAX_GRID) {
+        for j in 0..=rows.min(MAX_GRID) {
+            let b = LabelBox {
+                x: bounds.x + i as f64 * step,
+                y: bounds.y + j as f64 * step,
+                w,
+                h,
+            };
+            let (cx, cy) = (b.x + 0.5 * w, b.y + 0.5 * h);
+            let distance = (cx - x).hypot(cy - y);
+            if best.is_none_or(|(d, _)| distance < d) && free(&b) {
+                best = Some((distance, b));
+            }
+        }
+    }
+    best.map(|(_, b)| b)
+}
+
+/// Most places along each side of a panel that [`nearest_free_place`] tries.
+const MAX_GRID: usize = 200;
+/// Widest a clamp label may be, as a share of its panel's width.
+const MAX_LABEL_SHARE: f64 = 0.6;
 
 /// A label's box in a panel's drawn coordinates (mm; x right, y down): its top-left corner
 /// and size.
@@ -505,9 +590,10 @@ pub(super) fn place_labels(
     texts: &[&str],
     anchors: &[[f64; 2]],
     mm_per_px: f64,
+    label_px: f64,
     bounds: &LabelBox,
 ) -> Vec<LabelBox> {
-    let h = LABEL_PX * mm_per_px;
+    let h = label_px * mm_per_px;
     let r = DOT_PX * mm_per_px;
     let dots: Vec<LabelBox> = anchors
         .iter()
@@ -520,7 +606,11 @@ pub(super) fn place_labels(
         .collect();
     let mut placed: Vec<LabelBox> = Vec::new();
     for (text, &[x, y]) in texts.iter().zip(anchors) {
-        let w = text.chars().count().max(1) as f64 * CHAR_SHARE * h;
+        // A label wider than a share of the panel is set smaller until it fits (its box says
+        // how): a long fitting name in a small view.
+        let natural = text.chars().count().max(1) as f64 * CHAR_SHARE * h;
+        let shrink = (MAX_LABEL_SHARE * bounds.w / natural).min(1.0);
+        let (w, h) = (natural * shrink, h * shrink);
         let candidates = (1..=LABEL_RINGS).flat_map(|ring| {
             let d = r + 2.0 * mm_per_px + (ring - 1) as f64 * 1.2 * h;
             [
@@ -553,13 +643,24 @@ pub(super) fn place_labels(
                 best = Some((cost, b));
             }
         }
-        // A label wider than the panel: at the anchor, pulled inside as far as it goes.
-        let b = best.map(|(_, b)| b).unwrap_or(LabelBox {
-            x: (x + r).min(bounds.x + bounds.w - w).max(bounds.x),
-            y: (y - h).clamp(bounds.y, bounds.y + (bounds.h - h).max(0.0)),
-            w,
-            h,
-        });
+        // Nothing free around the anchor: the free place in the whole panel nearest to it
+        // (a leader line joins them); only a full panel leaves the least overlap.
+        let b = match best {
+            Some((0.0, b)) => b,
+            _ => nearest_free_place(bounds, (x, y), (w, h), |b: &LabelBox| {
+                placed
+                    .iter()
+                    .chain(&dots)
+                    .all(|other| b.overlap(other) == 0.0)
+            })
+            .or(best.map(|(_, b)| b))
+            .unwrap_or(LabelBox {
+                x: (x + r).min(bounds.x + bounds.w - w).max(bounds.x),
+                y: (y - h).clamp(bounds.y, bounds.y + (bounds.h - h).max(0.0)),
+                w,
+                h,
+            }),
+        };
         placed.push(b);
     }
     placed
@@ -779,7 +880,7 @@ mod tests {
             "5",
             "bracket",
         ];
-        let boxes = place_labels(&texts, &anchors, 1.0, &bounds);
+        let boxes = place_labels(&texts, &anchors, 1.0, LABEL_PX, &bounds);
         assert_eq!(boxes.len(), texts.len());
         for (i, a) in boxes.iter().enumerate() {
             assert!(a.inside(&bounds), "{i}: {a:?}");

@@ -160,6 +160,8 @@ pub struct LoadRow {
     pub name: String,
     /// `largest twist −35° (−125°/m) at t = 4.91 s`.
     pub words: String,
+    /// The same for a table cell: `−35° (−125°/m), t = 4.91 s`.
+    pub short: String,
 }
 
 /// The largest twist of every piece and the largest loads on every clamp over `test`, named
@@ -173,14 +175,14 @@ pub fn load_rows(test: &MotionTestReport, plan: Option<&MountingPlan>) -> Vec<Lo
                 .and_then(|p| p.place_on_cable(&t.segment_name, None))
                 .map(|words| words.trim_start_matches("on ").to_string())
                 .unwrap_or_else(|| format!("cable piece {}", t.segment_name));
+            let (twist, per_m) = (decimal(t.twist_deg, 0), decimal(t.twist_deg_per_m, 0));
             LoadRow {
                 name,
                 words: format!(
-                    "largest twist {}° ({}°/m) at t = {:.2} s",
-                    decimal(t.twist_deg, 0),
-                    decimal(t.twist_deg_per_m, 0),
+                    "largest twist {twist}° ({per_m}°/m) at t = {:.2} s",
                     t.time_s
                 ),
+                short: format!("{twist}° ({per_m}°/m), t = {:.2} s", t.time_s),
             }
         })
         .collect();
@@ -189,14 +191,17 @@ pub fn load_rows(test: &MotionTestReport, plan: Option<&MountingPlan>) -> Vec<Lo
             .and_then(|p| c.guides.iter().find_map(|g| p.clamp_of_guide(g)))
             .map(|clamp| clamp.name())
             .unwrap_or_else(|| c.guides.join(" = "));
+        let (force, moment) = (decimal(c.max_force_n, 2), decimal(c.max_moment_n_m, 3));
         LoadRow {
             name,
             words: format!(
-                "largest force {} N at t = {:.2} s, largest moment {} N·m at t = {:.2} s",
-                decimal(c.max_force_n, 2),
-                c.force_time_s,
-                decimal(c.max_moment_n_m, 3),
-                c.moment_time_s
+                "largest force {force} N at t = {:.2} s, largest moment {moment} N·m at t = \
+                 {:.2} s",
+                c.force_time_s, c.moment_time_s
+            ),
+            short: format!(
+                "{force} N (t = {:.2} s); {moment} N·m (t = {:.2} s)",
+                c.force_time_s, c.moment_time_s
             ),
         }
     }));
