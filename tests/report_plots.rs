@@ -466,6 +466,8 @@ fn stress_report(points: usize) -> MotionTestReport {
             max_stretch: stretch(i),
             min_bend_radius_m: bend_mm(i) * 1e-3,
             max_contact_force_n: 0.0,
+            max_twist_deg_per_m: None,
+            max_clamp_force_n: None,
         })
         .collect();
     MotionTestReport {

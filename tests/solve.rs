@@ -369,7 +369,13 @@ fn the_bundled_pick_and_place_is_solved_within_the_datasheet_limits() {
     assert!(worst(&dynamics.worst_bend) * 1e3 >= datasheet_bend_mm);
     assert!(worst(&dynamics.worst_clearance) >= 0.0);
     assert!(worst(&dynamics.worst_stretch) <= 1.02);
-    assert!(worst(&dynamics.worst_self_clearance) >= 0.0);
+    // The answer never comes back toward itself closer than it may (or not at all).
+    assert!(
+        dynamics
+            .worst_self_clearance
+            .as_ref()
+            .is_none_or(|w| w.value >= 0.0)
+    );
 
     let ecpv = report.optimal.as_ref().expect("d*");
     let total_mm: f64 = ecpv
@@ -508,12 +514,17 @@ fn check_pictures_against_the_physics(
                 .filter(|e| e.is("circle", view, "clamps"))
                 .map(|e| [e.attribute("cx"), e.attribute("cy")].map(|v| v.parse().expect("number")))
                 .collect();
-            assert_eq!(clamps.len(), setup.guides.len());
-            for (g, (guide, &c)) in setup.guides.iter().zip(&path.configurations).enumerate() {
-                let at = link_poses[guide.link] * guide.configurations[c].pose;
+            // One dot per physical clamp: a guide after a 0 mm piece is the previous one's.
+            let mounted: Vec<usize> = (0..setup.guides.len())
+                .filter(|&g| g == 0 || path.pv(g - 1).sub_segments > 0)
+                .collect();
+            assert_eq!(clamps.len(), mounted.len());
+            for (dot, &g) in clamps.iter().zip(&mounted) {
+                let guide = &setup.guides[g];
+                let at = link_poses[guide.link] * guide.configurations[path.configurations[g]].pose;
                 let v = at.translation.vector;
                 let expected = project(view, [v.x, v.y, v.z]);
-                assert!(near(clamps[g], expected), "{file} {view} G{}", g + 1);
+                assert!(near(*dot, expected), "{file} {view} G{}", g + 1);
             }
         }
     }

@@ -215,6 +215,11 @@ pub struct SeriesPoint {
     /// Largest contact force on one sub-segment outside the clamp zones during the step (N);
     /// 0 for the initial shape.
     pub max_contact_force_n: f64,
+    /// Largest twist per length over the pieces (deg/m, its magnitude); `None` where the
+    /// engine does not model twist.
+    pub max_twist_deg_per_m: Option<f64>,
+    /// Largest force on one clamp (N), at the instants the loads are taken.
+    pub max_clamp_force_n: Option<f64>,
 }
 
 /// The whole simulated cable at one instant.

@@ -100,9 +100,12 @@ impl<'a> Tracker<'a> {
         }
         self.keep_self_contact(time_s, measures);
         self.keep_twists(time_s, measures);
-        self.keep_clamp_loads(time_s, measures);
+        let clamp_force = self.keep_clamp_loads(time_s, measures);
         if self.record_series {
-            self.series.push(series_point(time_s, measures));
+            let pitch = self.setup.cable.sub_segment_pitch_m;
+            let mut point = series_point(time_s, measures, pitch);
+            point.max_clamp_force_n = clamp_force;
+            self.series.push(point);
         }
         self.final_shape = measures
             .iter()
@@ -346,14 +349,17 @@ impl<'a> Tracker<'a> {
     }
 
     /// Each clamp's largest force and moment so far: a clamp between two simulated pieces
-    /// carries the end of the one and the start of the other.
-    fn keep_clamp_loads(&mut self, time_s: f64, measures: &[SegmentMeasure]) {
-        let Some(loads) = measures.iter().map(|m| m.loads).collect::<Option<Vec<_>>>() else {
-            return;
-        };
+    /// carries the end of the one and the start of the other. Returns the largest force on
+    /// one clamp now, when the loads were taken now.
+    fn keep_clamp_loads(&mut self, time_s: f64, measures: &[SegmentMeasure]) -> Option<f64> {
+        let loads = measures
+            .iter()
+            .map(|m| m.loads)
+            .collect::<Option<Vec<_>>>()?;
         if loads.is_empty() {
-            return;
+            return None;
         }
+        let mut largest: f64 = 0.0;
         for clamp in 0..=loads.len() {
             let before = clamp.checked_sub(1).map(|j| loads[j].1);
             let after = loads.get(clamp).map(|l| l.0);
@@ -373,6 +379,7 @@ impl<'a> Tracker<'a> {
                 }
             }
             let (force, moment) = (total.force_magnitude_n(), total.moment_magnitude_n_m());
+            largest = largest.max(force);
             match self.clamp_loads.get_mut(clamp) {
                 Some(peak) => {
                     if force > peak.max_force_n {
@@ -395,6 +402,7 @@ impl<'a> Tracker<'a> {
                 }),
             }
         }
+        Some(largest)
     }
 
     /// Records a violation if it is the first one.
@@ -533,8 +541,14 @@ fn joined_runs(measures: &[SegmentMeasure]) -> Vec<JoinedRun> {
     runs
 }
 
-/// The whole cable's metrics at one instant.
-fn series_point(time_s: f64, measures: &[SegmentMeasure]) -> SeriesPoint {
+/// The whole cable's metrics at one instant (`pitch_m` the sub-segments' length); the
+/// clamp force is the caller's.
+fn series_point(time_s: f64, measures: &[SegmentMeasure], pitch_m: f64) -> SeriesPoint {
+    let twists = measures.iter().filter_map(|m| {
+        let length = m.nodes.len().saturating_sub(1) as f64 * pitch_m;
+        let twist = m.twist_rad?;
+        (length > 0.0).then(|| twist.abs().to_degrees() / length)
+    });
     let clearances = measures
         .iter()
         .filter_map(|m| m.clearance.map(|c| c.clearance_m));
@@ -550,6 +564,8 @@ fn series_point(time_s: f64, measures: &[SegmentMeasure]) -> SeriesPoint {
             .iter()
             .filter_map(|m| m.contact.map(|c| c.force_n))
             .fold(0.0, f64::max),
+        max_twist_deg_per_m: twists.reduce(f64::max),
+        max_clamp_force_n: None,
     }
 }
 

@@ -158,11 +158,7 @@ fn drawing(spec: &SceneSpec<'_>, moment: &Moment<'_>, names: &Names<'_>) -> Draw
         .cable
         .iter()
         .map(|line| CablePiece {
-            name: names
-                .plan
-                .and_then(|plan| plan.piece_of_segment(&line.name))
-                .and_then(|piece| names.plan.map(|plan| plan.piece_name(piece.from_clamp)))
-                .unwrap_or_else(|| line.name.clone()),
+            name: line.name.clone(),
             nodes: line.nodes_m.iter().map(mm).collect(),
             colour: spec.tint_of(&line.name).css(),
         })

@@ -75,7 +75,7 @@ pub(super) struct Drawing {
     pub heading: String,
     /// The robot's colliders, each as the vertices of its tessellation (mm).
     pub colliders: Vec<Vec<Point3<f64>>>,
-    /// The cable pieces: the fitter's name (`1 → 2`), nodes (mm) and colour (`#rrggbb`).
+    /// The cable pieces: the setup's name (`C1`), nodes (mm) and colour (`#rrggbb`).
     pub cable: Vec<CablePiece>,
     /// The physical clamps: the fitter's name (`1`, `gripper connector`) and the cable
     /// axis's point at the clamp (mm).
@@ -89,7 +89,8 @@ pub(super) struct Drawing {
 /// One cable piece as drawn.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct CablePiece {
-    /// The fitter's name (`1 → 2`), kept as the polyline's `data-piece`.
+    /// The setup's name of the piece (`C1`), the polyline's `data-piece` for programs that
+    /// read the picture (the picture itself names clamps, not pieces).
     pub name: String,
     /// Its nodes (mm).
     pub nodes: Vec<Point3<f64>>,
@@ -763,7 +764,7 @@ mod tests {
             heading: "a box & a cable".into(),
             colliders: vec![corners],
             cable: vec![CablePiece {
-                name: "1 → 2".into(),
+                name: "C1".into(),
                 nodes: vec![
                     Point3::new(850.0, 1950.0, 2750.0),
                     Point3::new(1150.04, 2050.0, 3250.0),

@@ -1,5 +1,7 @@
 //! `stress.svg`: the motion test's stress series — clearance, stretch, bend radius — over
-//! time, each against its limit, with the worst instants and the first violation marked.
+//! time, each against its limit, with the worst instants and the first violation marked;
+//! then the largest twist per metre of a piece and the largest force on a clamp, which have
+//! no limit here.
 
 use super::{
     LIMIT_RED, PlotError, Root, draw_error, finite_range, font, padded, render, short, text,
@@ -11,7 +13,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
 /// Size of the plot (px).
-const SIZE: (u32, u32) = (1000, 900);
+const SIZE: (u32, u32) = (1000, 1400);
 /// Height of the title and verdict above the panels (px).
 const HEAD_PX: u32 = 72;
 /// Room right of each plotting area for the limit's label (px).
@@ -30,8 +32,8 @@ struct Panel {
     /// (time s, value) per series entry; `None` (nothing to draw) breaks the line.
     points: Vec<Option<(f64, f64)>>,
     color: RGBColor,
-    /// The limit and its label.
-    limit: f64,
+    /// The limit and its label; `None` for a value without a limit.
+    limit: Option<f64>,
     limit_label: String,
     /// (time s, value, label) of the worst instant.
     worst: Option<(f64, f64, String)>,
@@ -71,13 +73,19 @@ pub fn stress_svg(
     })
 }
 
-/// The three panels.
-fn panels(test: &MotionTestReport, thresholds: &Thresholds) -> [Panel; 3] {
-    let mut panels = [
+/// The panels: the three limits, then twist and clamp force when the engine measured them.
+fn panels(test: &MotionTestReport, thresholds: &Thresholds) -> Vec<Panel> {
+    let mut panels = vec![
         clearance_panel(test, thresholds),
         stretch_panel(test, thresholds),
         bend_panel(test, thresholds),
     ];
+    if test.series.iter().any(|p| p.max_twist_deg_per_m.is_some()) {
+        panels.push(twist_panel(test));
+    }
+    if test.series.iter().any(|p| p.max_clamp_force_n.is_some()) {
+        panels.push(clamp_force_panel(test));
+    }
     if let Some(v) = test.first_violation.as_ref().filter(|_| !test.passed) {
         let i = match v.constraint {
             // The cable touching itself is contact too: shown in the clearance panel.
@@ -88,6 +96,68 @@ fn panels(test: &MotionTestReport, thresholds: &Thresholds) -> [Panel; 3] {
         panels[i].violation = Some((v.time_s, violation_label(v)));
     }
     panels
+}
+
+/// The largest twist per metre of any piece (magnitude), from the cable as laid.
+fn twist_panel(test: &MotionTestReport) -> Panel {
+    let worst = test
+        .twists
+        .iter()
+        .max_by(|a, b| a.twist_deg_per_m.abs().total_cmp(&b.twist_deg_per_m.abs()))
+        .map(|t| {
+            let label = format!(
+                "worst {:.0}°/m at {:.3} s ({})",
+                t.twist_deg_per_m.abs(),
+                t.time_s,
+                t.segment_name
+            );
+            (t.time_s, t.twist_deg_per_m.abs(), label)
+        });
+    Panel {
+        name: "largest twist of a piece",
+        y_desc: "twist (deg/m, from the cable as laid)".into(),
+        points: test
+            .series
+            .iter()
+            .map(|p| p.max_twist_deg_per_m.map(|v| (p.time_s, v)))
+            .collect(),
+        color: RGBColor(214, 39, 40),
+        limit: None,
+        limit_label: String::new(),
+        worst,
+        violation: None,
+    }
+}
+
+/// The largest force on any clamp, at the instants the loads were taken.
+fn clamp_force_panel(test: &MotionTestReport) -> Panel {
+    let worst = test
+        .clamp_loads
+        .iter()
+        .max_by(|a, b| a.max_force_n.total_cmp(&b.max_force_n))
+        .map(|c| {
+            let label = format!(
+                "worst {:.2} N at {:.3} s ({})",
+                c.max_force_n,
+                c.force_time_s,
+                c.guides.join(" = ")
+            );
+            (c.force_time_s, c.max_force_n, label)
+        });
+    Panel {
+        name: "largest force on a clamp",
+        y_desc: "force (N)".into(),
+        points: test
+            .series
+            .iter()
+            .filter_map(|p| p.max_clamp_force_n.map(|v| Some((p.time_s, v))))
+            .collect(),
+        color: RGBColor(140, 86, 75),
+        limit: None,
+        limit_label: String::new(),
+        worst,
+        violation: None,
+    }
 }
 
 fn clearance_panel(test: &MotionTestReport, thresholds: &Thresholds) -> Panel {
@@ -101,7 +171,7 @@ fn clearance_panel(test: &MotionTestReport, thresholds: &Thresholds) -> Panel {
             .map(|p| p.min_clearance_m.map(|c| (p.time_s, c * 1e3)))
             .collect(),
         color: RGBColor(31, 119, 180),
-        limit: limit_mm,
+        limit: Some(limit_mm),
         limit_label: format!("limit {} mm", short(limit_mm, 1)),
         worst: worst(&test.worst_clearance, 1e3, f64::INFINITY, |v| {
             format!("{v:.2} mm")
@@ -120,7 +190,7 @@ fn stretch_panel(test: &MotionTestReport, thresholds: &Thresholds) -> Panel {
             .map(|p| Some((p.time_s, p.max_stretch)))
             .collect(),
         color: RGBColor(44, 160, 44),
-        limit: thresholds.stretch,
+        limit: Some(thresholds.stretch),
         limit_label: format!("limit {}", short(thresholds.stretch, 2)),
         worst: worst(&test.worst_stretch, 1.0, f64::INFINITY, |v| {
             format!("{v:.4}")
@@ -148,7 +218,7 @@ fn bend_panel(test: &MotionTestReport, thresholds: &Thresholds) -> Panel {
             .map(|p| Some((p.time_s, (p.min_bend_radius_m * 1e3).min(cap_mm))))
             .collect(),
         color: RGBColor(148, 103, 189),
-        limit: limit_mm,
+        limit: Some(limit_mm),
         limit_label: format!("limit {} mm", short(limit_mm, 1)),
         worst: worst(&test.worst_bend, 1e3, cap_mm, |v| format!("{v:.2} mm")),
         violation: None,
@@ -219,7 +289,7 @@ fn draw_panel(
     last: bool,
 ) -> Result<(), PlotError> {
     let values = panel.points.iter().flatten().map(|p| p.1);
-    let extra = [Some(panel.limit), panel.worst.as_ref().map(|w| w.1)];
+    let extra = [panel.limit, panel.worst.as_ref().map(|w| w.1)];
     let (y0, y1) = finite_range(values.chain(extra.into_iter().flatten()))
         .map_or((0.0, 1.0), |(lo, hi)| padded(lo, hi, 0.08));
     let mut chart = ChartBuilder::on(area)
@@ -245,10 +315,12 @@ fn draw_panel(
         .map_err(draw_error)?;
     draw_runs(&mut chart, panel)?;
     let limit_style = LIMIT_RED.stroke_width(2);
-    let limit = [(t0, panel.limit), (t1, panel.limit)];
-    chart
-        .draw_series(DashedLineSeries::new(limit, 8, 5, limit_style))
-        .map_err(draw_error)?;
+    if let Some(limit) = panel.limit {
+        let line = [(t0, limit), (t1, limit)];
+        chart
+            .draw_series(DashedLineSeries::new(line, 8, 5, limit_style))
+            .map_err(draw_error)?;
+    }
     if let Some((t, _)) = &panel.violation {
         let line = LineSeries::new([(*t, y0), (*t, y1)], limit_style);
         chart.draw_series(line).map_err(draw_error)?;
@@ -258,16 +330,18 @@ fn draw_panel(
         chart.draw_series([ring]).map_err(draw_error)?;
     }
     let (x_px, _) = chart.plotting_area().get_pixel_range();
-    let limit_px = chart.backend_coord(&(t1, panel.limit));
-    let red = font(15.0).color(&LIMIT_RED);
-    let left = (HPos::Left, VPos::Center);
-    text(
-        root,
-        &panel.limit_label,
-        (x_px.end + 8, limit_px.1),
-        &red,
-        left,
-    )?;
+    if let Some(limit) = panel.limit {
+        let limit_px = chart.backend_coord(&(t1, limit));
+        let red = font(15.0).color(&LIMIT_RED);
+        let left = (HPos::Left, VPos::Center);
+        text(
+            root,
+            &panel.limit_label,
+            (x_px.end + 8, limit_px.1),
+            &red,
+            left,
+        )?;
+    }
     draw_header(root, area, panel, (x_px.start, x_px.end))
 }
 

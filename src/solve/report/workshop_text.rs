@@ -87,7 +87,7 @@ fn write_clamps(f: &mut fmt::Formatter<'_>, plan: &MountingPlan) -> fmt::Result 
 fn write_pieces(f: &mut fmt::Formatter<'_>, plan: &MountingPlan) -> fmt::Result {
     writeln!(
         f,
-        "\ncable: {}; {}",
+        "\n{}; {}",
         rows::length_words(plan),
         plan.tolerance_words()
     )?;
