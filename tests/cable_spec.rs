@@ -244,3 +244,26 @@ fn cut_allowances_are_optional_lengths() {
         );
     }
 }
+
+/// The part number is the file's text, trimmed, for the installation sheet; an empty one, a
+/// second line or more than 100 characters are refused naming the line and the key.
+#[test]
+fn a_part_number_is_one_short_line() {
+    let base = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("cables/smc_le_cp_3.toml"),
+    )
+    .expect("cable");
+    let with = |value: &str| format!("{base}part_number = {value}\n");
+    let source = Path::new("cable.toml");
+    let cable = CableSpec::from_toml_str(&with("\" LE-CP-3-S \""), source).expect("loads");
+    assert_eq!(cable.part_number.as_deref(), Some("LE-CP-3-S"));
+    assert_eq!(bundled("smc_le_cp_3.toml").part_number, None);
+    let lines = base.lines().count() + 1;
+    for bad in ["\"\"", "\"a\\nb\"", &format!("\"{}\"", "x".repeat(101))] {
+        let error = CableSpec::from_toml_str(&with(bad), source)
+            .expect_err("refused")
+            .to_string();
+        assert!(error.contains("part_number"), "{error}");
+        assert!(error.contains(&format!(":{lines}")), "{error}");
+    }
+}

@@ -785,3 +785,74 @@ lengths = {{ min = 5, max = 10, step = 1, allow_zero = true }}
     assert_eq!(plan.clamps[1].free_space_mm, None);
     assert!(plan.warnings().is_empty());
 }
+
+/// `[pendant_angles]` turns the installation pose into the pendant's angles: `sign × URDF +
+/// offset`, printed beside the description's; a joint the robot does not turn, a sign that is
+/// not ±1 and an offset beyond ±360° are refused with the key.
+#[test]
+fn pendant_angles_print_the_installation_pose_as_the_pendant_shows_it() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let base = std::fs::read_to_string(root.join("robots/viper_s850/pick_and_place.toml"))
+        .expect("setup")
+        .replace(
+            "robot = \"viper_s850.urdf\"",
+            &format!(
+                "robot = {:?}",
+                root.join("robots/viper_s850/viper_s850.urdf")
+            ),
+        )
+        .replace(
+            "cable = \"../../cables/smc_le_cp_3.toml\"",
+            &format!("cable = {:?}", root.join("cables/smc_le_cp_3.toml")),
+        );
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let load = |pendant: &str| {
+        // A top-level table must come before the [[...]] arrays of tables.
+        let text = base.replacen("[thresholds]", &format!("{pendant}\n[thresholds]"), 1);
+        let file = dir.path().join("setup.toml");
+        std::fs::write(&file, text).expect("write");
+        cable_dict::setup::Setup::from_file(&file)
+    };
+    let setup = load("[pendant_angles]\njoint_2 = { sign = -1, offset_deg = 90.0 }\njoint_3 = { sign = 1, offset_deg = -180.0 }")
+        .unwrap_or_else(|e| panic!("{e}"));
+    // The installation pose has joint_2 −68.6° and joint_3 216.4°.
+    let path = cable_dict::path::CablePath::through_every_guide(vec![28, 0, 34], vec![0, 0, 0, 0]);
+    let plan = cable_dict::mounting::mounting_plan(&setup, &path);
+    let pose = plan.installation_pose.as_ref().expect("a pose");
+    let pendant: Vec<Option<f64>> = pose.iter().map(|j| j.pendant).collect();
+    let expected = [
+        None,
+        Some(68.6 + 90.0),
+        Some(216.4 - 180.0),
+        None,
+        None,
+        None,
+    ];
+    for (got, want) in pendant.iter().zip(expected) {
+        match (got, want) {
+            (Some(g), Some(w)) => assert!((g - w).abs() < 1e-9, "{g} against {w}"),
+            (g, w) => assert_eq!(*g, w),
+        }
+    }
+    assert!(
+        plan.installation_words()
+            .contains("joint_2 -68.6 deg (pendant 158.6)")
+    );
+    for (pendant, key) in [
+        (
+            "[pendant_angles]\nno_such_joint = { sign = 1, offset_deg = 0.0 }",
+            "pendant_angles.no_such_joint",
+        ),
+        (
+            "[pendant_angles]\njoint_2 = { sign = 2, offset_deg = 0.0 }",
+            "pendant_angles.joint_2.sign",
+        ),
+        (
+            "[pendant_angles]\njoint_2 = { sign = 1, offset_deg = 400.0 }",
+            "pendant_angles.joint_2.offset_deg",
+        ),
+    ] {
+        let error = load(pendant).expect_err("refused").to_string();
+        assert!(error.contains(key), "{error}");
+    }
+}

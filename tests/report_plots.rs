@@ -573,11 +573,11 @@ fn panel_y(line: &[(f64, f64)], values: &[f64]) -> impl Fn(f64) -> f64 {
 fn stress_svg_draws_series_limits_and_worst_instants() {
     let report = stress_report(SERIES);
     let limits = thresholds(2.0);
-    let svg = stress_svg(&report, &limits, "motion test").expect("plot");
+    let svg = stress_svg(&report, &limits, "motion test", &Default::default()).expect("plot");
     std::fs::write(std::env::temp_dir().join("cable_dict_stress.svg"), &svg).ok();
     assert_eq!(
         svg,
-        stress_svg(&report, &limits, "motion test").expect("plot")
+        stress_svg(&report, &limits, "motion test", &Default::default()).expect("plot")
     );
     let elems = parse(&svg);
     assert!(has_text(&elems, "motion test"));
@@ -678,7 +678,13 @@ fn stress_svg_draws_series_limits_and_worst_instants() {
 fn stress_svg_marks_the_first_violation_of_a_failed_test() {
     let limit_mm = 5.0;
     let (report, last) = failing_report(limit_mm, Constraint::Contact);
-    let svg = stress_svg(&report, &thresholds(limit_mm), "motion test").expect("plot");
+    let svg = stress_svg(
+        &report,
+        &thresholds(limit_mm),
+        "motion test",
+        &Default::default(),
+    )
+    .expect("plot");
     std::fs::write(
         std::env::temp_dir().join("cable_dict_stress_failed.svg"),
         &svg,
@@ -731,7 +737,7 @@ fn stress_svg_marks_the_first_violation_of_a_failed_test() {
 #[test]
 fn stress_svg_puts_a_contact_force_violation_in_the_clearance_panel() {
     let (report, last) = failing_report(5.0, Constraint::ContactForce);
-    let svg = stress_svg(&report, &thresholds(5.0), "force").expect("plot");
+    let svg = stress_svg(&report, &thresholds(5.0), "force", &Default::default()).expect("plot");
     let elems = parse(&svg);
     let label = format!(
         "violation: contact force 0.125 N at {:.3} s (C3)",
@@ -748,7 +754,7 @@ fn stress_svg_puts_a_contact_force_violation_in_the_clearance_panel() {
 #[test]
 fn stress_svg_refuses_an_empty_series() {
     let report = stress_report(0);
-    let result = stress_svg(&report, &thresholds(2.0), "empty");
+    let result = stress_svg(&report, &thresholds(2.0), "empty", &Default::default());
     assert!(matches!(result, Err(PlotError::Empty(_))), "{result:?}");
 }
 

@@ -359,7 +359,9 @@ fn write_plots(
     )?;
     if let Some(test) = report.motion_test.as_ref().filter(|t| !t.series.is_empty()) {
         let title = stress_title(report);
-        let svg = plots::stress_svg(test, &setup.thresholds, &title).map_err(plot("stress.svg"))?;
+        let names = plot_names(setup, report, test);
+        let svg = plots::stress_svg(test, &setup.thresholds, &title, &names)
+            .map_err(plot("stress.svg"))?;
         add(
             folder,
             "stress.svg",
@@ -378,6 +380,42 @@ fn write_plots(
         )?;
     }
     Ok(figures)
+}
+
+/// The fitter's names of the shown candidate's pieces and clamps, for the motion test's plot.
+fn plot_names(
+    setup: &Setup,
+    report: &SolveReport,
+    test: &crate::motion_test::MotionTestReport,
+) -> plots::PlotNames {
+    let Some(plan) = report
+        .shown_candidate()
+        .map(|c| crate::mounting::mounting_plan(setup, &c.path))
+    else {
+        return plots::PlotNames::default();
+    };
+    let pieces = (0..setup.segments.len())
+        .map(|m| setup.segment_name(m))
+        .filter_map(|name| {
+            let words = plan.place_on_cable(&name, None)?;
+            let words = words.trim_start_matches("on ").trim_start_matches("at ");
+            Some((name, words.to_string()))
+        })
+        .collect();
+    let clamps = plan
+        .clamps
+        .iter()
+        .flat_map(|c| c.guides.iter().map(move |g| (g.clone(), c.name())))
+        .collect();
+    let failure = test
+        .failure
+        .as_ref()
+        .map(|_| crate::solve::verdict_words(report, test, Some(&plan)));
+    plots::PlotNames {
+        pieces,
+        clamps,
+        failure: failure.map(|f| f.trim_start_matches("failed: ").to_string()),
+    }
 }
 
 /// `Motion test of d* (1380 mm)` or `Motion test of candidate 3 (1420 mm), which failed`.

@@ -13,6 +13,36 @@ pub use joints::joints_svg;
 pub use sets::sets_svg;
 pub use stress::stress_svg;
 
+/// The fitter's names a plot of the motion test uses (`piece 1 → 2`, `clamp 2`), by the
+/// setup's names; a name without one is shown as the setup gives it.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PlotNames {
+    /// `(C3, piece 2 → gripper connector)`.
+    pub pieces: Vec<(String, String)>,
+    /// `(G2, clamp 2)` for every guide of every physical clamp.
+    pub clamps: Vec<(String, String)>,
+    /// Why the test failed, in these names; `None` to show the test's own reason.
+    pub failure: Option<String>,
+}
+
+impl PlotNames {
+    /// The fitter's name of the setup's piece `segment`.
+    pub fn piece(&self, segment: &str) -> String {
+        self.pieces
+            .iter()
+            .find(|(s, _)| s == segment)
+            .map_or_else(|| segment.to_string(), |(_, name)| name.clone())
+    }
+
+    /// The fitter's name of the clamp holding `guides`.
+    pub fn clamp(&self, guides: &[String]) -> String {
+        guides
+            .iter()
+            .find_map(|g| self.clamps.iter().find(|(n, _)| n == g))
+            .map_or_else(|| guides.join(" = "), |(_, name)| name.clone())
+    }
+}
+
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};

@@ -4,7 +4,8 @@
 //! no limit here.
 
 use super::{
-    LIMIT_RED, PlotError, Root, draw_error, finite_range, font, padded, render, short, text,
+    LIMIT_RED, PlotError, PlotNames, Root, draw_error, finite_range, font, padded, render, short,
+    text,
 };
 use crate::motion_test::{Constraint, MotionTestReport, Violation, Worst};
 use crate::setup::Thresholds;
@@ -51,6 +52,7 @@ pub fn stress_svg(
     test: &MotionTestReport,
     thresholds: &Thresholds,
     title: &str,
+    names: &PlotNames,
 ) -> Result<String, PlotError> {
     let times = test.series.iter().map(|p| p.time_s);
     let (t0, t_last) = finite_range(times).ok_or(PlotError::Empty("no stress series"))?;
@@ -60,9 +62,9 @@ pub fn stress_svg(
     } else {
         padded(t0, t1, 0.0)
     };
-    let panels = panels(test, thresholds);
+    let panels = panels(test, thresholds, names);
     render(SIZE, |root| {
-        draw_head(root, test, title)?;
+        draw_head(root, test, title, names)?;
         let (_, body) = root.split_vertically(HEAD_PX);
         let areas = body.split_evenly((panels.len(), 1));
         for (i, (panel, area)) in panels.iter().zip(&areas).enumerate() {
@@ -74,17 +76,17 @@ pub fn stress_svg(
 }
 
 /// The panels: the three limits, then twist and clamp force when the engine measured them.
-fn panels(test: &MotionTestReport, thresholds: &Thresholds) -> Vec<Panel> {
+fn panels(test: &MotionTestReport, thresholds: &Thresholds, names: &PlotNames) -> Vec<Panel> {
     let mut panels = vec![
-        clearance_panel(test, thresholds),
-        stretch_panel(test, thresholds),
-        bend_panel(test, thresholds),
+        clearance_panel(test, thresholds, names),
+        stretch_panel(test, thresholds, names),
+        bend_panel(test, thresholds, names),
     ];
     if test.series.iter().any(|p| p.max_twist_deg_per_m.is_some()) {
-        panels.push(twist_panel(test));
+        panels.push(twist_panel(test, names));
     }
     if test.series.iter().any(|p| p.max_clamp_force_n.is_some()) {
-        panels.push(clamp_force_panel(test));
+        panels.push(clamp_force_panel(test, names));
     }
     if let Some(v) = test.first_violation.as_ref().filter(|_| !test.passed) {
         let i = match v.constraint {
@@ -93,13 +95,13 @@ fn panels(test: &MotionTestReport, thresholds: &Thresholds) -> Vec<Panel> {
             Constraint::Stretch => 1,
             Constraint::BendRadius => 2,
         };
-        panels[i].violation = Some((v.time_s, violation_label(v)));
+        panels[i].violation = Some((v.time_s, violation_label(v, names)));
     }
     panels
 }
 
 /// The largest twist per metre of any piece (magnitude), from the cable as laid.
-fn twist_panel(test: &MotionTestReport) -> Panel {
+fn twist_panel(test: &MotionTestReport, names: &PlotNames) -> Panel {
     let worst = test
         .twists
         .iter()
@@ -109,7 +111,7 @@ fn twist_panel(test: &MotionTestReport) -> Panel {
                 "worst {:.0}°/m at {:.3} s ({})",
                 t.twist_deg_per_m.abs(),
                 t.time_s,
-                t.segment_name
+                names.piece(&t.segment_name)
             );
             (t.time_s, t.twist_deg_per_m.abs(), label)
         });
@@ -130,7 +132,7 @@ fn twist_panel(test: &MotionTestReport) -> Panel {
 }
 
 /// The largest force on any clamp, at the instants the loads were taken.
-fn clamp_force_panel(test: &MotionTestReport) -> Panel {
+fn clamp_force_panel(test: &MotionTestReport, names: &PlotNames) -> Panel {
     let worst = test
         .clamp_loads
         .iter()
@@ -140,7 +142,7 @@ fn clamp_force_panel(test: &MotionTestReport) -> Panel {
                 "worst {:.2} N at {:.3} s ({})",
                 c.max_force_n,
                 c.force_time_s,
-                c.guides.join(" = ")
+                names.clamp(&c.guides)
             );
             (c.force_time_s, c.max_force_n, label)
         });
@@ -160,7 +162,7 @@ fn clamp_force_panel(test: &MotionTestReport) -> Panel {
     }
 }
 
-fn clearance_panel(test: &MotionTestReport, thresholds: &Thresholds) -> Panel {
+fn clearance_panel(test: &MotionTestReport, thresholds: &Thresholds, names: &PlotNames) -> Panel {
     let limit_mm = thresholds.contact_clearance_m * 1e3;
     Panel {
         name: "min clearance",
@@ -173,14 +175,14 @@ fn clearance_panel(test: &MotionTestReport, thresholds: &Thresholds) -> Panel {
         color: RGBColor(31, 119, 180),
         limit: Some(limit_mm),
         limit_label: format!("limit {} mm", short(limit_mm, 1)),
-        worst: worst(&test.worst_clearance, 1e3, f64::INFINITY, |v| {
+        worst: worst(&test.worst_clearance, 1e3, f64::INFINITY, names, |v| {
             format!("{v:.2} mm")
         }),
         violation: None,
     }
 }
 
-fn stretch_panel(test: &MotionTestReport, thresholds: &Thresholds) -> Panel {
+fn stretch_panel(test: &MotionTestReport, thresholds: &Thresholds, names: &PlotNames) -> Panel {
     Panel {
         name: "max stretch",
         y_desc: "stretch (length / natural length)".into(),
@@ -192,7 +194,7 @@ fn stretch_panel(test: &MotionTestReport, thresholds: &Thresholds) -> Panel {
         color: RGBColor(44, 160, 44),
         limit: Some(thresholds.stretch),
         limit_label: format!("limit {}", short(thresholds.stretch, 2)),
-        worst: worst(&test.worst_stretch, 1.0, f64::INFINITY, |v| {
+        worst: worst(&test.worst_stretch, 1.0, f64::INFINITY, names, |v| {
             format!("{v:.4}")
         }),
         violation: None,
@@ -201,7 +203,7 @@ fn stretch_panel(test: &MotionTestReport, thresholds: &Thresholds) -> Panel {
 
 /// Bend radii in mm, clipped at 5× the limit (or at the largest finite radius when the
 /// limit is 0).
-fn bend_panel(test: &MotionTestReport, thresholds: &Thresholds) -> Panel {
+fn bend_panel(test: &MotionTestReport, thresholds: &Thresholds, names: &PlotNames) -> Panel {
     let limit_mm = thresholds.min_bend_radius_m * 1e3;
     let radii_mm = test.series.iter().map(|p| p.min_bend_radius_m * 1e3);
     let cap_mm = if limit_mm > 0.0 {
@@ -220,7 +222,9 @@ fn bend_panel(test: &MotionTestReport, thresholds: &Thresholds) -> Panel {
         color: RGBColor(148, 103, 189),
         limit: Some(limit_mm),
         limit_label: format!("limit {} mm", short(limit_mm, 1)),
-        worst: worst(&test.worst_bend, 1e3, cap_mm, |v| format!("{v:.2} mm")),
+        worst: worst(&test.worst_bend, 1e3, cap_mm, names, |v| {
+            format!("{v:.2} mm")
+        }),
         violation: None,
     }
 }
@@ -231,6 +235,7 @@ fn worst(
     worst: &Option<Worst>,
     scale: f64,
     cap: f64,
+    names: &PlotNames,
     value: impl Fn(f64) -> String,
 ) -> Option<(f64, f64, String)> {
     let w = worst.as_ref()?;
@@ -239,13 +244,13 @@ fn worst(
         "worst {} at {:.3} s ({})",
         value(v),
         w.time_s,
-        w.segment_name
+        names.piece(&w.segment_name)
     );
     Some((w.time_s, v.min(cap), label))
 }
 
-/// `violation: contact -3.20 mm at 1.238 s (C3)`.
-fn violation_label(v: &Violation) -> String {
+/// `violation: contact -3.20 mm at 1.238 s (piece 2 → 3)`.
+fn violation_label(v: &Violation, names: &PlotNames) -> String {
     let value = match v.unit {
         "m" => format!("{:.2} mm", v.value * 1e3),
         "N" => format!("{:.3} N", v.value),
@@ -253,18 +258,28 @@ fn violation_label(v: &Violation) -> String {
     };
     format!(
         "violation: {} {value} at {:.3} s ({})",
-        v.constraint, v.time_s, v.segment_name
+        v.constraint,
+        v.time_s,
+        names.piece(&v.segment_name)
     )
 }
 
 /// Title, and the verdict under it: `passed`, or `FAILED: reason` in red.
-fn draw_head(root: &Root<'_>, test: &MotionTestReport, title: &str) -> Result<(), PlotError> {
+fn draw_head(
+    root: &Root<'_>,
+    test: &MotionTestReport,
+    title: &str,
+    names: &PlotNames,
+) -> Result<(), PlotError> {
     let center = SIZE.0 as i32 / 2;
     let top = (HPos::Center, VPos::Top);
     text(root, title, (center, 10), &font(26.0), top)?;
     let (verdict, color) = match (&test.failure, test.passed) {
         (_, true) => ("motion test passed".to_string(), RGBColor(0, 120, 0)),
-        (Some(f), false) => (format!("FAILED: {}", clip(&f.reason)), LIMIT_RED),
+        (Some(f), false) => {
+            let reason = names.failure.as_deref().unwrap_or(&f.reason);
+            (format!("FAILED: {}", clip(reason)), LIMIT_RED)
+        }
         (None, false) => ("FAILED".to_string(), LIMIT_RED),
     };
     text(root, &verdict, (center, 42), &font(18.0).color(&color), top)
