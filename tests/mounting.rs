@@ -632,19 +632,9 @@ fn the_cut_length_adds_the_cable_files_allowances() {
     let with_allowances =
         format!("{cable}tool_end_allowance_mm = 40.0\nbase_end_allowance_mm = 1500.0\n");
     std::fs::write(&cable_path, with_allowances).expect("write cable");
-    let setup = std::fs::read_to_string(root.join("robots/viper_s850/pick_and_place.toml"))
-        .expect("setup")
-        .replace(
-            "robot = \"viper_s850.urdf\"",
-            &format!(
-                "robot = {:?}",
-                root.join("robots/viper_s850/viper_s850.urdf")
-            ),
-        )
-        .replace(
-            "cable = \"../../cables/smc_le_cp_3.toml\"",
-            &format!("cable = {cable_path:?}"),
-        );
+    let bundled_cable = format!("cable = {:?}", root.join("cables/smc_le_cp_3.toml"));
+    let setup =
+        common::bundled_setup_text().replace(&bundled_cable, &format!("cable = {cable_path:?}"));
     let setup_path = dir.path().join("setup.toml");
     std::fs::write(&setup_path, setup).expect("write setup");
     let setup_arg = setup_path.to_str().expect("utf-8");
@@ -791,20 +781,7 @@ lengths = {{ min = 5, max = 10, step = 1, allow_zero = true }}
 /// not ±1 and an offset beyond ±360° are refused with the key.
 #[test]
 fn pendant_angles_print_the_installation_pose_as_the_pendant_shows_it() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let base = std::fs::read_to_string(root.join("robots/viper_s850/pick_and_place.toml"))
-        .expect("setup")
-        .replace(
-            "robot = \"viper_s850.urdf\"",
-            &format!(
-                "robot = {:?}",
-                root.join("robots/viper_s850/viper_s850.urdf")
-            ),
-        )
-        .replace(
-            "cable = \"../../cables/smc_le_cp_3.toml\"",
-            &format!("cable = {:?}", root.join("cables/smc_le_cp_3.toml")),
-        );
+    let base = common::bundled_setup_text();
     let dir = tempfile::tempdir().expect("temporary folder");
     let load = |pendant: &str| {
         // A top-level table must come before the [[...]] arrays of tables.

@@ -370,25 +370,12 @@ impl Rod {
     /// Adds every joint's bending and, with a clamped end, twist (`k Ψ ∇Ψ` and the banded
     /// `k Ψ ∇²Ψ`) in one pass, and `∂Ψ/∂x`; returns the bending energy.
     fn add_joints(&self, edges: &[Edge], twist: f64, assembly: &mut Assembly) -> f64 {
-        let kb = self.params.bending_stiffness_n_m2 / self.params.pitch_m;
         let twist_scale = self.twist_stiffness() * twist;
-        let count = edges.len();
-        let end_axis = self.end.as_ref().map(|end| end.rotation * Vector3::z());
         let mut energy = 0.0;
-        for joint in 0..=count {
-            // Joint j sits at node j, between edge j − 1 (or the start guide's axis) and edge
-            // j (or the end guide's axis); a free end has no joint at node S.
-            let incoming = match joint {
-                0 => Side::Guide(self.start_axis()),
-                j => Side::Cable(j - 1),
+        for joint in 0..=edges.len() {
+            let Some((incoming, outgoing, stiffness)) = self.joint(joint, edges.len()) else {
+                break;
             };
-            let outgoing = match (joint < count, end_axis) {
-                (true, _) => Side::Cable(joint),
-                (false, Some(axis)) => Side::Guide(axis),
-                (false, None) => break,
-            };
-            let at_guide = matches!(incoming, Side::Guide(_)) || matches!(outgoing, Side::Guide(_));
-            let stiffness = if at_guide { 2.0 * kb } else { kb };
             let (a, b) = (side_edge(incoming, edges), side_edge(outgoing, edges));
             let with_hessian = assembly.hessian.is_some();
             let mut derivatives = bending(&a, &b, stiffness, with_hessian);
@@ -454,9 +441,7 @@ impl Rod {
         if count == 0 {
             return 0.0;
         }
-        let kb = self.params.bending_stiffness_n_m2 / self.params.pitch_m;
         let k = self.params.axial_stiffness_n / self.params.pitch_m;
-        let end_axis = self.end.as_ref().map(|end| end.rotation * Vector3::z());
         let edge = if at_end { count - 1 } else { 0 };
         let extension = edges[edge].length - self.params.pitch_m;
         let mut energy = 0.5 * k * extension * extension;
@@ -471,17 +456,9 @@ impl Rod {
                 continue;
             }
             seen = Some(joint);
-            let incoming = match joint {
-                0 => Side::Guide(self.start_axis()),
-                j => Side::Cable(j - 1),
+            let Some((incoming, outgoing, stiffness)) = self.joint(joint, count) else {
+                continue;
             };
-            let outgoing = match (joint < count, end_axis) {
-                (true, _) => Side::Cable(joint),
-                (false, Some(axis)) => Side::Guide(axis),
-                (false, None) => continue,
-            };
-            let at_guide = matches!(incoming, Side::Guide(_)) || matches!(outgoing, Side::Guide(_));
-            let stiffness = if at_guide { 2.0 * kb } else { kb };
             let (a, b) = (side_edge(incoming, &edges), side_edge(outgoing, &edges));
             energy += bending(&a, &b, stiffness, false).value;
         }
@@ -490,6 +467,24 @@ impl Rod {
             energy += 0.5 * self.twist_stiffness() * twist * twist;
         }
         energy
+    }
+
+    /// Joint `joint` of a rod of `count` edges: its two sides and its bending stiffness. Joint
+    /// j sits at node j, between edge j − 1 (or the start guide's axis) and edge j (or the end
+    /// guide's axis), with twice the stiffness at a guide; a free end has no joint at node S.
+    fn joint(&self, joint: usize, count: usize) -> Option<(Side, Side, f64)> {
+        let kb = self.params.bending_stiffness_n_m2 / self.params.pitch_m;
+        let incoming = match joint {
+            0 => Side::Guide(self.start_axis()),
+            j => Side::Cable(j - 1),
+        };
+        let outgoing = match (joint < count, &self.end) {
+            (true, _) => Side::Cable(joint),
+            (false, Some(end)) => Side::Guide(end.rotation * Vector3::z()),
+            (false, None) => return None,
+        };
+        let at_guide = matches!(incoming, Side::Guide(_)) || matches!(outgoing, Side::Guide(_));
+        Some((incoming, outgoing, if at_guide { 2.0 * kb } else { kb }))
     }
 
     /// Ψ on the principal branch `(−π, π]`: the end guide's x axis measured about its z axis

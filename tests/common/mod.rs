@@ -11,3 +11,23 @@ pub fn run(args: &[&str]) -> Output {
         .output()
         .expect("the binary runs")
 }
+
+/// The text of the bundled robot-level setup `robots/viper_s850/pick_and_place.toml` with its
+/// robot and cable paths made absolute, so that it loads from any folder a test writes it to.
+#[allow(dead_code)] // not every test binary uses every helper
+pub fn bundled_setup_text() -> String {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    std::fs::read_to_string(root.join("robots/viper_s850/pick_and_place.toml"))
+        .expect("the bundled setup")
+        .replace(
+            "robot = \"viper_s850.urdf\"",
+            &format!(
+                "robot = {:?}",
+                root.join("robots/viper_s850/viper_s850.urdf")
+            ),
+        )
+        .replace(
+            "cable = \"../../cables/smc_le_cp_3.toml\"",
+            &format!("cable = {:?}", root.join("cables/smc_le_cp_3.toml")),
+        )
+}
