@@ -247,7 +247,19 @@ async function main() {
       count += await checkImages(sheetPage, blank, problems);
       const pages = await printedPages(sheetPage);
       if (pages !== 1) problems.push(`install.html prints on ${pages} pages, not one`);
-      console.log(`  printed: ${pages} A4 landscape page(s)`);
+      // Readable on paper: no text of the page smaller than 8 pt (10.67 px).
+      const smallest = await sheetPage.evaluate(() => {
+        let least = Infinity;
+        for (const element of document.body.querySelectorAll("*")) {
+          const own = [...element.childNodes].some(
+            (n) => n.nodeType === Node.TEXT_NODE && n.textContent.trim(),
+          );
+          if (own) least = Math.min(least, parseFloat(getComputedStyle(element).fontSize));
+        }
+        return least;
+      });
+      if (!(smallest >= 10.6)) problems.push(`install.html has text of ${smallest} px (below 8 pt)`);
+      console.log(`  printed: ${pages} A4 landscape page(s), smallest text ${(smallest * 0.75).toFixed(1)} pt`);
     }
     const seconds = ((Date.now() - started) / 1000).toFixed(1);
     for (const problem of problems) console.log(`PROBLEM ${problem}`);

@@ -110,6 +110,11 @@ fn names_from_inputs_are_shown_and_never_obeyed() {
         if path.extension().is_some_and(|e| e == "svg") {
             let svg = std::fs::read_to_string(&path).expect("svg");
             assert!(!svg.contains("<img") && !svg.contains("<b>"), "{path:?}");
+            // XML forbids control characters: one from a name makes the picture unreadable.
+            let control = svg
+                .chars()
+                .find(|&c| c.is_control() && c != '\n' && c != '\t');
+            assert_eq!(control, None, "{path:?}");
         }
     }
 

@@ -62,9 +62,9 @@ fn clamp_row(clamp: &PhysicalClamp) -> ClampRow {
         ),
         None => (
             format!(
-                "on {}, which turns about no joint axis: at ({}) mm in its frame",
-                clamp.link,
-                decimals(&clamp.xyz_mm, 0)
+                "on {}, which no joint turns: the model gives no feature to measure from (place \
+                 it as the 3D view shows; its place in the link's frame is in result.json)",
+                clamp.link
             ),
             String::new(),
             String::new(),

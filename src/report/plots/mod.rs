@@ -26,20 +26,31 @@ pub struct PlotNames {
 }
 
 impl PlotNames {
-    /// The fitter's name of the setup's piece `segment`.
+    /// The fitter's name of the setup's piece `segment`, safe in SVG text (plotters escapes
+    /// markup, not the control characters XML forbids).
     pub fn piece(&self, segment: &str) -> String {
-        self.pieces
+        let name = self
+            .pieces
             .iter()
             .find(|(s, _)| s == segment)
-            .map_or_else(|| segment.to_string(), |(_, name)| name.clone())
+            .map_or(segment, |(_, name)| name.as_str());
+        crate::escape::terminal(name).into_owned()
     }
 
-    /// The fitter's name of the clamp holding `guides`.
+    /// The fitter's name of the clamp holding `guides`, safe in SVG text.
     pub fn clamp(&self, guides: &[String]) -> String {
-        guides
+        let name = guides
             .iter()
             .find_map(|g| self.clamps.iter().find(|(n, _)| n == g))
-            .map_or_else(|| guides.join(" = "), |(_, name)| name.clone())
+            .map_or_else(|| guides.join(" = "), |(_, name)| name.clone());
+        crate::escape::terminal(&name).into_owned()
+    }
+
+    /// Why the test failed in these names, safe in SVG text.
+    pub fn failure(&self) -> Option<String> {
+        self.failure
+            .as_deref()
+            .map(|f| crate::escape::terminal(f).into_owned())
     }
 }
 

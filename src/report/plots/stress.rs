@@ -277,8 +277,8 @@ fn draw_head(
     let (verdict, color) = match (&test.failure, test.passed) {
         (_, true) => ("motion test passed".to_string(), RGBColor(0, 120, 0)),
         (Some(f), false) => {
-            let reason = names.failure.as_deref().unwrap_or(&f.reason);
-            (format!("FAILED: {}", clip(reason)), LIMIT_RED)
+            let reason = names.failure().unwrap_or_else(|| f.reason.clone());
+            (format!("FAILED: {}", clip(&reason)), LIMIT_RED)
         }
         (None, false) => ("FAILED".to_string(), LIMIT_RED),
     };
