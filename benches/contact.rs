@@ -8,8 +8,10 @@
 //! - a cable 0.5 m away from the arm (everything culled);
 //! - the forearm tube alone as a closed 1024-triangle STL mesh, with the same cable beside it
 //!   and pushed into it;
-//! - the cable's clearance to itself (`self_contact`): the same 50 sub-segments, and a loop of
-//!   150 sub-segments that nearly closes (a ring hanging between two clamps 12 cm apart).
+//! - the cable's closest approach to itself (`self_contact`): the same 50 sub-segments (which
+//!   never come back toward each other: every pair is looked at), the same searched only
+//!   below 20 mm as the attachment test asks (`self_contact_within`), and a loop of 150
+//!   sub-segments that nearly closes (a ring hanging between two clamps 12 cm apart).
 
 use std::hint::black_box;
 
@@ -17,7 +19,7 @@ use cable_dict::robot::Robot;
 use cable_dict::stress::contact::{
     ClampZone, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
 };
-use cable_dict::stress::self_contact;
+use cable_dict::stress::{self_contact, self_contact_within};
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::{Point3, Vector3};
 
@@ -191,6 +193,11 @@ fn bench_self_contact(c: &mut Criterion) {
     c.bench_function("self_contact/forearm cable, 50 sub-segments", |b| {
         b.iter(|| self_contact(black_box(&cable), diameter, PITCH_M))
     });
+    // As the attachment test asks: only approaches closer than the robot is (here 20 mm).
+    c.bench_function(
+        "self_contact/forearm cable, 50 sub-segments, within 20 mm",
+        |b| b.iter(|| self_contact_within(black_box(&cable), diameter, PITCH_M, 0.02 + diameter)),
+    );
     // 150 sub-segments around a circle from one clamp to another 12 cm beside it.
     let ring: Vec<Point3<f64>> = (0..=150)
         .map(|k| {

@@ -110,6 +110,13 @@ pub fn self_contact_within(
     let runs = bounding_runs(nodes, segments);
     let mut pairs = run_pairs(&runs, skip);
     pairs.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+    // Each sub-segment's middle and half length: two are at least the distance of their
+    // middles less both half lengths apart, a bound that skips most pairs of a cable that
+    // does not come back toward itself.
+    let middles: Vec<(Point3<f64>, f64)> = nodes
+        .windows(2)
+        .map(|w| (nalgebra::center(&w[0], &w[1]), 0.5 * (w[1] - w[0]).norm()))
+        .collect();
     let mut best: Option<(f64, [usize; 2])> = None;
     let mut block = Block::default();
     for (lower, a, b) in pairs {
@@ -117,13 +124,19 @@ pub fn self_contact_within(
         if lower >= bound {
             break;
         }
-        block.fill(nodes, &runs[a].range, &runs[b].range, segments);
+        block.reset(&runs[a].range, &runs[b].range, segments);
         for i in runs[a].range.clone() {
             let first_j = runs[b].range.start.max(i + skip + 1);
             for j in first_j..runs[b].range.end {
-                let d = block.get(i, j);
-                let better = d < within_m && best.is_none_or(|(b, _)| d < b);
-                if better && is_approach(&block, (i, j), d, (skip, segments, diameter_m)) {
+                let bound = best.map_or(within_m, |(d, _)| d.min(within_m));
+                let ((mi, hi), (mj, hj)) = (middles[i], middles[j]);
+                if (mi - mj).norm() - hi - hj >= bound {
+                    continue;
+                }
+                let d = block.get(nodes, i, j);
+                if d < bound
+                    && is_approach(&mut block, nodes, (i, j), d, (skip, segments, diameter_m))
+                {
                     best = Some((d, [i, j]));
                 }
             }
@@ -139,7 +152,8 @@ pub fn self_contact_within(
 /// off the domain's inner edge `j = i + skip + 1` with no pair one step away in the domain
 /// (`j ≥ i + skip + 1`, both below `segments`) closer.
 fn is_approach(
-    block: &Block,
+    block: &mut Block,
+    nodes: &[Point3<f64>],
     (i, j): (usize, usize),
     d: f64,
     (skip, segments, diameter_m): (usize, usize, f64),
@@ -159,11 +173,11 @@ fn is_approach(
     neighbours
         .into_iter()
         .flatten()
-        .all(|(a, b)| block.get(a, b) >= d)
+        .all(|(a, b)| block.get(nodes, a, b) >= d)
 }
 
 /// The distances of a run pair's sub-segments and their neighbours one step away, each
-/// computed once.
+/// computed once, when first asked for.
 #[derive(Default)]
 struct Block {
     rows: std::ops::Range<usize>,
@@ -172,33 +186,23 @@ struct Block {
 }
 
 impl Block {
-    /// The distances for rows `a` and columns `b`, each widened by one sub-segment.
-    fn fill(
-        &mut self,
-        nodes: &[Point3<f64>],
-        a: &std::ops::Range<usize>,
-        b: &std::ops::Range<usize>,
-        segments: usize,
-    ) {
+    /// Empty, for rows `a` and columns `b`, each widened by one sub-segment.
+    fn reset(&mut self, a: &std::ops::Range<usize>, b: &std::ops::Range<usize>, segments: usize) {
         self.rows = a.start.saturating_sub(1)..(a.end + 1).min(segments);
         self.columns = b.start.saturating_sub(1)..(b.end + 1).min(segments);
         self.distances.clear();
-        for i in self.rows.clone() {
-            for j in self.columns.clone() {
-                self.distances.push(segment_distance(
-                    &nodes[i],
-                    &nodes[i + 1],
-                    &nodes[j],
-                    &nodes[j + 1],
-                ));
-            }
-        }
+        self.distances
+            .resize(self.rows.len() * self.columns.len(), f64::NAN);
     }
 
-    /// The distance of sub-segments `i` and `j` (within the filled rows and columns).
-    fn get(&self, i: usize, j: usize) -> f64 {
+    /// The distance of sub-segments `i` and `j` (within the rows and columns).
+    fn get(&mut self, nodes: &[Point3<f64>], i: usize, j: usize) -> f64 {
         let width = self.columns.len();
-        self.distances[(i - self.rows.start) * width + (j - self.columns.start)]
+        let slot = &mut self.distances[(i - self.rows.start) * width + (j - self.columns.start)];
+        if slot.is_nan() {
+            *slot = segment_distance(&nodes[i], &nodes[i + 1], &nodes[j], &nodes[j + 1]);
+        }
+        *slot
     }
 }
 
