@@ -44,7 +44,7 @@ impl ZeroSide {
     pub fn word(self) -> &'static str {
         match self {
             ZeroSide::Top => "top",
-            ZeroSide::Front => "front",
+            ZeroSide::Front => "robot's front",
         }
     }
 }
@@ -336,11 +336,11 @@ impl LinkPlace {
             )
         };
         let side = match self.cable_turn {
-            Some(Turn::Clockwise) => ", turned clockwise",
-            Some(Turn::Anticlockwise) => ", turned anticlockwise",
-            Some(Turn::Outward) => ", pointing away from the axis",
-            Some(Turn::Inward) => ", pointing toward the axis",
-            None => "",
+            Some(Turn::Clockwise) => format!(", turned clockwise {}", self.seen_from()),
+            Some(Turn::Anticlockwise) => format!(", turned anticlockwise {}", self.seen_from()),
+            Some(Turn::Outward) => ", pointing away from the axis".into(),
+            Some(Turn::Inward) => ", pointing toward the axis".into(),
+            None => String::new(),
         };
         format!("across the link, {lean}{side}")
     }

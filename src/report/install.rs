@@ -9,6 +9,7 @@
 //! ([`crate::mounting::rows`]), and from the motion test's twist and load rows
 //! ([`crate::solve::load_rows`]): the sheet says nothing of its own about a clamp.
 
+use super::pictures::Picture;
 use super::summary::capitalized;
 use crate::escape::html as escape;
 use crate::mounting::{self, MountingPlan, rows};
@@ -52,7 +53,7 @@ pub struct Sheet<'a> {
     /// The title block.
     pub title: TitleBlock,
     /// The picture of the arm at the installation pose, if the report has one.
-    pub picture: Option<&'a str>,
+    pub picture: Option<&'a Picture>,
     /// The largest twist per piece and load per clamp over the motion test.
     pub loads: Vec<LoadRow>,
 }
@@ -136,10 +137,10 @@ pub fn install_html(sheet: &Sheet<'_>) -> String {
         let _ = writeln!(
             html,
             "<figure class=\"arm\"><img style=\"max-height: {height_mm:.0}mm\" src=\"{}\" alt=\"the robot at the installation pose \
-             from the front, the side and above, the clamps numbered\"><figcaption>The robot at \
-             the installation pose, the cable laid there; clamps numbered as below.\
-             </figcaption></figure>",
-            escape(picture)
+             from its right, its front and above, the clamps numbered\"><figcaption>{}</figcaption>\
+             </figure>",
+            escape(&picture.file),
+            escape(&picture.caption)
         );
     }
     steps(&mut html, plan);
@@ -168,7 +169,7 @@ fn title_block(html: &mut String, title: &str, t: &TitleBlock) {
         ("cable", t.cable.as_str()),
         ("motion", t.motion.as_str()),
         ("setup", t.setup.as_str()),
-        ("setup hash", t.setup_hash.as_str()),
+        ("setup content hash", t.setup_hash.as_str()),
         ("date", t.date.as_str()),
         ("made by", concat!("cable-dict ", env!("CARGO_PKG_VERSION"))),
     ];
@@ -190,21 +191,23 @@ fn title_block(html: &mut String, title: &str, t: &TitleBlock) {
 fn steps(html: &mut String, plan: &MountingPlan) {
     let end = plan.clamps.last().map(|c| c.in_words()).unwrap_or_default();
     let fitting_end = plan.clamps.last().is_some_and(|c| c.fitting.is_some());
-    let mut steps = vec![format!("{}.", capitalized(&plan.installation_words()))];
-    steps.push(format!(
-        "Mark the cable at each clamp's mark, its length from the end at {end} (strip \
-         below); {}.",
-        plan.tolerance_words()
-    ));
+    let mut steps = vec![
+        format!("{}.", capitalized(&plan.installation_words())),
+        format!("{}.", capitalized(&mounting::cut_words(plan))),
+    ];
     if fitting_end {
         steps.push(format!("Plug the cable's end into {end}."));
     }
+    steps.push(format!(
+        "Mark the cable at each clamp's mark, its length from where it leaves {end} (mark \
+         0; strip below), not from the cut end; {}.",
+        plan.tolerance_words()
+    ));
     steps.push(
         "Mount each clamp as its row says (distances are to the cable's axis, not the clamp's \
          foot) and close it on its mark, the cable leaving as the row says."
             .into(),
     );
-    steps.push(format!("{}.", capitalized(&mounting::cut_words(plan))));
     html.push_str("<section class=\"steps\"><h2>Steps</h2>\n<ol>\n");
     for step in steps {
         let _ = writeln!(html, "<li>{}</li>", escape(&step));

@@ -175,7 +175,7 @@ pub fn write_report(
         let sheet = install::Sheet {
             plan,
             title: title_block(setup, report),
-            picture: picture.as_ref().map(|p| p.file.as_str()),
+            picture: picture.as_ref(),
             loads: report
                 .motion_test
                 .as_ref()

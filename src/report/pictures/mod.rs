@@ -84,19 +84,28 @@ pub fn installation_picture(
         what: "the robot and the cable at the installation pose, front, side and top, for \
                the installation sheet"
             .into(),
-        caption: "The robot at the installation pose with the cable as laid there: clamps \
-                  numbered as on the installation sheet."
-            .into(),
+        caption: String::new(),
         scene,
         marker_m: None,
     };
     let drawing = drawing(spec, &moment, &names);
+    // The in-a-row layout has no corner for the legend: the caption says what it would.
+    let colours: Vec<String> = drawing
+        .cable_legend
+        .iter()
+        .map(|tint| format!("{} {}", tint.colour_word(), tint.legend()))
+        .collect();
+    let caption = format!(
+        "The robot at the installation pose with the cable as laid there, clamps numbered as \
+         in the table; {}.",
+        colours.join("; ")
+    );
     let layout = Layout::in_a_row(&drawing, 2e3 * spec.cable_radius_m, SHEET_LABEL_PX);
     Some(Picture {
         svg: picture_svg(&drawing, &layout),
         file: moment.file,
         what: moment.what,
-        caption: moment.caption,
+        caption,
     })
 }
 
@@ -163,16 +172,15 @@ fn drawing(spec: &SceneSpec<'_>, moment: &Moment<'_>, names: &Names<'_>) -> Draw
             colour: spec.tint_of(&line.name).css(),
         })
         .collect();
-    let mut cable_legend: Vec<(String, &'static str)> = Vec::new();
-    for tint in CableTint::ALL {
-        if scene
-            .cable
-            .iter()
-            .any(|line| spec.tint_of(&line.name) == tint)
-        {
-            cable_legend.push((tint.css(), tint.legend()));
-        }
-    }
+    let cable_legend: Vec<CableTint> = CableTint::ALL
+        .into_iter()
+        .filter(|&tint| {
+            scene
+                .cable
+                .iter()
+                .any(|line| spec.tint_of(&line.name) == tint)
+        })
+        .collect();
     // One dot per physical clamp: guides joined by a 0 mm piece share a place and a name.
     let mut clamps: Vec<(String, Point3<f64>)> = Vec::new();
     for mark in &spec.guides {

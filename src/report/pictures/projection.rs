@@ -41,9 +41,9 @@ impl View {
     /// The panel's title: the view and where it is seen from.
     pub fn title(self) -> &'static str {
         match self {
-            View::Front => "Front (x–z, seen from −y)",
-            View::Side => "Side (y–z, seen from +x)",
-            View::Top => "Top (x–y, seen from +z)",
+            View::Front => "From the robot's right (−y), x–z",
+            View::Side => "From the robot's front (+x), y–z",
+            View::Top => "From above (+z), x–y",
         }
     }
 

@@ -11,6 +11,7 @@
 
 use super::projection::{View, outline};
 use crate::escape::html as escape;
+use crate::report::scene::CableTint;
 use nalgebra::Point3;
 use std::fmt::Write;
 
@@ -81,7 +82,7 @@ pub(super) struct Drawing {
     /// axis's point at the clamp (mm).
     pub clamps: Vec<(String, Point3<f64>)>,
     /// The legend's lines for the cable's colours: colour and meaning.
-    pub cable_legend: Vec<(String, &'static str)>,
+    pub cable_legend: Vec<CableTint>,
     /// Where the smallest margin is (mm), ringed in red.
     pub marker: Option<Point3<f64>>,
 }
@@ -502,12 +503,19 @@ fn push_clamps(svg: &mut String, drawing: &Drawing, layout: &Layout, view: View)
             );
         }
     }
-    for (text, b) in texts.iter().zip(&boxes) {
+    for ((text, b), [x, _]) in texts.iter().zip(&boxes).zip(&anchors) {
+        // The box is an upper bound of the text's width: the text starts at the box's side
+        // nearer its dot, so that a label set left of its dot ends next to it.
+        let (at, anchor) = if *x > b.x + 0.5 * b.w {
+            (b.x + b.w, " text-anchor=\"end\"")
+        } else {
+            (b.x, "")
+        };
         let _ = writeln!(
             svg,
-            "<text x=\"{}\" y=\"{}\" font-size=\"{}\" stroke-width=\"{}\" \
+            "<text x=\"{}\" y=\"{}\"{anchor} font-size=\"{}\" stroke-width=\"{}\" \
              data-box=\"{} {} {} {}\">{}</text>",
-            num(b.x),
+            num(at),
             num(b.y + 0.8 * b.h),
             num(b.h),
             num(layout.mm(3.0)),
@@ -695,13 +703,13 @@ fn push_legend(svg: &mut String, drawing: &Drawing, layout: &Layout) {
         "<rect width=\"22\" height=\"12\" y=\"-10\" fill=\"#8d99a6\" fill-opacity=\"0.45\" stroke=\"#2f3a45\"/>".into(),
         "robot (collision shapes)",
     )];
-    for (colour, words) in &drawing.cable_legend {
+    for tint in &drawing.cable_legend {
         entries.push((
             format!(
                 "<path d=\"M0 -4H22\" stroke=\"{}\" stroke-width=\"4\"/>",
-                escape(colour)
+                tint.css()
             ),
-            words,
+            tint.legend(),
         ));
     }
     if !drawing.clamps.is_empty() {
@@ -771,7 +779,7 @@ mod tests {
                 ],
                 colour: "#e8590c".into(),
             }],
-            cable_legend: vec![("#e8590c".into(), "cable")],
+            cable_legend: vec![CableTint::Plain],
             clamps: vec![("G1".into(), Point3::new(850.0, 1950.0, 2750.0))],
             marker: None,
         }

@@ -174,6 +174,16 @@ impl CableTint {
         format!("#{:02x}{:02x}{:02x}", srgb(r), srgb(g), srgb(b))
     }
 
+    /// The colour's name, for a legend in words.
+    pub fn colour_word(self) -> &'static str {
+        match self {
+            CableTint::Plain => "orange",
+            CableTint::Ample => "green",
+            CableTint::Tight => "amber",
+            CableTint::Exceeded => "red",
+        }
+    }
+
     /// What the colour says, for a legend.
     pub fn legend(self) -> &'static str {
         match self {
