@@ -119,6 +119,7 @@ mod tests {
         );
     }
 
+    #[cfg(feature = "report")]
     #[test]
     fn markdown_keeps_markup_as_text() {
         let rendered = |md: &str| {

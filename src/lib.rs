@@ -11,6 +11,8 @@
 //! - [`input`]: reading input files with their size bounded (devices, pipes, huge files refused).
 //! - [`pose`]: rigid poses and the URDF roll–pitch–yaw convention shared by every module.
 //! - [`progress`]: progress of long stages, reported to a sink a front end draws.
+//! - [`escape`]: names from inputs shown safely on a terminal, in HTML or SVG and in Markdown.
+//! - [`text_table`]: plain-text tables whose columns are as wide as their widest cell.
 //! - [`robot`]: URDF loading, forward kinematics and collision geometry of the arm.
 //! - [`cable`]: the physical specification of a cable (stiffness, mass, bend radius).
 //! - [`calibrate`]: a cable's bending and torsional stiffness from bench measurements.
@@ -22,18 +24,23 @@
 //! - [`rigid_chain`]: the cable as rigid bodies in rapier3d, the paper's baseline.
 //! - [`stress`]: the stress metrics evaluated on a cable shape (contact, stretch, bend radius).
 //! - [`setup`]: the setup file — robot, cable, guide catalogue, length candidates, limits.
+//! - [`sites`]: clamp sites generated on the links' surfaces, with the cable's directions.
 //! - [`motion`]: sampled robot motions, their generation from waypoints, critical poses.
 //! - [`motion_test`]: the whole cable simulated along the motion; worst contact, stretch and bend radius.
 //! - [`path`]: parameter vectors (PVs) and whole cable paths (ECPVs).
+//! - [`attachment`]: the attachment test — which PVs hold the stress limits at the critical
+//!   poses (D1) and are robust to a length error (D2).
 //! - [`chain`]: the shortest chain of robust PVs through the guides' configurations, and the
 //!   next-shortest ones.
 //! - [`solve`]: the whole pipeline from a setup and a motion to the optimal cable path d*.
+//! - [`mounting`]: the answer as a fitter mounts it — physical clamps numbered from the base,
+//!   fittings, places measured from the link's features, marks on the cable.
 //! - [`dictionary`]: the intra-link results precomputed per robot, cable and guide catalogue
 //!   over sampled gravity directions, in a shareable memory-mapped `.cdict` file.
-//! - [`report`]: the report folder of a solve — summary, SVG plots, a glTF scene of robot,
-//!   cable and motion test, and a page that shows them.
-//! - [`attachment`]: the attachment test — which PVs hold the stress limits at the critical
-//!   poses (D1) and are robust to a length error (D2).
+//! - [`provenance`]: who vouches for a dictionary — Ed25519 signatures beside it, checked
+//!   against the keys a team trusts.
+//! - [`report`] (feature `report`): the report folder of a solve — summary, SVG plots, a glTF
+//!   scene of robot, cable and motion test, and a page that shows them.
 //!
 //! ```
 //! use cable_dict::{cable::CableSpec, geometry::connect, pose::pose_from_mm_deg, robot::Robot};
@@ -77,6 +84,7 @@ pub mod path;
 pub mod pose;
 pub mod progress;
 pub mod provenance;
+#[cfg(feature = "report")]
 pub mod report;
 pub mod rigid_chain;
 pub mod robot;

@@ -3,15 +3,11 @@
 //! depth the closed form of its shape gives — clamp zones at guides on its link leave it out,
 //! bad entries are refused naming the key, and a setup without bodies keeps its hash.
 
+use crate::common::{self, root};
 use cable_dict::robot::Shape;
 use cable_dict::setup::Setup;
 use cable_dict::stress::{GuideEnd, Obstacles, min_clearance, min_clearance_to_links};
 use nalgebra::{Point3, Vector3};
-use std::path::PathBuf;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
 
 /// A one-segment setup from link_4 to a connector on link_6, with `bodies` appended.
 fn setup_text(bodies: &str) -> String {
@@ -21,16 +17,7 @@ cable = "cables/smc_le_cp_3.toml"
 gravity_m_s2 = [0.0, 0.0, -9.81]
 max_guides_per_link = 1
 
-[thresholds]
-contact_clearance_mm = 0.0
-stretch = 1.02
-min_bend_radius_mm = "cable"
-clamp_zone_mm = 20.0
-
-[robustness]
-delta_s = 1
-range = 2
-
+{limits}
 [[guides]]
 name = "G1"
 link = "link_4"
@@ -45,7 +32,8 @@ fixed = {{ name = "connector", position_mm = [60.0, 0.0, 85.0], rpy_deg = [0.0, 
 from = "G1"
 to = "G2"
 lengths = {{ min = 30, max = 40, step = 1, allow_zero = false }}
-{bodies}"#
+{bodies}"#,
+        limits = common::limits("\"cable\"")
     )
 }
 
@@ -308,7 +296,7 @@ fn a_clamp_inside_a_body_is_warned_about_naming_the_body() {
     let path = dir.path().join("setup.toml");
     let run = |text: &str| {
         std::fs::write(&path, text).unwrap();
-        std::process::Command::new(env!("CARGO_BIN_EXE_cable-dict"))
+        common::binary()
             .args(["sites", path.to_str().unwrap()])
             .output()
             .unwrap()

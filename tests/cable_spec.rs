@@ -7,9 +7,7 @@ use cable_dict::cable::{CableSpec, DEFAULT_AXIAL_STIFFNESS_N, DEFAULT_SUB_SEGMEN
 use std::path::Path;
 
 fn bundled(name: &str) -> CableSpec {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("cables")
-        .join(name);
+    let path = crate::common::root().join("cables").join(name);
     CableSpec::from_file(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -249,10 +247,8 @@ fn cut_allowances_are_optional_lengths() {
 /// second line or more than 100 characters are refused naming the line and the key.
 #[test]
 fn a_part_number_is_one_short_line() {
-    let base = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("cables/smc_le_cp_3.toml"),
-    )
-    .expect("cable");
+    let base = std::fs::read_to_string(crate::common::root().join("cables/smc_le_cp_3.toml"))
+        .expect("cable");
     let with = |value: &str| format!("{base}part_number = {value}\n");
     let source = Path::new("cable.toml");
     let cable = CableSpec::from_toml_str(&with("\" LE-CP-3-S \""), source).expect("loads");

@@ -4,8 +4,8 @@
 //! cable file loads and reproduces the bench test in the project's own statics; bad
 //! measurements are refused by name.
 
-mod common;
-mod reference;
+use crate::common;
+use crate::reference;
 
 use cable_dict::cable::CableSpec;
 use cable_dict::calibrate::{CantileverTest, TipMeasurement, torsion_stiffness};

@@ -16,7 +16,7 @@ const MOTION: &str = "motions/viper_s850/pick_and_place.csv";
 /// The hand-written catalogue with its intra-link pieces made to have a length (no 0 mm
 /// piece through one clamp), so that every chain takes pieces from the dictionary.
 fn setup_and_motion() -> (Setup, Motion) {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let folder = root.join(SETUP).parent().expect("a folder").to_path_buf();
     let text = std::fs::read_to_string(root.join(SETUP))
         .expect("the setup")

@@ -1,6 +1,6 @@
 //! The `cable-dict` binary end to end: JSON shapes, values against closed forms, exit codes.
 
-mod common;
+use crate::common;
 
 use common::run;
 use serde_json::Value;
@@ -273,7 +273,7 @@ fn help_explains_every_subcommand() {
 /// quoted other solver timings).
 #[test]
 fn every_help_points_to_readme_sections_that_exist_and_quotes_its_timings() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let read = |relative: &str| {
         std::fs::read_to_string(root.join(relative)).unwrap_or_else(|e| panic!("{relative}: {e}"))
     };
@@ -396,4 +396,35 @@ fn the_readme_segment_example_holds_its_limits() {
         equilibrium.contains("(cable minimum 48.0 mm: ok)"),
         "{stdout}"
     );
+}
+
+/// The setup is taken the same way by every command that reads one: as `--setup` or as the
+/// first file; `critical-poses` answers the same either way, and a `solve` without a setup
+/// says how to give one.
+#[test]
+fn every_command_takes_the_setup_as_an_option_or_as_the_first_file() {
+    let setup = "robots/viper_s850/pick_and_place.toml";
+    let motion = "motions/viper_s850/pick_and_place.csv";
+    let positional = json(&["critical-poses", setup, motion, "--json"]);
+    let option = json(&["critical-poses", "--setup", setup, motion, "--json"]);
+    assert_eq!(positional, option);
+    assert!(positional.as_array().is_some_and(|a| !a.is_empty()));
+    let sites = |args: &[&str]| {
+        let output = run(args);
+        assert!(output.status.success(), "{args:?}");
+        output.stdout
+    };
+    assert_eq!(
+        sites(&["sites", setup, "--json"]),
+        sites(&["sites", "--setup", setup, "--json"])
+    );
+    let (code, stderr) = failure(&["solve", motion]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("no setup for the motion") && stderr.contains("--setup SETUP.toml"),
+        "{stderr}"
+    );
+    let (code, stderr) = failure(&["solve", "--setup", setup, setup, motion]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("give the setup once"), "{stderr}");
 }

@@ -1251,7 +1251,7 @@ fn coincident_guides_facing_the_same_way_are_refused() {
             "{error}"
         );
     }
-    let output = std::process::Command::new(env!("CARGO_BIN_EXE_cable-dict"))
+    let output = crate::common::binary()
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .args([
             "segment",

@@ -7,10 +7,9 @@
 use cable_dict::motion::Motion;
 use cable_dict::setup::{ConfigurationOrigin, Setup};
 use cable_dict::solve::{SolveOptions, SolveReport, Status, solve};
-use std::path::Path;
 
 fn solved(setup_file: &str, motion_file: &str, options: &SolveOptions) -> (Setup, SolveReport) {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let setup = Setup::from_file(root.join("robots/viper_s850").join(setup_file))
         .unwrap_or_else(|e| panic!("{e}"));
     let motion = Motion::from_csv_file(

@@ -3,7 +3,7 @@
 //! window wider than the lengths that pass. The report of an unsolved search pictures its
 //! nearest miss.
 
-mod svg_pictures;
+use crate::svg_pictures;
 
 use cable_dict::attachment::{ConnectMethod, Evaluator, Rejection};
 use cable_dict::motion::Motion;

@@ -10,7 +10,7 @@
 //! `verify --recompute` (forged margins, an altered setup with its hash patched). The
 //! binary's exit code for all of these is 2.
 
-mod common;
+use crate::common;
 
 use cable_dict::dictionary::format::{self, SectionKind};
 use cable_dict::dictionary::{
@@ -35,8 +35,8 @@ fn fixture(setup: &Setup, directions: usize, shard: Option<(u32, u32)>) -> Built
 fn whole() -> &'static (Setup, Built) {
     static WHOLE: OnceLock<(Setup, Built)> = OnceLock::new();
     WHOLE.get_or_init(|| {
-        let setup = Setup::from_file(Path::new(env!("CARGO_MANIFEST_DIR")).join(SETUP))
-            .expect("the fixture setup loads");
+        let setup =
+            Setup::from_file(crate::common::root().join(SETUP)).expect("the fixture setup loads");
         let built = fixture(&setup, DIRECTIONS, None);
         (setup, built)
     })
@@ -534,7 +534,7 @@ fn a_setup_with_other_limits_is_refused_once_by_the_command() {
     let dir = tempfile::tempdir().expect("temp dir");
     let dict = dir.path().join("dict.cdict");
     write_dictionary(&dict, built).expect("written");
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let text = std::fs::read_to_string(root.join(SETUP)).expect("fixture");
     let robot = root.join("robots/viper_s850/viper_s850.urdf");
     let cable = root.join("cables/smc_le_cp_3_paper.toml");

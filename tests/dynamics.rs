@@ -3,7 +3,7 @@
 //! continuous Euler–Bernoulli cantilever and of the hanging chain
 //! (`reference::vibration`), and the time integrator's order of convergence.
 
-mod reference;
+use crate::reference;
 
 use cable_dict::dynamics::{IntegratorSettings, SegmentDynamics};
 use cable_dict::pose::{Pose, pose_from_xyz_rpy};

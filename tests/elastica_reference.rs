@@ -5,7 +5,7 @@
 //!
 //! Run with `cargo test --release --test elastica_reference -- --nocapture` to see the numbers.
 
-mod reference;
+use crate::reference;
 
 use nalgebra::{DMatrix, SymmetricEigen};
 use reference::elastica::{

@@ -3,7 +3,7 @@
 //! echo of the whole input. (Regression tests of issue 18's list; the dictionary cases are in
 //! `dictionary_files.rs`.)
 
-mod common;
+use crate::common;
 
 use common::run;
 use std::path::{Path, PathBuf};

@@ -6,7 +6,7 @@
 //! names back exactly. With `$CABLE_DICT_HOSTILE_REPORT_OUT` set, the report folder is left
 //! there for CI's browser check, which fails if a script from the page runs.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 
@@ -18,7 +18,7 @@ const MARKUP: &str = "*bold* [link](example.com) `tick` <b>raw \u{1b}[31mred";
 /// The bundled setup with G1 renamed to [`INJECTION`] and G4's clamp to [`MARKUP`], its
 /// relative paths made absolute, written to `dir`.
 fn hostile_setup(dir: &Path) -> std::path::PathBuf {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let text = std::fs::read_to_string(root.join("robots/viper_s850/pick_and_place.toml"))
         .expect("bundled setup");
     let robot = root.join("robots/viper_s850/viper_s850.urdf");

@@ -8,10 +8,10 @@
 use cable_dict::motion::{Motion, WaypointFile};
 use cable_dict::setup::Setup;
 use cable_dict::solve::{SearchKind, SolveOptions, SolveReport, solve};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 fn root(path: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
+    crate::common::root().join(path)
 }
 
 fn setup(path: &str) -> Setup {

@@ -7,7 +7,7 @@
 //! The reference is the judge of the crate's contact code, so it is itself judged here only by
 //! closed forms, never by the crate.
 
-mod reference;
+use crate::reference;
 
 use reference::mesh_solid::{ReferenceSolid, Triangle, closest_point_on_triangle};
 use std::path::{Path, PathBuf};
@@ -620,7 +620,7 @@ fn robot_collision_meshes_parse() {
             84,
         ),
     ];
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/robots");
+    let root = crate::common::root().join("tests/data/robots");
     for (file, count) in meshes {
         let solid = ReferenceSolid::from_stl(&root.join(file), 1.0);
         assert_eq!(solid.triangles().len(), count, "{file}");

@@ -19,23 +19,22 @@ use cable_dict::setup::Setup;
 use cable_dict::statics::{FarEnd, RodParameters, SolverOptions, solve_segment};
 use cable_dict::stress::min_bend_radius;
 use nalgebra::{Point3, Vector3};
-use std::path::Path;
 
 fn bundled(name: &str) -> Setup {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     Setup::from_file(root.join("robots/viper_s850/hand_written").join(name))
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn motion(setup: &Setup, name: &str) -> Motion {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     Motion::from_csv_file(&setup.robot, root.join("motions/viper_s850").join(name))
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The setup with the paper's cable (Table 3: `EI = kb·l`, `GJ = kt·l`) scaled by `scale`.
 fn with_paper_stiffness(setup: &Setup, cable_file: &str, scale: f64) -> Setup {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let paper = cable_dict::cable::CableSpec::from_file(root.join("cables").join(cable_file))
         .unwrap_or_else(|e| panic!("{e}"));
     let mut scaled = setup.clone();
@@ -151,7 +150,7 @@ fn a_still_robot_keeps_the_static_equilibrium_for_any_real_stiffness() {
 /// piece. The path is the setup's answer on pick and place (C2 at S = 0).
 #[test]
 fn a_still_robot_keeps_the_installed_cables_equilibrium() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let setup = Setup::from_file(root.join("robots/viper_s850/pick_and_place.toml"))
         .unwrap_or_else(|e| panic!("{e}"));
     let index = |g: usize, name: &str| {

@@ -7,6 +7,7 @@
 //! substeps of 1/3840 s. `realistic_pick_and_place_run` (ignored) runs the fixture setup on the bundled
 //! pick-and-place motion in full and prints the reports.
 
+use crate::common::{self, root};
 use cable_dict::geometry::connect;
 use cable_dict::motion::Motion;
 use cable_dict::motion_test::{
@@ -22,10 +23,6 @@ use cable_dict::stress::{Clearance, GuideEnd, Obstacles, min_bend_radius, min_cl
 use nalgebra::{Point3, Vector3};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
-
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
 
 /// The many-configuration fixture setup (tests/data/motion_test_setup.toml) on the bundled
 /// robot and cable; the tests pick guide configurations by name.
@@ -76,22 +73,14 @@ fn hold(setup: &Setup, joints: &[f64], duration_s: f64) -> Motion {
 /// A setup on the bundled robot and cable with the given guides and one segment; the
 /// minimum bend radius is `min_bend_mm`.
 fn custom_setup(guides: &str, lengths: &str, min_bend_mm: f64) -> Setup {
+    let limits = common::limits(&format!("{min_bend_mm:.1}"));
     let text = format!(
         r#"robot = "viper_s850.urdf"
 cable = "../../cables/smc_le_cp_3_paper.toml"
 gravity_m_s2 = [0.0, 0.0, -9.81]
 max_guides_per_link = 2
 
-[thresholds]
-contact_clearance_mm = 0.0
-stretch = 1.02
-min_bend_radius_mm = {min_bend_mm:.1}
-clamp_zone_mm = 20.0
-
-[robustness]
-delta_s = 1
-range = 2
-
+{limits}
 {guides}
 
 [[segments]]
@@ -662,21 +651,14 @@ fn realistic_pick_and_place_run() {
 /// the clamp zone is the nearest to the robot; the first 3 s of the bundled pick-and-place.
 #[test]
 fn the_clearance_moves_smoothly_with_the_robot() {
-    let text = r#"robot = "viper_s850.urdf"
+    let head = r#"robot = "viper_s850.urdf"
 cable = "../../cables/smc_le_cp_3.toml"
 gravity_m_s2 = [0.0, 0.0, -9.81]
 max_guides_per_link = 1
-
-[thresholds]
-contact_clearance_mm = 0.0
-stretch = 1.02
-min_bend_radius_mm = "cable"
-clamp_zone_mm = 20.0
-
-[robustness]
-delta_s = 1
-range = 2
-
+"#;
+    let text = head.to_string()
+        + &common::limits("\"cable\"")
+        + r#"
 [[guides]]
 name = "A"
 link = "link_3"
@@ -693,7 +675,7 @@ to = "B"
 lengths = { min = 30, max = 30, step = 1, allow_zero = false }
 "#;
     let source = root().join("robots/viper_s850/motion-test-smooth.toml");
-    let setup = Setup::from_toml_str(text, &source).unwrap();
+    let setup = Setup::from_toml_str(&text, &source).unwrap();
     let motion = truncated(&setup, &pick_and_place(&setup), 3.0);
     let path = CablePath::through_every_guide(vec![30], vec![0, 0]);
     let options = MotionTestOptions {

@@ -4,7 +4,7 @@
 //! cable marks and crossed joints against the result JSON's pieces and the attachment test's
 //! traversed joints.
 
-mod common;
+use crate::common;
 
 use cable_dict::mounting::{
     AlongFrom, LinkKind, LinkPlace, Turn, ZeroSide, link_features, link_place,
@@ -625,7 +625,7 @@ fn the_mounting_plan_agrees_with_the_pieces_and_the_robot() {
 /// both, in the JSON and in the printed summary; without them there is none.
 #[test]
 fn the_cut_length_adds_the_cable_files_allowances() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let dir = tempfile::tempdir().expect("temporary folder");
     let cable = std::fs::read_to_string(root.join("cables/smc_le_cp_3.toml")).expect("cable");
     let cable_path = dir.path().join("cable.toml");
@@ -685,7 +685,8 @@ fn the_cut_length_adds_the_cable_files_allowances() {
 /// warned of; a tool body around it silences the warning.
 #[test]
 fn a_clamp_on_a_fitting_is_the_fitting_and_a_fitting_in_free_space_is_warned_of() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = common::root();
+    let limits = common::limits("\"cable\"");
     let setup_text = |bodies: &str| {
         format!(
             r#"robot = {robot:?}
@@ -693,15 +694,7 @@ cable = {cable:?}
 gravity_m_s2 = [0.0, 0.0, -9.81]
 install_joints_deg = [0.0, -90.0, 90.0, -90.0, -90.0, 0.0]
 max_guides_per_link = 2
-[thresholds]
-contact_clearance_mm = 0.0
-stretch = 1.02
-min_bend_radius_mm = "cable"
-clamp_zone_mm = 20.0
-[robustness]
-delta_s = 1
-range = 2
-[[guides]]
+{limits}[[guides]]
 name = "G1"
 link = "forearm_link"
 configurations = [{{ name = "top", position_mm = [-200.0, 0.0, 130.0], rpy_deg = [0.0, -90.0, 0.0] }}]

@@ -8,12 +8,10 @@
 use cable_dict::motion::{Motion, WaypointFile};
 use cable_dict::setup::Setup;
 use cable_dict::solve::{SolveOptions, SolveReport, Status, solve};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 fn data(file: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/ur5")
-        .join(file)
+    crate::common::root().join("tests/data/ur5").join(file)
 }
 
 fn ur5_motion(setup: &Setup) -> Motion {

@@ -225,7 +225,7 @@ fn solve(case: &Case) -> Result<Outcome, String> {
 }
 
 fn cases() -> Vec<Case> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(DATA);
+    let dir = crate::common::root().join(DATA);
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("data folder")
         .map(|e| e.expect("entry").path())
@@ -306,7 +306,7 @@ fn the_wires_that_pass_through_themselves_are_found() {
 /// One ring photo's 51 points, in our frame (x = image right, z = image up), at arc lengths
 /// 0.03 m apart from the start clamp.
 fn ring_points(wire: &str, photo: usize) -> Vec<Point3<f64>> {
-    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!(
+    let file = crate::common::root().join(format!(
         "tests/data/real_cables/chen2023/ring/{wire}_photo{photo}.csv"
     ));
     let text = std::fs::read_to_string(file).expect("ring CSV");
@@ -361,8 +361,7 @@ fn ring_start_shape(count: usize, pitch: f64, gap: f64) -> Vec<Point3<f64>> {
 fn the_ring_photos() {
     let wires: toml::Value = toml::from_str(
         &std::fs::read_to_string(
-            PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-                .join("tests/data/real_cables/chen2023/ring.toml"),
+            crate::common::root().join("tests/data/real_cables/chen2023/ring.toml"),
         )
         .expect("ring.toml"),
     )

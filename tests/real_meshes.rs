@@ -7,17 +7,17 @@
 //! of the shells, the distance to the nearest triangle; inside, minus the depth below the
 //! surface of the shell the point is deepest in.
 
-mod reference;
+use crate::reference;
 
 use cable_dict::pose::Pose;
 use cable_dict::robot::{Robot, Shape, TriMesh};
 use cable_dict::stress::{Obstacles, min_clearance, min_clearance_to_links};
 use nalgebra::{Point3, Vector3};
 use reference::mesh_solid::ReferenceSolid;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 fn robots() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/robots")
+    crate::common::root().join("tests/data/robots")
 }
 
 const ROBOTS: [&str; 4] = [

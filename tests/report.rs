@@ -3,8 +3,8 @@
 //! are the input files' own, the scene has the path's cable, the critical poses and the
 //! motion test's frames, and the pictures show robot and cable in every view.
 
-mod common;
-mod svg_pictures;
+use crate::common;
+use crate::svg_pictures;
 
 use base64::Engine as _;
 use common::run;

@@ -9,8 +9,8 @@ use cable_dict::cable::CableSpec;
 use cable_dict::geometry::connect;
 use cable_dict::pose::{Pose, pose_from_xyz_rpy};
 use cable_dict::rigid_chain::{
-    BlowUpQuantity, CableWorld, ConvergenceWindow, DynamicsError, DynamicsSettings, LinearConnect,
-    SegmentShape, connect_linear, interpolate, relax, settle,
+    BlowUpQuantity, CableWorld, ConvergenceWindow, DynamicsSettings, LinearConnect,
+    RigidChainError, SegmentShape, connect_linear, interpolate, relax, settle,
 };
 use cable_dict::robot::Robot;
 use cable_dict::stress::{Obstacles, min_clearance, stretch};
@@ -27,7 +27,7 @@ fn gravity() -> Vector3<f64> {
 
 /// The SMC LE-CP cable of the project (8 mm, 0.26 kg/m, kb 0.051, kt 1.5, pitch 10 mm).
 fn smc() -> CableSpec {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("cables/smc_le_cp_3_paper.toml");
+    let path = crate::common::root().join("cables/smc_le_cp_3_paper.toml");
     CableSpec::from_file(path).unwrap()
 }
 
@@ -324,7 +324,7 @@ fn blow_ups_and_bad_input_are_errors_not_panics() {
         .find_map(|_| world.step().err())
         .expect("no blow-up detected");
     eprintln!("{error}");
-    assert!(matches!(error, DynamicsError::BlowUp { step: 1, .. }));
+    assert!(matches!(error, RigidChainError::BlowUp { step: 1, .. }));
     assert_eq!(
         world.step().unwrap_err(),
         error,
@@ -340,7 +340,7 @@ fn blow_ups_and_bad_input_are_errors_not_panics() {
     assert!(
         matches!(
             error,
-            DynamicsError::BlowUp {
+            RigidChainError::BlowUp {
                 quantity: BlowUpQuantity::JointGap
                     | BlowUpQuantity::Speed
                     | BlowUpQuantity::Stretch,
@@ -355,21 +355,21 @@ fn blow_ups_and_bad_input_are_errors_not_panics() {
     let nan = Translation3::new(f64::NAN, 0.0, 0.0) * end;
     assert!(matches!(
         world.move_guides(&[start, nan]),
-        Err(DynamicsError::InvalidInput { .. })
+        Err(RigidChainError::InvalidInput { .. })
     ));
     assert!(matches!(
         world.move_guides(&[start]),
-        Err(DynamicsError::InvalidInput { .. })
+        Err(RigidChainError::InvalidInput { .. })
     ));
     assert!(matches!(
         world.move_robot(&[]),
-        Err(DynamicsError::InvalidInput { .. })
+        Err(RigidChainError::InvalidInput { .. })
     ));
     world.step().unwrap();
     let invalid = |settings: &DynamicsSettings, shapes: &[SegmentShape]| {
         matches!(
             CableWorld::new(&cable, shapes, settings),
-            Err(DynamicsError::InvalidInput { .. })
+            Err(RigidChainError::InvalidInput { .. })
         )
     };
     let good = DynamicsSettings::relaxation(gravity());
@@ -538,7 +538,7 @@ fn connect_linear_drags_the_cable_into_the_end_guide() {
             &settings,
             &LinearConnect::default()
         ),
-        Err(DynamicsError::InvalidInput { .. })
+        Err(RigidChainError::InvalidInput { .. })
     ));
 }
 
@@ -729,10 +729,9 @@ fn timing() {
 #[test]
 fn a_cable_follows_its_guides_while_the_robot_moves() {
     let cable = smc();
-    let robot = Robot::from_urdf_file(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("robots/viper_s850/viper_s850.urdf"),
-    )
-    .unwrap();
+    let robot =
+        Robot::from_urdf_file(crate::common::root().join("robots/viper_s850/viper_s850.urdf"))
+            .unwrap();
     let (link_3, link_4) = (
         robot.link_index("link_3").unwrap(),
         robot.link_index("link_4").unwrap(),

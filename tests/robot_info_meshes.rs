@@ -6,13 +6,13 @@
 //! of `reference::mesh_solid` (and by geometry computed here from its triangles), the
 //! synthetic cubes by construction; no expected number is taken from the tool's own output.
 
-mod reference;
+use crate::reference;
 
+use crate::common::run;
 use reference::mesh_solid::{ReferenceSolid, Triangle};
 use serde_json::Value;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 /// The four real robots, relative to tests/data/robots.
 const ROBOTS: [&str; 4] = [
@@ -23,15 +23,7 @@ const ROBOTS: [&str; 4] = [
 ];
 
 fn robots_folder() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/robots")
-}
-
-fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_cable-dict"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
+    crate::common::root().join("tests/data/robots")
 }
 
 /// `robot-info --json` of `urdf`, which must succeed.

@@ -3,7 +3,7 @@
 //! catalogue's short paths, whose two long loops hang into each other — checked here against
 //! the shapes themselves by brute-force sampling, not through the tool's own metric.
 
-mod common;
+use crate::common;
 
 use cable_dict::attachment::Rejection;
 use cable_dict::motion::Motion;
@@ -11,7 +11,6 @@ use cable_dict::setup::Setup;
 use cable_dict::solve::{SolveOptions, Status, solve};
 use nalgebra::Point3;
 use serde_json::Value;
-use std::path::Path;
 
 /// The smallest distance between points of the polyline `a` and points of `b`, sampled 20
 /// times per sub-segment: an upper bound of the true distance, within a tenth of a pitch.
@@ -29,7 +28,7 @@ fn sampled_distance(a: &[Point3<f64>], b: &[Point3<f64>]) -> f64 {
 
 #[test]
 fn the_catalogue_s_short_paths_touch_themselves_and_are_not_reported() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let setup = Setup::from_file(root.join("robots/viper_s850/hand_written/pick_and_place.toml"))
         .unwrap_or_else(|e| panic!("{e}"));
     let motion = Motion::from_csv_file(

@@ -2,15 +2,12 @@
 //! clear of the robot by elementary geometry), every refusal of a broken setup with its file,
 //! line and key, and the content hash's stability.
 
+use crate::common::{self, root};
 use cable_dict::pose::Pose;
 use cable_dict::robot::{Robot, Shape};
 use cable_dict::setup::{BendRadiusSource, ConfigurationOrigin, Setup};
 use nalgebra::{Point3, Vector2, Vector3};
 use std::path::{Path, PathBuf};
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
 
 fn bundled(name: &str) -> Setup {
     let path = root().join("robots/viper_s850/hand_written").join(name);
@@ -279,16 +276,7 @@ cable = "{cable}"
 gravity_m_s2 = [0.0, 0.0, -9.81]
 max_guides_per_link = 2
 
-[thresholds]
-contact_clearance_mm = 0.0
-stretch = 1.02
-min_bend_radius_mm = "cable"
-clamp_zone_mm = 20.0
-
-[robustness]
-delta_s = 1
-range = 2
-
+{limits}
 [[guides]]
 name = "G1"
 link = "link_3"
@@ -322,6 +310,7 @@ lengths = {{ min = 3, max = 20, step = 1, allow_zero = true }}
 "#,
         robot = root.join("robots/viper_s850/viper_s850.urdf").display(),
         cable = root.join("cables/smc_le_cp_3_paper.toml").display(),
+        limits = common::limits("\"cable\""),
     )
 }
 

@@ -3,7 +3,7 @@
 //! and `verify` pass), a signature line edited, copied to another file or made by an
 //! unknown key is refused where a signature is required.
 
-mod common;
+use crate::common;
 
 use cable_dict::dictionary::{Dictionary, format};
 use cable_dict::provenance::{SecretKey, TrustedKeys, signature_path};
@@ -14,7 +14,7 @@ const OTHER: &str = "dictionaries/viper_s850_inspection.cdict";
 const MOTION: &str = "motions/viper_s850/pick_and_place.csv";
 
 fn root(path: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
+    crate::common::root().join(path)
 }
 
 /// A copy of a bundled dictionary in `dir`.

@@ -1,8 +1,8 @@
 //! Guide sites generated from the robot's collision geometry, and the clamps' twist references
 //! derived from the installed cable's route.
 
-mod common;
-mod reference;
+use crate::common::{self, root};
+use crate::reference;
 
 use cable_dict::motion::Motion;
 use cable_dict::pose::Pose;
@@ -13,23 +13,7 @@ use cable_dict::sites::{FACING_TOLERANCE_DEG, GeneratedSites, Site, reference_ax
 use nalgebra::{Matrix3, Point3, SymmetricEigen, Vector3};
 use reference::mesh_solid::ReferenceSolid;
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
-
-/// The limits and robustness tables of the small setups written inline below.
-const LIMITS: &str = r#"[thresholds]
-contact_clearance_mm = 0.0
-stretch = 1.02
-min_bend_radius_mm = "cable"
-clamp_zone_mm = 20.0
-
-[robustness]
-delta_s = 1
-range = 2
-"#;
-
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
+use std::path::PathBuf;
 
 fn setup(name: &str) -> Setup {
     Setup::from_file(root().join("robots/viper_s850").join(name)).unwrap_or_else(|e| panic!("{e}"))
@@ -314,6 +298,7 @@ fn a_region_keeps_only_its_part_of_the_link() {
 /// wall of link_1's tube standing on it are dropped.
 #[test]
 fn sites_on_an_stl_mesh_stand_off_its_faces() {
+    let limits = common::limits("\"cable\"");
     let package = root().join("tests/data/urdf_real/my_robot_description/urdf");
     let cable = root().join("cables/smc_le_cp_3.toml");
     let text = format!(
@@ -323,7 +308,7 @@ gravity_m_s2 = [0.0, 0.0, -9.81]
 max_guides_per_link = 1
 install_joints_deg = [0.0, 0.0]
 
-{LIMITS}
+{limits}
 [[guides]]
 name = "G1"
 link = "base_link"
@@ -419,6 +404,7 @@ fn the_sites_command_lists_and_draws_what_is_searched() {
 /// refused naming the link: there is nothing to mount a clamp on.
 #[test]
 fn sites_on_a_link_without_shapes_are_refused() {
+    let limits = common::limits("\"cable\"");
     let urdf = r#"<robot name="two">
   <link name="base"><collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
   <link name="arm"/>
@@ -436,7 +422,7 @@ gravity_m_s2 = [0.0, 0.0, -9.81]
 max_guides_per_link = 1
 install_joints_deg = [0.0]
 
-{LIMITS}
+{limits}
 [[guides]]
 name = "G1"
 link = "base"
@@ -754,6 +740,7 @@ fn the_reference_is_the_long_axis_the_disc_axis_or_z() {
 
 /// A setup on a probe robot with one generator on `base`.
 fn probe_setup(collisions: &str, sites: &str) -> Result<Setup, String> {
+    let limits = common::limits("\"cable\"");
     let urdf = format!(
         r#"<robot name="probe">
   <link name="base">{collisions}</link>
@@ -773,7 +760,7 @@ gravity_m_s2 = [0.0, 0.0, -9.81]
 max_guides_per_link = 1
 install_joints_deg = [0.0]
 
-{LIMITS}
+{limits}
 [[guides]]
 name = "G1"
 link = "base"

@@ -3,8 +3,8 @@
 //! twice) against the attachment test's own sets; the report's pictures against the
 //! physics' own cable shapes.
 
-mod common;
-mod svg_pictures;
+use crate::common;
+use crate::svg_pictures;
 
 use cable_dict::attachment::{ConnectMethod, Evaluator, SegmentPoses, attachment_test};
 use cable_dict::motion::Motion;
@@ -209,8 +209,7 @@ fn critical_poses_json_lists_the_extremes_of_the_traversed_joint() {
     let c1 = &segments[0];
     assert_eq!(c1["traversed_joints"][0], "joint_4");
     // Reference: the extremes of joint 4 read from the CSV column itself.
-    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(MOTION))
-        .expect("motion");
+    let text = std::fs::read_to_string(crate::common::root().join(MOTION)).expect("motion");
     let joint_4: Vec<f64> = text
         .lines()
         .filter(|l| !l.starts_with('#') && !l.starts_with("time_s"))
@@ -346,7 +345,7 @@ fn the_result_does_not_depend_on_the_thread_count() {
 /// dynamic run, and the cable never touches itself; every chain tried before it failed.
 #[test]
 fn the_bundled_pick_and_place_is_solved_within_the_datasheet_limits() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let setup =
         Setup::from_file(root.join("robots/viper_s850/pick_and_place.toml")).expect("setup");
     let motion = Motion::from_csv_file(&setup.robot, root.join(MOTION)).expect("motion");

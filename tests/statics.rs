@@ -4,7 +4,7 @@
 //! Unless a test says otherwise the cable is the SMC LE-CP of the paper (kb 0.051 N·m/rad,
 //! kt 1.5 N·m/rad, 0.26 kg/m, EA 1e4 N) at a 10 mm pitch, so `EI = 5.1e-4 N·m²`.
 
-mod reference;
+use crate::reference;
 
 use cable_dict::geometry::connect;
 use cable_dict::pose::{Pose, pose_from_xyz_rpy};

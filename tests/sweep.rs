@@ -10,13 +10,12 @@ use cable_dict::cable::CableSpec;
 use cable_dict::motion::Motion;
 use cable_dict::path::Pv;
 use cable_dict::setup::Setup;
-use std::path::Path;
 
 /// The bundled pick-and-place setup with the paper's floppy SMC cable, whose U-loop across
 /// joint 4 bends below its limit between the critical poses (with the realistic preset,
 /// only two C1 PVs of the whole catalogue do, by less than 0.05 mm of clearance).
 fn bundled() -> (Setup, Motion) {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let mut setup =
         Setup::from_file(root.join("robots/viper_s850/hand_written/pick_and_place.toml")).unwrap();
     setup.cable = CableSpec::from_file(root.join("cables/smc_le_cp_3_paper.toml")).unwrap();

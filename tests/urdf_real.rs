@@ -6,24 +6,15 @@
 //! The package is tests/data/urdf_real/my_robot_description; its meshes are written by
 //! tests/data/urdf_real/make_meshes.py, whose parameters the tests restate as their reference.
 
+use crate::common::{self, run_in};
 use cable_dict::robot::{Robot, Shape, TriMesh};
 use nalgebra::Vector3;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 /// The package folder in the repository.
 fn package() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/urdf_real/my_robot_description")
-}
-
-/// Runs the binary with `args` in the folder `dir`.
-fn run_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_cable-dict"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the binary runs")
+    crate::common::root().join("tests/data/urdf_real/my_robot_description")
 }
 
 /// What make_meshes.py wrote for a link: triangles, distinct vertices, the bounding box
@@ -246,23 +237,15 @@ joints_deg = [30.0, 45.0]
 /// Writes `setup.toml` into `dir` (beside robot.urdf): the paper's cable, gravity, limits and
 /// robustness, `max_guides_per_link`, then `guides_and_segments`.
 fn write_setup(dir: &Path, max_guides_per_link: usize, guides_and_segments: &str) {
-    let cable = Path::new(env!("CARGO_MANIFEST_DIR")).join("cables/smc_le_cp_3_paper.toml");
+    let limits = common::limits("25.0");
+    let cable = crate::common::root().join("cables/smc_le_cp_3_paper.toml");
     let setup = format!(
         r#"robot = "robot.urdf"
 cable = '{}'
 gravity_m_s2 = [0.0, 0.0, -9.81]
 max_guides_per_link = {max_guides_per_link}
 
-[thresholds]
-contact_clearance_mm = 0.0
-stretch = 1.02
-min_bend_radius_mm = 25.0
-clamp_zone_mm = 20.0
-
-[robustness]
-delta_s = 1
-range = 2
-
+{limits}
 {guides_and_segments}"#,
         cable.display()
     );

@@ -4,12 +4,12 @@
 //! packages"); a file named `.xacro` that uses no xacro is a URDF and loads. That the
 //! expansion gives the committed URDF is scripts/check-xacro-route.sh's check, run by CI.
 
+use crate::common;
 use cable_dict::robot::Robot;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 fn robots() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/robots")
+    crate::common::root().join("tests/data/robots")
 }
 
 /// The refusal of the robot file `path`, which must be refused.
@@ -70,7 +70,7 @@ fn the_real_xacro_files_are_refused_at_their_first_xacro_use_with_how_to_expand_
     assert_advice(&message, "common_constants.xacro", "common_constants.urdf");
 
     // The command line says the same, on standard error, with exit status 2.
-    let output = Command::new(env!("CARGO_BIN_EXE_cable-dict"))
+    let output = common::binary()
         .args(["robot-info", "kr6r900sixx.xacro"])
         .current_dir(robot.parent().expect("folder"))
         .output()

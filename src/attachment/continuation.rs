@@ -4,11 +4,10 @@
 //! its rules are what keeps a verdict independent of what else is asked
 //! (docs/architecture.md, "Attachment test").
 
-use super::evaluate::{ConnectMethod, Evaluator, Scene};
+use super::evaluate::{ClampTurns, ConnectMethod, Evaluator, Scene, Solved, Warm};
 use super::verdict::{Check, Rejection, connect_failure};
 use crate::geometry::{connect, reaches, sag_direction};
 use crate::pose::Pose;
-use crate::setup::Setup;
 use crate::statics::{FarEnd, RodParameters, StaticSolver, continuation};
 use nalgebra::Point3;
 use std::ops::Range;
@@ -242,55 +241,4 @@ fn continuation_chains(
 fn reaching(guides: &(Pose, Pose), pitch_m: f64) -> usize {
     let distance = (guides.1.translation.vector - guides.0.translation.vector).norm();
     (distance / pitch_m).ceil().max(1.0) as usize
-}
-
-/// The end clamp's installed-twist turn of every length up to the longest a pair's chains
-/// visit, computed once per pair of clamps (it does not depend on the pose).
-pub(super) struct ClampTurns {
-    pair: (usize, usize),
-    turns: Vec<Pose>,
-}
-
-impl ClampTurns {
-    /// The turns of `pair` of segment `m` for the lengths 1 ..= the longest of `lengths`
-    /// (ascending).
-    pub(super) fn new(
-        setup: &Setup,
-        m: usize,
-        pair: (usize, usize),
-        lengths: &[usize],
-    ) -> ClampTurns {
-        let last = lengths.last().copied().unwrap_or(0);
-        ClampTurns {
-            pair,
-            turns: (1..=last)
-                .map(|s| setup.end_clamp_turn(m, s, pair))
-                .collect(),
-        }
-    }
-
-    /// The turn of `length` (computed on the spot outside the precomputed range).
-    pub(super) fn at(&self, setup: &Setup, m: usize, length: usize) -> Pose {
-        match length.checked_sub(1).and_then(|k| self.turns.get(k)) {
-            Some(turn) => *turn,
-            None => setup.end_clamp_turn(m, length, self.pair),
-        }
-    }
-}
-
-/// A solved segment: its nodes, its total twist, and (when solved from it) the connected
-/// geometry it started from, for the next length's start shape.
-pub(super) struct Solved {
-    pub(super) nodes: Vec<Point3<f64>>,
-    connected: Vec<Point3<f64>>,
-    twist_rad: f64,
-}
-
-/// The neighbouring solution a solve starts from, if any.
-pub(super) enum Warm<'a> {
-    /// The same pose, shorter lengths, the nearest first (none: the connected geometry).
-    Length(&'a [Solved]),
-    /// The previous poses of a sweep and their guides, the last first (none: the connected
-    /// geometry).
-    Poses(&'a [(Solved, (Pose, Pose))]),
 }

@@ -2,7 +2,6 @@
 //! equilibrium and the three stress metrics against the setup's limits.
 
 use super::TestPose;
-use super::continuation::{ClampTurns, Solved, Warm};
 use super::verdict::{Check, Metrics, Miss, Rejection, verdict};
 use crate::path::Pv;
 use crate::pose::Pose;
@@ -449,4 +448,55 @@ pub(super) struct Scene<'p> {
     pub(super) link_poses: &'p [Pose],
     pub(super) gravity_m_s2: Vector3<f64>,
     pub(super) clearance_link: Option<usize>,
+}
+
+/// The end clamp's installed-twist turn of every length up to the longest a pair's chains
+/// visit, computed once per pair of clamps (it does not depend on the pose).
+pub(super) struct ClampTurns {
+    pair: (usize, usize),
+    turns: Vec<Pose>,
+}
+
+impl ClampTurns {
+    /// The turns of `pair` of segment `m` for the lengths 1 ..= the longest of `lengths`
+    /// (ascending).
+    pub(super) fn new(
+        setup: &Setup,
+        m: usize,
+        pair: (usize, usize),
+        lengths: &[usize],
+    ) -> ClampTurns {
+        let last = lengths.last().copied().unwrap_or(0);
+        ClampTurns {
+            pair,
+            turns: (1..=last)
+                .map(|s| setup.end_clamp_turn(m, s, pair))
+                .collect(),
+        }
+    }
+
+    /// The turn of `length` (computed on the spot outside the precomputed range).
+    pub(super) fn at(&self, setup: &Setup, m: usize, length: usize) -> Pose {
+        match length.checked_sub(1).and_then(|k| self.turns.get(k)) {
+            Some(turn) => *turn,
+            None => setup.end_clamp_turn(m, length, self.pair),
+        }
+    }
+}
+
+/// A solved segment: its nodes, its total twist, and (when solved from it) the connected
+/// geometry it started from, for the next length's start shape.
+pub(super) struct Solved {
+    pub(super) nodes: Vec<Point3<f64>>,
+    pub(super) connected: Vec<Point3<f64>>,
+    pub(super) twist_rad: f64,
+}
+
+/// The neighbouring solution a solve starts from, if any.
+pub(super) enum Warm<'a> {
+    /// The same pose, shorter lengths, the nearest first (none: the connected geometry).
+    Length(&'a [Solved]),
+    /// The previous poses of a sweep and their guides, the last first (none: the connected
+    /// geometry).
+    Poses(&'a [(Solved, (Pose, Pose))]),
 }

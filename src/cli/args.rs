@@ -1,6 +1,7 @@
 //! Parsers for compound command-line values.
 
 use cable_dict::pose::{Pose, pose_from_mm_deg};
+use std::path::{Path, PathBuf};
 
 /// A comma-separated list of finite numbers given as one argument.
 #[derive(Debug, Clone)]
@@ -62,6 +63,67 @@ pub fn guide_frame(text: &str) -> Result<Pose, String> {
     Ok(pose_from_mm_deg([x, y, z], [roll, pitch, yaw]))
 }
 
+/// The setup of a command that takes no other file: `cable-dict sites SETUP.toml` or, as
+/// `solve` takes it, `cable-dict sites --setup SETUP.toml`.
+#[derive(Debug, clap::Args)]
+pub struct SetupArg {
+    /// The setup file (see docs/setup-format.md); `--setup SETUP.toml` says the same.
+    #[arg(value_name = "SETUP.toml", required_unless_present = "setup_option")]
+    setup: Option<PathBuf>,
+    /// The setup file, as `solve` takes it.
+    #[arg(
+        long = "setup",
+        id = "setup_option",
+        value_name = "SETUP.toml",
+        conflicts_with = "setup"
+    )]
+    setup_option: Option<PathBuf>,
+}
+
+impl SetupArg {
+    /// The setup's path, however it was given.
+    pub fn path(&self) -> Result<&Path, String> {
+        self.setup
+            .as_deref()
+            .or(self.setup_option.as_deref())
+            .ok_or_else(|| "give the setup file: SETUP.toml or --setup SETUP.toml".into())
+    }
+}
+
+/// The setup and the motion of `solve` and `critical-poses`, from `--setup` and the files
+/// after the options: `--setup SETUP.toml MOTION.csv` or `SETUP.toml MOTION.csv`; with
+/// `dictionary` (it embeds a setup) the motion alone. The errors say what to give.
+pub fn setup_and_motion<'a>(
+    option: Option<&'a Path>,
+    files: &'a [PathBuf],
+    dictionary: bool,
+) -> Result<(Option<&'a Path>, &'a Path), String> {
+    match (option, files) {
+        (Some(setup), [motion]) => Ok((Some(setup), motion)),
+        (None, [setup, motion]) => Ok((Some(setup), motion)),
+        (None, [motion]) if dictionary => Ok((None, motion)),
+        (None, [motion]) => Err(format!(
+            "no setup for the motion {}: give it first (SETUP.toml {0}) or as --setup \
+             SETUP.toml{}",
+            motion.display(),
+            if dictionary {
+                ""
+            } else {
+                ", or give a dictionary with --dict"
+            }
+        )),
+        (Some(_), [_, _]) => Err(
+            "two files and --setup: give the setup once, as --setup SETUP.toml or as the first \
+             file"
+                .into(),
+        ),
+        _ => Err(format!(
+            "{} files: give SETUP.toml MOTION.csv (or --setup SETUP.toml MOTION.csv)",
+            files.len()
+        )),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -79,5 +141,25 @@ mod tests {
         assert!(guide_frame("1,2,3").unwrap_err().contains("got 3"));
         assert!(number_list("1,x,3").unwrap_err().contains("item 2"));
         assert!(number_list("1,nan").unwrap_err().contains("finite"));
+    }
+
+    #[test]
+    fn the_setup_is_taken_as_an_option_or_as_the_first_file() {
+        let (setup, motion) = (PathBuf::from("s.toml"), PathBuf::from("m.csv"));
+        let both = [setup.clone(), motion.clone()];
+        let one = [motion.clone()];
+        let given = Ok((Some(setup.as_path()), motion.as_path()));
+        assert_eq!(setup_and_motion(Some(&setup), &one, false), given);
+        assert_eq!(setup_and_motion(None, &both, false), given);
+        assert_eq!(
+            setup_and_motion(None, &one, true),
+            Ok((None, motion.as_path()))
+        );
+        let missing = setup_and_motion(None, &one, false).unwrap_err();
+        assert!(
+            missing.contains("--setup") && missing.contains("--dict"),
+            "{missing}"
+        );
+        assert!(setup_and_motion(Some(&setup), &both, false).is_err());
     }
 }

@@ -19,7 +19,8 @@ use std::time::Instant;
 pub struct BuildArgs {
     /// The setup whose clamp places to store: every pair of places on each link with two or
     /// more (from all its guides on that link), at its intra-link segments' lengths.
-    setup: PathBuf,
+    #[command(flatten)]
+    setup: super::args::SetupArg,
     /// The dictionary (or shard) to write; replaced atomically.
     #[arg(short, long, value_name = "DICT.cdict")]
     output: PathBuf,
@@ -55,7 +56,11 @@ fn shard_arg(text: &str) -> Result<(u32, u32), String> {
 }
 
 pub fn run_build(args: BuildArgs) -> Result<(), Failure> {
-    let setup = Setup::from_file(&args.setup).map_err(Failure::input)?;
+    let path = args
+        .setup
+        .path()
+        .map_err(|e| Failure::input(anyhow::anyhow!(e)))?;
+    let setup = Setup::from_file(path).map_err(Failure::input)?;
     let options = BuildOptions {
         directions: args.directions,
         shard: args.shard,
@@ -69,7 +74,7 @@ pub fn run_build(args: BuildArgs) -> Result<(), Failure> {
             .map_err(|e| Failure::input(anyhow::anyhow!("--threads {threads}: {e}")))?
             .install(|| build(&setup, &options)),
     }
-    .map_err(|problem| Failure::input(anyhow::anyhow!("{}: {problem}", args.setup.display())))?;
+    .map_err(|problem| Failure::input(anyhow::anyhow!("{}: {problem}", path.display())))?;
     write_dictionary(&args.output, &built).map_err(Failure::input)?;
     let mut text = format!(
         "wrote {}: {} cable pieces × {} gravity directions in {:.1} s",

@@ -15,9 +15,8 @@ use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The setup file.
-    #[arg(value_name = "SETUP.toml")]
-    setup: PathBuf,
+    #[command(flatten)]
+    setup: super::args::SetupArg,
     /// Also write a glTF scene: the robot at the installation pose (else all joints at 0)
     /// with a marker per candidate clamp configuration (+z along the cable).
     #[arg(long, value_name = "SCENE.glb")]
@@ -33,7 +32,11 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<(), Failure> {
-    let setup = Setup::from_file(&args.setup).map_err(Failure::input)?;
+    let path = args
+        .setup
+        .path()
+        .map_err(|e| Failure::input(anyhow::anyhow!(e)))?;
+    let setup = Setup::from_file(path).map_err(Failure::input)?;
     if let Some(output) = &args.gltf {
         let joints = match &setup.installation {
             Some(installation) => installation.joints.clone(),

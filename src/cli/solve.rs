@@ -1,6 +1,7 @@
 //! `cable-dict solve` and `cable-dict critical-poses`: a setup and a motion → the optimal
 //! cable path, or the poses each segment is tested at.
 
+use super::args::setup_and_motion;
 use super::provenance::open_verified;
 use super::{Failure, emit, print_json};
 use cable_dict::atomic_file::write_atomically;
@@ -21,7 +22,8 @@ pub struct Args {
     /// docs/setup-format.md). Optional with --dict (which embeds its setup); given with it,
     /// it must have the dictionary's robot, cable, gravity, limits and installation pose and
     /// take its intra-link clamps from the dictionary's places.
-    #[arg(long, value_name = "SETUP.toml", required_unless_present = "dict")]
+    /// Also accepted as the first file: `solve SETUP.toml MOTION.csv`.
+    #[arg(long, value_name = "SETUP.toml")]
     setup: Option<PathBuf>,
     /// Answer the intra-link segments' pieces from this dictionary (cable-dict build): the
     /// same sets as solving them, faster; the pieces its margins cannot decide are solved.
@@ -29,8 +31,10 @@ pub struct Args {
     dict: Option<PathBuf>,
     #[command(flatten)]
     trust: super::provenance::Trust,
-    /// The motion CSV (see motions/README.md).
-    motion: PathBuf,
+    /// The motion CSV (see motions/README.md), after the setup when the setup is not given
+    /// as --setup.
+    #[arg(value_name = "[SETUP.toml] MOTION.csv", num_args = 1..=2, required = true)]
+    files: Vec<PathBuf>,
     /// Print the result as JSON instead of the summary.
     #[arg(long)]
     json: bool,
@@ -124,16 +128,19 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
         }
         None => None,
     };
-    let setup = match (&args.setup, &dictionary) {
+    let (setup_path, motion_path) =
+        setup_and_motion(args.setup.as_deref(), &args.files, dictionary.is_some())
+            .map_err(|e| Failure::input(anyhow::anyhow!(e)))?;
+    let setup = match (setup_path, &dictionary) {
         (Some(path), _) => Setup::from_file(path).map_err(Failure::input)?,
         (None, Some(dictionary)) => dictionary.setup().map_err(Failure::input)?,
         (None, None) => {
             return Err(Failure::input(anyhow::anyhow!(
-                "give --setup, --dict or both"
+                "give the setup (--setup SETUP.toml) or a dictionary (--dict)"
             )));
         }
     };
-    let motion = Motion::from_csv_file(&setup.robot, &args.motion).map_err(Failure::input)?;
+    let motion = Motion::from_csv_file(&setup.robot, motion_path).map_err(Failure::input)?;
     let options = SolveOptions {
         method: match args.connect {
             Connect::Hermite => ConnectMethod::Hermite,
@@ -170,7 +177,7 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
         | SolveError::Dictionary(_) => Failure::input(e),
         SolveError::Chain(_) | SolveError::MotionTest(_) => Failure::unsolved(e),
     })?;
-    report.inputs.motion_file = Some(args.motion.display().to_string());
+    report.inputs.motion_file = Some(motion_path.display().to_string());
     if let Some(used) = &mut report.inputs.dictionary {
         used.provenance = provenance;
     }
@@ -231,10 +238,12 @@ fn load(setup: &Path, motion: &Path) -> Result<(Setup, Motion), Failure> {
 
 #[derive(Debug, clap::Args)]
 pub struct CriticalArgs {
-    /// The setup file.
-    setup: PathBuf,
-    /// The motion CSV.
-    motion: PathBuf,
+    /// The setup file; also accepted as the first file: `critical-poses SETUP.toml MOTION.csv`.
+    #[arg(long, value_name = "SETUP.toml")]
+    setup: Option<PathBuf>,
+    /// The motion CSV, after the setup when the setup is not given as --setup.
+    #[arg(value_name = "[SETUP.toml] MOTION.csv", num_args = 1..=2, required = true)]
+    files: Vec<PathBuf>,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -251,7 +260,11 @@ struct SegmentPosesJson {
 }
 
 pub fn run_critical(args: CriticalArgs) -> Result<(), Failure> {
-    let (setup, motion) = load(&args.setup, &args.motion)?;
+    let usage = |e: String| Failure::input(anyhow::anyhow!(e));
+    let (setup, motion) =
+        setup_and_motion(args.setup.as_deref(), &args.files, false).map_err(usage)?;
+    let setup = setup.ok_or_else(|| usage("give the setup: --setup SETUP.toml".into()))?;
+    let (setup, motion) = load(setup, motion)?;
     let poses = SegmentPoses::new(&setup, &motion).map_err(Failure::input)?;
     let segments: Vec<SegmentPosesJson> = (0..setup.segment_count())
         .map(|m| {

@@ -464,17 +464,73 @@ pub fn encode(
         out.extend_from_slice(body);
     }
     out[PREAMBLE_LEN..table_end].copy_from_slice(&table);
-    let mut preamble = [0u8; PREAMBLE_LEN];
-    preamble[0..8].copy_from_slice(&MAGIC);
-    preamble[8..12].copy_from_slice(&FORMAT_VERSION.to_le_bytes());
-    preamble[12..16].copy_from_slice(&(bodies.len() as u32).to_le_bytes());
-    preamble[16..24].copy_from_slice(&(out.len() as u64).to_le_bytes());
-    preamble[24..32].copy_from_slice(&(PREAMBLE_LEN as u64).to_le_bytes());
-    preamble[32..40].copy_from_slice(&xxh3_64(&table).to_le_bytes());
-    let checksum = xxh3_64(&preamble[..56]);
-    preamble[56..64].copy_from_slice(&checksum.to_le_bytes());
-    out[..PREAMBLE_LEN].copy_from_slice(&preamble);
+    let preamble = Preamble {
+        magic: MAGIC,
+        version: FORMAT_VERSION,
+        section_count: bodies.len() as u32,
+        file_len: out.len() as u64,
+        table_offset: PREAMBLE_LEN as u64,
+        table_checksum: xxh3_64(&table),
+        checksum: 0,
+    };
+    out[..PREAMBLE_LEN].copy_from_slice(&preamble.sealed());
     Ok(out)
+}
+
+/// The fixed bytes at the start of a file (docs/cdict-format.md): where each field lies is
+/// said once, in [`Preamble::FIELDS`], for writing and reading alike.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Preamble {
+    magic: [u8; 8],
+    version: u32,
+    section_count: u32,
+    /// The whole file's length (bytes).
+    file_len: u64,
+    /// Where the section table starts (bytes from the file's start).
+    table_offset: u64,
+    /// xxh3-64 of the section table.
+    table_checksum: u64,
+    /// xxh3-64 of the preamble's bytes before it.
+    checksum: u64,
+}
+
+impl Preamble {
+    /// The byte range of each field: magic, version, section count, file length, table
+    /// offset, table checksum, (reserved, zero), the preamble's own checksum.
+    const FIELDS: [Range<usize>; 7] = [0..8, 8..12, 12..16, 16..24, 24..32, 32..40, 56..64];
+    /// The bytes the preamble's own checksum covers.
+    const CHECKED: Range<usize> = 0..56;
+
+    /// Its bytes, with the checksum of the others set.
+    fn sealed(&self) -> [u8; PREAMBLE_LEN] {
+        let mut bytes = [0u8; PREAMBLE_LEN];
+        let [magic, version, count, len, offset, table, _] = Preamble::FIELDS;
+        bytes[magic].copy_from_slice(&self.magic);
+        bytes[version].copy_from_slice(&self.version.to_le_bytes());
+        bytes[count].copy_from_slice(&self.section_count.to_le_bytes());
+        bytes[len].copy_from_slice(&self.file_len.to_le_bytes());
+        bytes[offset].copy_from_slice(&self.table_offset.to_le_bytes());
+        bytes[table].copy_from_slice(&self.table_checksum.to_le_bytes());
+        let checksum = xxh3_64(&bytes[Preamble::CHECKED]);
+        bytes[Preamble::FIELDS[6].clone()].copy_from_slice(&checksum.to_le_bytes());
+        bytes
+    }
+
+    /// The fields of the first [`PREAMBLE_LEN`] bytes, unchecked.
+    fn read(bytes: &[u8; PREAMBLE_LEN]) -> Preamble {
+        let [magic, version, count, len, offset, table, checksum] = Preamble::FIELDS;
+        let mut magic_bytes = [0u8; 8];
+        magic_bytes.copy_from_slice(&bytes[magic]);
+        Preamble {
+            magic: magic_bytes,
+            version: u32_at(bytes, version.start),
+            section_count: u32_at(bytes, count.start),
+            file_len: u64_at(bytes, len.start),
+            table_offset: u64_at(bytes, offset.start),
+            table_checksum: u64_at(bytes, table.start),
+            checksum: u64_at(bytes, checksum.start),
+        }
+    }
 }
 
 /// Checks the structure of `bytes` and decodes the header. Costs O(header), independent of
@@ -576,20 +632,20 @@ pub fn verify_sections(bytes: &[u8], layout: &Layout) -> Result<(), Problem> {
 
 /// The preamble's checks; returns the section table's bytes.
 fn parse_preamble(bytes: &[u8]) -> Result<&[u8], Problem> {
-    if bytes.len() < PREAMBLE_LEN {
+    let Some(first) = bytes.first_chunk::<PREAMBLE_LEN>() else {
         return Err(Problem::NotADictionary(format!(
             "{} bytes, shorter than the {PREAMBLE_LEN}-byte preamble",
             bytes.len()
         )));
-    }
-    if bytes[0..8] != MAGIC {
+    };
+    let preamble = Preamble::read(first);
+    if preamble.magic != MAGIC {
         return Err(Problem::NotADictionary(format!(
             "the first bytes are {:02x?}, not the magic {:02x?}",
-            &bytes[0..8],
-            MAGIC
+            preamble.magic, MAGIC
         )));
     }
-    let version = u32_at(bytes, 8);
+    let version = preamble.version;
     if version > FORMAT_VERSION {
         return Err(Problem::FutureVersion {
             found: version,
@@ -605,16 +661,16 @@ fn parse_preamble(bytes: &[u8]) -> Result<&[u8], Problem> {
             supported: FORMAT_VERSION,
         });
     }
-    check_bytes("preamble", &bytes[..56], u64_at(bytes, 56))?;
-    let expected = u64_at(bytes, 16);
+    check_bytes("preamble", &first[Preamble::CHECKED], preamble.checksum)?;
+    let expected = preamble.file_len;
     if expected != bytes.len() as u64 {
         return Err(Problem::Length {
             expected,
             actual: bytes.len() as u64,
         });
     }
-    let count = u32_at(bytes, 12) as usize;
-    let offset = u64_at(bytes, 24);
+    let count = preamble.section_count as usize;
+    let offset = preamble.table_offset;
     if count != SectionKind::ALL.len() || offset != PREAMBLE_LEN as u64 {
         return Err(layout(
             "preamble".into(),
@@ -632,7 +688,7 @@ fn parse_preamble(bytes: &[u8]) -> Result<&[u8], Problem> {
             "extends past the end of the file".into(),
         )
     })?;
-    check_bytes("section table", table, u64_at(bytes, 32))?;
+    check_bytes("section table", table, preamble.table_checksum)?;
     Ok(table)
 }
 

@@ -1,7 +1,7 @@
 //! `cable-dict merge`: shards of one build → the whole dictionary, byte for byte the one a
 //! single build writes.
 
-use super::build::{Built, finalize};
+use super::build::Built;
 use super::error::{DictionaryError, Problem};
 use super::format::{Header, ShardRange};
 use super::reader::{Dictionary, embedded_setup};
@@ -75,7 +75,7 @@ pub fn merge(
             .flat_map(|(_, s)| s.results().iter().copied())
             .collect(),
     };
-    finalize(&mut built, &setup.robustness);
+    built.derive_flags(&setup.robustness);
     Ok(built)
 }
 

@@ -27,6 +27,7 @@
 
 mod build;
 mod catalogue;
+mod derive;
 pub mod directions;
 mod error;
 pub mod format;
@@ -65,22 +66,7 @@ pub fn write_dictionary(path: &Path, built: &Built) -> Result<(), DictionaryErro
 /// structure, every checksum, every record and the meaning of the header. For fuzzing and
 /// for tools that hold a file in memory.
 pub fn check_bytes(bytes: &[u8]) -> Result<format::Header, Problem> {
-    use format::SectionKind;
-    let layout = format::parse(bytes)?;
-    format::verify_sections(bytes, &layout)?;
-    // Copies: `bytes` need not be aligned for in-place reading.
-    let pvs: Vec<format::PvRecord> = records(&bytes[layout.range(SectionKind::Pvs)]);
-    let results: Vec<format::MarginRecord> = records(&bytes[layout.range(SectionKind::Results)]);
-    reader::check_records(&layout.header, &pvs, &results)?;
-    let directions: Vec<[f64; 3]> = records(&bytes[layout.range(SectionKind::Directions)]);
-    reader::check_meaning(&layout.header, &directions)?;
-    Ok(layout.header)
-}
-
-/// Fixed-size records copied out of bytes of any alignment.
-fn records<T: bytemuck::Pod>(bytes: &[u8]) -> Vec<T> {
-    bytes
-        .chunks_exact(size_of::<T>())
-        .map(bytemuck::pod_read_unaligned)
-        .collect()
+    let dictionary = Dictionary::from_bytes(bytes, "memory").map_err(|e| e.problem)?;
+    dictionary.verify().map_err(|e| e.problem)?;
+    Ok(dictionary.header().clone())
 }

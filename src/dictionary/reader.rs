@@ -1,8 +1,8 @@
 //! Opening a dictionary: a memory map, the O(1) structural checks of [`parse`], and
 //! zero-copy access to its records; [`Dictionary::verify`] checks every byte.
 
-use super::build::check_derivation;
 use super::catalogue::LinkCatalogue;
+use super::derive::{check_derivation, check_file_name, check_flags, pv_at};
 use super::error::{DictionaryError, Problem};
 use super::format::{
     Header, Layout, LinkEntry, MarginRecord, PHYSICS_VERSION, PvRecord, SectionKind, parse,
@@ -16,11 +16,12 @@ use std::fs::File;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-/// An open dictionary file.
+/// An open dictionary: a file mapped into memory, or bytes held in memory; the same checks
+/// and the same in-place reading either way.
 #[derive(Debug)]
 pub struct Dictionary {
     path: PathBuf,
-    map: Mmap,
+    map: Bytes,
     layout: Layout,
     /// The embedded setup, loaded once (parsing the URDF and meshes is the costly part of
     /// `verify` and of every caller that needs the setup).
@@ -42,6 +43,19 @@ impl Dictionary {
         // and merges replace files by rename, never in place. A file truncated by another
         // process while mapped would fault, as with any mapped reader.
         let map = unsafe { Mmap::map(&file) }.map_err(|e| error(Problem::Io(e.to_string())))?;
+        Dictionary::over(path, Bytes::Mapped(map))
+    }
+
+    /// The dictionary in `bytes` (any alignment: they are copied once into memory aligned for
+    /// in-place reading), named `name` in its errors; the same checks as [`Dictionary::open`].
+    pub fn from_bytes(bytes: &[u8], name: impl AsRef<Path>) -> Result<Dictionary, DictionaryError> {
+        let mut words = vec![0u64; bytes.len().div_ceil(size_of::<u64>())];
+        bytemuck::cast_slice_mut::<u64, u8>(&mut words)[..bytes.len()].copy_from_slice(bytes);
+        Dictionary::over(name.as_ref(), Bytes::Memory(words, bytes.len()))
+    }
+
+    fn over(path: &Path, map: Bytes) -> Result<Dictionary, DictionaryError> {
+        let error = |problem| DictionaryError::new(path, problem);
         let layout = parse(&map).map_err(error)?;
         check_alignment(&map, &layout).map_err(error)?;
         Ok(Dictionary {
@@ -120,7 +134,7 @@ impl Dictionary {
 
     /// Checks every section's checksum, that the records agree with the header (grid
     /// positions, flags, margin records, the all-directions |D1| and |D2| counts, the error
-    /// bounds) and what the header means ([`check_meaning`]).
+    /// bounds) and what the header means ([`check_setup_meaning`]).
     pub fn verify(&self) -> Result<(), DictionaryError> {
         if self.verified.get().is_some() {
             return Ok(());
@@ -132,8 +146,7 @@ impl Dictionary {
         let catalogues =
             check_setup_meaning(self.header(), self.directions(), setup).map_err(error)?;
         let (header, records) = (self.header(), self.pv_records());
-        super::build::check_flags(setup, &catalogues, header, records, self.results())
-            .map_err(error)?;
+        check_flags(setup, &catalogues, header, records, self.results()).map_err(error)?;
         let _ = self.verified.set(());
         Ok(())
     }
@@ -168,10 +181,29 @@ impl Dictionary {
     }
 }
 
+/// The bytes a [`Dictionary`] reads: a read-only map of its file, or memory aligned for the
+/// widest record field (8 bytes) holding the first `len` bytes of its words.
+#[derive(Debug)]
+enum Bytes {
+    Mapped(Mmap),
+    Memory(Vec<u64>, usize),
+}
+
+impl std::ops::Deref for Bytes {
+    type Target = [u8];
+
+    fn deref(&self) -> &[u8] {
+        match self {
+            Bytes::Mapped(map) => map,
+            Bytes::Memory(words, len) => &bytemuck::cast_slice(words)[..*len],
+        }
+    }
+}
+
 /// The records agree with the header: grid positions, zero padding, margin records, flags,
 /// and (whole dictionaries) the |D1|/|D2| counts. `results` holds `header.directions.count`
 /// rows per PV record, as [`parse`] checked.
-pub(super) fn check_records(
+fn check_records(
     header: &Header,
     pv_records: &[PvRecord],
     results: &[MarginRecord],
@@ -183,7 +215,7 @@ pub(super) fn check_records(
     for (k, record) in pv_records.iter().enumerate() {
         let g = stored.start + k as u64;
         let place = || format!("PV record {g}");
-        let (slot, pv) = super::build::pv_at(header, g);
+        let (slot, pv) = pv_at(header, g);
         let at_place = usize::from(record.link) == slot && record.pv() == pv;
         let unmeasured = !record.has(PvRecord::ADMISSIBLE)
             || record.sub_segments == 0
@@ -282,15 +314,9 @@ fn check_alignment(bytes: &[u8], layout: &Layout) -> Result<(), Problem> {
     }
 }
 
-/// What the bytes mean, beyond their checksums: the embedded setup loads and matches its
-/// hash, the physics version is this program's, and the header and `directions` are what a
-/// build of that setup writes.
-pub(super) fn check_meaning(header: &Header, directions: &[[f64; 3]]) -> Result<(), Problem> {
-    check_setup_meaning(header, directions, &embedded_setup(header)?).map(|_| ())
-}
-
-/// [`check_meaning`] with the embedded setup already loaded; the link catalogues a build of
-/// it makes, for the records' checks.
+/// What the bytes mean, beyond their checksums: the physics version is this program's, and
+/// the header and `directions` are what a build of the embedded `setup` (loaded and checked
+/// against its hash) writes; the link catalogues that build makes, for the records' checks.
 fn check_setup_meaning(
     header: &Header,
     directions: &[[f64; 3]],
@@ -344,23 +370,4 @@ pub(super) fn embedded_setup(header: &Header) -> Result<Setup, Problem> {
         )));
     }
     Ok(setup)
-}
-
-/// The embedded setup's name is a plain file name, as a build writes it: no folder, no
-/// `..`, no control character — it is shown on terminals and in reports.
-pub(super) fn check_file_name(name: &str) -> Result<(), Problem> {
-    let plain = !name.is_empty()
-        && name.len() <= 255
-        && name != "."
-        && name != ".."
-        && !name.contains(['/', '\\'])
-        && crate::escape::terminal(name) == name;
-    if plain {
-        return Ok(());
-    }
-    Err(Problem::Header(format!(
-        "the embedded setup's file name \"{}\" is not a plain file name (a build writes the \
-         setup's own name, without folders)",
-        crate::escape::terminal(name)
-    )))
 }

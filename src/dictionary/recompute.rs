@@ -3,8 +3,9 @@
 //! shows that the margins in them are what this version's physics gives for the embedded
 //! setup — not forged, not stale, not from a machine that computes differently.
 
-use super::build::{DirectionSample, Pair, Piece, catalogue_lengths, probe_count, solve_lengths};
+use super::build::{DirectionSample, Pair, Piece, solve_lengths};
 use super::catalogue::link_catalogues;
+use super::derive::{catalogue_lengths, probe_count, pv_at};
 use super::directions::probe_directions;
 use super::error::{DictionaryError, Problem};
 use super::format::{MARGIN_UNITS, MarginRecord, PvRecord};
@@ -95,7 +96,7 @@ impl Dictionary {
         let chosen = choose(&measured, choice);
         let mut pairs: BTreeMap<(usize, usize, usize), Vec<(u64, usize)>> = BTreeMap::new();
         for &g in &chosen {
-            let (slot, pv) = super::build::pv_at(header, g);
+            let (slot, pv) = pv_at(header, g);
             pairs
                 .entry((slot, pv.start, pv.end))
                 .or_default()
@@ -143,7 +144,7 @@ impl Dictionary {
             Some(rows) => first_row_difference(self.directions(), stored_rows, rows)
                 .or_else(|| factor_difference(record.error_factor, piece.error_factor)),
         }?;
-        let (slot, pv) = super::build::pv_at(header, g);
+        let (slot, pv) = pv_at(header, g);
         let entry = &header.links[slot];
         Some(Disagreement {
             record: g,

@@ -80,6 +80,9 @@ impl Motion {
         if times_s.is_empty() {
             return Err(cursor.error("the header is not followed by any sample"));
         }
+        if let Some(warning) = radians_under_degrees(&columns, &samples) {
+            log::warn!("{}: {warning}", source.display());
+        }
         Motion::new(robot, times_s, samples).map_err(|e| e.located(source, None))
     }
 
@@ -123,6 +126,41 @@ impl Motion {
         write_atomically(path, self.to_csv(comment).as_bytes())
             .map_err(|e| MotionError::in_file(path, format!("cannot write the motion: {e}")))
     }
+}
+
+/// Degrees a `_deg` column's values stay within when they are radians: 2π.
+const RADIANS_LOOK_DEG: f64 = std::f64::consts::TAU;
+
+/// A warning when every `_deg` column stays within ±[`RADIANS_LOOK_DEG`] and one of them
+/// moves: radians under degree headers read so (every joint then moves a few degrees at
+/// most), and a whole motion that small is rare. `samples` hold SI values (rad).
+fn radians_under_degrees(columns: &[Column], samples: &[Vec<f64>]) -> Option<String> {
+    let degrees: Vec<&Column> = columns
+        .iter()
+        .filter(|c| c.unit == ColumnUnit::Deg)
+        .collect();
+    let value_deg = |c: &Column, sample: &Vec<f64>| sample[c.joint].to_degrees();
+    let within = degrees.iter().all(|c| {
+        samples
+            .iter()
+            .all(|s| value_deg(c, s).abs() <= RADIANS_LOOK_DEG + 1e-9)
+    });
+    let moves = degrees.iter().any(|c| {
+        samples
+            .iter()
+            .any(|s| value_deg(c, s) != samples.first().map_or(0.0, |f| value_deg(c, f)))
+    });
+    (!degrees.is_empty() && within && moves).then(|| {
+        format!(
+            "every joint angle stays within ±{RADIANS_LOOK_DEG:.2}°, as radians would: the \
+             columns say degrees ({}); if the values are radians, head the columns `_rad`",
+            degrees
+                .iter()
+                .map(|c| c.header.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    })
 }
 
 /// `time_s` then one column per actuated joint, each exactly once.

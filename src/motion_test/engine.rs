@@ -7,10 +7,13 @@ use super::options::Engine;
 use super::report::{Failure, FailureCause};
 use crate::dynamics::{IntegratorSettings, SegmentDynamics};
 use crate::pose::Pose;
-use crate::rigid_chain::{CableWorld, ContactSummary, DynamicsError, SegmentShape};
+#[cfg(feature = "rigid-chain")]
+use crate::rigid_chain::{CableWorld, ContactSummary, RigidChainError, SegmentShape};
 use crate::setup::Setup;
 use crate::statics::{Equilibrium, FarEnd, RodParameters};
-use crate::stress::{ClampZone, GuideEnd};
+use crate::stress::ClampZone;
+#[cfg(feature = "rigid-chain")]
+use crate::stress::GuideEnd;
 use nalgebra::Point3;
 use rayon::prelude::*;
 
@@ -51,6 +54,7 @@ pub(super) enum Cable {
         segments: Vec<SegmentDynamics>,
         settings: IntegratorSettings,
     },
+    #[cfg(feature = "rigid-chain")]
     RigidChain {
         world: Box<CableWorld>,
         /// Sub-segments at each end left out of the contact force summary.
@@ -62,6 +66,7 @@ impl Cable {
     /// The cable at rest in `shapes` (one per simulated segment, between `guides`, with
     /// its clamp zones `zones`), the robot's links at `links`; a shape the engine refuses is
     /// a failed candidate.
+    #[cfg_attr(not(feature = "rigid-chain"), allow(unused_variables))]
     pub fn start(
         engine: &Engine,
         setup: &Setup,
@@ -96,6 +101,13 @@ impl Cable {
                     settings: *settings,
                 }))
             }
+            #[cfg(not(feature = "rigid-chain"))]
+            Engine::RigidChain(_) => Err(MotionTestError::Options {
+                what: "the rigid-chain engine simulates in rapier3d: build with the rigid-chain \
+                       feature"
+                    .into(),
+            }),
+            #[cfg(feature = "rigid-chain")]
             Engine::RigidChain(settings) => {
                 let world = match rigid_world(setup, settings, guides, shapes, zones) {
                     Ok(world) => world,
@@ -116,6 +128,7 @@ impl Cable {
     /// One step to the guides at `guides` and the links at `links`: every segment's state,
     /// or the failure of a diverging simulation (`Ok(Err)`, naming the simulated segment
     /// when it belongs to one).
+    #[cfg_attr(not(feature = "rigid-chain"), allow(unused_variables))]
     pub fn advance(
         &mut self,
         guides: &[Pose],
@@ -156,6 +169,7 @@ impl Cable {
                     })
                     .collect()))
             }
+            #[cfg(feature = "rigid-chain")]
             Cable::RigidChain {
                 world,
                 zone_sub_segments,
@@ -166,7 +180,7 @@ impl Cable {
                     .map_err(MotionTestError::Dynamics)?;
                 let record = match world.step() {
                     Ok(record) => record,
-                    Err(e @ DynamicsError::BlowUp { segment, .. }) => {
+                    Err(e @ RigidChainError::BlowUp { segment, .. }) => {
                         return Ok(Err(Diverged {
                             segment: Some(segment),
                             detail: e.to_string(),
@@ -193,6 +207,7 @@ impl Cable {
     }
 }
 
+#[cfg(feature = "rigid-chain")]
 /// The rapier world of the initial shapes, with each segment's clamp zones exempt from
 /// contact with the links their guides sit on.
 fn rigid_world(
@@ -201,7 +216,7 @@ fn rigid_world(
     guides: &[Pose],
     shapes: &[Equilibrium],
     zones: &[Vec<ClampZone>],
-) -> Result<CableWorld, DynamicsError> {
+) -> Result<CableWorld, RigidChainError> {
     let segment_shapes: Vec<SegmentShape> = shapes
         .iter()
         .enumerate()
@@ -227,6 +242,7 @@ fn rigid_world(
     Ok(world)
 }
 
+#[cfg(feature = "rigid-chain")]
 /// The sub-segment with the largest contact force among those outside the first and last
 /// `zone_sub_segments`; `None` without any force there. Inside a
 /// zone the cable legitimately touches its guide's link, and the summary does not say which

@@ -3,7 +3,7 @@
 
 use crate::geometry::ConnectError;
 use crate::path::PathError;
-use crate::rigid_chain::DynamicsError;
+use crate::rigid_chain::RigidChainError;
 use crate::robot::JointVectorError;
 use crate::statics::StaticsError;
 use crate::stress::ContactError;
@@ -71,5 +71,5 @@ pub enum MotionTestError {
     /// The simulation refused its input (robot colliders, poses): not a property of the
     /// candidate.
     #[error("cable simulation: {0}")]
-    Dynamics(#[source] DynamicsError),
+    Dynamics(#[source] RigidChainError),
 }

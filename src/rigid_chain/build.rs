@@ -9,7 +9,7 @@ use rapier3d::prelude::{
 };
 
 use super::convert::{to_rapier_pose, to_rapier_vector};
-use super::error::{DynamicsError, invalid};
+use super::error::{RigidChainError, invalid};
 use super::settings::DynamicsSettings;
 use crate::cable::CableSpec;
 use crate::geometry::ConnectedGeometry;
@@ -95,7 +95,7 @@ pub(super) struct SubSegmentModel {
 impl SubSegmentModel {
     /// The sub-segment of `cable`; refuses non-finite or non-positive values (the fields of a
     /// [`CableSpec`] are public, so a hand-made one is checked here too).
-    pub fn new(cable: &CableSpec) -> Result<Self, DynamicsError> {
+    pub fn new(cable: &CableSpec) -> Result<Self, RigidChainError> {
         let values = [
             ("diameter", cable.diameter_m),
             ("mass per length", cable.mass_per_length_kg_m),
@@ -124,7 +124,7 @@ impl SubSegmentModel {
 }
 
 /// Checks a pose and returns it with a renormalised rotation.
-pub(super) fn checked_pose(pose: &Pose, what: &str) -> Result<Pose, DynamicsError> {
+pub(super) fn checked_pose(pose: &Pose, what: &str) -> Result<Pose, RigidChainError> {
     let finite = pose.translation.vector.iter().all(|v| v.is_finite())
         && pose.rotation.coords.iter().all(|v| v.is_finite());
     let norm = pose.rotation.coords.norm();
@@ -143,7 +143,7 @@ pub(super) fn checked_pose(pose: &Pose, what: &str) -> Result<Pose, DynamicsErro
 pub(super) fn check_shapes(
     shapes: &[SegmentShape],
     model: &SubSegmentModel,
-) -> Result<Vec<Pose>, DynamicsError> {
+) -> Result<Vec<Pose>, RigidChainError> {
     if shapes.is_empty() {
         return Err(invalid("a cable needs at least one segment"));
     }
@@ -163,7 +163,7 @@ pub(super) fn check_shapes(
 }
 
 /// The end guide of segment `m − 1` must be the start guide of segment `m`.
-fn check_shared_guide(previous_end: &Pose, start: &Pose, m: usize) -> Result<(), DynamicsError> {
+fn check_shared_guide(previous_end: &Pose, start: &Pose, m: usize) -> Result<(), RigidChainError> {
     let offset = (previous_end.translation.vector - start.translation.vector).norm();
     let angle = previous_end.rotation.angle_to(&start.rotation);
     if offset > SHARED_GUIDE_TOLERANCE || angle > SHARED_GUIDE_TOLERANCE {
@@ -184,7 +184,7 @@ fn check_shape(
     end: &Pose,
     pitch: f64,
     m: usize,
-) -> Result<(), DynamicsError> {
+) -> Result<(), RigidChainError> {
     let s = shape.sub_segment_count();
     if s == 0 {
         return Err(invalid(format!(

@@ -4,7 +4,7 @@ use std::fmt;
 
 /// What went wrong in a cable simulation.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum DynamicsError {
+pub enum RigidChainError {
     /// The input cannot be simulated: no sub-segments, a non-finite pose or setting, node and
     /// frame lists of the wrong length, chords that are not one pitch long, guides of
     /// consecutive segments that do not coincide, a robot collider rapier cannot build, …
@@ -78,7 +78,7 @@ impl fmt::Display for BlowUpQuantity {
     }
 }
 
-/// Shorthand for [`DynamicsError::InvalidInput`].
-pub(super) fn invalid(what: impl Into<String>) -> DynamicsError {
-    DynamicsError::InvalidInput { what: what.into() }
+/// Shorthand for [`RigidChainError::InvalidInput`].
+pub(super) fn invalid(what: impl Into<String>) -> RigidChainError {
+    RigidChainError::InvalidInput { what: what.into() }
 }

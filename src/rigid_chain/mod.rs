@@ -30,19 +30,32 @@
 //!   it); `num_internal_pgs_iterations` the sweeps per substep.
 //! - Bodies whose state turns non-finite are quarantined (disabled) by rapier instead of
 //!   poisoning the world; [`CableWorld::step`] reports them as a blow-up.
+//!
+//! Without the `rigid-chain` feature only the settings and the error remain (what the motion
+//! test's options name); the engine itself needs rapier3d.
 
+#[cfg(feature = "rigid-chain")]
 mod build;
+#[cfg(feature = "rigid-chain")]
 mod convert;
 mod error;
+#[cfg(feature = "rigid-chain")]
 mod record;
+#[cfg(feature = "rigid-chain")]
 mod relax;
+#[cfg(feature = "rigid-chain")]
 mod robot;
 mod settings;
+#[cfg(feature = "rigid-chain")]
 mod world;
 
+#[cfg(feature = "rigid-chain")]
 pub use build::SegmentShape;
-pub use error::{BlowUpQuantity, DynamicsError};
+pub use error::{BlowUpQuantity, RigidChainError};
+#[cfg(feature = "rigid-chain")]
 pub use record::{ContactSummary, SegmentRecord, StepRecord, SubSegmentContact};
+#[cfg(feature = "rigid-chain")]
 pub use relax::{LinearConnect, Relaxation, Settled, connect_linear, interpolate, relax, settle};
 pub use settings::{BlowUpBounds, ConvergenceWindow, DynamicsSettings};
+#[cfg(feature = "rigid-chain")]
 pub use world::CableWorld;

@@ -4,7 +4,7 @@
 use nalgebra::{Point3, Rotation3, UnitQuaternion, Vector3};
 
 use super::build::{SegmentShape, SubSegmentModel, checked_pose};
-use super::error::{DynamicsError, invalid};
+use super::error::{RigidChainError, invalid};
 use super::settings::{ConvergenceWindow, DynamicsSettings};
 use super::world::CableWorld;
 use crate::cable::CableSpec;
@@ -42,14 +42,14 @@ pub struct Settled {
 /// Relaxes one segment from `shape` to static equilibrium, both ends clamped, until the
 /// convergence `window` says it is at rest.
 ///
-/// Errors: invalid input ([`CableWorld::new`]), [`DynamicsError::BlowUp`], or
-/// [`DynamicsError::NotConverged`] when the time budget runs out.
+/// Errors: invalid input ([`CableWorld::new`]), [`RigidChainError::BlowUp`], or
+/// [`RigidChainError::NotConverged`] when the time budget runs out.
 pub fn relax(
     cable: &CableSpec,
     shape: &SegmentShape,
     settings: &DynamicsSettings,
     window: &ConvergenceWindow,
-) -> Result<Relaxation, DynamicsError> {
+) -> Result<Relaxation, RigidChainError> {
     let mut world = CableWorld::new(cable, std::slice::from_ref(shape), settings)?;
     let settled = settle(&mut world, window)?;
     Ok(relaxation_of(&world, &settled))
@@ -58,12 +58,12 @@ pub fn relax(
 /// Steps `world` — guides and robot held at their last targets — until no node of any
 /// segment moves more than `window.max_motion_m` within a window of `window.window_s`.
 ///
-/// Errors: [`DynamicsError::BlowUp`], or [`DynamicsError::NotConverged`] when
+/// Errors: [`RigidChainError::BlowUp`], or [`RigidChainError::NotConverged`] when
 /// `window.max_time_s` of simulated time pass without a quiet window.
 pub fn settle(
     world: &mut CableWorld,
     window: &ConvergenceWindow,
-) -> Result<Settled, DynamicsError> {
+) -> Result<Settled, RigidChainError> {
     window.validate()?;
     let dt = world.settings().time_step_s;
     let window_steps = steps_for(window.window_s, dt);
@@ -86,7 +86,7 @@ pub fn settle(
             });
         }
     }
-    Err(DynamicsError::NotConverged {
+    Err(RigidChainError::NotConverged {
         steps: world.steps(),
         time_s: world.time_s(),
         window_motion_m: motion,
@@ -141,7 +141,7 @@ impl Default for LinearConnect {
 /// `plan.move_time_s`, and the cable is then let settle.
 ///
 /// Errors: invalid input (also guides farther apart than the cable's natural length),
-/// [`DynamicsError::BlowUp`] and [`DynamicsError::NotConverged`].
+/// [`RigidChainError::BlowUp`] and [`RigidChainError::NotConverged`].
 pub fn connect_linear(
     cable: &CableSpec,
     start: &Pose,
@@ -149,7 +149,7 @@ pub fn connect_linear(
     sub_segments: usize,
     settings: &DynamicsSettings,
     plan: &LinearConnect,
-) -> Result<Relaxation, DynamicsError> {
+) -> Result<Relaxation, RigidChainError> {
     let (start, end) = check_linear_input(cable, start, end, sub_segments, plan)?;
     let straight = StraightCable::new(&start, sub_segments, cable.sub_segment_pitch_m);
     let mut world = CableWorld::new(cable, &[straight.shape(&start)], settings)?;
@@ -171,7 +171,7 @@ fn check_linear_input(
     end: &Pose,
     sub_segments: usize,
     plan: &LinearConnect,
-) -> Result<(Pose, Pose), DynamicsError> {
+) -> Result<(Pose, Pose), RigidChainError> {
     plan.settle.validate()?;
     if !(plan.move_time_s.is_finite() && plan.move_time_s >= 0.0) {
         return Err(invalid(format!(

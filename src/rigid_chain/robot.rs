@@ -8,7 +8,7 @@ use rapier3d::prelude::{
 
 use super::build::{CABLE_GROUP, MAX_LINK_GROUPS, ROBOT_TAG, checked_pose, link_group};
 use super::convert::{to_rapier_point, to_rapier_pose};
-use super::error::{DynamicsError, invalid};
+use super::error::{RigidChainError, invalid};
 use crate::pose::Pose;
 use crate::robot::{Collider, Robot, Shape};
 
@@ -16,7 +16,7 @@ use crate::robot::{Collider, Robot, Shape};
 pub(super) fn checked_link_poses(
     link_poses: &[Pose],
     links: usize,
-) -> Result<Vec<Pose>, DynamicsError> {
+) -> Result<Vec<Pose>, RigidChainError> {
     if link_poses.len() != links {
         return Err(invalid(format!(
             "expected {links} link poses (one per robot link), got {}",
@@ -37,7 +37,7 @@ pub(super) fn insert_links(
     robot: &Robot,
     link_poses: &[Pose],
     friction: f64,
-) -> Result<Vec<Option<RigidBodyHandle>>, DynamicsError> {
+) -> Result<Vec<Option<RigidBodyHandle>>, RigidChainError> {
     let poses = checked_link_poses(link_poses, robot.links.len())?;
     if let Some((i, link)) = robot
         .links

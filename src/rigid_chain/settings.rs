@@ -2,7 +2,7 @@
 
 use nalgebra::Vector3;
 
-use super::error::{DynamicsError, invalid};
+use super::error::{RigidChainError, invalid};
 
 /// Largest accepted number of solver substeps per step (a typo guard: 10⁴ substeps of a
 /// 50-body chain already take about a second per step).
@@ -63,7 +63,7 @@ pub struct DynamicsSettings {
 }
 
 /// Sanity bounds checked after every step: beyond them the state is meaningless and the step
-/// returns [`DynamicsError::BlowUp`]. They are far outside anything a correctly stepped cable
+/// returns [`RigidChainError::BlowUp`]. They are far outside anything a correctly stepped cable
 /// does (even rapier's default stepping, which stretches a cable by ~26 %, stays inside).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BlowUpBounds {
@@ -144,7 +144,7 @@ impl DynamicsSettings {
     }
 
     /// Checks that every value is finite and in range.
-    pub fn validate(&self) -> Result<(), DynamicsError> {
+    pub fn validate(&self) -> Result<(), RigidChainError> {
         let bounds = &self.bounds;
         let ranges = [
             (
@@ -232,7 +232,7 @@ pub struct ConvergenceWindow {
     pub window_s: f64,
     /// Largest node displacement within a window for the cable to be at rest (m).
     pub max_motion_m: f64,
-    /// Simulated-time budget (s); beyond it [`DynamicsError::NotConverged`].
+    /// Simulated-time budget (s); beyond it [`RigidChainError::NotConverged`].
     pub max_time_s: f64,
 }
 
@@ -253,7 +253,7 @@ impl Default for ConvergenceWindow {
 
 impl ConvergenceWindow {
     /// Checks that every value is finite and positive.
-    pub fn validate(&self) -> Result<(), DynamicsError> {
+    pub fn validate(&self) -> Result<(), RigidChainError> {
         for (name, value) in [
             ("window_s", self.window_s),
             ("max_motion_m", self.max_motion_m),

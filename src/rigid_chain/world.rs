@@ -9,7 +9,7 @@ use super::build::{
     insert_segment, link_group, sub_segment_poses,
 };
 use super::convert::{from_rapier_pose, to_rapier_pose, to_rapier_vector};
-use super::error::{BlowUpQuantity, DynamicsError, invalid};
+use super::error::{BlowUpQuantity, RigidChainError, invalid};
 use super::record::{ContactTally, SegmentRecord, StepRecord};
 use super::robot::{checked_link_poses, insert_links};
 use super::settings::DynamicsSettings;
@@ -43,13 +43,13 @@ pub struct CableWorld {
     segments: Vec<Vec<RigidBodyHandle>>,
     links: Option<Vec<Option<RigidBodyHandle>>>,
     steps: usize,
-    failure: Option<DynamicsError>,
+    failure: Option<RigidChainError>,
 }
 
 impl CableWorld {
     /// Builds the cable of `segments` (each from its initial shape) with `settings`.
     ///
-    /// Errors ([`DynamicsError::InvalidInput`]): invalid settings or cable values, no segment,
+    /// Errors ([`RigidChainError::InvalidInput`]): invalid settings or cable values, no segment,
     /// a segment with no sub-segment, node/frame counts that differ, non-finite values,
     /// chords not one pitch long (1 % tolerance) or end nodes off their guide origins, and
     /// consecutive segments whose shared guide poses differ (1e-6 m / 1e-6 rad).
@@ -57,7 +57,7 @@ impl CableWorld {
         cable: &CableSpec,
         segments: &[SegmentShape],
         settings: &DynamicsSettings,
-    ) -> Result<Self, DynamicsError> {
+    ) -> Result<Self, RigidChainError> {
         settings.validate()?;
         let model = SubSegmentModel::new(cable)?;
         let guide_poses = check_shapes(segments, &model)?;
@@ -93,7 +93,7 @@ impl CableWorld {
     /// Adds the robot's link colliders as kinematic obstacles, each link at `link_poses[i]`
     /// (indexed like `robot.links`, e.g. from [`Robot::link_poses`]). Box, cylinder, sphere,
     /// capsule and mesh shapes are supported. A second call is refused.
-    pub fn add_robot(&mut self, robot: &Robot, link_poses: &[Pose]) -> Result<(), DynamicsError> {
+    pub fn add_robot(&mut self, robot: &Robot, link_poses: &[Pose]) -> Result<(), RigidChainError> {
         if self.links.is_some() {
             return Err(invalid("the robot was already added to this cable world"));
         }
@@ -116,7 +116,7 @@ impl CableWorld {
         segment: usize,
         sub_segments: Range<usize>,
         link: usize,
-    ) -> Result<(), DynamicsError> {
+    ) -> Result<(), RigidChainError> {
         let bodies = self
             .segments
             .get(segment)
@@ -146,7 +146,7 @@ impl CableWorld {
     /// (`segments + 1`, from the first segment's start guide to the last segment's end guide).
     /// Large jumps are followed, but the cable is dragged along within one step: move guides
     /// in small increments.
-    pub fn move_guides(&mut self, guide_poses: &[Pose]) -> Result<(), DynamicsError> {
+    pub fn move_guides(&mut self, guide_poses: &[Pose]) -> Result<(), RigidChainError> {
         if guide_poses.len() != self.guides.len() {
             return Err(invalid(format!(
                 "expected {} guide poses (segments + 1), got {}",
@@ -167,7 +167,7 @@ impl CableWorld {
 
     /// Sets the robot links' poses to reach by the end of the next step (indexed like
     /// `robot.links`). Refused before [`CableWorld::add_robot`].
-    pub fn move_robot(&mut self, link_poses: &[Pose]) -> Result<(), DynamicsError> {
+    pub fn move_robot(&mut self, link_poses: &[Pose]) -> Result<(), RigidChainError> {
         let Some(links) = &self.links else {
             return Err(invalid(
                 "move_robot before add_robot: there is no robot to move",
@@ -184,12 +184,12 @@ impl CableWorld {
 
     /// Advances the simulation by one time step and measures every segment.
     ///
-    /// Returns [`DynamicsError::BlowUp`] when a body's state became non-finite, a sub-segment
+    /// Returns [`RigidChainError::BlowUp`] when a body's state became non-finite, a sub-segment
     /// moves faster than the speed bound, a joint's anchors separate beyond the gap bound, or
     /// a segment stretches beyond the stretch bound (see
     /// [`BlowUpBounds`](super::BlowUpBounds)). After an error the world is unusable: every
     /// further call returns the same error.
-    pub fn step(&mut self) -> Result<StepRecord, DynamicsError> {
+    pub fn step(&mut self) -> Result<StepRecord, RigidChainError> {
         if let Some(failure) = &self.failure {
             return Err(failure.clone());
         }
@@ -286,7 +286,7 @@ impl CableWorld {
     }
 
     /// The blow-up checks and the measurements of one step.
-    fn check_and_record(&self) -> Result<StepRecord, DynamicsError> {
+    fn check_and_record(&self) -> Result<StepRecord, RigidChainError> {
         self.check_quarantine()?;
         let contacts = ContactTally::collect(&self.world, &self.segments, &self.settings);
         let segments = (0..self.segments.len())
@@ -299,7 +299,7 @@ impl CableWorld {
     }
 
     /// Rapier disables bodies whose state went non-finite; that is a blow-up.
-    fn check_quarantine(&self) -> Result<(), DynamicsError> {
+    fn check_quarantine(&self) -> Result<(), RigidChainError> {
         let Some(&handle) = self.world.quarantine().bodies().first() else {
             return Ok(());
         };
@@ -328,7 +328,7 @@ impl CableWorld {
         &self,
         m: usize,
         contacts: &ContactTally,
-    ) -> Result<SegmentRecord, DynamicsError> {
+    ) -> Result<SegmentRecord, RigidChainError> {
         self.check_speeds(m)?;
         let max_joint_gap_m = self.check_joint_gaps(m)?;
         let nodes = self.segment_nodes(m).unwrap_or_default();
@@ -349,7 +349,7 @@ impl CableWorld {
     }
 
     /// Finite state and the speed bound, per sub-segment.
-    fn check_speeds(&self, m: usize) -> Result<(), DynamicsError> {
+    fn check_speeds(&self, m: usize) -> Result<(), RigidChainError> {
         let bound = self.settings.bounds.max_speed_m_s;
         for (s, handle) in self.segments[m].iter().enumerate() {
             let body = &self.world.bodies[*handle];
@@ -369,7 +369,7 @@ impl CableWorld {
 
     /// Distance between the two anchors of every joint of segment `m`, guide joints included;
     /// returns the largest (m).
-    fn check_joint_gaps(&self, m: usize) -> Result<f64, DynamicsError> {
+    fn check_joint_gaps(&self, m: usize) -> Result<f64, RigidChainError> {
         let bound = self.settings.bounds.max_joint_gap_pitches * self.model.pitch_m;
         let half = Vector3::new(0.0, 0.0, 0.5 * self.model.pitch_m);
         let poses: Vec<Pose> = self.segments[m]
@@ -398,8 +398,8 @@ impl CableWorld {
         quantity: BlowUpQuantity,
         value: f64,
         bound: f64,
-    ) -> DynamicsError {
-        DynamicsError::BlowUp {
+    ) -> RigidChainError {
+        RigidChainError::BlowUp {
             step: self.steps,
             time_s: self.time_s(),
             segment,

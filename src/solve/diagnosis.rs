@@ -3,7 +3,7 @@
 //! would help — a longer or shorter length window, other clamp sites or cable directions, a
 //! smaller joint range, or a slower joint between two times of the motion.
 
-use super::MotionSearch;
+use super::search::MotionSearch;
 use crate::attachment::{Miss, Rejection, SegmentPoses, SegmentSets};
 use crate::motion::Motion;
 use crate::setup::Setup;

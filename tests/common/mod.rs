@@ -1,22 +1,19 @@
-//! Helpers shared by the tests that run the `cable-dict` binary.
+//! Helpers the test modules share: the package root, the binary runner, the bundled setup and
+//! the limits of the small setups written inline.
 
+use std::path::Path;
 use std::process::{Command, Output};
 
 /// Runs the binary with `args` from the package root (where the bundled files' relative paths
 /// start).
 pub fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_cable-dict"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
+    run_in(root(), args)
 }
 
 /// The text of the bundled robot-level setup `robots/viper_s850/pick_and_place.toml` with its
 /// robot and cable paths made absolute, so that it loads from any folder a test writes it to.
-#[allow(dead_code)] // not every test binary uses every helper
 pub fn bundled_setup_text() -> String {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = root();
     std::fs::read_to_string(root.join("robots/viper_s850/pick_and_place.toml"))
         .expect("the bundled setup")
         .replace(
@@ -30,4 +27,42 @@ pub fn bundled_setup_text() -> String {
             "cable = \"../../cables/smc_le_cp_3.toml\"",
             &format!("cable = {:?}", root.join("cables/smc_le_cp_3.toml")),
         )
+}
+
+/// The package root, where the bundled files' relative paths start.
+pub fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Runs the binary with `args` in the folder `dir`.
+pub fn run_in(dir: &Path, args: &[&str]) -> Output {
+    binary()
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the binary runs")
+}
+
+/// The binary as a command still to be given its arguments and folder.
+pub fn binary() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_cable-dict"))
+}
+
+/// The thresholds and robustness tables of the small setups the tests write inline: touching
+/// allowed down to 0 mm, 2 % stretch, the bend radius `min_bend` (a TOML value: `"\"cable\""`
+/// for the cable file's, or millimetres), a 20 mm clamp zone, the robustness window δs 1,
+/// range 2.
+pub fn limits(min_bend: &str) -> String {
+    format!(
+        r#"[thresholds]
+contact_clearance_mm = 0.0
+stretch = 1.02
+min_bend_radius_mm = {min_bend}
+clamp_zone_mm = 20.0
+
+[robustness]
+delta_s = 1
+range = 2
+"#
+    )
 }

@@ -5,7 +5,7 @@ use super::{Args, Connect, Solver};
 use cable_dict::cable::CableSpec;
 use cable_dict::geometry::{ConnectError, CurveFamily, connect, sag_direction};
 use cable_dict::rigid_chain::{
-    ConvergenceWindow, DynamicsError, DynamicsSettings, LinearConnect, SegmentShape,
+    ConvergenceWindow, DynamicsSettings, LinearConnect, RigidChainError, SegmentShape,
     connect_linear, relax,
 };
 use cable_dict::statics::turns::solve_turned;
@@ -160,9 +160,9 @@ pub fn converged(cable: &CableSpec, args: &Args, start: &Connected) -> Result<Co
     }
 }
 
-fn dynamics_failure(error: DynamicsError) -> Failure {
+fn dynamics_failure(error: RigidChainError) -> Failure {
     match error {
-        DynamicsError::InvalidInput { .. } => Failure::input(error),
+        RigidChainError::InvalidInput { .. } => Failure::input(error),
         _ => Failure::unsolved(error),
     }
 }

@@ -1,7 +1,8 @@
 //! The report assembled from the stages' results: names, counts and the explanation.
 
 use super::super::diagnosis::diagnose;
-use super::super::{MotionSearch, SolveOptions, Tried};
+use super::super::options::SolveOptions;
+use super::super::search::{MotionSearch, Tried};
 use super::data::*;
 use super::margins::margins;
 use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, SegmentSets, TestPose};

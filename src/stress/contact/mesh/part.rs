@@ -7,9 +7,9 @@ use super::triangle::{Feature, closest_point_triangle, segment_triangle};
 use super::winding::WindingTree;
 use crate::robot::shells;
 use nalgebra::{Point3, Vector3};
-use rapier3d::parry::bounding_volume::Aabb;
-use rapier3d::parry::math::Vector as GlamVector;
-use rapier3d::parry::partitioning::{Bvh, BvhBuildStrategy, BvhNode, TraversalAction};
+use parry3d::bounding_volume::Aabb;
+use parry3d::math::Vector as GlamVector;
+use parry3d::partitioning::{Bvh, BvhBuildStrategy, BvhNode, TraversalAction};
 use std::collections::HashMap;
 
 /// How a part tells inside from outside.
