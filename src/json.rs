@@ -9,6 +9,12 @@ use serde_json::{Number, Value};
 /// Significant digits kept in JSON numbers.
 pub const SIGNIFICANT_DIGITS: usize = 12;
 
+/// A number for people: rounded to 1e-9 so that unit conversions print as typed (120, not
+/// 119.99999999999999), and without a negative zero.
+pub fn tidy(value: f64) -> f64 {
+    (value * 1e9).round() / 1e9 + 0.0
+}
+
 /// `value` as pretty-printed JSON with its numbers rounded to [`SIGNIFICANT_DIGITS`].
 pub fn to_pretty_string<T: Serialize + ?Sized>(value: &T) -> serde_json::Result<String> {
     let mut tree = serde_json::to_value(value)?;

@@ -19,6 +19,8 @@
 //! - [`geometry`]: the *connected geometry* of a segment — a cubic Hermite curve carrying the
 //!   discrete cable, with rotation-minimizing frames.
 //! - [`statics`]: the quasi-static equilibrium of a cable clamped at its guides.
+//! - [`segment`]: one cable piece between two clamp frames, shaped as asked (start shape,
+//!   equilibrium, turned or relaxed in rapier3d): what `cable-dict segment` computes.
 //! - [`dynamics`]: the same cable model in motion, integrated implicitly: the motion test's
 //!   engine.
 //! - [`rigid_chain`]: the cable as rigid bodies in rapier3d, the paper's baseline.
@@ -88,6 +90,7 @@ pub mod provenance;
 pub mod report;
 pub mod rigid_chain;
 pub mod robot;
+pub mod segment;
 pub mod setup;
 pub mod sites;
 pub mod solve;

@@ -40,9 +40,13 @@ impl Pv {
 ///
 /// A path through every guide has `segments = [0, 1, …, M − 1]` and one configuration per
 /// guide; a path that leaves optional guides out has fewer pieces and clamps.
-#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+#[derive(
+    Debug, Clone, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize,
+)]
 pub struct CablePath {
-    /// Per piece, from the base end: its index into the setup's segments.
+    /// Per piece, from the base end: its index into the setup's segments (empty in results
+    /// written before paths could leave clamps out: then one per guide pair).
+    #[serde(default)]
     pub segments: Vec<usize>,
     /// Length of every piece in sub-segments, from the base end.
     pub lengths: Vec<usize>,

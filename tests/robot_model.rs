@@ -72,7 +72,7 @@ fn joint_vectors_are_checked_for_length_finiteness_and_limits() {
     match robot.check_limits(&[0.0, 0.6]) {
         Err(JointVectorError::OutOfLimits { joint, unit, .. }) => {
             assert_eq!(joint, "j2");
-            assert_eq!(unit, "mm");
+            assert_eq!(unit.to_string(), "mm");
         }
         other => panic!("expected OutOfLimits for j2, got {other:?}"),
     }

@@ -1,7 +1,10 @@
 //! What testing every candidate piece would cost, measured on a sample of pairs before a long
 //! run, so that a user knows before waiting (`sites`, `solve --exhaustive`).
 
-use super::{Evaluator, PairJob, SegmentPoses, admissible_pvs, needed_pvs, pair_jobs};
+use super::evaluate::Evaluator;
+use super::jobs::{PairJob, pair_jobs};
+use super::poses::SegmentPoses;
+use super::sets::{admissible_pvs, needed_pvs};
 use std::time::Instant;
 
 /// Pairs of clamp configurations sampled per segment: enough to average over short and long

@@ -1,7 +1,7 @@
 //! One PV at one robot pose: the guides' world poses, the connected geometry, the static
 //! equilibrium and the three stress metrics against the setup's limits.
 
-use super::TestPose;
+use super::poses::TestPose;
 use super::verdict::{Check, Metrics, Miss, Rejection, verdict};
 use crate::path::Pv;
 use crate::pose::Pose;

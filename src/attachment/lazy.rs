@@ -18,10 +18,11 @@
 //! ([`Evaluator::first_rejections`]), so the pieces decided here get exactly the verdicts of
 //! the exhaustive test ([`super::attachment_test`]).
 
-use super::{
-    Evaluator, IntraLinkAnswer, LookupCounts, PairJob, SegmentPoses, SegmentSets, Verdicts,
-    evaluate_jobs, looked_up, pair_jobs, robust_neighbours,
-};
+use super::evaluate::Evaluator;
+use super::jobs::{PairJob, evaluate_jobs, pair_jobs};
+use super::lookup::{IntraLinkAnswer, LookupCounts, looked_up};
+use super::poses::SegmentPoses;
+use super::sets::{SegmentSets, Verdicts, robust_neighbours};
 use crate::geometry::reaches;
 use crate::path::Pv;
 use crate::pose::Pose;

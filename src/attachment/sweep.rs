@@ -15,7 +15,9 @@
 //! of a solve from the connected geometry, and the branch of equilibria a cable moved slowly
 //! through the motion follows — the quasi-static limit of the motion test.
 
-use super::{Evaluator, Rejection, TestPose, poses::sample_pose};
+use super::evaluate::Evaluator;
+use super::poses::{TestPose, sample_pose};
+use super::verdict::Rejection;
 use crate::motion::{Motion, MotionError};
 use crate::path::Pv;
 use crate::progress;

@@ -176,8 +176,4 @@ fn write_glb(
         .map_err(|e| Failure::input(anyhow::anyhow!("cannot write {}: {e}", output.display())))
 }
 
-/// A number for people: rounded to 1e-9 so that unit conversions print as typed (120, not
-/// 119.99999999999999), and without a negative zero.
-fn tidy(value: f64) -> f64 {
-    (value * 1e9).round() / 1e9 + 0.0
-}
+use cable_dict::json::tidy;

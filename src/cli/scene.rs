@@ -8,7 +8,7 @@ use cable_dict::motion::Motion;
 use cable_dict::path::CablePath;
 use cable_dict::report::views::pose_scene;
 use cable_dict::setup::Setup;
-use cable_dict::solve::shown_index;
+use cable_dict::solve::{CandidateOutcome, shown_index};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -118,18 +118,12 @@ fn path_from_result(
 ) -> Result<(CablePath, Option<String>), Failure> {
     let fail = |what: String| Failure::input(anyhow::anyhow!("{}: {what}", file.display()));
     let text = cable_dict::input::read_text(file, cable_dict::input::RESULT).map_err(fail)?;
-    let json: serde_json::Value =
-        serde_json::from_str(&text).map_err(|e| fail(format!("not JSON: {e}")))?;
-    let candidates = json["candidates"]
-        .as_array()
-        .ok_or_else(|| fail("no `candidates` list: not a cable-dict result".into()))?;
+    let result: ResultCandidates = serde_json::from_str(&text)
+        .map_err(|e| fail(format!("not a cable-dict result JSON: {e}")))?;
+    let candidates = result.candidates;
     let chosen = match rank {
-        Some(rank) => candidates
-            .iter()
-            .find(|c| c["rank"].as_u64() == Some(rank as u64)),
-        None => {
-            shown_index(candidates.iter().map(|c| c["passed"].as_bool())).map(|i| &candidates[i])
-        }
+        Some(rank) => candidates.iter().find(|c| c.rank == rank),
+        None => shown_index(candidates.iter().map(|c| c.passed)).map(|i| &candidates[i]),
     };
     let chosen = chosen.ok_or_else(|| match rank {
         Some(rank) => fail(format!(
@@ -138,43 +132,29 @@ fn path_from_result(
         )),
         None => fail("it lists no candidate: the solve found no chain".into()),
     })?;
-    let indices = |field: &str| -> Result<Vec<usize>, Failure> {
-        chosen["path"][field]
-            .as_array()
-            .and_then(|list| {
-                list.iter()
-                    .map(|v| v.as_u64().map(|v| v as usize))
-                    .collect()
-            })
-            .ok_or_else(|| {
-                fail(format!(
-                    "candidate's `path.{field}` is not a list of indices"
-                ))
-            })
-    };
-    let lengths = indices("lengths")?;
-    // Results written before spans existed list no segments: one per guide pair.
-    let segments = match chosen["path"].get("segments") {
-        Some(_) => indices("segments")?,
-        None => (0..lengths.len()).collect(),
-    };
-    let path = CablePath {
-        segments,
-        lengths,
-        configurations: indices("configurations")?,
-    };
+    let mut path = chosen.path.clone();
+    if path.segments.is_empty() {
+        // Results written before spans existed list no segments: one per guide pair.
+        path.segments = (0..path.lengths.len()).collect();
+    }
     let name = format!(
         "candidate {} ({:.0} mm)",
-        chosen["rank"].as_u64().unwrap_or_default(),
-        chosen["total_length_mm"].as_f64().unwrap_or_default()
+        chosen.rank, chosen.total_length_mm
     );
-    let motion_test = match (chosen["passed"].as_bool(), chosen["failure"].as_str()) {
+    let motion_test = match (chosen.passed, &chosen.failure) {
         (Some(true), _) => format!("{name} passed the motion test"),
         (Some(false), Some(why)) => format!("{name} FAILED the motion test: {why}"),
         (Some(false), None) => format!("{name} FAILED the motion test"),
         (None, _) => format!("{name} was not motion-tested"),
     };
     Ok((path, Some(motion_test)))
+}
+
+/// The part of a result JSON `export-scene` reads: the chains tried, with the types that
+/// wrote them.
+#[derive(serde::Deserialize)]
+struct ResultCandidates {
+    candidates: Vec<CandidateOutcome>,
 }
 
 /// The path of lengths (mm) and configuration names.

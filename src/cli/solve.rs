@@ -11,7 +11,7 @@ use cable_dict::motion_test::EngineKind;
 use cable_dict::report::{ReportError, check_report_folder, write_report};
 use cable_dict::setup::Setup;
 use cable_dict::solve::{
-    SearchKind, SolveError, SolveOptions, SolveReport, guide_names, solve, solve_with_dictionary,
+    SearchKind, Solution, SolveError, SolveOptions, SolveReport, guide_names, solve_with,
 };
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -165,11 +165,11 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
             IntraLink::FirstPose => IntraLinkCriterion::FirstPose,
         },
     };
-    let report = match &dictionary {
-        Some(dictionary) => solve_with_dictionary(dictionary, &setup, &motion, &options),
-        None => solve(&setup, &motion, &options),
-    };
-    let mut report = report.map_err(|e| match e {
+    let solution = solve_with(&setup, &motion, &options, dictionary.as_ref());
+    let Solution {
+        mut report,
+        setup: solved,
+    } = solution.map_err(|e| match e {
         SolveError::Options(_)
         | SolveError::Setup(_)
         | SolveError::Motion(_)
@@ -188,7 +188,7 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
             .map_err(|e| Failure::input(anyhow::anyhow!("cannot write {}: {e}", path.display())))?;
     }
     if let Some(dir) = &args.report {
-        write_report_folder(dir, &setup, &motion, &options, &report)?;
+        write_report_folder(dir, &solved, &motion, &report)?;
     }
     if args.json {
         print_json(&report)?;
@@ -206,17 +206,16 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
 /// Keyframe interval of the report scene's animation (s): 30 frames per second.
 const SCENE_FRAME_INTERVAL_S: f64 = 1.0 / 30.0;
 
-/// Writes the `--report` folder; an unwritable folder is a bad argument.
+/// Writes the `--report` folder of `report`, solved with `solved`; an unwritable folder is a
+/// bad argument.
 fn write_report_folder(
     dir: &Path,
-    setup: &Setup,
+    solved: &Setup,
     motion: &Motion,
-    options: &SolveOptions,
     report: &SolveReport,
 ) -> Result<(), Failure> {
     let clock = std::time::Instant::now();
-    let solved = options.setup_for(setup).map_err(Failure::input)?;
-    let files = write_report(dir, &solved, motion, report).map_err(|e| match e {
+    let files = write_report(dir, solved, motion, report).map_err(|e| match e {
         ReportError::Write { .. } => Failure::input(e),
         _ => Failure::unsolved(e),
     })?;

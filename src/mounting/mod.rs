@@ -207,8 +207,8 @@ pub struct JointValue {
     pub joint: String,
     /// Its value (deg for rotary joints, mm for prismatic ones).
     pub value: f64,
-    /// `deg` or `mm`.
-    pub unit: &'static str,
+    /// Degrees or millimetres.
+    pub unit: crate::robot::DisplayUnit,
     /// The angle the robot's pendant shows (deg), where the setup gives the conversion
     /// (`[pendant_angles]`).
     pub pendant: Option<f64>,

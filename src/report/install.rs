@@ -7,13 +7,13 @@
 //!
 //! Every wording comes from the answer's [`MountingPlan`] and its rows
 //! ([`crate::mounting::rows`]), and from the motion test's twist and load rows
-//! ([`crate::solve::load_rows`]): the sheet says nothing of its own about a clamp.
+//! ([`super::text::load_rows`]): the sheet says nothing of its own about a clamp.
 
 use super::pictures::Picture;
 use super::summary::capitalized;
+use super::text::LoadRow;
 use crate::escape::html as escape;
 use crate::mounting::{self, MountingPlan, rows};
-use crate::solve::LoadRow;
 use std::fmt::Write;
 
 /// Width of the strip picture (px).

@@ -22,6 +22,7 @@ pub mod pictures;
 pub mod plots;
 pub mod scene;
 mod summary;
+pub mod text;
 mod view;
 pub mod views;
 mod worst;
@@ -130,7 +131,7 @@ pub fn input_hashes(setup: &Setup, report: &SolveReport) -> Vec<Hashed> {
 }
 
 /// Writes the report folder `dir` of `report`, which solved `motion` with `setup` as
-/// solved ([`SolveOptions::setup_for`](crate::solve::SolveOptions::setup_for)): created, or
+/// solved ([`Solution::setup`](crate::solve::Solution::setup)): created, or
 /// replaced as a whole when it holds only what a report writes ([`is_report_file`]).
 /// Returns the files written, `index.html` last.
 pub fn write_report(
@@ -179,7 +180,7 @@ pub fn write_report(
             loads: report
                 .motion_test
                 .as_ref()
-                .map(|test| crate::solve::load_rows(test, Some(plan)))
+                .map(|test| text::load_rows(test, Some(plan)))
                 .unwrap_or_default(),
         };
         folder.put(
@@ -410,7 +411,7 @@ fn plot_names(
     let failure = test
         .failure
         .as_ref()
-        .map(|_| crate::solve::verdict_words(report, test, Some(&plan)));
+        .map(|_| text::verdict_words(report, test, Some(&plan)));
     plots::PlotNames {
         pieces,
         clamps,

@@ -2,10 +2,11 @@
 //! the motion test, the timings and the inputs with their hashes.
 
 use super::Hashed;
+use super::text::{verdict_words, worst_rows};
 use crate::escape::markdown as text;
 use crate::motion_test::MotionTestReport;
 use crate::mounting::{self, MountingPlan, rows};
-use crate::solve::{NamedPath, SolveReport, verdict_words, worst_rows};
+use crate::solve::{NamedPath, SolveReport};
 use crate::text_table::decimals;
 use std::fmt::Write as _;
 

@@ -121,7 +121,7 @@ pub enum JointVectorError {
         lower: f64,
         /// Upper limit in display units.
         upper: f64,
-        /// "deg" or "mm".
-        unit: &'static str,
+        /// Degrees or millimetres.
+        unit: super::DisplayUnit,
     },
 }

@@ -11,6 +11,7 @@
 
 mod collision;
 mod error;
+pub mod info;
 mod kinematics;
 mod load;
 mod locate;
@@ -83,13 +84,32 @@ impl JointKind {
         matches!(self, JointKind::Revolute | JointKind::Continuous)
     }
 
-    /// Factor from SI to the unit people read (deg per rad, or mm per m) and its name.
-    pub fn display_unit(self) -> (f64, &'static str) {
+    /// Factor from SI to the unit people read (deg per rad, or mm per m) and the unit.
+    pub fn display_unit(self) -> (f64, DisplayUnit) {
         if self.is_rotary() {
-            (180.0 / std::f64::consts::PI, "deg")
+            (180.0 / std::f64::consts::PI, DisplayUnit::Deg)
         } else {
-            (1e3, "mm")
+            (1e3, DisplayUnit::Mm)
         }
+    }
+}
+
+/// The unit a joint's value is shown in: written `deg` or `mm` (text and JSON alike).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DisplayUnit {
+    /// Degrees, for rotary joints.
+    Deg,
+    /// Millimetres, for prismatic joints.
+    Mm,
+}
+
+impl std::fmt::Display for DisplayUnit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            DisplayUnit::Deg => "deg",
+            DisplayUnit::Mm => "mm",
+        })
     }
 }
 

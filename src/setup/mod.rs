@@ -58,6 +58,7 @@
 //! [`Setup::canonical_bytes`].
 
 mod bodies;
+mod catalogue;
 mod coincide;
 mod error;
 mod guides;
@@ -68,6 +69,10 @@ mod raw;
 mod segments;
 mod sites;
 
+pub use catalogue::{
+    Catalogue, ConfigurationEntry, DirectionEntry, GuideEntry, ReferenceAxes, SegmentEntry,
+    SiteEntry,
+};
 pub use error::SetupError;
 pub use guides::PoseIndex;
 

@@ -5,8 +5,8 @@
 //! of the chains, so a forged or stale dictionary can hide a shorter path but never yield one
 //! that breaks a limit (docs/architecture.md, "Certified answers").
 
+use super::chains::Chains;
 use super::options::SolveError;
-use super::search::Chains;
 use crate::attachment::{Evaluator, Miss, SegmentPoses, robust_neighbours};
 use crate::dictionary::MotionLookup;
 use crate::path::{CablePath, Pv};

@@ -20,21 +20,23 @@
 //!    says so and why.
 
 mod certify;
+mod chains;
 mod diagnosis;
 mod options;
 mod report;
 mod search;
 
 pub use certify::{Certification, Disagreement};
+use chains::{Decided, LazyChains, MIN_ROUND, chain_search};
 pub use diagnosis::{Diagnosis, NearestMiss, SegmentDiagnosis};
 pub use options::{SearchKind, SolveError, SolveOptions};
-use search::{Decided, LazyChains, MIN_ROUND, MotionSearch, chain_search, search_chains};
+use search::{MotionSearch, search_chains};
 
+use report::Stages;
 pub use report::{
-    CandidateOutcome, DictionarySegmentUse, DictionaryUse, Inputs, LoadRow, Margin, NamedPath,
-    PathGuide, PathSegment, PoseSummary, SegmentReport, SolveReport, Status, SweepRejection,
-    SweepSummary, Timings, WorstRow, guide_names, load_rows, named_path, pose_summary, shown_index,
-    verdict_words, worst_rows,
+    CandidateOutcome, DictionarySegmentUse, DictionaryUse, Inputs, Margin, NamedPath, PathGuide,
+    PathSegment, PoseSummary, SegmentReport, SolveReport, Status, SweepRejection, SweepSummary,
+    Timings, dropped_per_segment, guide_names, named_path, pose_summary, shown_index,
 };
 
 use crate::attachment::{
@@ -53,7 +55,17 @@ pub fn solve(
     motion: &Motion,
     options: &SolveOptions,
 ) -> Result<SolveReport, SolveError> {
-    solve_with(setup, motion, options, None)
+    solve_with(setup, motion, options, None).map(|solution| solution.report)
+}
+
+/// A solve's report with the setup it solved: the given one with the options applied
+/// ([`SolveOptions::setup_for`]), which the report's mounting, pictures and sheet refer to.
+#[derive(Debug, Clone)]
+pub struct Solution {
+    /// What was found, and why.
+    pub report: SolveReport,
+    /// The setup as solved.
+    pub setup: Setup,
 }
 
 /// Runs the whole pipeline with the intra-link segments' pieces answered by `dictionary`:
@@ -67,17 +79,20 @@ pub fn solve_with_dictionary(
     motion: &Motion,
     options: &SolveOptions,
 ) -> Result<SolveReport, SolveError> {
-    solve_with(setup, motion, options, Some(dictionary))
+    solve_with(setup, motion, options, Some(dictionary)).map(|solution| solution.report)
 }
 
-fn solve_with(
+/// [`solve`], or [`solve_with_dictionary`] when `dictionary` is given, keeping the setup as
+/// solved.
+pub fn solve_with(
     setup: &Setup,
     motion: &Motion,
     options: &SolveOptions,
     dictionary: Option<&Dictionary>,
-) -> Result<SolveReport, SolveError> {
+) -> Result<Solution, SolveError> {
     let total = Instant::now();
-    let setup = &options.setup_for(setup)?;
+    let solved = options.setup_for(setup)?;
+    let setup = &solved;
     check_size(setup)
         .map_err(|e| SolveError::Options(format!("{}: {e}", setup.source.display())))?;
     let clock = Instant::now();
@@ -161,13 +176,26 @@ fn solve_with(
         motion_test_s,
         total_s: total.elapsed().as_secs_f64(),
     };
-    let mut report = SolveReport::new(
-        setup, motion, options, &evaluator, &poses, &sets, &search, outcome, timings,
-    );
+    let mut report = SolveReport::new(Stages {
+        setup,
+        motion,
+        options,
+        evaluator: &evaluator,
+        poses: &poses,
+        sets: &sets,
+        search: &search,
+        outcome,
+        timings,
+    });
     if let Some(lookup) = &lookup {
         report.inputs.dictionary = Some(dictionary_use(setup, lookup, &sets, certification));
     }
-    Ok(report)
+    drop(lookup);
+    drop(evaluator);
+    Ok(Solution {
+        report,
+        setup: solved,
+    })
 }
 
 /// What the report says of the dictionary a solve used.

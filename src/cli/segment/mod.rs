@@ -2,13 +2,13 @@
 
 mod obstacles;
 mod report;
-mod shape;
 
 use super::{Failure, args, emit, print_json};
 use cable_dict::cable::CableSpec;
 use cable_dict::pose::Pose;
 use cable_dict::report::scene::{CableLine, GuideMark, PoseScene, SceneSpec};
 use cable_dict::robot::Robot;
+use cable_dict::segment::{ConnectKind, PieceError, PieceRequest, SolverKind, connected};
 use nalgebra::{Point3, Vector3};
 use report::SegmentReport;
 use serde::Serialize;
@@ -143,12 +143,31 @@ pub fn run_with_scene(args: Args, scene_file: Option<&Path>) -> Result<(), Failu
     let sub_segments =
         sub_segment_count(args.length_mm, cable.sub_segment_pitch_m).map_err(Failure::input)?;
     let scene = obstacles::Scene::from_args(&args, &cable)?;
-    let connected = shape::connected(&cable, &args, sub_segments)?;
+    let request = PieceRequest {
+        start: args.start,
+        end: args.end,
+        gravity_m_s2: args.gravity,
+        connect: match args.connect {
+            Connect::Hermite => ConnectKind::Hermite,
+            Connect::Linear => ConnectKind::Linear,
+        },
+        solver: match args.solver {
+            Solver::QuasiStatic => SolverKind::QuasiStatic,
+            Solver::Rapier => SolverKind::Rapier,
+        },
+        twist_turns: args.twist_turns,
+    };
+    let failure = |e: PieceError| match e {
+        PieceError::Input(_) => Failure::input(e),
+        PieceError::NoShape(_) => Failure::unsolved(e),
+    };
+    let connected = connected(&cable, &request, sub_segments).map_err(failure)?;
     let mut report = SegmentReport::new(&cable, &args, sub_segments, &connected, scene.as_ref())?;
     let mut nodes = &connected.nodes;
     let converged;
     if args.stage == Stage::Converged {
-        converged = shape::converged(&cable, &args, &connected)?;
+        converged =
+            cable_dict::segment::converged(&cable, &request, &connected).map_err(failure)?;
         report.add_converged(&cable, &args, &converged, scene.as_ref())?;
         nodes = &converged.nodes;
     }

@@ -2,11 +2,11 @@
 
 use super::super::Failure;
 use super::obstacles::{ContactMetric, Scene};
-use super::shape::{Connected, Converged};
 use super::{Args, Solver, Stage};
 use cable_dict::attachment::Metrics as ShapeMetrics;
 use cable_dict::cable::CableSpec;
 use cable_dict::pose::matrix_rows;
+use cable_dict::segment::{Connected, Converged};
 use nalgebra::{Point3, Rotation3};
 use serde::Serialize;
 use std::fmt;

@@ -13,20 +13,33 @@ use crate::path::CablePath;
 use crate::setup::Setup;
 use std::collections::BTreeMap;
 
+/// What the stages of a solve leave for its report.
+pub(in crate::solve) struct Stages<'s> {
+    pub setup: &'s Setup,
+    pub motion: &'s Motion,
+    pub options: &'s SolveOptions,
+    pub evaluator: &'s Evaluator<'s>,
+    pub poses: &'s SegmentPoses,
+    pub sets: &'s [SegmentSets],
+    pub search: &'s ChainSearch,
+    pub outcome: MotionSearch,
+    pub timings: Timings,
+}
+
 impl SolveReport {
     /// Assembles the report from the stages' results.
-    #[allow(clippy::too_many_arguments)]
-    pub(in crate::solve) fn new(
-        setup: &Setup,
-        motion: &Motion,
-        options: &SolveOptions,
-        evaluator: &Evaluator<'_>,
-        poses: &SegmentPoses,
-        sets: &[SegmentSets],
-        search: &ChainSearch,
-        outcome: MotionSearch,
-        timings: Timings,
-    ) -> SolveReport {
+    pub(in crate::solve) fn new(stages: Stages<'_>) -> SolveReport {
+        let Stages {
+            setup,
+            motion,
+            options,
+            evaluator,
+            poses,
+            sets,
+            search,
+            outcome,
+            timings,
+        } = stages;
         let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
         let MotionSearch { tried, winner, .. } = &outcome;
         let winner = *winner;
@@ -139,7 +152,7 @@ fn sweep_note(sweep: &SweepSummary) -> String {
 }
 
 /// `C1 n1, C2 n2`: cable pieces the sweep dropped per segment.
-pub(super) fn dropped_per_segment(sweep: &SweepSummary) -> String {
+pub fn dropped_per_segment(sweep: &SweepSummary) -> String {
     let mut per_segment: BTreeMap<&str, usize> = BTreeMap::new();
     for r in &sweep.rejected {
         *per_segment.entry(r.segment.as_str()).or_insert(0) += 1;

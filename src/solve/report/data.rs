@@ -1,8 +1,8 @@
 //! What `solve` found, as data: the types of the result, named for people and scripts.
 
-use super::super::SearchKind;
 use super::super::certify::Certification;
 use super::super::diagnosis::Diagnosis;
+use super::super::options::SearchKind;
 use crate::attachment::{ConnectMethod, Rejection};
 use crate::motion_test::{EngineKind, MotionTestReport};
 use crate::mounting::MountingPlan;
@@ -192,8 +192,8 @@ pub struct PoseSummary {
     pub reason: String,
 }
 
-/// One chain tried in the motion test.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// One chain tried in the motion test (read back from a result JSON by `export-scene`).
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct CandidateOutcome {
     /// 1 for the shortest chain.
     pub rank: usize,

@@ -1,8 +1,7 @@
 //! The detailed summary `solve -v` prints: the search's counts, margins, sweep, motion test
 //! and timings in its own words.
 
-use super::assemble::dropped_per_segment;
-use super::data::*;
+use crate::solve::*;
 use std::fmt;
 
 impl SolveReport {
@@ -12,16 +11,12 @@ impl SolveReport {
         writeln!(f, "{} — {}", self.status.describe(), self.explanation)?;
         writeln!(
             f,
-            "setup {} (hash {}), cable {}, {}, motion {}{:.2} s, {} samples",
+            "setup {} (hash {}), cable {}, {}, motion {}, {} samples",
             i.setup_file,
             i.setup_hash,
             i.cable,
             i.method,
-            i.motion_file
-                .as_deref()
-                .map(|m| format!("{m}, "))
-                .unwrap_or_default(),
-            i.motion_duration_s,
+            super::motion_words(i),
             i.motion_samples
         )?;
         if let Some(d) = &i.dictionary {

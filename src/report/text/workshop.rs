@@ -3,9 +3,9 @@
 //! the length tolerance, what the design leaves out and the worst values over the motion.
 //! No search vocabulary: that is `solve -v` ([`SolveReport`]'s `{:#}`) and the JSON.
 
-use super::data::SolveReport;
 use crate::motion_test::{Constraint, MotionTestReport, Worst};
 use crate::mounting::{self, MountingPlan, rows};
+use crate::solve::SolveReport;
 use crate::text_table::decimal;
 use std::fmt;
 
@@ -15,17 +15,13 @@ pub(super) fn write_summary(report: &SolveReport, f: &mut fmt::Formatter<'_>) ->
     writeln!(f, "{} — {}", report.status.describe(), report.explanation)?;
     writeln!(
         f,
-        "robot setup {}, cable {}, motion {}{:.2} s",
+        "robot setup {}, cable {}, motion {}",
         i.setup_file,
         i.cable,
-        i.motion_file
-            .as_deref()
-            .map(|m| format!("{m}, "))
-            .unwrap_or_default(),
-        i.motion_duration_s,
+        super::motion_words(i),
     )?;
     if let Some(dictionary) = &i.dictionary {
-        super::text::write_dictionary(f, dictionary)?;
+        super::details::write_dictionary(f, dictionary)?;
     }
     if let Some(plan) = &report.mounting {
         write_clamps(f, plan)?;

@@ -1,0 +1,37 @@
+//! Every wording of a solve's answer in one place: the summary `solve` prints for the people
+//! who mount the cable (`workshop`), the search's details `solve -v` prints (`details`), and
+//! the rows both, the sheet, the page and the plots share (the worst values over the motion,
+//! the loads per clamp and piece, the verdict).
+
+mod details;
+mod workshop;
+
+pub use workshop::{LoadRow, WorstRow, load_rows, verdict_words, worst_rows};
+
+use crate::solve::{Inputs, SolveReport};
+use std::fmt;
+
+impl fmt::Display for SolveReport {
+    /// The summary for the people who mount the cable (`{}`): the clamps, their places and
+    /// cable marks, the installation pose, the tolerance and the worst values over the
+    /// motion; with `{:#}` (`solve -v`) the search's details: every candidate count, the
+    /// margins at the test poses, the static sweep and the timings.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if f.alternate() {
+            self.write_details(f)
+        } else {
+            workshop::write_summary(self, f)
+        }
+    }
+}
+
+/// The motion as the summaries name it: `motions/pick_and_place.csv, 8.05 s` (its file when
+/// the report knows it, and its duration).
+fn motion_words(inputs: &Inputs) -> String {
+    let file = inputs
+        .motion_file
+        .as_deref()
+        .map(|m| format!("{m}, "))
+        .unwrap_or_default();
+    format!("{file}{:.2} s", inputs.motion_duration_s)
+}
