@@ -91,25 +91,25 @@ impl SetupArg {
 }
 
 /// The setup and the motion of `solve` and `critical-poses`, from `--setup` and the files
-/// after the options: `--setup SETUP.toml MOTION.csv` or `SETUP.toml MOTION.csv`; with
-/// `dictionary` (it embeds a setup) the motion alone. The errors say what to give.
+/// after the options: `--setup SETUP.toml MOTION.csv` or `SETUP.toml MOTION.csv`. `dictionary`
+/// says whether the command takes `--dict` and whether it was given (a dictionary embeds a
+/// setup: then the motion alone will do). The errors say what to give.
 pub fn setup_and_motion<'a>(
     option: Option<&'a Path>,
     files: &'a [PathBuf],
-    dictionary: bool,
+    dictionary: Option<bool>,
 ) -> Result<(Option<&'a Path>, &'a Path), String> {
     match (option, files) {
         (Some(setup), [motion]) => Ok((Some(setup), motion)),
         (None, [setup, motion]) => Ok((Some(setup), motion)),
-        (None, [motion]) if dictionary => Ok((None, motion)),
+        (None, [motion]) if dictionary == Some(true) => Ok((None, motion)),
         (None, [motion]) => Err(format!(
             "no setup for the motion {}: give it first (SETUP.toml {0}) or as --setup \
              SETUP.toml{}",
             motion.display(),
-            if dictionary {
-                ""
-            } else {
-                ", or give a dictionary with --dict"
+            match dictionary {
+                Some(_) => ", or give a dictionary with --dict",
+                None => "",
             }
         )),
         (Some(_), [_, _]) => Err(
@@ -149,17 +149,21 @@ mod tests {
         let both = [setup.clone(), motion.clone()];
         let one = [motion.clone()];
         let given = Ok((Some(setup.as_path()), motion.as_path()));
-        assert_eq!(setup_and_motion(Some(&setup), &one, false), given);
-        assert_eq!(setup_and_motion(None, &both, false), given);
-        assert_eq!(
-            setup_and_motion(None, &one, true),
-            Ok((None, motion.as_path()))
-        );
-        let missing = setup_and_motion(None, &one, false).unwrap_err();
+        assert_eq!(setup_and_motion(Some(&setup), &one, None), given);
+        assert_eq!(setup_and_motion(None, &both, Some(false)), given);
+        let embedded = Ok((None, motion.as_path()));
+        assert_eq!(setup_and_motion(None, &one, Some(true)), embedded);
+        let missing = setup_and_motion(None, &one, Some(false)).unwrap_err();
         assert!(
             missing.contains("--setup") && missing.contains("--dict"),
             "{missing}"
         );
-        assert!(setup_and_motion(Some(&setup), &both, false).is_err());
+        // A command without --dict does not offer it.
+        let missing = setup_and_motion(None, &one, None).unwrap_err();
+        assert!(
+            missing.contains("--setup") && !missing.contains("--dict"),
+            "{missing}"
+        );
+        assert!(setup_and_motion(Some(&setup), &both, None).is_err());
     }
 }

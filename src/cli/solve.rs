@@ -128,9 +128,12 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
         }
         None => None,
     };
-    let (setup_path, motion_path) =
-        setup_and_motion(args.setup.as_deref(), &args.files, dictionary.is_some())
-            .map_err(|e| Failure::input(anyhow::anyhow!(e)))?;
+    let (setup_path, motion_path) = setup_and_motion(
+        args.setup.as_deref(),
+        &args.files,
+        Some(dictionary.is_some()),
+    )
+    .map_err(|e| Failure::input(anyhow::anyhow!(e)))?;
     let setup = match (setup_path, &dictionary) {
         (Some(path), _) => Setup::from_file(path).map_err(Failure::input)?,
         (None, Some(dictionary)) => dictionary.setup().map_err(Failure::input)?,
@@ -261,7 +264,7 @@ struct SegmentPosesJson {
 pub fn run_critical(args: CriticalArgs) -> Result<(), Failure> {
     let usage = |e: String| Failure::input(anyhow::anyhow!(e));
     let (setup, motion) =
-        setup_and_motion(args.setup.as_deref(), &args.files, false).map_err(usage)?;
+        setup_and_motion(args.setup.as_deref(), &args.files, None).map_err(usage)?;
     let setup = setup.ok_or_else(|| usage("give the setup: --setup SETUP.toml".into()))?;
     let (setup, motion) = load(setup, motion)?;
     let poses = SegmentPoses::new(&setup, &motion).map_err(Failure::input)?;

@@ -311,7 +311,7 @@ impl LinkPlace {
 
     /// How the cable leaves the clamp toward the tool, with its side: `along the link,
     /// toward joint_5`, or `across the link, 68° from its axis toward joint_4, turned
-    /// clockwise`.
+    /// clockwise seen from that end` (the end [`LinkPlace::around_words`] sees it from).
     pub fn cable_direction(&self) -> String {
         let angle = self.cable_to_axis_deg;
         if angle <= ALONG_WITHIN_DEG {
@@ -336,11 +336,12 @@ impl LinkPlace {
             )
         };
         let side = match self.cable_turn {
-            Some(Turn::Clockwise) => format!(", turned clockwise {}", self.seen_from()),
-            Some(Turn::Anticlockwise) => format!(", turned anticlockwise {}", self.seen_from()),
-            Some(Turn::Outward) => ", pointing away from the axis".into(),
-            Some(Turn::Inward) => ", pointing toward the axis".into(),
-            None => String::new(),
+            // Seen from the end the angle around the line is seen from (`around_words`).
+            Some(Turn::Clockwise) => ", turned clockwise seen from that end",
+            Some(Turn::Anticlockwise) => ", turned anticlockwise seen from that end",
+            Some(Turn::Outward) => ", pointing away from the axis",
+            Some(Turn::Inward) => ", pointing toward the axis",
+            None => "",
         };
         format!("across the link, {lean}{side}")
     }

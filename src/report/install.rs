@@ -23,9 +23,9 @@ const SIDE_PX: f64 = 90.0;
 /// Height of the strip picture (px).
 const STRIP_PX: f64 = 86.0;
 /// Height of the arm's picture on the page with no clamp rows (mm), what each row takes from
-/// it, and the least it keeps.
+/// it, and the least it keeps; its width follows, leaving the rest of the row to the steps.
 const PICTURE_MM: f64 = 88.0;
-const PICTURE_PER_ROW_MM: f64 = 6.0;
+const PICTURE_PER_ROW_MM: f64 = 8.0;
 const MIN_PICTURE_MM: f64 = 45.0;
 
 /// What the sheet is about, for its title block.
@@ -136,7 +136,7 @@ pub fn install_html(sheet: &Sheet<'_>) -> String {
             (PICTURE_MM - PICTURE_PER_ROW_MM * plan.clamps.len() as f64).max(MIN_PICTURE_MM);
         let _ = writeln!(
             html,
-            "<figure class=\"arm\"><img style=\"max-height: {height_mm:.0}mm\" src=\"{}\" alt=\"the robot at the installation pose \
+            "<figure class=\"arm\"><img style=\"height: {height_mm:.0}mm\" src=\"{}\" alt=\"the robot at the installation pose \
              from its right, its front and above, the clamps numbered\"><figcaption>{}</figcaption>\
              </figure>",
             escape(&picture.file),
@@ -298,8 +298,8 @@ table.title { margin-bottom: 2mm; font-size: 8.5pt; }
 table.title th { background: #eef1f4; font-weight: normal; font-size: 8pt; }
 table.title th.name { font-size: 12pt; font-weight: bold; background: white; }
 .top { display: flex; gap: 4mm; align-items: flex-start; }
-figure.arm { margin: 0; flex: 0 0 auto; }
-figure.arm img { width: 170mm; object-fit: contain; object-position: left top; display: block; }
+figure.arm { margin: 0; flex: 0 0 auto; width: min-content; }
+figure.arm img { width: auto; max-width: 170mm; display: block; }
 figcaption { font-size: 8pt; color: #555; }
 .steps { flex: 1 1 auto; }
 .steps ol { margin: 0; padding-left: 5mm; font-size: 8pt; }

@@ -7,12 +7,18 @@ use super::{Collider, Joint, JointDrive, Robot, Shape, TriMesh};
 use crate::pose::Pose;
 use serde::Serialize;
 
+/// What `cable-dict robot-info` reports of a robot: joints, links, collision shapes, mesh warnings.
 #[derive(Serialize)]
 pub struct RobotInfo {
+    /// Its name.
     pub name: String,
+    /// The URDF file it was read from.
     pub source: String,
+    /// Actuated joints.
     pub dof: usize,
+    /// Every joint, in the file's order.
     pub joints: Vec<JointInfo>,
+    /// Every link, in the file's order.
     pub links: Vec<LinkInfo>,
     /// Meshes whose solid cannot be fully trusted.
     pub warnings: Vec<WarningInfo>,
@@ -21,6 +27,7 @@ pub struct RobotInfo {
 /// A mesh whose inside is ill-defined somewhere.
 #[derive(Serialize)]
 pub struct WarningInfo {
+    /// The link whose mesh it is.
     pub link: String,
     /// The mesh file.
     pub file: String,
@@ -30,39 +37,57 @@ pub struct WarningInfo {
     pub message: String,
 }
 
+/// One joint: its kind, links, frame, axis and limits.
 #[derive(Serialize)]
 pub struct JointInfo {
+    /// Its name.
     pub name: String,
     #[serde(rename = "type")]
     pub kind: &'static str,
+    /// The parent link.
     pub parent: String,
+    /// The child link.
     pub child: String,
+    /// Its frame in the parent's (or link's) frame.
     pub origin: PoseInfo,
+    /// The joint axis (unit, joint frame).
     pub axis: [f64; 3],
     /// Index in the joint vector, for actuated joints.
     pub joint_vector_index: Option<usize>,
     /// `[joint, multiplier, offset]` for mimic joints.
     pub mimic: Option<(String, f64, f64)>,
+    /// Lower limit (rad or m), if any.
     pub lower: Option<f64>,
+    /// Upper limit (rad or m), if any.
     pub upper: Option<f64>,
+    /// Velocity limit (rad/s or m/s), if any.
     pub velocity: Option<f64>,
 }
 
+/// A frame as the URDF writes it.
 #[derive(Serialize)]
 pub struct PoseInfo {
+    /// Translation (m).
     pub xyz_m: [f64; 3],
+    /// URDF roll, pitch, yaw (rad).
     pub rpy_rad: [f64; 3],
 }
 
+/// One link and its collision shapes.
 #[derive(Serialize)]
 pub struct LinkInfo {
+    /// Its name.
     pub name: String,
+    /// Its collision shapes.
     pub colliders: Vec<ColliderInfo>,
 }
 
+/// One collision shape: its kind, frame, size and (for a mesh) what was found in it.
 #[derive(Serialize)]
 pub struct ColliderInfo {
+    /// Its frame in the parent's (or link's) frame.
     pub origin: PoseInfo,
+    /// `box`, `cylinder`, `sphere` or `mesh`.
     pub shape: &'static str,
     /// Shape dimensions in metres: box size, radius (+ length), or mesh triangle count.
     pub description: String,
@@ -119,27 +144,37 @@ pub struct MeshInfo {
     pub distrust: Option<String>,
 }
 
+/// One connected shell of a mesh and what can be trusted of it.
 #[derive(Serialize)]
 pub struct ShellInfo {
     /// "closed" or "loose".
     pub kind: &'static str,
+    /// Triangles.
     pub triangles: usize,
+    /// Edges used by one triangle only.
     pub open_edges: usize,
     /// Edges used by more than two of its triangles.
     pub shared_edges: usize,
+    /// Triangles turned to agree with their neighbours.
     pub triangles_wound_against_neighbours: usize,
+    /// Whether the shell was wound inward (and is turned).
     pub wound_inward: bool,
+    /// Whether one winding fits every triangle.
     pub consistent_winding: bool,
+    /// Triangles without area.
     pub zero_area_triangles: usize,
     /// `null` when not checked (a shell not closed, or too large).
     pub self_crossing: Option<bool>,
     /// Enclosed volume (m³), closed shells only.
     pub volume_m3: Option<f64>,
+    /// Bounding box, low corner (m).
     pub min_m: [f64; 3],
+    /// Bounding box, high corner (m).
     pub max_m: [f64; 3],
 }
 
 impl RobotInfo {
+    /// What the report says of it.
     pub fn of(robot: &Robot) -> Self {
         RobotInfo {
             name: robot.name.clone(),
@@ -190,6 +225,7 @@ impl RobotInfo {
 }
 
 impl JointInfo {
+    /// What the report says of it.
     pub fn of(robot: &Robot, joint: &Joint) -> Self {
         let limits = joint.limits;
         JointInfo {
@@ -219,6 +255,7 @@ impl JointInfo {
 }
 
 impl PoseInfo {
+    /// What the report says of it.
     pub fn of(pose: &Pose) -> Self {
         let (roll, pitch, yaw) = pose.rotation.euler_angles();
         PoseInfo {
@@ -229,6 +266,7 @@ impl PoseInfo {
 }
 
 impl ColliderInfo {
+    /// What the report says of it.
     pub fn of(collider: &Collider) -> Self {
         let shape = match collider.shape {
             Shape::Box { .. } => "box",
@@ -250,6 +288,7 @@ impl ColliderInfo {
 }
 
 impl MeshInfo {
+    /// What the report says of it.
     pub fn of(mesh: &TriMesh) -> Self {
         let found = mesh.shells();
         let shells = &found.shells;
@@ -407,6 +446,7 @@ fn unchecked_for_crossing(s: &Shell) -> bool {
 }
 
 impl ShellInfo {
+    /// What the report says of it.
     pub fn of(shell: &Shell) -> Self {
         let closed = shell.kind == ShellKind::Closed;
         ShellInfo {

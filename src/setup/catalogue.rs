@@ -12,18 +12,24 @@ use serde::Serialize;
 /// configurations and, for generated ones, every site; every segment's candidate counts.
 #[derive(Serialize)]
 pub struct Catalogue {
+    /// The setup file as given.
     pub setup: String,
     /// The installation pose as written (deg; mm for prismatic joints), if any.
     pub install_joints_deg: Option<Vec<f64>>,
+    /// Every guide, in the setup's order.
     pub guides: Vec<GuideEntry>,
+    /// Every segment, spans included.
     pub segments: Vec<SegmentEntry>,
     /// Why `solve` and `build` would refuse the catalogue, if they would.
     pub too_many: Option<String>,
 }
 
+/// One guide: its link, kind, and every configuration (and site) the search tries.
 #[derive(Serialize)]
 pub struct GuideEntry {
+    /// Its name.
     pub name: String,
+    /// The link it is mounted on.
     pub link: String,
     /// `sites`, `configurations` or `fixed`.
     pub kind: &'static str,
@@ -37,6 +43,7 @@ pub struct GuideEntry {
     pub sites: Vec<SiteEntry>,
 }
 
+/// The axes a generator measures cable directions from.
 #[derive(Serialize)]
 pub struct ReferenceAxes {
     /// Unit, link frame.
@@ -47,11 +54,16 @@ pub struct ReferenceAxes {
     pub rule: &'static str,
 }
 
+/// One clamp configuration a guide offers.
 #[derive(Serialize)]
 pub struct ConfigurationEntry {
+    /// Its index in the guide's list.
     pub index: usize,
+    /// Its name.
     pub name: String,
+    /// Where the cable's axis runs (link frame).
     pub position_mm: [f64; 3],
+    /// The frame's orientation (URDF roll, pitch, yaw).
     pub rpy_deg: [f64; 3],
     /// The guide frame's +z (unit, link frame).
     pub cable_direction: [f64; 3],
@@ -63,6 +75,7 @@ pub struct ConfigurationEntry {
     pub copy_of: Option<String>,
 }
 
+/// One generated site: where on which collider, and its cable directions.
 #[derive(Serialize)]
 pub struct SiteEntry {
     /// 0-based, as `site` in the configurations.
@@ -73,34 +86,45 @@ pub struct SiteEntry {
     pub collider: usize,
     /// Where the cable axis runs (link frame).
     pub position_mm: [f64; 3],
+    /// The nearest point of the surface (link frame).
     pub surface_point_mm: [f64; 3],
     /// Outward surface normal (unit).
     pub normal: [f64; 3],
     /// The axis direction 0° is measured from (unit, link frame).
     pub reference_axis: [f64; 3],
+    /// The cable directions tried at this site.
     pub directions: Vec<DirectionEntry>,
 }
 
+/// One cable direction at a site.
 #[derive(Serialize)]
 pub struct DirectionEntry {
+    /// Its angle from the reference axis around the normal.
     pub angle_deg: f64,
     /// The cable direction (unit, link frame).
     pub direction: [f64; 3],
     /// Index of its configuration in the guide's list.
     pub configuration: usize,
+    /// Its name.
     pub name: String,
 }
 
+/// One segment (or span) and its candidate counts.
 #[derive(Serialize)]
 pub struct SegmentEntry {
     /// `C2`, or `C2–C3` for a span where optional clamps are left out.
     pub name: String,
+    /// The guide it starts at.
     pub from: String,
+    /// The guide it ends at.
     pub to: String,
     /// A span over optional guides rather than a declared segment.
     pub span: bool,
+    /// Candidate lengths.
     pub lengths: usize,
+    /// Candidate pieces (lengths × configuration pairs).
     pub candidate_pieces: u64,
+    /// Those a real cable can make (admissible).
     pub real_cable_pieces: u64,
 }
 
