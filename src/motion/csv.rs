@@ -156,7 +156,7 @@ fn radians_under_degrees(columns: &[Column], samples: &[Vec<f64>]) -> Option<Str
              columns say degrees ({}); if the values are radians, head the columns `_rad`",
             degrees
                 .iter()
-                .map(|c| c.header.as_str())
+                .map(|c| crate::escape::terminal(&c.header))
                 .collect::<Vec<_>>()
                 .join(", ")
         )

@@ -190,8 +190,6 @@ pub fn solve_with(
     if let Some(lookup) = &lookup {
         report.inputs.dictionary = Some(dictionary_use(setup, lookup, &sets, certification));
     }
-    drop(lookup);
-    drop(evaluator);
     Ok(Solution {
         report,
         setup: solved,
