@@ -1,6 +1,6 @@
 //! Benchmark of `min_clearance` on a real robot's STL meshes: the UR5 of tests/data/robots
 //! (ROS-Industrial's collision meshes: 446–1176 triangles a link, up to six overlapping
-//! shells, some wound inward) at the pose of issue 25 (joints 0, −90, 90, −90, −90, 0 deg:
+//! shells, some wound inward) at a folded pose (joints 0, −90, 90, −90, −90, 0 deg:
 //! forearm horizontal along +x, flange down), with a 50-sub-segment (10 mm) cable:
 //!
 //! - along the top of the forearm, 15–45 mm above its tube (a bow), all links;

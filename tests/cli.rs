@@ -269,7 +269,7 @@ fn help_explains_every_subcommand() {
 /// the reader to (`README, "Title"`, `README.md, "Title"` or `docs/page.md, "Title"`, several
 /// titles possible) exists in that file (a heading or a bold paragraph title), and each time
 /// range it quotes is in a file it cites, or in the README or a docs page when it cites none
-/// (issue 27: `build --help` cited an explanation that did not exist, `segment --help`
+/// (once `build --help` cited an explanation that did not exist, `segment --help`
 /// quoted other solver timings).
 #[test]
 fn every_help_points_to_readme_sections_that_exist_and_quotes_its_timings() {
@@ -366,7 +366,7 @@ fn every_help_points_to_readme_sections_that_exist_and_quotes_its_timings() {
 
 /// The documentation's own segment example (docs/commands.md, under `export-scene`) is a
 /// cable that holds its limits: its static equilibrium is judged ok, and the start shape
-/// (not a cable at rest) is not judged (issue 18: the example printed "TOO TIGHT").
+/// (not a cable at rest) is not judged (the example once printed "TOO TIGHT").
 #[test]
 fn the_readme_segment_example_holds_its_limits() {
     let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/commands.md"))

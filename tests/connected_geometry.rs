@@ -1238,7 +1238,7 @@ fn random_guide_pairs_always_connect_or_report_too_short() {
 }
 
 /// Two guides at one place, the cable leaving and arriving the same way, would need a full
-/// loop: refused by name, never a solver failure with a NaN residual (issue 18). Turned
+/// loop: refused by name, never a solver failure with a NaN residual. Turned
 /// guides at one place still connect (`loops_and_coincident_guides_connect`).
 #[test]
 fn coincident_guides_facing_the_same_way_are_refused() {

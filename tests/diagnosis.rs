@@ -5,9 +5,9 @@
 
 use crate::svg_pictures;
 
+use crate::common::write_report;
 use cable_dict::attachment::{ConnectMethod, Evaluator, Rejection};
 use cable_dict::motion::Motion;
-use cable_dict::report::write_report;
 use cable_dict::setup::Setup;
 use cable_dict::solve::{Diagnosis, SolveOptions, SolveReport, Status, solve};
 use std::path::Path;

@@ -14,7 +14,8 @@ use crate::common;
 
 use cable_dict::dictionary::format::{self, SectionKind};
 use cable_dict::dictionary::{
-    BuildOptions, Built, Dictionary, DictionaryError, Problem, build, merge, write_dictionary,
+    BuildOptions, Built, Dictionary, DictionaryError, Problem, build, merge, merge_signed_by,
+    write_dictionary,
 };
 use cable_dict::setup::Setup;
 use std::ops::Range;
@@ -305,7 +306,7 @@ fn write_shards(dir: &Path, tag: &str, shards: &[&Built]) -> Vec<PathBuf> {
 }
 
 fn merge_error(paths: &[PathBuf], culprit: &Path, words: &str) {
-    let error = merge(paths, None).expect_err("the shards do not make one dictionary");
+    let error = merge(paths).expect_err("the shards do not make one dictionary");
     assert!(matches!(error.problem, Problem::Merge(_)), "{error}");
     assert_names(&error, culprit, words);
 }
@@ -338,7 +339,7 @@ fn overlapping_missing_and_whole_files_do_not_merge() {
     write_dictionary(&whole_path, whole).expect("written");
 
     // The halves alone do merge: the failures below come from what was added or left out.
-    merge(&halves, None).expect("the halves merge");
+    merge(&halves).expect("the halves merge");
     let twice = [halves[0].clone(), halves[0].clone(), halves[1].clone()];
     merge_error(&twice, &halves[0], "overlap");
     merge_error(&thirds, &thirds[1], "missing");
@@ -377,7 +378,7 @@ fn shards_given_out_of_order_merge_to_the_single_builds_bytes() {
         .map(|i| fixture(setup, DIRECTIONS, Some((i, 3))))
         .into();
     let paths = write_shards(dir.path(), "all", &thirds.iter().collect::<Vec<_>>());
-    let merged = merge(&paths, None).expect("the shards merge");
+    let merged = merge(&paths).expect("the shards merge");
     assert_eq!(
         merged.to_bytes().expect("encodes"),
         whole.to_bytes().expect("encodes")
@@ -407,7 +408,7 @@ fn merge_requiring_signatures_refuses_unsigned_and_untrusted_shards() {
             .expect("signs");
     };
     let refused = |culprit: &Path, words: &str| {
-        let error = merge(&paths, Some(&trusted)).expect_err("a shard is not trusted");
+        let error = merge_signed_by(&paths, &trusted).expect_err("a shard is not trusted");
         assert!(matches!(error.problem, Problem::Provenance(_)), "{error}");
         assert_names(&error, culprit, words);
     };
@@ -416,7 +417,7 @@ fn merge_requiring_signatures_refuses_unsigned_and_untrusted_shards() {
     sign(&paths[1], &stranger);
     refused(&paths[1], "not in keys");
     sign(&paths[1], &builder);
-    let merged = merge(&paths, Some(&trusted)).expect("both shards are signed by the builder");
+    let merged = merge_signed_by(&paths, &trusted).expect("both shards are signed by the builder");
     assert_eq!(
         merged.to_bytes().expect("encodes"),
         whole.to_bytes().expect("encodes")
@@ -589,7 +590,7 @@ fn forged(forge: impl Fn(&mut Built)) -> Vec<u8> {
     built.to_bytes().expect("encodes")
 }
 
-/// Headers a forger can reseal that would change what `solve --dict` answers (issue 18):
+/// Headers a forger can reseal that would change what `solve --dict` answers:
 /// each opens (its checksums are valid) and each is refused by `verify`, naming the part.
 #[test]
 fn resealed_headers_that_would_change_answers_are_refused_by_verify() {
@@ -756,7 +757,7 @@ fn shards_without_directions_are_refused_by_merge_without_a_panic() {
             path
         })
         .collect();
-    let error = merge(&paths, None).expect_err("a shard without directions does not verify");
+    let error = merge(&paths).expect_err("a shard without directions does not verify");
     assert!(
         error.to_string().contains("0 gravity directions"),
         "{error}"

@@ -1,6 +1,6 @@
 //! Careless or hostile input files, end to end: each is refused with exit code 2 and a short
 //! message naming the file, the place and what is wrong — no panic, no runaway memory, no
-//! echo of the whole input. (Regression tests of issue 18's list; the dictionary cases are in
+//! echo of the whole input. (The dictionary cases are in
 //! `dictionary_files.rs`.)
 
 use crate::common;

@@ -92,7 +92,7 @@ fn leaving_the_wrist_clamp_out_is_shorter_and_the_search_does_it() {
     // fitter's names of its mounting plan.
     let folder = tempfile::tempdir().unwrap();
     let dir = folder.path().join("report");
-    cable_dict::report::write_report(&dir, &setup, &ur5_motion(&setup), &optional)
+    crate::common::write_report(&dir, &setup, &ur5_motion(&setup), &optional)
         .unwrap_or_else(|e| panic!("{e}"));
     let plan = optional.mounting.as_ref().expect("a mounting plan");
     let guides: Vec<&str> = plan

@@ -915,7 +915,7 @@ fn sets_svg_turns_labels_wider_than_their_bar() {
 }
 
 /// Long joint names are shown whole: the legend widens the plot instead of running off its
-/// edge (issue 18). A legend label starts at its `x` and needs at least 8 px per character
+/// edge. A legend label starts at its `x` and needs at least 8 px per character
 /// of 16 px text; it must end inside the picture.
 #[test]
 fn joints_svg_legend_fits_long_joint_names() {

@@ -483,7 +483,7 @@ fn a_catalogue_too_large_to_search_is_refused_with_its_count() {
 // ---------------------------------------------------------------------------------------------
 // Issue 25: a robot-level setup on the real UR5 (STL meshes of several shells each).
 
-/// The UR5 setup of issue 25: sites on forearm_link, wrist_1_link, wrist_2_link (80 mm) and
+/// The UR5 site setup: sites on forearm_link, wrist_1_link, wrist_2_link (80 mm) and
 /// wrist_3_link, the flange (20 mm).
 fn ur5() -> Setup {
     Setup::from_file(root().join("tests/data/ur5/sites_setup.toml"))

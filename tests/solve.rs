@@ -6,9 +6,9 @@
 use crate::common;
 use crate::svg_pictures;
 
+use crate::common::write_report;
 use cable_dict::attachment::{ConnectMethod, Evaluator, SegmentPoses, attachment_test};
 use cable_dict::motion::Motion;
-use cable_dict::report::write_report;
 use cable_dict::setup::Setup;
 use cable_dict::solve::{SolveOptions, Status, solve};
 use common::run;

@@ -1,10 +1,12 @@
 //! What testing every candidate piece would cost, measured on a sample of pairs before a long
 //! run, so that a user knows before waiting (`sites`, `solve --exhaustive`).
 
-use super::evaluate::Evaluator;
+use super::evaluate::{ConnectMethod, Evaluator};
 use super::jobs::{PairJob, pair_jobs};
 use super::poses::SegmentPoses;
 use super::sets::{admissible_pvs, needed_pvs};
+use crate::motion::Motion;
+use crate::setup::Setup;
 use std::time::Instant;
 
 /// Pairs of clamp configurations sampled per segment: enough to average over short and long
@@ -23,6 +25,18 @@ pub struct CostEstimate {
 }
 
 impl CostEstimate {
+    /// The cost of testing every candidate piece of `setup` at one pose, its
+    /// [`Setup::reference_joints`] (what `sites` prints before a user starts a long run);
+    /// `None` when that pose cannot be used (a clamp out of reach, a robot without it).
+    pub fn at_reference_pose(setup: &Setup) -> Option<CostEstimate> {
+        let joints = setup.reference_joints();
+        let motion =
+            Motion::new(&setup.robot, vec![0.0, 1.0], vec![joints.clone(), joints]).ok()?;
+        let poses = SegmentPoses::new(setup, &motion).ok()?;
+        let evaluator = Evaluator::new(setup, ConnectMethod::Hermite).ok()?;
+        Some(CostEstimate::measure(&evaluator, &poses))
+    }
+
     /// Times the test of a sample of each segment's pairs at its test poses (on this thread).
     pub fn measure(evaluator: &Evaluator<'_>, poses: &SegmentPoses) -> CostEstimate {
         let setup = evaluator.setup();

@@ -1,7 +1,7 @@
 //! `cable-dict calibrate`: a cable file from bench measurements (module
 //! [`cable_dict::calibrate`]).
 
-use super::{Failure, emit, tidy};
+use super::output::{Failure, emit, tidy};
 use cable_dict::atomic_file::write_atomically;
 use cable_dict::cable::{CableSpec, DEFAULT_AXIAL_STIFFNESS_N, DEFAULT_SUB_SEGMENT_PITCH_M};
 use cable_dict::calibrate::{CantileverTest, TipMeasurement, torsion_stiffness};

@@ -1,10 +1,11 @@
 //! `cable-dict build`, `info`, `verify` and `merge`: dictionaries from the command line.
 
+use super::output::{Failure, emit, print_json};
+use super::provenance;
 use super::provenance::open_verified;
-use super::{Failure, emit, print_json, provenance};
 use cable_dict::dictionary::{
     BuildOptions, DEFAULT_DIRECTION_COUNT, Dictionary, Info, RECOMPUTE_TOLERANCE_UNITS,
-    RecomputeChoice, UNDECIDED_SAMPLE_DIRECTIONS, build, merge, write_dictionary,
+    RecomputeChoice, UNDECIDED_SAMPLE_DIRECTIONS, build, merge, merge_signed_by, write_dictionary,
 };
 use cable_dict::provenance::TrustedKeys;
 use cable_dict::setup::Setup;
@@ -319,7 +320,11 @@ pub fn run_merge(args: MergeArgs) -> Result<(), Failure> {
         .map(TrustedKeys::read)
         .transpose()
         .map_err(Failure::input)?;
-    let built = merge(&args.shards, trusted.as_ref()).map_err(Failure::input)?;
+    let built = match &trusted {
+        Some(trusted) => merge_signed_by(&args.shards, trusted),
+        None => merge(&args.shards),
+    }
+    .map_err(Failure::input)?;
     write_dictionary(&args.output, &built).map_err(Failure::input)?;
     emit(&format!(
         "wrote {}: {} shards merged, {} cable pieces × {} gravity directions\n",

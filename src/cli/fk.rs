@@ -1,6 +1,7 @@
 //! `cable-dict fk`: link poses for a joint vector.
 
-use super::{Failure, args, emit, print_json, tidy};
+use super::args;
+use super::output::{Failure, emit, print_json, tidy};
 use cable_dict::pose::{Pose, rotation_rows};
 use cable_dict::robot::Robot;
 use serde::Serialize;

@@ -5,6 +5,7 @@ mod calibrate;
 mod dictionary;
 mod fk;
 mod motion;
+mod output;
 mod progress_bars;
 mod provenance;
 mod robot_info;
@@ -12,6 +13,8 @@ mod scene;
 mod segment;
 mod sites;
 mod solve;
+
+pub use output::Failure;
 
 use clap::{Parser, Subcommand};
 
@@ -70,32 +73,6 @@ enum Command {
     Calibrate(Box<calibrate::Args>),
 }
 
-/// Why a command failed, and the exit code that says so.
-pub struct Failure {
-    /// Process exit code: 1 no answer, 2 invalid input.
-    pub code: u8,
-    /// The message chain.
-    pub error: anyhow::Error,
-}
-
-impl Failure {
-    /// The input (a file or an argument) is invalid.
-    fn input(error: impl Into<anyhow::Error>) -> Self {
-        Failure {
-            code: 2,
-            error: error.into(),
-        }
-    }
-
-    /// The input is valid but the problem has no answer.
-    fn unsolved(error: impl Into<anyhow::Error>) -> Self {
-        Failure {
-            code: 1,
-            error: error.into(),
-        }
-    }
-}
-
 /// Runs the parsed command.
 pub fn run(cli: Cli) -> Result<(), Failure> {
     init_logging(cli.verbose, cli.quiet);
@@ -142,38 +119,3 @@ fn init_logging(verbose: u8, quiet: bool) {
         })
         .try_init();
 }
-
-/// Prints a value as pretty JSON on standard output.
-fn print_json(value: &impl serde::Serialize) -> Result<(), Failure> {
-    let text = cable_dict::json::to_pretty_string(value)
-        .map_err(|e| Failure::unsolved(anyhow::anyhow!("cannot encode the JSON output: {e}")))?;
-    emit(&(text + "\n"))
-}
-
-/// Writes a command's whole output to standard output. A reader that went away early
-/// (`| head`) is not an error.
-fn emit(text: &str) -> Result<(), Failure> {
-    use std::io::Write;
-    let mut stdout = std::io::stdout().lock();
-    match stdout
-        .write_all(cable_dict::escape::terminal(text).as_bytes())
-        .and_then(|()| stdout.flush())
-    {
-        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Failure::unsolved(
-            anyhow::anyhow!("cannot write to standard output: {e}"),
-        )),
-        _ => Ok(()),
-    }
-}
-
-/// Writes `spec` as a `.glb` file at `output`, atomically (`export-scene`, `sites --gltf`).
-fn write_glb(
-    output: &std::path::Path,
-    spec: &cable_dict::report::scene::SceneSpec<'_>,
-) -> Result<(), Failure> {
-    let bytes = cable_dict::report::scene::to_glb(spec).map_err(Failure::unsolved)?;
-    cable_dict::atomic_file::write_atomically(output, &bytes)
-        .map_err(|e| Failure::input(anyhow::anyhow!("cannot write {}: {e}", output.display())))
-}
-
-use cable_dict::json::tidy;

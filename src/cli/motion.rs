@@ -1,6 +1,6 @@
 //! `cable-dict motion`: a waypoint file → a sampled motion CSV, and a summary.
 
-use super::{Failure, emit, print_json, tidy};
+use super::output::{Failure, emit, print_json, tidy};
 use cable_dict::motion::{Generated, WaypointFile};
 use cable_dict::robot::Robot;
 use serde::Serialize;

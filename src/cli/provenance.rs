@@ -1,7 +1,7 @@
 //! `cable-dict keygen` and `sign`, and the trust options of the commands that read
 //! dictionaries (`--trusted-keys`, `--require-signature`).
 
-use super::{Failure, emit};
+use super::output::{Failure, emit};
 use cable_dict::atomic_file::write_new;
 use cable_dict::dictionary::Dictionary;
 use cable_dict::provenance::{Provenance, SecretKey, TrustedKeys};

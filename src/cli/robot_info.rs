@@ -1,6 +1,6 @@
 //! `cable-dict robot-info`: what a URDF describes, as the tool understood it.
 
-use super::{Failure, emit, print_json, tidy};
+use super::output::{Failure, emit, print_json, tidy};
 use cable_dict::robot::info::RobotInfo;
 use cable_dict::robot::{JointDrive, Robot};
 use cable_dict::text_table::{Align, TextTable};

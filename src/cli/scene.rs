@@ -2,13 +2,14 @@
 //! rejected — a whole cable path at a pose, or one `segment`.
 
 use super::fk::joint_vector_si;
-use super::{Failure, args, emit, segment, write_glb};
+use super::output::{Failure, emit, write_glb};
+use super::{args, segment};
 use cable_dict::attachment::{ConnectMethod, Evaluator};
 use cable_dict::motion::Motion;
 use cable_dict::path::CablePath;
 use cable_dict::report::views::pose_scene;
 use cable_dict::setup::Setup;
-use cable_dict::solve::{CandidateOutcome, shown_index};
+use cable_dict::solve::{CandidateOutcome, path_shape, shown_index};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -86,7 +87,8 @@ fn run_path(args: PathArgs) -> Result<(), Failure> {
     let setup = Setup::from_file(&args.setup).map_err(Failure::input)?;
     let (path, motion_test) = chosen_path(&args, &setup)?;
     let joints = chosen_pose(&args, &setup)?;
-    let spec = pose_scene(&setup, &path, &joints).map_err(Failure::input)?;
+    let shape = path_shape(&setup, &path, &joints).map_err(Failure::input)?;
+    let spec = pose_scene(&setup, &path, &shape);
     write_glb(&args.output, &spec)?;
     let checks = path_checks(&setup, &path, &spec.main.link_poses)?;
     emit(&(motion_test.map_or(String::new(), |m| m + "\n") + &checks))

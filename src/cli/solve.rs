@@ -2,8 +2,8 @@
 //! cable path, or the poses each segment is tested at.
 
 use super::args::setup_and_motion;
+use super::output::{Failure, emit, print_json};
 use super::provenance::open_verified;
-use super::{Failure, emit, print_json};
 use cable_dict::atomic_file::write_atomically;
 use cable_dict::attachment::{ConnectMethod, IntraLinkCriterion, SegmentPoses};
 use cable_dict::motion::Motion;
@@ -11,7 +11,8 @@ use cable_dict::motion_test::EngineKind;
 use cable_dict::report::{ReportError, check_report_folder, write_report};
 use cable_dict::setup::Setup;
 use cable_dict::solve::{
-    SearchKind, Solution, SolveError, SolveOptions, SolveReport, guide_names, solve_with,
+    ReportShapes, SearchKind, Solution, SolveError, SolveOptions, SolveReport, guide_names,
+    solve_with,
 };
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -218,7 +219,8 @@ fn write_report_folder(
     report: &SolveReport,
 ) -> Result<(), Failure> {
     let clock = std::time::Instant::now();
-    let files = write_report(dir, solved, motion, report).map_err(|e| match e {
+    let shapes = ReportShapes::of(solved, motion, report).map_err(Failure::unsolved)?;
+    let files = write_report(dir, solved, motion, report, &shapes).map_err(|e| match e {
         ReportError::Write { .. } => Failure::input(e),
         _ => Failure::unsolved(e),
     })?;

@@ -5,26 +5,38 @@ use super::build::Built;
 use super::error::{DictionaryError, Problem};
 use super::format::{Header, ShardRange};
 use super::reader::{Dictionary, embedded_setup};
+#[cfg(feature = "signatures")]
 use crate::provenance::TrustedKeys;
 use std::path::PathBuf;
 
-/// Merges the shard files `paths` (any order). Each is verified, and with
-/// `require_signed_by` must carry a signature by one of those keys; they must come from one
+/// Merges the shard files `paths` (any order). Each is verified; they must come from one
 /// build (same header apart from the shard range, same shard count) and cover every PV
 /// exactly once.
-pub fn merge(
+pub fn merge(paths: &[PathBuf]) -> Result<Built, DictionaryError> {
+    merge_accepting(paths, |_| Ok(()))
+}
+
+/// [`merge`], and each shard must carry a signature by one of the `trusted` keys.
+#[cfg(feature = "signatures")]
+pub fn merge_signed_by(paths: &[PathBuf], trusted: &TrustedKeys) -> Result<Built, DictionaryError> {
+    merge_accepting(paths, |shard| {
+        shard
+            .provenance(Some(trusted))?
+            .require_trusted(shard.path())?;
+        Ok(())
+    })
+}
+
+/// [`merge`], each verified shard first passed to `accept`.
+fn merge_accepting(
     paths: &[PathBuf],
-    require_signed_by: Option<&TrustedKeys>,
+    accept: impl Fn(&Dictionary) -> Result<(), DictionaryError>,
 ) -> Result<Built, DictionaryError> {
     let mut shards = Vec::with_capacity(paths.len());
     for path in paths {
         let dictionary = Dictionary::open(path)?;
         dictionary.verify()?;
-        if let Some(trusted) = require_signed_by {
-            dictionary
-                .provenance(Some(trusted))?
-                .require_trusted(path)?;
-        }
+        accept(&dictionary)?;
         let Some(range) = dictionary.header().shard else {
             return Err(merge_error(path, "a whole dictionary, not a shard".into()));
         };

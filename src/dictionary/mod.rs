@@ -20,7 +20,8 @@
 //!   bytes at any thread count.
 //! - [`Dictionary::open`]: a memory map with O(1) structural checks; [`Dictionary::verify`]
 //!   checks every checksum and record.
-//! - [`merge()`]: shards → the whole dictionary, the same bytes as a single build.
+//! - [`merge()`]: shards → the whole dictionary, the same bytes as a single build
+//!   (`merge_signed_by`: each shard signed by a trusted key).
 //! - [`write_dictionary`]: atomic replacement (temporary file, fsync, rename).
 //!
 //! The byte layout is documented in docs/cdict-format.md.
@@ -46,6 +47,8 @@ pub use lookup::{
     DirectionAnswer, LookupError, MotionLookup, StoredSegment, UNDECIDED_SAMPLE_DIRECTIONS,
 };
 pub use merge::merge;
+#[cfg(feature = "signatures")]
+pub use merge::merge_signed_by;
 pub use reader::Dictionary;
 pub use recompute::{Disagreement, RECOMPUTE_TOLERANCE_UNITS, RecomputeChoice, Recomputed};
 

@@ -9,6 +9,7 @@ use super::format::{
     verify_sections,
 };
 use crate::path::Pv;
+#[cfg(feature = "signatures")]
 use crate::provenance::{Provenance, ProvenanceError, SecretKey, TrustedKeys};
 use crate::setup::Setup;
 use memmap2::Mmap;
@@ -67,12 +68,14 @@ impl Dictionary {
         })
     }
 
+    #[cfg(feature = "signatures")]
     /// Who signed this file ([`crate::provenance::check`]: every signature beside it must
     /// hold for these bytes), its signers looked up in `trusted`.
     pub fn provenance(&self, trusted: Option<&TrustedKeys>) -> Result<Provenance, ProvenanceError> {
         crate::provenance::check(&self.path, &self.map, trusted)
     }
 
+    #[cfg(feature = "signatures")]
     /// Signs this file with `key` ([`crate::provenance::sign`]).
     pub fn sign(&self, key: &SecretKey) -> Result<Provenance, ProvenanceError> {
         crate::provenance::sign(&self.path, &self.map, key)

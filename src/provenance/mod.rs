@@ -14,14 +14,22 @@
 //!   dictionary's bytes stay what `build` and `merge` write, and several teams can sign one
 //!   file.
 
+//!
+//! The keys and signatures need the `signatures` feature (ed25519-dalek, sha2, getrandom);
+//! what a check found ([`Provenance`]) does not, so reports and dictionaries carry it in any
+//! build.
+
+#[cfg(feature = "signatures")]
 mod keys;
+mod record;
+#[cfg(feature = "signatures")]
 mod signature;
 
+#[cfg(feature = "signatures")]
 pub use keys::{MAX_NAME_CHARS, PublicKey, SecretKey, TrustedKeys};
-pub use signature::{
-    MAX_SIGNATURES, Provenance, SIGNATURE_FILE_LIMIT, Signer, check, check_text, sign,
-    signature_path,
-};
+pub use record::{Provenance, Signer, signature_path};
+#[cfg(feature = "signatures")]
+pub use signature::{MAX_SIGNATURES, SIGNATURE_FILE_LIMIT, check, check_text, sign};
 
 use std::path::{Path, PathBuf};
 
@@ -48,11 +56,13 @@ impl ProvenanceError {
     }
 }
 
+#[cfg(feature = "signatures")]
 /// Lower-case hexadecimal digits of `bytes`.
 fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
+#[cfg(feature = "signatures")]
 /// The `N` bytes written as `2 N` hexadecimal digits in `text`; `None` for anything else.
 fn unhex<const N: usize>(text: &str) -> Option<[u8; N]> {
     if text.len() != 2 * N || !text.bytes().all(|b| b.is_ascii_hexdigit()) {
@@ -65,6 +75,7 @@ fn unhex<const N: usize>(text: &str) -> Option<[u8; N]> {
     Some(out)
 }
 
+#[cfg(feature = "signatures")]
 /// The lines of a text file that carry content, numbered from 1: blank lines and `#` comments
 /// are skipped.
 fn content_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
@@ -74,6 +85,7 @@ fn content_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
         .filter(|(_, line)| !line.is_empty() && !line.starts_with('#'))
 }
 
+#[cfg(feature = "signatures")]
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -16,6 +16,8 @@
 //! - `index.html`: the summary, the pictures and the plots on one page needing nothing but
 //!   the folder.
 
+mod error;
+mod hashes;
 mod install;
 mod page;
 pub mod pictures;
@@ -27,118 +29,26 @@ mod view;
 pub mod views;
 mod worst;
 
+pub use error::ReportError;
+pub use hashes::{Hashed, input_hashes};
+
 use crate::atomic_file::FolderReplacement;
 use crate::motion::Motion;
 use crate::setup::Setup;
-use crate::solve::SolveReport;
+use crate::solve::{ReportShapes, SolveReport};
 use std::path::{Path, PathBuf};
 
-/// Why the report folder could not be written.
-#[derive(Debug, thiserror::Error)]
-pub enum ReportError {
-    /// A file or the folder cannot be written.
-    #[error("cannot write {path}: {error}")]
-    Write {
-        /// The file or folder.
-        path: PathBuf,
-        /// Why (in the message, not a separate cause, so that it is printed once).
-        error: std::io::Error,
-    },
-    /// A plot could not be drawn.
-    #[error("{file}: {source}")]
-    Plot {
-        /// The plot's file name.
-        file: &'static str,
-        /// Why.
-        source: plots::PlotError,
-    },
-    /// The scene could not be assembled or encoded.
-    #[error("scene.glb: {0}")]
-    Scene(String),
-    /// The result could not be encoded as JSON.
-    #[error("result.json: {0}")]
-    Json(#[from] serde_json::Error),
-}
-
-/// An input file of the run, with the xxh3-64 of its bytes, so that a report can be traced to
-/// the exact files that made it.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Hashed {
-    /// `setup`, `robot`, `cable`, `motion` or `dictionary`.
-    pub role: &'static str,
-    /// The file as given.
-    pub file: String,
-    /// 16 hexadecimal digits, or why the file could not be read.
-    pub hash: String,
-}
-
-impl Hashed {
-    /// The hash of `bytes`.
-    pub fn of_bytes(role: &'static str, file: impl Into<String>, bytes: &[u8]) -> Hashed {
-        Hashed {
-            role,
-            file: file.into(),
-            hash: format!("{:016x}", xxhash_rust::xxh3::xxh3_64(bytes)),
-        }
-    }
-
-    /// The hash of the file at `path` as it is now.
-    pub fn of_file(role: &'static str, path: &Path) -> Hashed {
-        match std::fs::read(path) {
-            Ok(bytes) => Hashed::of_bytes(role, path.display().to_string(), &bytes),
-            Err(e) => Hashed {
-                role,
-                file: path.display().to_string(),
-                hash: format!("unreadable: {e}"),
-            },
-        }
-    }
-}
-
-/// The hashes of a solve's inputs: the setup, URDF and cable texts as loaded, the motion
-/// and dictionary files as they are now.
-pub fn input_hashes(setup: &Setup, report: &SolveReport) -> Vec<Hashed> {
-    let mut inputs = vec![
-        Hashed::of_bytes(
-            "setup",
-            setup.source.display().to_string(),
-            setup.text.as_bytes(),
-        ),
-        Hashed::of_bytes(
-            "robot",
-            setup.robot_path.display().to_string(),
-            setup.robot_text.as_bytes(),
-        ),
-        Hashed::of_bytes(
-            "cable",
-            setup.cable_path.display().to_string(),
-            setup.cable_text.as_bytes(),
-        ),
-    ];
-    let files = [
-        ("motion", report.inputs.motion_file.as_deref()),
-        (
-            "dictionary",
-            report.inputs.dictionary.as_ref().map(|d| d.file.as_str()),
-        ),
-    ];
-    for (role, file) in files {
-        if let Some(file) = file {
-            inputs.push(Hashed::of_file(role, Path::new(file)));
-        }
-    }
-    inputs
-}
-
 /// Writes the report folder `dir` of `report`, which solved `motion` with `setup` as
-/// solved ([`Solution::setup`](crate::solve::Solution::setup)): created, or
-/// replaced as a whole when it holds only what a report writes ([`is_report_file`]).
-/// Returns the files written, `index.html` last.
+/// solved ([`Solution::setup`](crate::solve::Solution::setup)), drawing the cable in the
+/// `shapes` solved for it ([`ReportShapes::of`]): created, or replaced as a whole when it
+/// holds only what a report writes ([`is_report_file`]). Returns the files written,
+/// `index.html` last.
 pub fn write_report(
     dir: &Path,
     setup: &Setup,
     motion: &Motion,
     report: &SolveReport,
+    shapes: &ReportShapes,
 ) -> Result<Vec<PathBuf>, ReportError> {
     let write_error = |error| ReportError::Write {
         path: dir.to_path_buf(),
@@ -158,8 +68,8 @@ pub fn write_report(
         json.as_bytes(),
     )?;
     let plots = write_plots(&mut folder, setup, motion, report)?;
-    let (spec, problems) =
-        views::solve_scene(setup, motion, report).map_err(|e| ReportError::Scene(e.to_string()))?;
+    let (spec, problems) = views::solve_scene(setup, motion, report, shapes)
+        .map_err(|e| ReportError::Scene(e.to_string()))?;
     let notes = write_scene(&mut folder, &spec, problems)?;
     for file in view::view_files(setup, report, &spec)? {
         folder.put(file.name, file.what, &file.bytes)?;

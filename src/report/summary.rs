@@ -1,7 +1,7 @@
 //! `summary.md`: the result of a solve for people — the path, the set sizes, the margins,
 //! the motion test, the timings and the inputs with their hashes.
 
-use super::Hashed;
+use super::hashes::Hashed;
 use super::text::{verdict_words, worst_rows};
 use crate::escape::markdown as text;
 use crate::motion_test::MotionTestReport;

@@ -7,7 +7,7 @@
 //! may not read its neighbours, so the `.glb` travels as base64 inside `view-data.js`, a
 //! plain script; everything else is in the folder, nothing is fetched from a network.
 
-use super::ReportError;
+use super::error::ReportError;
 use super::scene::{CableTint, INSTALLATION_ANIMATION, SceneSpec, to_glb};
 use super::views::TIGHT_SHARE;
 use super::worst::{limit_words, smallest_margin};

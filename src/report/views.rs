@@ -1,97 +1,62 @@
 //! What the scene of a cable path shows: the robot at a pose, the path's static equilibrium
-//! there, its guides, the motion test as an animation, the critical poses as snapshots.
+//! there (solved by [`crate::solve::ReportShapes`]), its guides, the motion test as an
+//! animation, the critical poses as snapshots.
 
 use super::scene::{
     CableLine, CableTint, GuideMark, PoseScene, SceneAnimation, SceneSpec, Snapshot,
 };
-use crate::attachment::{ConnectMethod, Evaluator};
 use crate::motion::Motion;
 use crate::motion_test::{MotionTestReport, SegmentNodes, ShapeFrame};
-use crate::path::{CablePath, Pv};
-use crate::pose::Pose;
+use crate::path::CablePath;
 use crate::robot::JointVectorError;
 use crate::setup::Setup;
-use crate::solve::{NearestMiss, SolveReport};
-use crate::stress::contact::ContactError;
+use crate::solve::{CriticalPose, PoseShape, ReportShapes, SolveReport, critical_poses};
 use nalgebra::{Point3, Vector3};
 
 /// Snapshots per row of the grid they are laid out on behind the main robot.
 const SNAPSHOTS_PER_ROW: usize = 5;
 
-/// Why a scene could not be assembled.
-#[derive(Debug, thiserror::Error)]
-pub enum ViewError {
-    /// The robot's geometry cannot be used for the equilibria's clearance model.
-    #[error(transparent)]
-    Obstacles(#[from] ContactError),
-    /// A joint vector does not fit the robot.
-    #[error(transparent)]
-    Kinematics(#[from] JointVectorError),
+/// A marker at every configuration of every guide of `setup`: what `sites --gltf` shows.
+fn configuration_marks(setup: &Setup) -> Vec<GuideMark> {
+    let marks = (setup.guides.iter())
+        .flat_map(|guide| (0..guide.configurations.len()).map(move |c| mark(guide, c)));
+    marks.collect()
 }
 
-/// The static cable of `path` with the robot at `link_poses`: one centreline per segment
-/// that has a cable, and for each segment without an equilibrium, why.
-struct StaticCable {
-    /// Centrelines of the segments that have one.
-    lines: Vec<CableLine>,
-    /// `C3: no equilibrium (…)` for the others.
-    problems: Vec<String>,
-}
-
-/// The static equilibrium of every segment of `path` with the links at `link_poses`.
-fn static_cable(evaluator: &Evaluator<'_>, path: &CablePath, link_poses: &[Pose]) -> StaticCable {
-    let mut cable = StaticCable {
-        lines: Vec::new(),
-        problems: Vec::new(),
-    };
-    let setup = evaluator.setup();
-    for (m, pv) in path.pieces() {
-        match evaluator.equilibrium_nodes(m, &pv, link_poses) {
-            Ok(nodes) if nodes.len() >= 2 => cable.lines.push(CableLine {
-                name: setup.segment_name(m),
-                nodes_m: nodes,
-            }),
-            Ok(_) => {}
-            Err(why) => cable
-                .problems
-                .push(format!("{}: {why}", setup.segment_name(m))),
-        }
+/// The marker of `guide` at its configuration `c`.
+fn mark(guide: &crate::setup::Guide, c: usize) -> GuideMark {
+    let configuration = &guide.configurations[c];
+    GuideMark {
+        name: format!("{} ({})", guide.name, configuration.name),
+        clamp: guide.name.clone(),
+        link: guide.link,
+        pose_in_link: configuration.pose,
     }
-    cable
 }
 
 /// The clamps of `path`, each at the configuration the path uses.
 pub fn guide_marks(setup: &Setup, path: &CablePath) -> Vec<GuideMark> {
     path.guides(setup)
         .zip(&path.configurations)
-        .map(|(g, &c)| {
-            let guide = &setup.guides[g];
-            let configuration = &guide.configurations[c];
-            GuideMark {
-                name: format!("{} ({})", guide.name, configuration.name),
-                clamp: guide.name.clone(),
-                link: guide.link,
-                pose_in_link: configuration.pose,
-            }
-        })
+        .map(|(g, &c)| mark(&setup.guides[g], c))
         .collect()
 }
 
-/// The scene of `path` with the robot at `joints` (rad / m): its static equilibrium there
-/// (segments without one are left out; [`Evaluator::check_at`] says why).
-pub fn pose_scene<'a>(
-    setup: &'a Setup,
-    path: &CablePath,
-    joints: &[f64],
-) -> Result<SceneSpec<'a>, ViewError> {
-    let evaluator = Evaluator::new(setup, ConnectMethod::Hermite)?;
-    let link_poses = setup.robot.link_poses(joints)?;
-    let cable = static_cable(&evaluator, path, &link_poses).lines;
-    Ok(still_scene(
-        setup,
-        Some(path),
-        PoseScene { link_poses, cable },
-    ))
+/// The scene of `path` in its static `shape` at one pose ([`crate::solve::path_shape`]).
+pub fn pose_scene<'a>(setup: &'a Setup, path: &CablePath, shape: &PoseShape) -> SceneSpec<'a> {
+    still_scene(setup, Some(path), pose_of(shape))
+}
+
+/// The robot and cable lines of `shape`.
+fn pose_of(shape: &PoseShape) -> PoseScene {
+    let lines = shape.lines.iter().map(|line| CableLine {
+        name: line.name.clone(),
+        nodes_m: line.nodes_m.clone(),
+    });
+    PoseScene {
+        link_poses: shape.link_poses.clone(),
+        cable: lines.collect(),
+    }
 }
 
 /// A scene of `main` alone, with the guides of `path`.
@@ -108,31 +73,32 @@ fn still_scene<'a>(setup: &'a Setup, path: Option<&CablePath>, main: PoseScene) 
     }
 }
 
+/// The scene `sites --gltf` writes: the robot at its [`Setup::reference_joints`] with a
+/// marker at every candidate clamp configuration.
+pub fn sites_scene(setup: &Setup) -> Result<SceneSpec<'_>, JointVectorError> {
+    let main = PoseScene {
+        link_poses: setup.robot.link_poses(&setup.reference_joints())?,
+        cable: Vec::new(),
+    };
+    let mut scene = still_scene(setup, None, main);
+    scene.guides = configuration_marks(setup);
+    Ok(scene)
+}
+
 /// The scene of a solve: the shown candidate at the motion's first pose, animated over its
 /// motion test when one ran, with one snapshot per critical pose (the robot alone when there
-/// is no candidate). The strings name the segments without a static equilibrium at a pose.
+/// is no candidate), drawn from the `shapes` solved for it. The strings name the segments
+/// without a static equilibrium at a pose.
 pub fn solve_scene<'a>(
     setup: &'a Setup,
     motion: &Motion,
     report: &SolveReport,
-) -> Result<(SceneSpec<'a>, Vec<String>), ViewError> {
+    shapes: &ReportShapes,
+) -> Result<(SceneSpec<'a>, Vec<String>), JointVectorError> {
     let path = report.shown_candidate().map(|c| &c.path);
-    let evaluator = Evaluator::new(setup, ConnectMethod::Hermite)?;
-    let at = |joints: &[f64]| -> Result<(PoseScene, Vec<String>), ViewError> {
-        let link_poses = setup.robot.link_poses(joints)?;
-        let cable = path.map(|p| static_cable(&evaluator, p, &link_poses));
-        let (lines, problems) = cable.map_or_else(Default::default, |c| (c.lines, c.problems));
-        Ok((
-            PoseScene {
-                link_poses,
-                cable: lines,
-            },
-            problems,
-        ))
-    };
-    let (main, mut problems) = match (path, nearest_miss_scene(&evaluator, motion, report)) {
-        (None, Some(miss)) => (miss?, Vec::new()),
-        _ => at(&motion.samples()[0])?,
+    let (main, mut problems) = match (path, &shapes.nearest_miss) {
+        (None, Some(miss)) => (pose_of(miss), Vec::new()),
+        _ => (pose_of(&shapes.first), shapes.first.problems.clone()),
     };
     let mut spec = still_scene(setup, path, main);
     spec.tints = margin_tints(setup, report);
@@ -143,30 +109,25 @@ pub fn solve_scene<'a>(
         // The animated cable is the simulated one: it starts from the same equilibrium.
         spec.main = animation.frames[0].clone();
     }
-    if let (Some(path), Some(installation)) = (path, &setup.installation) {
-        let cable = static_cable(&evaluator, path, &installation.link_poses);
-        let scene = PoseScene {
-            link_poses: installation.link_poses.clone(),
-            cable: cable.lines,
-        };
-        problems.extend(
-            cable
-                .problems
-                .iter()
-                .map(|p| format!("installation pose: {p}")),
-        );
+    if let Some(installation) = &shapes.installation {
+        let scene = pose_of(installation);
+        let named = installation.problems.iter();
+        problems.extend(named.map(|p| format!("installation pose: {p}")));
         // The view moves the main copy's pieces there: the same pieces must have a shape.
         if same_lines(&scene, &spec.main) {
             spec.installation = Some(scene);
         }
     }
-    for (i, pose) in critical_poses(report).into_iter().enumerate() {
-        let name = pose.scene_name(i + 1);
-        let (scene, missing) = at(&motion.samples()[pose.sample])?;
-        problems.extend(missing.into_iter().map(|p| format!("{name}: {p}")));
+    for (i, (pose, shape)) in critical_poses(report)
+        .iter()
+        .zip(&shapes.critical)
+        .enumerate()
+    {
+        let name = scene_name(pose, i + 1);
+        problems.extend(shape.problems.iter().map(|p| format!("{name}: {p}")));
         spec.snapshots.push(Snapshot {
             name,
-            scene,
+            scene: pose_of(shape),
             offset_m: Vector3::zeros(),
         });
     }
@@ -244,71 +205,13 @@ pub fn margin_tints(setup: &Setup, report: &SolveReport) -> Vec<(String, CableTi
     tints
 }
 
-/// Without a candidate: the robot where the diagnosis's first nearest miss failed, with that
-/// piece's static equilibrium (named `C1 nearest miss`); `None` without a nearest miss.
-fn nearest_miss_scene(
-    evaluator: &Evaluator<'_>,
-    motion: &Motion,
-    report: &SolveReport,
-) -> Option<Result<PoseScene, ViewError>> {
-    let setup = evaluator.setup();
-    let (m, _, miss) = first_nearest_miss(report)?;
-    let (a, b) = setup.segment_guides(m);
-    let index = |g: usize, name: &str| setup.guides[g].configuration_index(name);
-    let pv = Pv {
-        sub_segments: (miss.length_mm / (setup.cable.sub_segment_pitch_m * 1e3)).round() as usize,
-        start: index(a, &miss.from_configuration)?,
-        end: index(b, &miss.to_configuration)?,
-    };
-    Some(piece_scene(evaluator, motion, m, &pv, miss.time_s))
-}
-
-/// The diagnosis's first nearest miss: its segment's index, its start guide (`G3`, where
-/// places on the piece are measured from) and the miss; `None` without one.
-pub fn first_nearest_miss(report: &SolveReport) -> Option<(usize, &str, &NearestMiss)> {
-    report.diagnosis.as_ref()?.segments.iter().find_map(|d| {
-        let m = report
-            .segments
-            .iter()
-            .position(|s| s.segment == d.segment)?;
-        Some((m, d.from_guide.as_str(), d.nearest_misses.first()?))
-    })
-}
-
-/// The robot at `time_s` of the motion with the static equilibrium of PV `pv` of segment `m`
-/// (no cable when it has none), named `C1 nearest miss`.
-fn piece_scene(
-    evaluator: &Evaluator<'_>,
-    motion: &Motion,
-    m: usize,
-    pv: &Pv,
-    time_s: f64,
-) -> Result<PoseScene, ViewError> {
-    let link_poses = evaluator
-        .setup()
-        .robot
-        .link_poses(&motion.joints_at(time_s))?;
-    let cable = evaluator
-        .equilibrium_nodes(m, pv, &link_poses)
-        .ok()
-        .filter(|nodes| nodes.len() >= 2)
-        .map(|nodes| CableLine {
-            name: format!("{} nearest miss", evaluator.setup().segment_name(m)),
-            nodes_m: nodes,
-        });
-    Ok(PoseScene {
-        link_poses,
-        cable: cable.into_iter().collect(),
-    })
-}
-
 /// The motion test's kept shapes as keyframes (time from the motion's start), with the robot
 /// at each frame's time; `None` with fewer than two frames.
 fn motion_test_animation(
     setup: &Setup,
     motion: &Motion,
     test: &MotionTestReport,
-) -> Result<Option<SceneAnimation>, ViewError> {
+) -> Result<Option<SceneAnimation>, JointVectorError> {
     if test.shapes.len() < 2 {
         return Ok(None);
     }
@@ -326,7 +229,11 @@ fn motion_test_animation(
 }
 
 /// The robot and the simulated cable at one kept instant.
-fn frame_scene(setup: &Setup, motion: &Motion, frame: &ShapeFrame) -> Result<PoseScene, ViewError> {
+fn frame_scene(
+    setup: &Setup,
+    motion: &Motion,
+    frame: &ShapeFrame,
+) -> Result<PoseScene, JointVectorError> {
     Ok(PoseScene {
         link_poses: setup.robot.link_poses(&motion.joints_at(frame.time_s))?,
         cable: frame
@@ -344,53 +251,17 @@ fn simulated_line(setup: &Setup, segment: &SegmentNodes) -> CableLine {
     }
 }
 
-/// A critical pose of the inter-link segments: one motion sample, with every segment and
-/// reason that chose it.
-#[derive(Debug, Clone, PartialEq)]
-pub struct CriticalPose {
-    /// Index of the motion sample.
-    pub sample: usize,
-    /// Time of the sample in the motion (s).
-    pub time_s: f64,
-    /// `(segment, reason)` pairs, e.g. `("C1", "joint_1 max")`, segments in path order.
-    pub reasons: Vec<(String, String)>,
-}
-
-impl CriticalPose {
-    /// The scene's name of the `number`-th pose (from 1): `critical pose 2: C1 joint_1 max, C3
-    /// joint_1 max (t = 1.250 s)`.
-    fn scene_name(&self, number: usize) -> String {
-        let why: Vec<String> = self
-            .reasons
-            .iter()
-            .map(|(segment, reason)| format!("{segment} {reason}"))
-            .collect();
-        format!(
-            "critical pose {number}: {} (t = {:.3} s)",
-            why.join(", "),
-            self.time_s
-        )
-    }
-}
-
-/// The inter-link segments' critical poses, one per motion sample, in sample order: the
-/// scene's snapshots, in the same order.
-pub fn critical_poses(report: &SolveReport) -> Vec<CriticalPose> {
-    let mut by_sample: std::collections::BTreeMap<usize, CriticalPose> = Default::default();
-    for segment in report.segments.iter().filter(|s| s.kind == "inter-link") {
-        for pose in &segment.test_poses {
-            by_sample
-                .entry(pose.sample)
-                .or_insert_with(|| CriticalPose {
-                    sample: pose.sample,
-                    time_s: pose.time_s,
-                    reasons: Vec::new(),
-                })
-                .reasons
-                .push((segment.segment.clone(), pose.reason.clone()));
-        }
-    }
-    by_sample.into_values().collect()
+/// The scene's name of the `number`-th critical pose (from 1): `critical pose 2: C1 joint_1
+/// max, C3 joint_1 max (t = 1.250 s)`.
+fn scene_name(pose: &CriticalPose, number: usize) -> String {
+    let why: Vec<String> = (pose.reasons.iter())
+        .map(|(segment, reason)| format!("{segment} {reason}"))
+        .collect();
+    format!(
+        "critical pose {number}: {} (t = {:.3} s)",
+        why.join(", "),
+        pose.time_s
+    )
 }
 
 /// Places the snapshots on a grid beside the main robot, far enough apart not to overlap.

@@ -32,6 +32,15 @@ pub struct Installation {
 }
 
 impl Setup {
+    /// The pose a setup is shown and sampled at before any motion: the installation pose
+    /// (rad / m), or every joint at 0 when the setup states none.
+    pub fn reference_joints(&self) -> Vec<f64> {
+        match &self.installation {
+            Some(installation) => installation.joints.clone(),
+            None => vec![0.0; self.robot.dof()],
+        }
+    }
+
     /// World poses of segment `m`'s start and end clamps for the configurations `(start, end)`
     /// of its guides and a cable of `sub_segments`, with the links at `link_poses`: the end
     /// clamp turned about the cable axis by the twist reference of the installed cable (see

@@ -25,12 +25,17 @@ mod diagnosis;
 mod options;
 mod report;
 mod search;
+mod shapes;
 
 pub use certify::{Certification, Disagreement};
 use chains::{Decided, LazyChains, MIN_ROUND, chain_search};
 pub use diagnosis::{Diagnosis, NearestMiss, SegmentDiagnosis};
 pub use options::{SearchKind, SolveError, SolveOptions};
 use search::{MotionSearch, search_chains};
+pub use shapes::{
+    CriticalPose, PoseShape, ReportShapes, ShapeError, ShapeLine, critical_poses,
+    first_nearest_miss, path_shape,
+};
 
 use report::Stages;
 pub use report::{

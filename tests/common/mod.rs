@@ -66,3 +66,16 @@ range = 2
 "#
     )
 }
+
+/// Writes the report folder `dir` of `report` as `solve --report` does: the shapes solved
+/// for it, then the folder.
+pub fn write_report(
+    dir: &Path,
+    setup: &cable_dict::setup::Setup,
+    motion: &cable_dict::motion::Motion,
+    report: &cable_dict::solve::SolveReport,
+) -> Result<Vec<std::path::PathBuf>, String> {
+    let shapes =
+        cable_dict::solve::ReportShapes::of(setup, motion, report).map_err(|e| e.to_string())?;
+    cable_dict::report::write_report(dir, setup, motion, report, &shapes).map_err(|e| e.to_string())
+}

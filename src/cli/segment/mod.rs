@@ -3,7 +3,8 @@
 mod obstacles;
 mod report;
 
-use super::{Failure, args, emit, print_json};
+use super::args;
+use super::output::{Failure, emit, print_json};
 use cable_dict::cable::CableSpec;
 use cable_dict::pose::Pose;
 use cable_dict::report::scene::{CableLine, GuideMark, PoseScene, SceneSpec};
@@ -221,7 +222,7 @@ fn write_scene(
         tints: Vec::new(),
         installation: None,
     };
-    super::write_glb(file, &spec)
+    super::output::write_glb(file, &spec)
 }
 
 /// The number of sub-segments in `length_mm`, refusing lengths that are not a whole number.

@@ -1,7 +1,8 @@
 //! The robot around a segment (`--robot`): its posed links as obstacles for the contact
 //! metric.
 
-use super::super::{Failure, fk::joint_vector_si};
+use super::super::fk::joint_vector_si;
+use super::super::output::Failure;
 use super::Args;
 use cable_dict::cable::CableSpec;
 use cable_dict::pose::Pose;

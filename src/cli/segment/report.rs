@@ -1,6 +1,6 @@
 //! What `segment` prints: the JSON document and its text rendering.
 
-use super::super::Failure;
+use super::super::output::Failure;
 use super::obstacles::{ContactMetric, Scene};
 use super::{Args, Solver, Stage};
 use cable_dict::attachment::Metrics as ShapeMetrics;

@@ -3,7 +3,7 @@
 //! cable and its clamps, at each critical pose, at the worst moment of the motion test and,
 //! when no candidate path exists, at the nearest miss.
 //!
-//! Everything drawn comes from the scene [`views::solve_scene`] assembles for `scene.glb`
+//! Everything drawn comes from the scene [`super::views::solve_scene`] assembles for `scene.glb`
 //! (the same colliders, tessellated the same way, the same cable nodes, the same clamps), so
 //! the pictures cannot disagree with the 3D scene or the physics. Plain SVG, no script: the
 //! page stays a folder that works offline.
@@ -12,10 +12,10 @@ mod projection;
 mod svg;
 
 use super::scene::{self, CableTint, PoseScene, SceneSpec};
-use super::views::{self, CriticalPose};
 use super::worst::{limit_words, smallest_margin};
 use crate::mounting::{MountingPlan, mounting_plan};
 use crate::setup::Setup;
+use crate::solve::{CriticalPose, critical_poses, first_nearest_miss};
 use crate::solve::{SolveReport, Status};
 use nalgebra::Point3;
 use svg::{CablePiece, Drawing, Layout, picture_svg};
@@ -33,7 +33,7 @@ pub struct Picture {
     pub svg: String,
 }
 
-/// The pictures of a solve, drawn from `spec`, the scene [`views::solve_scene`] assembled
+/// The pictures of a solve, drawn from `spec`, the scene [`super::views::solve_scene`] assembled
 /// for `report` with `setup`: one per critical pose (`pose-1.svg` …), one at the worst
 /// moment of the motion test when the test kept the cable's shapes (`worst-moment.svg`),
 /// and one of the nearest miss when there is no candidate path (`nearest-miss.svg`).
@@ -210,7 +210,7 @@ fn critical_pose_moments<'s>(
     spec: &'s SceneSpec<'_>,
     names: &Names<'_>,
 ) -> Vec<Moment<'s>> {
-    let poses = views::critical_poses(report);
+    let poses = critical_poses(report);
     let count = poses.len();
     let path = path_words(report);
     poses
@@ -372,7 +372,7 @@ fn nearest_miss_moment<'s>(
     if report.shown_candidate().is_some() || report.status != Status::NoChain {
         return None;
     }
-    let (m, from_guide, miss) = views::first_nearest_miss(report)?;
+    let (m, from_guide, miss) = first_nearest_miss(report)?;
     let piece = setup.segment_name(m);
     let line = spec.main.cable.first();
     let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;

@@ -3,9 +3,11 @@
 //! the rows both, the sheet, the page and the plots share (the worst values over the motion,
 //! the loads per clamp and piece, the verdict).
 
+mod catalogue;
 mod details;
 mod workshop;
 
+pub use catalogue::catalogue_listing;
 pub use workshop::{LoadRow, WorstRow, load_rows, verdict_words, worst_rows};
 
 use crate::solve::{Inputs, SolveReport};
