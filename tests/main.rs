@@ -52,4 +52,5 @@ mod statics;
 mod sweep;
 mod urdf_real;
 mod viper_dh;
+mod whole_arm;
 mod xacro;

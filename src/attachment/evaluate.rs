@@ -269,19 +269,22 @@ impl<'a> Evaluator<'a> {
     }
 
     /// The first pose of `poses` (in their order) where PV `pv` of segment `m` violates a
-    /// limit, with its check; `None` when it holds them all. Each pose's equilibrium starts
+    /// limit, with its check (`None` when it holds them all), and the least bend radius and
+    /// clearance met on the way. Each pose's equilibrium starts
     /// from the previous poses', carried along by the guides' motion and extrapolated
     /// ([`follow_guides_extrapolated`](crate::statics::continuation::follow_guides_extrapolated)):
     /// the quasi-static cable moved slowly
     /// through the poses, on the branch it started on.
-    pub fn sweep<'p>(
-        &self,
-        m: usize,
-        pv: &Pv,
-        poses: &'p [TestPose],
-    ) -> Option<(&'p TestPose, Check)> {
+    pub fn sweep<'p>(&self, m: usize, pv: &Pv, poses: &'p [TestPose]) -> Swept<'p> {
+        let mut swept = Swept {
+            failure: None,
+            least: SweptLeast {
+                bend_radius_m: f64::INFINITY,
+                clearance_m: None,
+            },
+        };
         if pv.sub_segments == 0 {
-            return None;
+            return swept;
         }
         let mut solver = StaticSolver::default();
         // The last two poses' solutions and guides, the last first.
@@ -313,11 +316,15 @@ impl<'a> Evaluator<'a> {
                         check
                     }
                 };
+            if let Some(metrics) = &check.metrics {
+                swept.least.take(metrics);
+            }
             if !check.passed() {
-                return Some((pose, check));
+                swept.failure = Some((pose, check));
+                return swept;
             }
         }
-        None
+        swept
     }
 
     /// The distance between the clamps of configurations `pair` of segment `m` at `pose`
@@ -499,4 +506,33 @@ pub(super) enum Warm<'a> {
     /// The previous poses of a sweep and their guides, the last first (none: the connected
     /// geometry).
     Poses(&'a [(Solved, (Pose, Pose))]),
+}
+
+/// What sweeping one PV over a motion's poses found ([`Evaluator::sweep`]).
+#[derive(Debug, Clone)]
+pub struct Swept<'p> {
+    /// The first pose where a limit is violated, with its check; `None`: none is.
+    pub failure: Option<(&'p TestPose, Check)>,
+    /// The least values met at the poses solved.
+    pub least: SweptLeast,
+}
+
+/// The least bend radius and clearance of a PV's static shapes over the poses swept: what a
+/// motion test's dynamic value is compared with to learn how far the cable swings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SweptLeast {
+    /// Smallest bend radius (m); infinite when straight everywhere (or not solved).
+    pub bend_radius_m: f64,
+    /// Lowest clearance to the robot (m); `None` when nothing was checked.
+    pub clearance_m: Option<f64>,
+}
+
+impl SweptLeast {
+    /// Takes the metrics of one more pose into account.
+    fn take(&mut self, metrics: &Metrics) {
+        self.bend_radius_m = self.bend_radius_m.min(metrics.min_bend_radius_m);
+        if let Some(clearance) = metrics.clearance_m {
+            self.clearance_m = Some(self.clearance_m.map_or(clearance, |c| c.min(clearance)));
+        }
+    }
 }

@@ -66,6 +66,19 @@ struct Segment {
 }
 
 impl Segment {
+    /// Recomputes the shortest robust piece not dropped of the pair of `pv`.
+    fn update_shortest_robust(&mut self, pv: &Pv) {
+        let same_pair = |r: &&Pv| (r.start, r.end) == (pv.start, pv.end);
+        let shortest = (self.robust.difference(&self.dropped))
+            .filter(same_pair)
+            .map(|r| r.sub_segments)
+            .min();
+        let pair = (self.pairs.iter_mut()).find(|p| (p.start, p.end) == (pv.start, pv.end));
+        if let Some(pair) = pair {
+            pair.shortest_robust = shortest;
+        }
+    }
+
     fn candidate_lengths(&self, pair: &Pair) -> &[usize] {
         match (pair.coincident, self.zero) {
             (true, true) => &[0],
@@ -151,23 +164,16 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     /// Takes piece `pv` of segment `m` out of the chains (it failed a later test): its
     /// pair's floor rises accordingly.
     pub fn drop_piece(&mut self, m: usize, pv: &Pv) {
-        let segment = &mut self.segments[m];
-        if !segment.robust.contains(pv) || !segment.dropped.insert(*pv) {
-            return;
+        if self.segments[m].robust.contains(pv) && self.segments[m].dropped.insert(*pv) {
+            self.segments[m].update_shortest_robust(pv);
         }
-        let same_pair = |r: &&Pv| (r.start, r.end) == (pv.start, pv.end);
-        let shortest = segment
-            .robust
-            .difference(&segment.dropped)
-            .filter(same_pair)
-            .map(|r| r.sub_segments)
-            .min();
-        if let Some(pair) = segment
-            .pairs
-            .iter_mut()
-            .find(|p| (p.start, p.end) == (pv.start, pv.end))
-        {
-            pair.shortest_robust = shortest;
+    }
+
+    /// Puts piece `pv` of segment `m`, dropped before, back on the chains: its pair's floor
+    /// falls back. The pieces decided stay decided, so the bound still holds.
+    pub fn restore_piece(&mut self, m: usize, pv: &Pv) {
+        if self.segments[m].dropped.remove(pv) {
+            self.segments[m].update_shortest_robust(pv);
         }
     }
 

@@ -45,7 +45,7 @@ mod verdict;
 
 pub use continuation::CONTINUATION_BLOCK;
 pub use estimate::{CostEstimate, SAMPLE_PAIRS};
-pub use evaluate::{ConnectMethod, Evaluator};
+pub use evaluate::{ConnectMethod, Evaluator, Swept, SweptLeast};
 pub use exhaustive::{attachment_test, attachment_test_with};
 pub use lazy::LazyAttachment;
 pub use lookup::{IntraLinkAnswer, LookupAnswer};

@@ -15,7 +15,7 @@
 //! of a solve from the connected geometry, and the branch of equilibria a cable moved slowly
 //! through the motion follows — the quasi-static limit of the motion test.
 
-use super::evaluate::Evaluator;
+use super::evaluate::{Evaluator, SweptLeast};
 use super::poses::{TestPose, sample_pose};
 use super::verdict::Rejection;
 use crate::motion::{Motion, MotionError};
@@ -41,7 +41,7 @@ pub struct SweepFailure {
 pub struct MotionSweep<'e, 'a> {
     evaluator: &'e Evaluator<'a>,
     poses: Vec<TestPose>,
-    verdicts: BTreeMap<(usize, Pv), Option<SweepFailure>>,
+    verdicts: BTreeMap<(usize, Pv), (Option<SweepFailure>, SweptLeast)>,
 }
 
 impl<'e, 'a> MotionSweep<'e, 'a> {
@@ -87,25 +87,34 @@ impl<'e, 'a> MotionSweep<'e, 'a> {
             .copied()
             .collect();
         progress::begin("static sweep", (new.len() * poses.len()) as u64);
-        let swept: Vec<Option<SweepFailure>> = new
+        let swept: Vec<(Option<SweepFailure>, SweptLeast)> = new
             .par_iter()
             .map(|(m, pv)| {
-                let failure = evaluator
-                    .sweep(*m, pv, poses)
-                    .map(|(pose, check)| SweepFailure {
-                        rejection: check.rejection.unwrap_or(Rejection::Diverged),
-                        sample: pose.sample,
-                        time_s: pose.time_s,
-                        detail: check.detail.unwrap_or_default(),
-                    });
+                let swept = evaluator.sweep(*m, pv, poses);
+                let failure = swept.failure.map(|(pose, check)| SweepFailure {
+                    rejection: check.rejection.unwrap_or(Rejection::Diverged),
+                    sample: pose.sample,
+                    time_s: pose.time_s,
+                    detail: check.detail.unwrap_or_default(),
+                });
                 progress::advance(poses.len() as u64);
-                failure
+                (failure, swept.least)
             })
             .collect();
         progress::end();
         self.verdicts.extend(new.into_iter().zip(swept));
         pvs.iter()
-            .map(|key| self.verdicts.get(key).cloned().flatten())
+            .map(|key| {
+                self.verdicts
+                    .get(key)
+                    .and_then(|(failure, _)| failure.clone())
+            })
             .collect()
+    }
+
+    /// The least bend radius and clearance of PV `pv` of segment `m` over the poses it was
+    /// swept at (up to its first failure); `None` when it was not swept.
+    pub fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast> {
+        self.verdicts.get(&(m, *pv)).map(|(_, least)| *least)
     }
 }

@@ -65,6 +65,13 @@ pub struct Args {
     /// dynamic motion test (the paper's pipeline: critical poses, then dynamics only).
     #[arg(long)]
     no_static_sweep: bool,
+    /// Do not learn from failed motion tests: without it, the pieces whose static shapes keep
+    /// less inside a limit than their segment's cable swung past its static shapes in a
+    /// failed test are set aside while other chains remain (the answer then says how much
+    /// shorter a chain with them is); with it, chains go to the motion test strictly
+    /// shortest first.
+    #[arg(long)]
+    no_learning: bool,
     /// Test every candidate cable piece before searching the chains (the paper's order),
     /// instead of only the pieces a chain shorter than the answer could use: the same path,
     /// slower; the reference the default search is checked against
@@ -154,6 +161,7 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
         k_best: args.k_best,
         motion_test: !args.no_motion_test,
         static_sweep: !args.no_static_sweep,
+        learn: !args.no_learning,
         search: if args.exhaustive {
             SearchKind::Exhaustive
         } else {

@@ -183,4 +183,12 @@ impl Chains for Certified<'_, '_, '_> {
     fn drop_piece(&mut self, m: usize, pv: &Pv) {
         self.chains.drop_piece(m, pv);
     }
+
+    fn restore_piece(&mut self, m: usize, pv: &Pv) {
+        self.chains.restore_piece(m, pv);
+    }
+
+    fn shortest_known(&mut self) -> Result<Option<CablePath>, SolveError> {
+        self.chains.shortest_known()
+    }
 }

@@ -5,6 +5,7 @@ use crate::attachment::LazyAttachment;
 use crate::chain::ChainSearch;
 use crate::path::{CablePath, Pv};
 use crate::setup::Setup;
+use std::collections::BTreeSet;
 
 /// The chain search over the sets `d2`, one per segment (declared ones and spans).
 pub(super) fn chain_search(setup: &Setup, d2: &[Vec<Pv>]) -> Result<ChainSearch, SolveError> {
@@ -26,21 +27,53 @@ pub(super) trait Chains {
     fn shortest(&mut self) -> Result<Option<CablePath>, SolveError>;
     /// Takes piece `pv` of segment `m` out of every later chain.
     fn drop_piece(&mut self, m: usize, pv: &Pv);
+    /// The shortest chain of the robust pieces decided so far, not dropped, deciding nothing
+    /// more: a chain as long as [`Chains::shortest`]'s or longer.
+    fn shortest_known(&mut self) -> Result<Option<CablePath>, SolveError> {
+        self.shortest()
+    }
+    /// Puts piece `pv` of segment `m`, dropped before, back into the later chains (a piece
+    /// set aside on a guess, [`super::learn`]).
+    fn restore_piece(&mut self, m: usize, pv: &Pv);
 }
 
 /// The chains of fully decided sets (the exhaustive attachment test).
 pub(super) struct Decided<'s> {
     pub(super) setup: &'s Setup,
     pub(super) d2: Vec<Vec<Pv>>,
+    /// Pieces taken out of the chains: `(segment, piece)`.
+    pub(super) dropped: BTreeSet<(usize, Pv)>,
+}
+
+impl<'s> Decided<'s> {
+    /// The chains of the sets `d2`, one per segment, nothing dropped yet.
+    pub(super) fn new(setup: &'s Setup, d2: Vec<Vec<Pv>>) -> Self {
+        Decided {
+            setup,
+            d2,
+            dropped: BTreeSet::new(),
+        }
+    }
 }
 
 impl Chains for Decided<'_> {
     fn shortest(&mut self) -> Result<Option<CablePath>, SolveError> {
-        Ok(chain_search(self.setup, &self.d2)?.shortest())
+        let dropped = &self.dropped;
+        let kept: Vec<Vec<Pv>> = (self.d2.iter().enumerate())
+            .map(|(m, d2)| {
+                let kept = d2.iter().filter(|pv| !dropped.contains(&(m, **pv)));
+                kept.copied().collect()
+            })
+            .collect();
+        Ok(chain_search(self.setup, &kept)?.shortest())
     }
 
     fn drop_piece(&mut self, m: usize, pv: &Pv) {
-        self.d2[m].retain(|kept| kept != pv);
+        self.dropped.insert((m, *pv));
+    }
+
+    fn restore_piece(&mut self, m: usize, pv: &Pv) {
+        self.dropped.remove(&(m, *pv));
     }
 }
 
@@ -123,6 +156,14 @@ impl Chains for LazyChains<'_, '_> {
     fn drop_piece(&mut self, m: usize, pv: &Pv) {
         self.attachment.drop_piece(m, pv);
     }
+
+    fn restore_piece(&mut self, m: usize, pv: &Pv) {
+        self.attachment.restore_piece(m, pv);
+    }
+
+    fn shortest_known(&mut self) -> Result<Option<CablePath>, SolveError> {
+        Ok(chain_search(self.setup, &self.attachment.robust())?.shortest())
+    }
 }
 
 #[cfg(test)]
@@ -148,10 +189,7 @@ mod tests {
         // Small rounds and large ones: in the large ones, a drop reopens its pair far
         // inside the bound.
         for min_round in [1, 30, 300] {
-            let mut decided = Decided {
-                setup: &setup,
-                d2: d2.clone(),
-            };
+            let mut decided = Decided::new(&setup, d2.clone());
             let mut lazy = LazyChains {
                 setup: &setup,
                 attachment: LazyAttachment::new(&evaluator, &poses, None),

@@ -22,6 +22,7 @@
 mod certify;
 mod chains;
 mod diagnosis;
+mod learn;
 mod options;
 mod report;
 mod search;
@@ -39,9 +40,9 @@ pub use shapes::{
 
 use report::Stages;
 pub use report::{
-    CandidateOutcome, DictionarySegmentUse, DictionaryUse, Inputs, Margin, NamedPath, PathGuide,
-    PathSegment, PoseSummary, SegmentReport, SolveReport, Status, SweepRejection, SweepSummary,
-    Timings, dropped_per_segment, guide_names, named_path, pose_summary, shown_index,
+    CandidateOutcome, DictionarySegmentUse, DictionaryUse, Inputs, LearnedSwing, Margin, NamedPath,
+    PathGuide, PathSegment, PoseSummary, SegmentReport, SolveReport, Status, SweepRejection,
+    SweepSummary, Timings, dropped_per_segment, guide_names, named_path, pose_summary, shown_index,
 };
 
 use crate::attachment::{
@@ -126,7 +127,7 @@ pub fn solve_with(
             let sets = attachment_test_with(&evaluator, &poses, intra_link);
             let attachment_s = clock.elapsed().as_secs_f64();
             let d2: Vec<Vec<Pv>> = sets.iter().map(|s| s.d2.clone()).collect();
-            let mut chains = Decided { setup, d2 };
+            let mut chains = Decided::new(setup, d2);
             let searched = search_chains(setup, motion, options, &mut chains, certify)?;
             (sets, searched, attachment_s)
         }

@@ -24,6 +24,12 @@ pub struct SolveOptions {
     /// the motion ([`MotionSweep`]) and drop those that fail. Off: the paper's pipeline,
     /// where only the dynamic test follows the critical poses.
     pub static_sweep: bool,
+    /// Learn from failed motion tests how far each segment's cable swings past its static
+    /// shapes, and set aside, while other chains remain, the pieces whose static shapes keep
+    /// less than that inside a limit ([`super::learn`]). Off: chains go to the motion test
+    /// strictly shortest first (the answer is then the shortest that passes, within the
+    /// budget). Needs the static sweep.
+    pub learn: bool,
     /// Keep the cable's shape every this many seconds in each motion test's report
     /// ([`MotionTestOptions::shape_interval_s`]), e.g. for the report's animation.
     pub shape_interval_s: Option<f64>,
@@ -58,6 +64,7 @@ impl Default for SolveOptions {
             k_best: 50,
             motion_test: true,
             static_sweep: true,
+            learn: true,
             shape_interval_s: None,
             engine: EngineKind::Implicit,
             intra_link: IntraLinkCriterion::GravityDirections,

@@ -3,11 +3,14 @@
 
 use super::certify::{Certification, Certified};
 use super::chains::Chains;
+use super::learn::{Learned, SetAside};
 use super::options::{SolveError, SolveOptions};
-use crate::attachment::{ConnectMethod, Evaluator, MotionSweep, SegmentPoses, SweepFailure};
+use crate::attachment::{
+    ConnectMethod, Evaluator, MotionSweep, SegmentPoses, SweepFailure, SweptLeast,
+};
 use crate::dictionary::MotionLookup;
 use crate::motion::Motion;
-use crate::motion_test::{self, MotionTestOptions, MotionTestReport};
+use crate::motion_test::{self, MotionTestOptions, MotionTestReport, Violation};
 use crate::path::{CablePath, Pv};
 use crate::setup::Setup;
 use std::time::Instant;
@@ -50,6 +53,8 @@ pub(crate) struct MotionSearch {
     pub winner: Option<usize>,
     /// Why the search stopped without one (empty otherwise).
     pub stop: String,
+    /// It stopped because the budget of motion tests was spent, chains left.
+    pub budget_spent: bool,
     /// Distinct motion poses of the static sweep (0 when it did not run).
     pub sweep_poses: usize,
     /// PVs swept.
@@ -63,9 +68,40 @@ pub(crate) struct MotionSearch {
     pub chain_s: f64,
     /// Wall time of the dynamic motion tests (s).
     pub motion_test_s: f64,
+    /// The swings learned from the failed motion tests.
+    pub learned: Learned,
+    /// Pieces set aside by a learned swing, in the order found.
+    pub set_aside: Vec<SetAside>,
+    /// The pieces set aside came back (no chain was left without them): from then on the
+    /// search went on without learned margins.
+    pub set_aside_restored: bool,
+    /// The answer passed with pieces set aside: the shortest chain with them of the pieces
+    /// decided (sub-segments), when shorter than the answer — untried (a shorter one of
+    /// pieces not yet decided may exist).
+    pub shortest_untried: Option<usize>,
 }
 
 impl MotionSearch {
+    /// Nothing tried yet.
+    pub(super) fn new() -> Self {
+        MotionSearch {
+            tried: Vec::new(),
+            winner: None,
+            stop: String::new(),
+            budget_spent: false,
+            sweep_poses: 0,
+            swept: 0,
+            dropped: Vec::new(),
+            sweep_s: 0.0,
+            chain_s: 0.0,
+            motion_test_s: 0.0,
+            learned: Learned::default(),
+            set_aside: Vec::new(),
+            set_aside_restored: false,
+            shortest_untried: None,
+        }
+    }
+
     fn stopped(mut self, stop: impl Into<String>) -> Self {
         self.stop = stop.into();
         self
@@ -84,25 +120,9 @@ fn motion_tests(
     chains: &mut dyn Chains,
     options: &SolveOptions,
 ) -> Result<MotionSearch, SolveError> {
-    let mut outcome = MotionSearch {
-        tried: Vec::new(),
-        winner: None,
-        stop: String::new(),
-        sweep_poses: 0,
-        swept: 0,
-        dropped: Vec::new(),
-        sweep_s: 0.0,
-        chain_s: 0.0,
-        motion_test_s: 0.0,
-    };
-    let shortest = |outcome: &mut MotionSearch, chains: &mut dyn Chains| {
-        let clock = Instant::now();
-        let path = chains.shortest();
-        outcome.chain_s += clock.elapsed().as_secs_f64();
-        path
-    };
+    let mut outcome = MotionSearch::new();
     if !options.motion_test {
-        let path = shortest(&mut outcome, chains)?;
+        let path = timed_shortest(&mut outcome, chains)?;
         outcome.tried.extend(path.map(|path| (path, None)));
         outcome.winner = (!outcome.tried.is_empty()).then_some(0);
         return Ok(outcome);
@@ -122,15 +142,90 @@ fn motion_tests(
         shape_interval_s: options.shape_interval_s,
         ..MotionTestOptions::new(options.engine.with_defaults(setup.gravity_m_s2))
     };
+    let mut test = |path: &CablePath| -> Result<Tested, SolveError> {
+        let report = motion_test::run(setup, path, motion, &test_options)?;
+        Ok(Tested {
+            passed: report.passed,
+            segment: report.failure.as_ref().and_then(|f| f.segment),
+            violation: report.first_violation.clone(),
+            reason: (report.failure.as_ref()).map_or("passed".to_string(), |f| f.reason.clone()),
+            report: Some(report),
+        })
+    };
+    let sweep = sweep.as_mut().map(|s| s as &mut dyn ChainSweep);
+    try_chains(setup, chains, options, sweep, &mut test, outcome)
+}
+
+/// The static sweep as the search uses it: the pieces of a chain that fail it, and the least
+/// values each piece swept met.
+pub(super) trait ChainSweep {
+    /// The pieces of `path` that fail the sweep, piece by piece.
+    fn failing(&mut self, path: &CablePath) -> Vec<Dropped>;
+    /// The least bend radius and clearance of a swept piece.
+    fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast>;
+    /// Pieces swept so far.
+    fn swept(&self) -> usize;
+}
+
+impl ChainSweep for MotionSweep<'_, '_> {
+    fn failing(&mut self, path: &CablePath) -> Vec<Dropped> {
+        sweep_chain(self, path)
+    }
+
+    fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast> {
+        MotionSweep::least(self, m, pv)
+    }
+
+    fn swept(&self) -> usize {
+        MotionSweep::swept(self)
+    }
+}
+
+/// What one motion test said, as the search needs it.
+pub(super) struct Tested {
+    /// The chain held every limit over the motion.
+    pub passed: bool,
+    /// The segment its failure belongs to, if one.
+    pub segment: Option<usize>,
+    /// The first limit violated, if one.
+    pub violation: Option<Violation>,
+    /// For people: the failure, or `passed`.
+    pub reason: String,
+    /// The whole report (kept with the chain tried).
+    pub report: Option<MotionTestReport>,
+}
+
+/// The motion tests over `chains`, shortest first, each chain swept by `sweep` (when given)
+/// before `test` simulates it; learning from failures as [`super::learn`] says unless
+/// `options.learn` is off.
+pub(super) fn try_chains(
+    setup: &Setup,
+    chains: &mut dyn Chains,
+    options: &SolveOptions,
+    mut sweep: Option<&mut dyn ChainSweep>,
+    test: &mut dyn FnMut(&CablePath) -> Result<Tested, SolveError>,
+    mut outcome: MotionSearch,
+) -> Result<MotionSearch, SolveError> {
     while outcome.tried.len() < options.k_best {
-        let Some(path) = shortest(&mut outcome, chains)? else {
-            return Ok(
-                outcome.stopped("no chain is left of the robust pieces that did not fail it")
+        let next = timed_shortest(&mut outcome, chains)?;
+        let Some(path) = next else {
+            if outcome.set_aside.is_empty() || outcome.set_aside_restored {
+                return Ok(
+                    outcome.stopped("no chain is left of the robust pieces that did not fail it")
+                );
+            }
+            // Only guesses stood in the way: every piece set aside comes back, untried.
+            log::info!(
+                "no chain is left without the {} pieces set aside by learned swings: they \
+                 come back, and the search goes on without learned margins",
+                outcome.set_aside.len()
             );
+            restore_set_aside(&mut outcome, chains);
+            continue;
         };
-        if let Some(sweep) = sweep.as_mut() {
+        if let Some(sweep) = sweep.as_deref_mut() {
             let clock = Instant::now();
-            let failed = sweep_chain(sweep, &path);
+            let failed = sweep.failing(&path);
             outcome.sweep_s += clock.elapsed().as_secs_f64();
             outcome.swept = sweep.swept();
             if !failed.is_empty() {
@@ -145,24 +240,53 @@ fn motion_tests(
                 outcome.dropped.extend(failed);
                 continue;
             }
+            if options.learn && !outcome.set_aside_restored {
+                let doubted = doubted_pieces(&*sweep, &outcome.learned, setup, &path);
+                if !doubted.is_empty() {
+                    for aside in &doubted {
+                        log::debug!(
+                            "set aside {} {:?}: {}",
+                            setup.segment_name(aside.segment),
+                            aside.pv,
+                            aside.why
+                        );
+                        chains.drop_piece(aside.segment, &aside.pv);
+                    }
+                    outcome.set_aside.extend(doubted);
+                    continue;
+                }
+            }
         }
         let clock = Instant::now();
-        let report = motion_test::run(setup, &path, motion, &test_options)?;
+        let tested = test(&path)?;
         outcome.motion_test_s += clock.elapsed().as_secs_f64();
         log::info!(
             "motion test {}: {:.0} mm, {}",
             outcome.tried.len() + 1,
             path.total_sub_segments() as f64 * setup.cable.sub_segment_pitch_m * 1e3,
-            report
-                .failure
-                .as_ref()
-                .map_or("passed".to_string(), |f| f.reason.clone())
+            tested.reason
         );
-        let failed_segment = report.failure.as_ref().and_then(|f| f.segment);
-        let passed = report.passed;
-        outcome.tried.push((path.clone(), Some(report)));
+        let failed_segment = tested.segment;
+        let passed = tested.passed;
+        if let (Some(sweep), Some(violation)) = (sweep.as_deref(), &tested.violation) {
+            let m = violation.segment;
+            for (_, pv) in path.pieces().filter(|&(segment, _)| segment == m) {
+                if let Some(least) = sweep.least(m, &pv) {
+                    outcome.learned.learn(m, &pv, violation, &least);
+                }
+            }
+        }
+        outcome.tried.push((path.clone(), tested.report));
         if passed {
             outcome.winner = Some(outcome.tried.len() - 1);
+            if !outcome.set_aside.is_empty() && !outcome.set_aside_restored {
+                // Say how much shorter a path with the pieces set aside could be.
+                restore_set_aside(&mut outcome, chains);
+                let shorter = (chains.shortest_known()?)
+                    .map(|p| p.total_sub_segments())
+                    .filter(|&s| s < path.total_sub_segments());
+                outcome.shortest_untried = shorter;
+            }
             return Ok(outcome);
         }
         let Some(m) = failed_segment else {
@@ -173,9 +297,49 @@ fn motion_tests(
         }
     }
     let budget = options.k_best;
+    outcome.budget_spent = true;
     Ok(outcome.stopped(format!(
         "the budget of {budget} motion tests (--k-best) is spent"
     )))
+}
+
+/// The shortest chain, its search's time added to `outcome`.
+fn timed_shortest(
+    outcome: &mut MotionSearch,
+    chains: &mut dyn Chains,
+) -> Result<Option<CablePath>, SolveError> {
+    let clock = Instant::now();
+    let path = chains.shortest();
+    outcome.chain_s += clock.elapsed().as_secs_f64();
+    path
+}
+
+/// Puts every piece set aside back on the chains; learned margins set nothing aside from now.
+fn restore_set_aside(outcome: &mut MotionSearch, chains: &mut dyn Chains) {
+    for aside in &outcome.set_aside {
+        chains.restore_piece(aside.segment, &aside.pv);
+    }
+    outcome.set_aside_restored = true;
+}
+
+/// The pieces of `path` whose static shapes keep a learned swing not inside the limits,
+/// each with why.
+fn doubted_pieces(
+    sweep: &dyn ChainSweep,
+    learned: &Learned,
+    setup: &Setup,
+    path: &CablePath,
+) -> Vec<SetAside> {
+    let doubt = |(m, pv): (usize, Pv)| {
+        let least = sweep.least(m, &pv)?;
+        let why = learned.doubt(m, &pv, &least, &setup.thresholds)?;
+        Some(SetAside {
+            segment: m,
+            pv,
+            why,
+        })
+    };
+    path.pieces().filter_map(doubt).collect()
 }
 
 /// The PVs of `path` that fail the static sweep, piece by piece.
@@ -185,4 +349,198 @@ fn sweep_chain(sweep: &mut MotionSweep<'_, '_>, path: &CablePath) -> Vec<Dropped
         .zip(sweep.check_all(&pvs))
         .filter_map(|(&(m, pv), failure)| Some((m, pv, failure?)))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses};
+    use crate::fixtures::{exhaustive_robust, narrow_pick_and_place};
+    use crate::motion_test::{Constraint, Place};
+    use crate::solve::chains::{Decided, chain_search};
+    use std::collections::BTreeMap;
+
+    /// A cable whose every piece has a least static bend radius over the motion and a swing
+    /// below it in the motion test, both fixed numbers: the motion test of a chain fails at
+    /// its first piece whose static radius minus swing is below the limit. Loops of one
+    /// clamp pair swing alike (a pair's swing, ±10 % with the length); segments differ.
+    struct Synthetic {
+        limit_m: f64,
+        least_m: BTreeMap<(usize, Pv), f64>,
+        swing_m: BTreeMap<(usize, Pv), f64>,
+        swept: usize,
+    }
+
+    /// A number in [0, 1) from `key`, the same on every machine.
+    fn unit(key: &[usize]) -> f64 {
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        for &k in key {
+            h = (h ^ k as u64).wrapping_mul(0x0100_0000_01b3);
+            h ^= h >> 29;
+        }
+        (h % 1_000_003) as f64 / 1_000_003.0
+    }
+
+    impl Synthetic {
+        /// The cable of world `seed` over the pieces `d2`.
+        fn over(d2: &[Vec<Pv>], limit_m: f64, seed: usize) -> Synthetic {
+            let segment_swing_m = [3.0e-3, 2.0e-3, 3.5e-3];
+            let mut least_m = BTreeMap::new();
+            let mut swing_m = BTreeMap::new();
+            for (m, pieces) in d2.iter().enumerate() {
+                for pv in pieces {
+                    let (s, a, b) = (pv.sub_segments, pv.start, pv.end);
+                    least_m.insert((m, *pv), limit_m + 6e-3 * unit(&[seed, m, s, a, b]));
+                    let pair = 0.5 + unit(&[seed, m, a, b, 7]);
+                    let length = 0.9 + 0.2 * unit(&[seed, m, s, a, b, 11]);
+                    swing_m.insert((m, *pv), segment_swing_m[m % 3] * pair * length);
+                }
+            }
+            Synthetic {
+                limit_m,
+                least_m,
+                swing_m,
+                swept: 0,
+            }
+        }
+
+        /// The simulated radius of a piece.
+        fn dynamic_m(&self, m: usize, pv: &Pv) -> f64 {
+            self.least_m[&(m, *pv)] - self.swing_m[&(m, *pv)]
+        }
+
+        /// The motion test of `path`.
+        fn test(&self, path: &CablePath) -> Tested {
+            let failing = path
+                .pieces()
+                .find(|(m, pv)| self.dynamic_m(*m, pv) < self.limit_m);
+            Tested {
+                passed: failing.is_none(),
+                segment: failing.map(|(m, _)| m),
+                violation: failing.map(|(m, pv)| Violation {
+                    constraint: Constraint::BendRadius,
+                    value: self.dynamic_m(m, &pv),
+                    threshold: self.limit_m,
+                    unit: "m",
+                    time_s: 0.0,
+                    segment: m,
+                    segment_name: format!("C{}", m + 1),
+                    place: Place {
+                        sub_segment: None,
+                        node: None,
+                        link: None,
+                        position_m: None,
+                        touches: None,
+                    },
+                }),
+                reason: String::new(),
+                report: None,
+            }
+        }
+    }
+
+    impl ChainSweep for Synthetic {
+        fn failing(&mut self, path: &CablePath) -> Vec<Dropped> {
+            self.swept += path.pieces().count();
+            Vec::new()
+        }
+
+        fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast> {
+            Some(SweptLeast {
+                bend_radius_m: self.least_m[&(m, *pv)],
+                clearance_m: None,
+            })
+        }
+
+        fn swept(&self) -> usize {
+            self.swept
+        }
+    }
+
+    /// The search over the robust sets `d2` with the synthetic cable, learning or not.
+    fn search(
+        setup: &Setup,
+        d2: &[Vec<Pv>],
+        cable: &mut Synthetic,
+        seed: usize,
+        learn: bool,
+    ) -> MotionSearch {
+        let options = SolveOptions {
+            k_best: 100_000,
+            learn,
+            ..SolveOptions::default()
+        };
+        let mut chains = Decided::new(setup, d2.to_vec());
+        let oracle = Synthetic::over(d2, cable.limit_m, seed);
+        let mut test = |path: &CablePath| Ok(oracle.test(path));
+        let sweep: &mut dyn ChainSweep = cable;
+        try_chains(
+            setup,
+            &mut chains,
+            &options,
+            Some(sweep),
+            &mut test,
+            MotionSearch::new(),
+        )
+        .unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    #[test]
+    fn learning_never_rules_out_a_passing_chain_without_saying_so_and_spends_fewer_tests() {
+        let (setup, motion) = narrow_pick_and_place();
+        let poses = SegmentPoses::new(&setup, &motion).unwrap_or_else(|e| panic!("{e}"));
+        let evaluator =
+            Evaluator::new(&setup, ConnectMethod::Hermite).unwrap_or_else(|e| panic!("{e}"));
+        let d2 = exhaustive_robust(&evaluator, &poses);
+        let limit_m = 48e-3;
+        let (mut learned_tests, mut strict_tests) = (0, 0);
+        for seed in 0..12 {
+            // The reference: every chain, shortest first, put to the motion test until one
+            // passes — no piece dropped, nothing learned.
+            let oracle = Synthetic::over(&d2, limit_m, seed);
+            let reference = chain_search(&setup, &d2)
+                .unwrap_or_else(|e| panic!("{e}"))
+                .k_best()
+                .find(|path| oracle.test(path).passed)
+                .expect("some chain passes");
+            let shortest = reference.total_sub_segments();
+
+            let strict = search(
+                &setup,
+                &d2,
+                &mut Synthetic::over(&d2, limit_m, seed),
+                seed,
+                false,
+            );
+            let strict_answer = &strict.tried[strict.winner.expect("the strict search passes")].0;
+            assert_eq!(strict_answer.total_sub_segments(), shortest, "seed {seed}");
+
+            let learned = search(
+                &setup,
+                &d2,
+                &mut Synthetic::over(&d2, limit_m, seed),
+                seed,
+                true,
+            );
+            let answer = &learned.tried[learned.winner.expect("the learning search passes")].0;
+            assert!(oracle.test(answer).passed, "seed {seed}");
+            let length = answer.total_sub_segments();
+            assert!(length >= shortest, "seed {seed}");
+            if length > shortest {
+                // Longer than the shortest passing chain: only because pieces were set
+                // aside, and the answer says how short a chain with them can be.
+                let untried = learned
+                    .shortest_untried
+                    .expect("the shorter chain is named");
+                assert!(untried <= shortest, "seed {seed}: {untried} > {shortest}");
+            }
+            learned_tests += learned.tried.len();
+            strict_tests += strict.tried.len();
+        }
+        assert!(
+            2 * learned_tests < strict_tests,
+            "learning took {learned_tests} motion tests over the worlds, the strict order \
+             {strict_tests}: not half"
+        );
+    }
 }

@@ -7,7 +7,9 @@ use super::data::*;
 use super::margins::margins;
 use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, SegmentSets, TestPose};
 use crate::chain::ChainSearch;
+use crate::json::tidy;
 use crate::motion::Motion;
+use crate::motion_test::Constraint;
 use crate::mounting::mounting_plan;
 use crate::path::CablePath;
 use crate::setup::Setup;
@@ -53,6 +55,7 @@ impl SolveReport {
         };
         let diagnosis = matches!(status, Status::NoChain | Status::NonePassedMotionTest)
             .then(|| diagnose(setup, motion, poses, sets, &outcome));
+        let unsolved = unsolved(setup, status, &outcome);
         SolveReport {
             status,
             explanation: explanation(
@@ -61,6 +64,7 @@ impl SolveReport {
                 &candidates,
                 &outcome.stop,
                 &static_sweep,
+                unsolved.as_ref(),
                 setup,
             ),
             inputs: inputs(setup, motion, options),
@@ -84,6 +88,7 @@ impl SolveReport {
             motion_engine: options.engine,
             timings,
             diagnosis,
+            unsolved,
         }
     }
 }
@@ -103,9 +108,19 @@ fn explanation(
     candidates: &[CandidateOutcome],
     stop: &str,
     sweep: &SweepSummary,
+    unsolved: Option<&Unsolved>,
     setup: &Setup,
 ) -> String {
     match status {
+        Status::Solved if sweep.shortest_untried_mm.is_some() => format!(
+            "the shortest cable path that held every limit over the motion among the chains \
+             whose pieces kept the swings learned from {} failed motion tests inside the \
+             limits; a chain of {:.0} mm (or shorter) with {} pieces set aside was not tested (`solve \
+             --no-learning` tests the chains strictly shortest first)",
+            candidates.len() - 1,
+            sweep.shortest_untried_mm.unwrap_or_default(),
+            sweep.set_aside,
+        ),
         Status::Solved => match candidates.len() {
             1 => "the shortest cable path, and it held every limit over the motion".into(),
             n => format!(
@@ -127,15 +142,65 @@ fn explanation(
         // Each candidate's failure is in `candidates` (and `solve -v`), the per-piece story
         // in the diagnosis: the reason stays one sentence.
         Status::NonePassedMotionTest => format!(
-            "{}, and {stop}{}",
+            "{}, and {stop}{}{}",
             match candidates.len() {
                 1 => "1 path was tried".to_string(),
                 n => format!("{n} paths were tried"),
             },
             sweep_note(sweep),
+            closest_note(unsolved),
         ),
         Status::NoChain => unsolved_reason(sets, setup),
     }
+}
+
+/// `; the closest, 1620 mm, missed …`: the path tried that came closest to passing and how
+/// far a limit would have to move for it; nothing without one.
+fn closest_note(unsolved: Option<&Unsolved>) -> String {
+    let Some(closest) = unsolved.and_then(|u| u.closest.as_ref()) else {
+        return String::new();
+    };
+    let what = match closest.limit {
+        Constraint::BendRadius => "bend radius",
+        _ => "clearance",
+    };
+    let by = match closest.relax_by_mm {
+        v if v < 0.01 => "less than 0.01 mm".to_string(),
+        v => format!("{v:.2} mm"),
+    };
+    format!(
+        "; the closest path tried ({:.0} mm) missed by {by} of {what} in {} ({:.3} mm against \
+         {:.1} mm): a limit relaxed by that much removes this failure (the motion test stops \
+         at a path's first failure: later ones were not simulated)",
+        closest.length_mm, closest.segment, closest.value_mm, closest.limit_mm,
+    )
+}
+
+/// Which way the search ended without an answer, and the path tried that came closest;
+/// `None` when solved (or not motion-tested).
+fn unsolved(setup: &Setup, status: Status, outcome: &MotionSearch) -> Option<Unsolved> {
+    let case = match status {
+        Status::NoChain => UnsolvedCase::NoChain,
+        Status::NonePassedMotionTest if outcome.budget_spent => UnsolvedCase::BudgetSpent,
+        Status::NonePassedMotionTest => UnsolvedCase::AllChainsFailed,
+        Status::Solved | Status::Untested => return None,
+    };
+    let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+    // Bend radius and clearance misses, in mm, least first (the first one tried on ties).
+    let misses = (outcome.tried.iter().enumerate()).filter_map(|(k, (path, report))| {
+        let v = report.as_ref()?.first_violation.as_ref()?;
+        matches!(v.constraint, Constraint::BendRadius | Constraint::Contact).then(|| ClosestMiss {
+            candidate: k,
+            length_mm: path.total_sub_segments() as f64 * pitch_mm,
+            segment: v.segment_name.clone(),
+            limit: v.constraint,
+            value_mm: tidy(v.value * 1e3),
+            limit_mm: tidy(v.threshold * 1e3),
+            relax_by_mm: tidy((v.threshold - v.value) * 1e3),
+        })
+    });
+    let closest = misses.min_by(|a, b| a.relax_by_mm.total_cmp(&b.relax_by_mm));
+    Some(Unsolved { case, closest })
 }
 
 /// `; the static sweep over the motion dropped N cable pieces (C1 n1, …)`, or nothing when it
@@ -183,10 +248,23 @@ fn sweep_summary(setup: &Setup, outcome: &MotionSearch) -> SweepSummary {
             }
         })
         .collect();
+    let mm = |v: Option<f64>| v.map(|v| tidy(v * 1e3));
+    let learned_swings = (outcome.learned.by_segment())
+        .map(|(m, swing)| LearnedSwing {
+            segment: setup.segment_name(m),
+            bend_radius_mm: mm(swing.bend_radius_m),
+            clearance_mm: mm(swing.clearance_m),
+        })
+        .collect();
     SweepSummary {
         poses: outcome.sweep_poses,
         pvs_swept: outcome.swept,
         rejected,
+        learned_swings,
+        set_aside: outcome.set_aside.len(),
+        set_aside_restored: outcome.set_aside_restored,
+        shortest_untried_mm: (outcome.shortest_untried)
+            .map(|s| tidy(s as f64 * setup.cable.sub_segment_pitch_m * 1e3)),
     }
 }
 

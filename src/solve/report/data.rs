@@ -4,7 +4,7 @@ use super::super::certify::Certification;
 use super::super::diagnosis::Diagnosis;
 use super::super::options::SearchKind;
 use crate::attachment::{ConnectMethod, Rejection};
-use crate::motion_test::{EngineKind, MotionTestReport};
+use crate::motion_test::{Constraint, EngineKind, MotionTestReport};
 use crate::mounting::MountingPlan;
 use crate::path::CablePath;
 use crate::setup::Thresholds;
@@ -216,6 +216,31 @@ pub struct SweepSummary {
     pub pvs_swept: usize,
     /// PVs dropped, in the order found.
     pub rejected: Vec<SweepRejection>,
+    /// How far the cable swung past its static shapes in the failed motion tests, per
+    /// segment (the smallest over the clamp pairs measured), in segment order.
+    pub learned_swings: Vec<LearnedSwing>,
+    /// Pieces set aside because their static shapes kept a learned swing not inside a limit
+    /// (docs/architecture.md, "Learning from failed motion tests").
+    pub set_aside: usize,
+    /// The pieces set aside came back and the search went on without learned margins: no
+    /// chain was left without them, or a chain passed and the shorter ones with them were
+    /// tried before it was the answer.
+    pub set_aside_restored: bool,
+    /// The answer passed with pieces set aside: the length of the shortest chain with them
+    /// of the pieces decided (mm), when shorter than the answer. It was not motion-tested;
+    /// a shorter one of pieces the search did not decide may exist.
+    pub shortest_untried_mm: Option<f64>,
+}
+
+/// How far one segment's cable swung past its static shapes in a failed motion test.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LearnedSwing {
+    /// `C1`, `C2`, …
+    pub segment: String,
+    /// Bend radius lost to the swing (mm); `None`: no bend-radius failure measured.
+    pub bend_radius_mm: Option<f64>,
+    /// Clearance to the robot lost to the swing (mm); `None`: no contact failure measured.
+    pub clearance_mm: Option<f64>,
 }
 
 /// A PV the static sweep dropped.
@@ -340,6 +365,52 @@ pub struct SolveReport {
     pub timings: Timings,
     /// Why there is no path, and what would help; `None` when solved.
     pub diagnosis: Option<Diagnosis>,
+    /// Which of the three ways the search ended without an answer, and the path tried that
+    /// came closest to passing; `None` when solved.
+    pub unsolved: Option<Unsolved>,
+}
+
+/// How a search without an answer ended (result JSON `unsolved`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Unsolved {
+    /// Which case.
+    pub case: UnsolvedCase,
+    /// The path tried that missed a limit by the least (bend radius or clearance, in mm);
+    /// `None` when no path reached the motion test, or none failed by a measurable amount.
+    pub closest: Option<ClosestMiss>,
+}
+
+/// The three ways a search ends without an answer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum UnsolvedCase {
+    /// No chain of robust pieces exists within the length windows and clamp sites: the
+    /// attachment test rules every one out (the diagnosis says why, segment by segment).
+    NoChain,
+    /// Every chain of robust pieces was tried (or contains a piece that failed): none
+    /// exists that holds the limits over the motion.
+    AllChainsFailed,
+    /// The budget of motion tests ran out with chains untried: a path may exist.
+    BudgetSpent,
+}
+
+/// The path tried that came closest to passing the motion test.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ClosestMiss {
+    /// Its index in `candidates`.
+    pub candidate: usize,
+    /// Its total length (mm).
+    pub length_mm: f64,
+    /// The segment that failed (`C3`).
+    pub segment: String,
+    /// The limit it missed: `bend_radius` or `contact`.
+    pub limit: Constraint,
+    /// What the motion test measured (mm).
+    pub value_mm: f64,
+    /// The limit (mm).
+    pub limit_mm: f64,
+    /// By how much the limit would have to be relaxed for this failure to go (mm).
+    pub relax_by_mm: f64,
 }
 
 impl SolveReport {

@@ -84,6 +84,7 @@ struct ResultJson<'a> {
     margins: &'a [Margin],
     reason: Option<&'a str>,
     diagnosis: Option<&'a Diagnosis>,
+    unsolved: Option<&'a Unsolved>,
     inputs: &'a Inputs,
     timings_s: &'a Timings,
 }
@@ -111,6 +112,7 @@ impl Serialize for SolveReport {
             margins: &self.margins,
             reason: (self.status != Status::Solved).then_some(self.explanation.as_str()),
             diagnosis: self.diagnosis.as_ref(),
+            unsolved: self.unsolved.as_ref(),
             inputs: &self.inputs,
             timings_s: &self.timings,
         }

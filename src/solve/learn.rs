@@ -1,0 +1,153 @@
+//! What a failed motion test teaches the search: how far the cable of a segment swings past
+//! its static shapes.
+//!
+//! A chain fails the motion test where one of its pieces bends tighter, or comes closer to
+//! the robot, than the limit allows, while the same piece held the limit at every pose of the
+//! static sweep: the cable swung. The difference between the piece's least static value
+//! over the motion and the simulated value at the failure is its *swing*. A piece of the
+//! same clamp pair (the same loop, a few centimetres longer or shorter) swings about as far,
+//! and so does, less surely, another loop of the same segment. Before a chain goes to the
+//! motion test, each of its pieces must keep its least static value at least a swing inside
+//! the limit: the pair's own swing where one was measured, else the smallest swing measured
+//! in its segment. A piece that does not is *set aside*, not dropped: when no chain is left
+//! without the pieces set aside, they all come back and the search goes on without learned
+//! margins, so that a path the motion test would pass is never ruled out by a guess — only
+//! tried later ([`Learned`]).
+
+use crate::attachment::SweptLeast;
+use crate::motion_test::{Constraint, Violation};
+use crate::path::Pv;
+use crate::setup::Thresholds;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// How far a cable swung past its static shapes, per limit (m); `None`: not measured.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct Swing {
+    /// Bend radius lost (m).
+    pub bend_radius_m: Option<f64>,
+    /// Clearance to the robot lost (m).
+    pub clearance_m: Option<f64>,
+}
+
+impl Swing {
+    /// The larger of each limit's swing (`pick` = max) or the smaller (`pick` = min).
+    fn merge(&mut self, other: &Swing, pick: fn(f64, f64) -> f64) {
+        let merge = |a: Option<f64>, b: Option<f64>| match (a, b) {
+            (Some(a), Some(b)) => Some(pick(a, b)),
+            (a, b) => a.or(b),
+        };
+        self.bend_radius_m = merge(self.bend_radius_m, other.bend_radius_m);
+        self.clearance_m = merge(self.clearance_m, other.clearance_m);
+    }
+}
+
+/// A piece set aside by a learned margin, and why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SetAside {
+    /// The segment (C1 = 0).
+    pub segment: usize,
+    /// The piece.
+    pub pv: Pv,
+    /// For people: the least static value, the margin and where it was learned.
+    pub why: String,
+}
+
+/// The swings learned from the failed motion tests so far.
+#[derive(Debug, Default)]
+pub struct Learned {
+    /// Per segment and clamp pair `(segment, start, end)`: the largest swing measured.
+    pairs: BTreeMap<(usize, usize, usize), Swing>,
+    /// Per segment: the smallest swing measured on any of its pairs.
+    segments: BTreeMap<usize, Swing>,
+}
+
+impl Learned {
+    /// Learns from a motion test that failed with `violation` in piece `pv` of segment `m`,
+    /// whose static shapes over the motion had the least values `least`. Only the bend
+    /// radius and the clearance to the robot teach a swing; the other limits teach nothing.
+    pub fn learn(&mut self, m: usize, pv: &Pv, violation: &Violation, least: &SweptLeast) {
+        let swing = match violation.constraint {
+            Constraint::BendRadius => Swing {
+                bend_radius_m: Some(least.bend_radius_m - violation.value),
+                clearance_m: None,
+            },
+            Constraint::Contact => Swing {
+                bend_radius_m: None,
+                clearance_m: least.clearance_m.map(|c| c - violation.value),
+            },
+            _ => return,
+        };
+        // A static value below the simulated one teaches nothing (the sweep missed it).
+        let positive = |v: Option<f64>| v.filter(|v| v.is_finite() && *v > 0.0);
+        let swing = Swing {
+            bend_radius_m: positive(swing.bend_radius_m),
+            clearance_m: positive(swing.clearance_m),
+        };
+        if swing == Swing::default() {
+            return;
+        }
+        (self.pairs.entry((m, pv.start, pv.end)).or_default()).merge(&swing, f64::max);
+        match self.segments.get_mut(&m) {
+            Some(known) => known.merge(&swing, f64::min),
+            None => {
+                self.segments.insert(m, swing);
+            }
+        }
+    }
+
+    /// The swing piece `pv` of segment `m` must keep inside the limits: its pair's, else
+    /// its segment's (each limit on its own).
+    fn swing(&self, m: usize, pv: &Pv) -> Swing {
+        let mut swing = self.segments.get(&m).copied().unwrap_or_default();
+        if let Some(pair) = self.pairs.get(&(m, pv.start, pv.end)) {
+            swing.bend_radius_m = pair.bend_radius_m.or(swing.bend_radius_m);
+            swing.clearance_m = pair.clearance_m.or(swing.clearance_m);
+        }
+        swing
+    }
+
+    /// Why piece `pv` of segment `m`, whose static shapes over the motion had the least
+    /// values `least`, would likely fail the motion test as measured pieces did; `None` when
+    /// it keeps every learned swing inside the limits `thresholds`.
+    pub fn doubt(
+        &self,
+        m: usize,
+        pv: &Pv,
+        least: &SweptLeast,
+        thresholds: &Thresholds,
+    ) -> Option<String> {
+        let swing = self.swing(m, pv);
+        let mm = |v: f64| v * 1e3;
+        if let Some(bend) = swing.bend_radius_m {
+            let needed = thresholds.min_bend_radius_m + bend;
+            if least.bend_radius_m < needed {
+                return Some(format!(
+                    "its static bend radius {:.2} mm is within the {:.2} mm its loop swung below \
+                     the static one in a motion test (limit {:.1} mm)",
+                    mm(least.bend_radius_m),
+                    mm(bend),
+                    mm(thresholds.min_bend_radius_m)
+                ));
+            }
+        }
+        if let (Some(swing), Some(clearance)) = (swing.clearance_m, least.clearance_m) {
+            let needed = thresholds.contact_clearance_m + swing;
+            if clearance < needed {
+                return Some(format!(
+                    "its static clearance {:.2} mm is within the {:.2} mm its loop swung toward \
+                     the robot in a motion test (limit {:.1} mm)",
+                    mm(clearance),
+                    mm(swing),
+                    mm(thresholds.contact_clearance_m)
+                ));
+            }
+        }
+        None
+    }
+
+    /// The swings learned per segment (the smallest over its pairs), in segment order.
+    pub fn by_segment(&self) -> impl Iterator<Item = (usize, &Swing)> {
+        self.segments.iter().map(|(&m, swing)| (m, swing))
+    }
+}
