@@ -151,3 +151,155 @@ impl Learned {
         self.segments.iter().map(|(&m, swing)| (m, swing))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::motion_test::Place;
+
+    fn violation(constraint: Constraint, value_m: f64, segment: usize) -> Violation {
+        Violation {
+            constraint,
+            value: value_m,
+            threshold: 0.0,
+            unit: "m",
+            time_s: 0.0,
+            segment,
+            segment_name: format!("C{}", segment + 1),
+            place: Place {
+                sub_segment: None,
+                node: None,
+                link: None,
+                position_m: None,
+                touches: None,
+            },
+        }
+    }
+
+    fn least(bend_radius_m: f64, clearance_m: Option<f64>) -> SweptLeast {
+        SweptLeast {
+            bend_radius_m,
+            clearance_m,
+        }
+    }
+
+    fn pv(sub_segments: usize, start: usize, end: usize) -> Pv {
+        Pv {
+            sub_segments,
+            start,
+            end,
+        }
+    }
+
+    fn thresholds() -> Thresholds {
+        Thresholds {
+            contact_clearance_m: 0.0,
+            stretch: 1.02,
+            min_bend_radius_m: 0.048,
+            min_bend_radius_source: crate::setup::BendRadiusSource::Setup,
+            clamp_zone_m: 0.02,
+            static_bend_margin_m: 0.0,
+        }
+    }
+
+    #[test]
+    fn a_swing_is_the_static_least_minus_the_simulated_value_and_sets_aside_what_keeps_less() {
+        let mut learned = Learned::default();
+        let t = thresholds();
+        // A loop of pair (0, 1) held 48.5 mm at rest and bent to 47.8 mm: it swung 0.7 mm.
+        let failed = pv(30, 0, 1);
+        learned.learn(
+            0,
+            &failed,
+            &violation(Constraint::BendRadius, 0.0478, 0),
+            &least(0.0485, None),
+        );
+        let swing = learned
+            .swing(0, &pv(31, 0, 1))
+            .bend_radius_m
+            .expect("learned");
+        assert!((swing - 0.0007).abs() < 1e-12);
+        // Its neighbour 10 mm longer at 48.6 mm keeps less than 48 + 0.7: set aside; one at
+        // 48.8 mm keeps more: tried.
+        assert!(
+            learned
+                .doubt(0, &pv(31, 0, 1), &least(0.0486, None), &t)
+                .is_some()
+        );
+        assert!(
+            learned
+                .doubt(0, &pv(32, 0, 1), &least(0.0488, None), &t)
+                .is_none()
+        );
+        // Another segment learned nothing; a clearance is not judged by a bend swing.
+        assert!(
+            learned
+                .doubt(1, &pv(31, 0, 1), &least(0.0481, None), &t)
+                .is_none()
+        );
+        assert!(learned.swing(0, &failed).clearance_m.is_none());
+    }
+
+    #[test]
+    fn a_pair_keeps_its_largest_swing_and_the_segment_its_smallest() {
+        let mut learned = Learned::default();
+        let bend = |v| violation(Constraint::BendRadius, v, 2);
+        learned.learn(2, &pv(40, 3, 4), &bend(0.0479), &least(0.0484, None)); // 0.5 mm
+        learned.learn(2, &pv(42, 3, 4), &bend(0.0475), &least(0.0490, None)); // 1.5 mm
+        learned.learn(2, &pv(50, 5, 6), &bend(0.0479), &least(0.0481, None)); // 0.2 mm
+        let close = |a: Option<f64>, b: f64| (a.expect("learned") - b).abs() < 1e-12;
+        assert!(close(learned.swing(2, &pv(44, 3, 4)).bend_radius_m, 0.0015));
+        assert!(close(learned.swing(2, &pv(50, 5, 6)).bend_radius_m, 0.0002));
+        // A pair never measured takes the segment's smallest swing.
+        assert!(close(learned.swing(2, &pv(45, 7, 8)).bend_radius_m, 0.0002));
+        let segments: Vec<(usize, Swing)> = learned.by_segment().map(|(m, s)| (m, *s)).collect();
+        assert_eq!(segments.len(), 1);
+        assert!(close(segments[0].1.bend_radius_m, 0.0002));
+    }
+
+    #[test]
+    fn a_contact_failure_teaches_a_clearance_swing_and_other_limits_teach_nothing() {
+        let mut learned = Learned::default();
+        let t = thresholds();
+        let piece = pv(20, 0, 0);
+        // Clear by 3 mm at rest, 0.5 mm into the robot in motion: 3.5 mm.
+        learned.learn(
+            0,
+            &piece,
+            &violation(Constraint::Contact, -0.0005, 0),
+            &least(0.06, Some(0.003)),
+        );
+        assert!(
+            learned
+                .doubt(0, &pv(21, 0, 0), &least(0.06, Some(0.0034)), &t)
+                .is_some()
+        );
+        assert!(
+            learned
+                .doubt(0, &pv(22, 0, 0), &least(0.06, Some(0.0036)), &t)
+                .is_none()
+        );
+        // Stretch and self-contact failures, and a static value below the simulated one
+        // (the sweep missed it), teach nothing.
+        let mut other = Learned::default();
+        other.learn(
+            0,
+            &piece,
+            &violation(Constraint::Stretch, 1.03, 0),
+            &least(0.05, Some(0.01)),
+        );
+        other.learn(
+            0,
+            &piece,
+            &violation(Constraint::SelfContact, -0.001, 0),
+            &least(0.05, None),
+        );
+        other.learn(
+            0,
+            &piece,
+            &violation(Constraint::BendRadius, 0.0479, 0),
+            &least(0.0470, None),
+        );
+        assert_eq!(other.by_segment().count(), 0);
+    }
+}
