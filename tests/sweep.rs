@@ -5,7 +5,9 @@
 //! Run in release (`cargo test --release --test sweep`): a few PVs × 814 poses of static
 //! solves.
 
-use cable_dict::attachment::{ConnectMethod, Evaluator, MotionSweep, SegmentPoses, TestPose};
+use cable_dict::attachment::{
+    ConnectMethod, Evaluator, MotionSweep, SegmentPoses, SweptLeast, TestPose,
+};
 use cable_dict::cable::CableSpec;
 use cable_dict::motion::Motion;
 use cable_dict::path::Pv;
@@ -101,4 +103,55 @@ fn the_sweep_agrees_with_a_scan_of_every_sample_and_catches_what_critical_poses_
         missed_by_critical_poses > 0,
         "some case passes its critical poses and fails between them"
     );
+}
+
+/// A sweep stopped as soon as a least value falls below a stop (how a piece the learned
+/// swings will set aside is swept) ends below it, never past a failure the whole sweep
+/// finds first; its least values are those of the whole sweep up to where it stopped, and a
+/// check without a stop sweeps it again whole: the same verdict and least values as a sweep
+/// never stopped.
+#[test]
+fn a_sweep_stopped_below_a_value_knows_the_least_so_far_and_is_swept_whole_when_asked_again() {
+    let (setup, motion) = bundled();
+    let evaluator = Evaluator::new(&setup, ConnectMethod::Hermite).unwrap();
+    let cases = [
+        (0, Pv::new(55, 1, 1)),
+        (0, Pv::new(70, 1, 2)),
+        (1, Pv::new(23, 0, 2)),
+        (2, Pv::new(42, 1, 0)),
+    ];
+    let mut whole = MotionSweep::new(&evaluator, &motion).unwrap();
+    let mut stopped_any = false;
+    for (m, pv) in cases {
+        let failure = whole.check(m, &pv);
+        let least = whole.least(m, &pv).expect("swept");
+        // A stop a little above the whole sweep's least bend radius: reached at some pose.
+        let stop = SweptLeast {
+            bend_radius_m: least.bend_radius_m + 1e-4,
+            clearance_m: None,
+        };
+        let mut early = MotionSweep::new(&evaluator, &motion).unwrap();
+        let found = early.check_until(&[(m, pv, Some(stop))]).pop().flatten();
+        let partial = early.least(m, &pv).expect("swept");
+        match (&failure, &found) {
+            (Some(whole_failure), Some(early_failure)) => {
+                assert_eq!(whole_failure.sample, early_failure.sample)
+            }
+            (_, None) => {
+                stopped_any |= least.bend_radius_m.is_finite();
+                assert!(
+                    partial.below(&stop) || failure.is_some(),
+                    "C{} {pv:?}",
+                    m + 1
+                );
+                assert!(partial.bend_radius_m >= least.bend_radius_m);
+            }
+            (None, Some(_)) => panic!("C{} {pv:?}: a failure the whole sweep did not find", m + 1),
+        }
+        // Asked again without a stop: swept whole, as if never stopped.
+        let again = early.check(m, &pv);
+        assert_eq!(again.map(|f| f.sample), failure.as_ref().map(|f| f.sample));
+        assert_eq!(early.least(m, &pv), Some(least), "C{} {pv:?}", m + 1);
+    }
+    assert!(stopped_any, "some case stopped early");
 }

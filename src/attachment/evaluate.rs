@@ -270,18 +270,26 @@ impl<'a> Evaluator<'a> {
 
     /// The first pose of `poses` (in their order) where PV `pv` of segment `m` violates a
     /// limit, with its check (`None` when it holds them all), and the least bend radius and
-    /// clearance met on the way. Each pose's equilibrium starts
+    /// clearance met on the way. With `stop_below`, it stops as soon as a least value is
+    /// below that one's (the least can only fall further: the caller's verdict is known). Each pose's equilibrium starts
     /// from the previous poses', carried along by the guides' motion and extrapolated
     /// ([`follow_guides_extrapolated`](crate::statics::continuation::follow_guides_extrapolated)):
     /// the quasi-static cable moved slowly
     /// through the poses, on the branch it started on.
-    pub fn sweep<'p>(&self, m: usize, pv: &Pv, poses: &'p [TestPose]) -> Swept<'p> {
+    pub fn sweep<'p>(
+        &self,
+        m: usize,
+        pv: &Pv,
+        poses: &'p [TestPose],
+        stop_below: Option<&SweptLeast>,
+    ) -> Swept<'p> {
         let mut swept = Swept {
             failure: None,
             least: SweptLeast {
                 bend_radius_m: f64::INFINITY,
                 clearance_m: None,
             },
+            stopped_below: false,
         };
         if pv.sub_segments == 0 {
             return swept;
@@ -321,6 +329,10 @@ impl<'a> Evaluator<'a> {
             }
             if !check.passed() {
                 swept.failure = Some((pose, check));
+                return swept;
+            }
+            if stop_below.is_some_and(|stop| swept.least.below(stop)) {
+                swept.stopped_below = true;
                 return swept;
             }
         }
@@ -515,6 +527,9 @@ pub struct Swept<'p> {
     pub failure: Option<(&'p TestPose, Check)>,
     /// The least values met at the poses solved.
     pub least: SweptLeast,
+    /// It stopped before the last pose, a least value below the one asked for: the poses
+    /// after were not solved.
+    pub stopped_below: bool,
 }
 
 /// The least bend radius and clearance of a PV's static shapes over the poses swept: what a
@@ -528,6 +543,16 @@ pub struct SweptLeast {
 }
 
 impl SweptLeast {
+    /// Whether a value is below `other`'s: the bend radius, or the clearance when both have
+    /// one.
+    pub fn below(&self, other: &SweptLeast) -> bool {
+        let clearance = match (self.clearance_m, other.clearance_m) {
+            (Some(mine), Some(theirs)) => mine < theirs,
+            _ => false,
+        };
+        self.bend_radius_m < other.bend_radius_m || clearance
+    }
+
     /// Takes the metrics of one more pose into account.
     fn take(&mut self, metrics: &Metrics) {
         self.bend_radius_m = self.bend_radius_m.min(metrics.min_bend_radius_m);

@@ -41,7 +41,16 @@ pub struct SweepFailure {
 pub struct MotionSweep<'e, 'a> {
     evaluator: &'e Evaluator<'a>,
     poses: Vec<TestPose>,
-    verdicts: BTreeMap<(usize, Pv), (Option<SweepFailure>, SweptLeast)>,
+    verdicts: BTreeMap<(usize, Pv), Verdict>,
+}
+
+/// What the sweep knows of one PV.
+#[derive(Debug, Clone)]
+struct Verdict {
+    failure: Option<SweepFailure>,
+    least: SweptLeast,
+    /// Every pose was solved (or it failed at one): not stopped early by a least value.
+    complete: bool,
 }
 
 impl<'e, 'a> MotionSweep<'e, 'a> {
@@ -79,18 +88,39 @@ impl<'e, 'a> MotionSweep<'e, 'a> {
     /// [`MotionSweep::check`] of several PVs (segment, PV), swept in parallel; one result
     /// each, in order, independent of the thread count.
     pub fn check_all(&mut self, pvs: &[(usize, Pv)]) -> Vec<Option<SweepFailure>> {
+        let asked: Vec<(usize, Pv, Option<SweptLeast>)> =
+            pvs.iter().map(|&(m, pv)| (m, pv, None)).collect();
+        self.check_until(&asked)
+    }
+
+    /// [`MotionSweep::check_all`], each PV's sweep stopped as soon as one of its least values
+    /// falls below the one given with it ([`SweptLeast::below`]): then its result is `None`
+    /// and [`MotionSweep::least`] says the least values so far; a later check without a stop
+    /// sweeps it again, whole.
+    pub fn check_until(
+        &mut self,
+        pvs: &[(usize, Pv, Option<SweptLeast>)],
+    ) -> Vec<Option<SweepFailure>> {
         let evaluator = self.evaluator;
         let poses = &self.poses;
-        let new: Vec<(usize, Pv)> = pvs
+        // A sweep stopped early answers only a question it already answered: least values
+        // below the stop asked for now.
+        let known = |key: &(usize, Pv), stop: &Option<SweptLeast>| match self.verdicts.get(key) {
+            None => false,
+            Some(verdict) => {
+                verdict.complete || stop.as_ref().is_some_and(|s| verdict.least.below(s))
+            }
+        };
+        let new: Vec<(usize, Pv, Option<SweptLeast>)> = pvs
             .iter()
-            .filter(|key| !self.verdicts.contains_key(key))
+            .filter(|(m, pv, stop)| !known(&(*m, *pv), stop))
             .copied()
             .collect();
         progress::begin("static sweep", (new.len() * poses.len()) as u64);
-        let swept: Vec<(Option<SweepFailure>, SweptLeast)> = new
+        let swept: Vec<Verdict> = new
             .par_iter()
-            .map(|(m, pv)| {
-                let swept = evaluator.sweep(*m, pv, poses);
+            .map(|(m, pv, stop)| {
+                let swept = evaluator.sweep(*m, pv, poses, stop.as_ref());
                 let failure = swept.failure.map(|(pose, check)| SweepFailure {
                     rejection: check.rejection.unwrap_or(Rejection::Diverged),
                     sample: pose.sample,
@@ -98,23 +128,24 @@ impl<'e, 'a> MotionSweep<'e, 'a> {
                     detail: check.detail.unwrap_or_default(),
                 });
                 progress::advance(poses.len() as u64);
-                (failure, swept.least)
+                Verdict {
+                    failure,
+                    least: swept.least,
+                    complete: !swept.stopped_below,
+                }
             })
             .collect();
         progress::end();
-        self.verdicts.extend(new.into_iter().zip(swept));
+        let keys = new.into_iter().map(|(m, pv, _)| (m, pv));
+        self.verdicts.extend(keys.zip(swept));
         pvs.iter()
-            .map(|key| {
-                self.verdicts
-                    .get(key)
-                    .and_then(|(failure, _)| failure.clone())
-            })
+            .map(|(m, pv, _)| (self.verdicts.get(&(*m, *pv))).and_then(|v| v.failure.clone()))
             .collect()
     }
 
     /// The least bend radius and clearance of PV `pv` of segment `m` over the poses it was
     /// swept at (up to its first failure); `None` when it was not swept.
     pub fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast> {
-        self.verdicts.get(&(m, *pv)).map(|(_, least)| *least)
+        self.verdicts.get(&(m, *pv)).map(|verdict| verdict.least)
     }
 }

@@ -146,6 +146,24 @@ impl Learned {
         None
     }
 
+    /// The least values below which piece `pv` of segment `m` is doubted ([`Learned::doubt`]):
+    /// the limits plus its swing; `None` when nothing was learned for it. A sweep may stop as
+    /// soon as a value falls below them.
+    pub fn needed(&self, m: usize, pv: &Pv, thresholds: &Thresholds) -> Option<SweptLeast> {
+        let swing = self.swing(m, pv);
+        if swing == Swing::default() {
+            return None;
+        }
+        Some(SweptLeast {
+            bend_radius_m: swing
+                .bend_radius_m
+                .map_or(f64::NEG_INFINITY, |s| thresholds.min_bend_radius_m + s),
+            clearance_m: swing
+                .clearance_m
+                .map(|s| thresholds.contact_clearance_m + s),
+        })
+    }
+
     /// The swings learned per segment (the smallest over its pairs), in segment order.
     pub fn by_segment(&self) -> impl Iterator<Item = (usize, &Swing)> {
         self.segments.iter().map(|(&m, swing)| (m, swing))

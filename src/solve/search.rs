@@ -159,8 +159,9 @@ fn motion_tests(
 /// The static sweep as the search uses it: the pieces of a chain that fail it, and the least
 /// values each piece swept met.
 pub(super) trait ChainSweep {
-    /// The pieces of `path` that fail the sweep, piece by piece.
-    fn failing(&mut self, path: &CablePath) -> Vec<Dropped>;
+    /// The pieces of `path` that fail the sweep, piece by piece; a piece's sweep may stop as
+    /// soon as a least value falls below its entry in `stops` (one per piece, in order).
+    fn failing(&mut self, path: &CablePath, stops: &[Option<SweptLeast>]) -> Vec<Dropped>;
     /// The least bend radius and clearance of a swept piece.
     fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast>;
     /// Pieces swept so far.
@@ -168,8 +169,15 @@ pub(super) trait ChainSweep {
 }
 
 impl ChainSweep for MotionSweep<'_, '_> {
-    fn failing(&mut self, path: &CablePath) -> Vec<Dropped> {
-        sweep_chain(self, path)
+    fn failing(&mut self, path: &CablePath, stops: &[Option<SweptLeast>]) -> Vec<Dropped> {
+        let pvs: Vec<(usize, Pv, Option<SweptLeast>)> = (path.pieces().zip(stops))
+            .map(|((m, pv), stop)| (m, pv, *stop))
+            .collect();
+        let failures = self.check_until(&pvs);
+        let failed = pvs.iter().zip(failures);
+        failed
+            .filter_map(|(&(m, pv, _), failure)| Some((m, pv, failure?)))
+            .collect()
     }
 
     fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast> {
@@ -224,8 +232,18 @@ pub(super) fn try_chains(
             continue;
         };
         if let Some(sweep) = sweep.as_deref_mut() {
+            let learning = options.learn && !outcome.set_aside_restored;
+            // A piece the learned swings will doubt needs no sweep past the pose that
+            // decides it.
+            let stops: Vec<Option<SweptLeast>> = path
+                .pieces()
+                .map(|(m, pv)| {
+                    let needed = outcome.learned.needed(m, &pv, &setup.thresholds);
+                    needed.filter(|_| learning)
+                })
+                .collect();
             let clock = Instant::now();
-            let failed = sweep.failing(&path);
+            let failed = sweep.failing(&path, &stops);
             outcome.sweep_s += clock.elapsed().as_secs_f64();
             outcome.swept = sweep.swept();
             if !failed.is_empty() {
@@ -240,7 +258,7 @@ pub(super) fn try_chains(
                 outcome.dropped.extend(failed);
                 continue;
             }
-            if options.learn && !outcome.set_aside_restored {
+            if learning {
                 let doubted = doubted_pieces(&*sweep, &outcome.learned, setup, &path);
                 if !doubted.is_empty() {
                     for aside in &doubted {
@@ -342,15 +360,6 @@ fn doubted_pieces(
     path.pieces().filter_map(doubt).collect()
 }
 
-/// The PVs of `path` that fail the static sweep, piece by piece.
-fn sweep_chain(sweep: &mut MotionSweep<'_, '_>, path: &CablePath) -> Vec<Dropped> {
-    let pvs: Vec<(usize, Pv)> = path.pieces().collect();
-    pvs.iter()
-        .zip(sweep.check_all(&pvs))
-        .filter_map(|(&(m, pv), failure)| Some((m, pv, failure?)))
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -440,7 +449,7 @@ mod tests {
     }
 
     impl ChainSweep for Synthetic {
-        fn failing(&mut self, path: &CablePath) -> Vec<Dropped> {
+        fn failing(&mut self, path: &CablePath, _: &[Option<SweptLeast>]) -> Vec<Dropped> {
             self.swept += path.pieces().count();
             Vec::new()
         }
