@@ -43,8 +43,20 @@ pub fn catalogue_listing(setup: &Setup, all: bool, estimate: Option<&CostEstimat
         out,
         "\ncandidate pieces (length × start × end configuration)"
     );
-    if let Err(too_many) = crate::attachment::check_size(setup) {
-        let _ = writeln!(out, "  too many for solve and build: {too_many}");
+    match crate::attachment::check_size(setup) {
+        Err(too_many) => {
+            let _ = writeln!(out, "  too many for solve and build: {too_many}");
+        }
+        Ok(()) => {
+            let total: u128 = (0..setup.segment_count())
+                .map(|m| setup.pv_count(m) as u128)
+                .sum();
+            let _ = writeln!(
+                out,
+                "  {total} in all, spans included (solve and build take up to {})",
+                crate::attachment::MAX_CANDIDATE_PIECES
+            );
+        }
     }
     for m in 0..setup.segment_count() {
         let (a, b) = setup.segment_guides(m);
