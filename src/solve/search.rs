@@ -72,8 +72,9 @@ pub(crate) struct MotionSearch {
     pub learned: Learned,
     /// Pieces set aside by a learned swing, in the order found.
     pub set_aside: Vec<SetAside>,
-    /// The pieces set aside came back (no chain was left without them): from then on the
-    /// search went on without learned margins.
+    /// The pieces set aside came back: no chain was left without them (from then on the
+    /// search went on without learned margins), or the answer passed and they came back to
+    /// find the shortest untried chain.
     pub set_aside_restored: bool,
     /// The answer passed with pieces set aside: the shortest chain with them of the pieces
     /// decided (sub-segments), when shorter than the answer — untried (a shorter one of

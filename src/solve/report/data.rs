@@ -222,9 +222,9 @@ pub struct SweepSummary {
     /// Pieces set aside because their static shapes kept a learned swing not inside a limit
     /// (docs/architecture.md, "Learning from failed motion tests").
     pub set_aside: usize,
-    /// The pieces set aside came back and the search went on without learned margins: no
-    /// chain was left without them, or a chain passed and the shorter ones with them were
-    /// tried before it was the answer.
+    /// The pieces set aside came back: no chain was left without them and the search went
+    /// on without learned margins, or a chain passed and they came back to find the shortest
+    /// untried chain (`shortest_untried_mm`).
     pub set_aside_restored: bool,
     /// The answer passed with pieces set aside: the length of the shortest chain with them
     /// of the pieces decided (mm), when shorter than the answer. It was not motion-tested;
