@@ -117,31 +117,28 @@ impl Learned {
         least: &SweptLeast,
         thresholds: &Thresholds,
     ) -> Option<String> {
-        let swing = self.swing(m, pv);
+        // The same limits a sweep stops below ([`Learned::needed`]), compared the same way.
+        let needed = self.needed(m, pv, thresholds)?;
         let mm = |v: f64| v * 1e3;
-        if let Some(bend) = swing.bend_radius_m {
-            let needed = thresholds.min_bend_radius_m + bend;
-            if least.bend_radius_m < needed {
-                return Some(format!(
-                    "its static bend radius {:.2} mm is within the {:.2} mm its loop swung below \
-                     the static one in a motion test (limit {:.1} mm)",
-                    mm(least.bend_radius_m),
-                    mm(bend),
-                    mm(thresholds.min_bend_radius_m)
-                ));
-            }
+        if least.bend_radius_m < needed.bend_radius_m {
+            return Some(format!(
+                "its static bend radius {:.2} mm is within the {:.2} mm its loop swung below the \
+                 static one in a motion test (limit {:.1} mm)",
+                mm(least.bend_radius_m),
+                mm(needed.bend_radius_m - thresholds.min_bend_radius_m),
+                mm(thresholds.min_bend_radius_m)
+            ));
         }
-        if let (Some(swing), Some(clearance)) = (swing.clearance_m, least.clearance_m) {
-            let needed = thresholds.contact_clearance_m + swing;
-            if clearance < needed {
-                return Some(format!(
-                    "its static clearance {:.2} mm is within the {:.2} mm its loop swung toward \
-                     the robot in a motion test (limit {:.1} mm)",
-                    mm(clearance),
-                    mm(swing),
-                    mm(thresholds.contact_clearance_m)
-                ));
-            }
+        if let (Some(clearance), Some(limit)) = (least.clearance_m, needed.clearance_m)
+            && clearance < limit
+        {
+            return Some(format!(
+                "its static clearance {:.2} mm is within the {:.2} mm its loop swung toward the \
+                 robot in a motion test (limit {:.1} mm)",
+                mm(clearance),
+                mm(limit - thresholds.contact_clearance_m),
+                mm(thresholds.contact_clearance_m)
+            ));
         }
         None
     }
@@ -184,13 +181,7 @@ mod tests {
             time_s: 0.0,
             segment,
             segment_name: format!("C{}", segment + 1),
-            place: Place {
-                sub_segment: None,
-                node: None,
-                link: None,
-                position_m: None,
-                touches: None,
-            },
+            place: Place::default(),
         }
     }
 

@@ -216,8 +216,7 @@ pub(super) fn try_chains(
     mut outcome: MotionSearch,
 ) -> Result<MotionSearch, SolveError> {
     while outcome.tried.len() < options.k_best {
-        let next = timed_shortest(&mut outcome, chains)?;
-        let Some(path) = next else {
+        let Some(path) = timed_shortest(&mut outcome, chains)? else {
             if outcome.set_aside.is_empty() || outcome.set_aside_restored {
                 return Ok(
                     outcome.stopped("no chain is left of the robust pieces that did not fail it")
@@ -435,13 +434,7 @@ mod tests {
                     time_s: 0.0,
                     segment: m,
                     segment_name: format!("C{}", m + 1),
-                    place: Place {
-                        sub_segment: None,
-                        node: None,
-                        link: None,
-                        position_m: None,
-                        touches: None,
-                    },
+                    place: Place::default(),
                 }),
                 reason: String::new(),
                 report: None,
@@ -467,11 +460,12 @@ mod tests {
         }
     }
 
-    /// The search over the robust sets `d2` with the synthetic cable, learning or not.
+    /// The search over the robust sets `d2` with the synthetic cable of world `seed` (one
+    /// copy swept, one simulated), learning or not.
     fn search(
         setup: &Setup,
         d2: &[Vec<Pv>],
-        cable: &mut Synthetic,
+        limit_m: f64,
         seed: usize,
         learn: bool,
     ) -> MotionSearch {
@@ -481,9 +475,10 @@ mod tests {
             ..SolveOptions::default()
         };
         let mut chains = Decided::new(setup, d2.to_vec());
-        let oracle = Synthetic::over(d2, cable.limit_m, seed);
+        let oracle = Synthetic::over(d2, limit_m, seed);
         let mut test = |path: &CablePath| Ok(oracle.test(path));
-        let sweep: &mut dyn ChainSweep = cable;
+        let mut cable = Synthetic::over(d2, limit_m, seed);
+        let sweep: &mut dyn ChainSweep = &mut cable;
         try_chains(
             setup,
             &mut chains,
@@ -515,23 +510,11 @@ mod tests {
                 .expect("some chain passes");
             let shortest = reference.total_sub_segments();
 
-            let strict = search(
-                &setup,
-                &d2,
-                &mut Synthetic::over(&d2, limit_m, seed),
-                seed,
-                false,
-            );
+            let strict = search(&setup, &d2, limit_m, seed, false);
             let strict_answer = &strict.tried[strict.winner.expect("the strict search passes")].0;
             assert_eq!(strict_answer.total_sub_segments(), shortest, "seed {seed}");
 
-            let learned = search(
-                &setup,
-                &d2,
-                &mut Synthetic::over(&d2, limit_m, seed),
-                seed,
-                true,
-            );
+            let learned = search(&setup, &d2, limit_m, seed, true);
             let answer = &learned.tried[learned.winner.expect("the learning search passes")].0;
             assert!(oracle.test(answer).passed, "seed {seed}");
             let length = answer.total_sub_segments();
