@@ -21,9 +21,7 @@ use cable_dict::setup::Setup;
 use cable_dict::solve::{SolveOptions, solve, solve_with_dictionary};
 use nalgebra::Vector3;
 use rayon::prelude::*;
-use std::collections::BTreeMap;
 use std::path::Path;
-use std::sync::{Mutex, OnceLock};
 
 const SETUP: &str = "tests/data/dict_setup.toml";
 const HAND_WRITTEN_PICK_AND_PLACE: &str = "robots/viper_s850/hand_written/pick_and_place.toml";
@@ -51,24 +49,7 @@ fn opened(dir: &Path, built: &Built) -> Dictionary {
 /// The dictionary of a bundled setup at `directions`, built once per test binary (the
 /// hand-written pick-and-place catalogue takes about 11 s at 64 directions).
 fn shared(path: &'static str, directions: usize) -> &'static Dictionary {
-    type Cache = Mutex<BTreeMap<(&'static str, usize), &'static Dictionary>>;
-    static CACHE: OnceLock<Cache> = OnceLock::new();
-    static DIR: OnceLock<tempfile::TempDir> = OnceLock::new();
-    let dir = DIR.get_or_init(|| tempfile::tempdir().expect("temp dir"));
-    let mut cache = CACHE.get_or_init(Cache::default).lock().expect("cache");
-    cache.entry((path, directions)).or_insert_with(|| {
-        let setup = Setup::from_file(path).expect("setup");
-        let file = dir
-            .path()
-            .join(format!("{}-{directions}.cdict", cache_name(path)));
-        cable_dict::dictionary::write_dictionary(&file, &built(&setup, directions))
-            .expect("written");
-        Box::leak(Box::new(Dictionary::open(&file).expect("opens")))
-    })
-}
-
-fn cache_name(path: &str) -> String {
-    path.replace(['/', '.'], "_")
+    crate::common::built_dictionary(path, directions)
 }
 
 fn angle(a: &[f64; 3], b: &Vector3<f64>) -> f64 {

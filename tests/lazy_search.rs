@@ -1,6 +1,7 @@
 //! The lazy search (the default) against the exhaustive one (`--exhaustive`, every candidate
 //! piece tested before the chains are searched): the same path, the same candidates tried in
-//! the same order, on every bundled motion and on a site-generated setup of a second robot
+//! the same order, on bundled motions of both kinds (answered at the first chain, and after
+//! failed motion tests) and on a site-generated setup of a second robot
 //! (the UR5's STL meshes). The invariant behind it is tested beside the lazy test
 //! (`attachment::lazy`), and its chains through failed motion tests beside the search
 //! (`solve`).
@@ -54,14 +55,13 @@ fn same_answer(setup: &Setup, motion: &Motion, name: &str) {
 }
 
 #[test]
-fn both_searches_find_the_same_path_on_every_bundled_motion() {
+fn both_searches_find_the_same_path_on_the_bundled_motions() {
+    // Pick-and-place passes its first chain; machine tending goes through failed motion
+    // tests before its answer. Palletizing and screw driving pass their first chain as
+    // pick-and-place does (the same path through the search), so their exhaustive runs
+    // (80 CPU-s each) are left out of the suite; `solve --exhaustive` compares them by hand.
     let robot_level = setup("robots/viper_s850/pick_and_place.toml");
-    for name in [
-        "pick_and_place",
-        "palletizing",
-        "machine_tending",
-        "screw_driving",
-    ] {
+    for name in ["pick_and_place", "machine_tending"] {
         let csv = format!("motions/viper_s850/{name}.csv");
         same_answer(&robot_level, &motion(&robot_level, &csv), name);
     }

@@ -50,6 +50,7 @@ mod sites;
 mod solve;
 mod statics;
 mod sweep;
+mod unsolved;
 mod urdf_real;
 mod viper_dh;
 mod whole_arm;

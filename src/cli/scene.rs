@@ -125,7 +125,10 @@ fn path_from_result(
     let candidates = result.candidates;
     let chosen = match rank {
         Some(rank) => candidates.iter().find(|c| c.rank == rank),
-        None => shown_index(candidates.iter().map(|c| c.passed)).map(|i| &candidates[i]),
+        None => {
+            let closest = (result.unsolved.and_then(|u| u.closest)).map(|c| c.candidate);
+            shown_index(candidates.iter().map(|c| c.passed), closest).map(|i| &candidates[i])
+        }
     };
     let chosen = chosen.ok_or_else(|| match rank {
         Some(rank) => fail(format!(
@@ -157,6 +160,21 @@ fn path_from_result(
 #[derive(serde::Deserialize)]
 struct ResultCandidates {
     candidates: Vec<CandidateOutcome>,
+    /// Absent in results written before it existed.
+    #[serde(default)]
+    unsolved: Option<ResultUnsolved>,
+}
+
+/// `unsolved.closest.candidate` of a result JSON: the candidate shown when none passed.
+#[derive(serde::Deserialize)]
+struct ResultUnsolved {
+    closest: Option<ResultClosest>,
+}
+
+/// See [`ResultUnsolved`].
+#[derive(serde::Deserialize)]
+struct ResultClosest {
+    candidate: usize,
 }
 
 /// The path of lengths (mm) and configuration names.

@@ -99,6 +99,12 @@ pub struct MotionTestOptions {
     /// instant) in [`MotionTestReport::shapes`](super::MotionTestReport::shapes), e.g. for an
     /// animation; `None`: keep only the final shape.
     pub shape_interval_s: Option<f64>,
+    /// Simulate no step: only the cable at rest at the motion's first pose, its pieces
+    /// joined at their clamps and measured as the full test's first step measures them. A
+    /// static check of the whole cable (two pieces hanging into each other, which no check
+    /// of one piece sees); a failure is exactly the full test's failure at its first step,
+    /// and `passed` says only that the first pose holds.
+    pub first_pose_only: bool,
 }
 
 impl Default for MotionTestOptions {
@@ -118,6 +124,7 @@ impl MotionTestOptions {
             record_series: true,
             contact_force_is_violation: true,
             shape_interval_s: None,
+            first_pose_only: false,
         }
     }
 

@@ -113,8 +113,12 @@ impl Context<'_> {
         result
     }
 
-    /// Steps for the motion (its last step reaches or passes the last sample) plus the tail.
+    /// Steps for the motion (its last step reaches or passes the last sample) plus the tail;
+    /// none for a check of the first pose alone.
     pub fn step_count(&self) -> usize {
+        if self.options.first_pose_only {
+            return 0;
+        }
         let dt = self.options.time_step_s();
         let steps = |duration: f64| (duration / dt - STEP_ROUNDING).ceil().max(0.0) as usize;
         steps(self.motion.duration_s()) + steps(self.options.settle_tail_s)

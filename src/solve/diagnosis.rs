@@ -6,6 +6,8 @@
 use super::search::MotionSearch;
 use crate::attachment::{Miss, Rejection, SegmentPoses, SegmentSets};
 use crate::motion::Motion;
+use crate::motion_test::{Constraint, Violation};
+use crate::path::CablePath;
 use crate::setup::Setup;
 use serde::Serialize;
 
@@ -332,13 +334,23 @@ fn motion_diagnosis(
     let count = setup.segment_count();
     let mut dynamic: Vec<Vec<(String, f64)>> = vec![Vec::new(); count];
     let mut swept: Vec<Vec<(String, f64)>> = vec![Vec::new(); count];
-    for (_, report) in &outcome.tried {
+    // Per segment, the bend-radius or clearance failure missed by the least, with its path.
+    let mut closest: Vec<Option<(&Violation, &CablePath)>> = vec![None; count];
+    for (path, report) in &outcome.tried {
         let Some(report) = report else { continue };
         let (Some(failure), Some(violation)) = (&report.failure, &report.first_violation) else {
             continue;
         };
         if let Some(m) = failure.segment {
             dynamic[m].push((failure.reason.clone(), violation.time_s));
+            let miss = |v: &Violation| v.threshold - v.value;
+            let teaches = matches!(
+                violation.constraint,
+                Constraint::BendRadius | Constraint::Contact
+            );
+            if teaches && closest[m].is_none_or(|(c, _)| miss(violation) < miss(c)) {
+                closest[m] = Some((violation, path));
+            }
         }
     }
     for (m, _, failure) in &outcome.dropped {
@@ -348,11 +360,11 @@ fn motion_diagnosis(
         .filter(|&m| !dynamic[m].is_empty() || !swept[m].is_empty())
         .map(|m| {
             let (a, b) = setup.segment_guides(m);
-            let mut suggestions: Vec<String> = dynamic[m]
-                .first()
-                .and_then(|&(_, t)| slower_joint(motion, t))
-                .into_iter()
+            let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+            let mut suggestions: Vec<String> = (closest[m].iter())
+                .map(|(v, path)| relaxed_limit(v, path.total_sub_segments() as f64 * pitch_mm))
                 .collect();
+            suggestions.extend((dynamic[m].first()).and_then(|&(_, t)| slower_joint(motion, t)));
             suggestions.push(format!(
                 "other clamp sites or cable directions for {} or {} (more directions_deg, a \
                  finer spacing_mm, or a bracket: a larger clamp_height_mm)",
@@ -388,6 +400,37 @@ fn motion_diagnosis(
             }
         })
         .collect()
+}
+
+/// What lets the closest path of a segment past its bend-radius or clearance failure: the
+/// limit relaxed by the amount it missed (the user weighs that against the cable's
+/// datasheet), or for a clearance a higher clamp. Later failures of that path were not
+/// simulated, so it is a failure removed, not a path promised.
+fn relaxed_limit(violation: &Violation, length_mm: f64) -> String {
+    let (value_mm, limit_mm) = (violation.value * 1e3, violation.threshold * 1e3);
+    match violation.constraint {
+        Constraint::BendRadius => format!(
+            "a bend radius limit of {:.1} mm (min_bend_radius_mm under [thresholds], where the \
+             cable's datasheet allows it): the closest path here ({length_mm:.0} mm) bent to \
+             {value_mm:.2} mm against {limit_mm:.1} mm, and that removes this failure (`solve` \
+             again tells whether it passes the rest of the motion)",
+            (value_mm * 10.0).floor() / 10.0
+        ),
+        _ if value_mm >= 0.0 => format!(
+            "a clearance limit of {:.2} mm (contact_clearance_mm under [thresholds]), or its \
+             clamps on a bracket (a larger clamp_height_mm): the closest path here \
+             ({length_mm:.0} mm) came within {value_mm:.2} mm of the arm against {limit_mm:.1} \
+             mm, and that removes this failure (`solve` again tells whether it passes the rest \
+             of the motion)",
+            (value_mm * 100.0).floor() / 100.0
+        ),
+        // Touching is never a limit to relax.
+        _ => format!(
+            "its clamps on a bracket (a larger clamp_height_mm): the closest path here \
+             ({length_mm:.0} mm) touched the arm, {:.2} mm into it",
+            -value_mm
+        ),
+    }
 }
 
 /// "a slower joint_6 between …" when some rotary joint moves at `t_s`.

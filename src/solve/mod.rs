@@ -40,9 +40,10 @@ pub use shapes::{
 
 use report::Stages;
 pub use report::{
-    CandidateOutcome, DictionarySegmentUse, DictionaryUse, Inputs, LearnedSwing, Margin, NamedPath,
-    PathGuide, PathSegment, PoseSummary, SegmentReport, SolveReport, Status, SweepRejection,
-    SweepSummary, Timings, dropped_per_segment, guide_names, named_path, pose_summary, shown_index,
+    CandidateOutcome, ClosestMiss, DictionarySegmentUse, DictionaryUse, Inputs, LearnedSwing,
+    Margin, NamedPath, PathGuide, PathSegment, PoseSummary, SegmentReport, SolveReport, Status,
+    SweepRejection, SweepSummary, Timings, Unsolved, UnsolvedCase, UntriedChain,
+    dropped_per_segment, guide_names, named_path, pose_summary, shown_index,
 };
 
 use crate::attachment::{

@@ -6,11 +6,13 @@ use super::chains::Chains;
 use super::learn::{Learned, SetAside};
 use super::options::{SolveError, SolveOptions};
 use crate::attachment::{
-    ConnectMethod, Evaluator, MotionSweep, SegmentPoses, SweepFailure, SweptLeast,
+    ConnectMethod, Evaluator, MotionSweep, Rejection, SegmentPoses, SweepFailure, SweptLeast,
 };
 use crate::dictionary::MotionLookup;
 use crate::motion::Motion;
-use crate::motion_test::{self, MotionTestOptions, MotionTestReport, Violation};
+use crate::motion_test::{
+    self, Constraint, FailureCause, MotionTestOptions, MotionTestReport, Violation,
+};
 use crate::path::{CablePath, Pv};
 use crate::setup::Setup;
 use std::time::Instant;
@@ -80,6 +82,9 @@ pub(crate) struct MotionSearch {
     /// decided (sub-segments), when shorter than the answer — untried (a shorter one of
     /// pieces not yet decided may exist).
     pub shortest_untried: Option<usize>,
+    /// When the budget was spent: the shortest chain left untested, pieces set aside
+    /// included (`None`: no chain was left, or the budget was not spent).
+    pub next_untried: Option<CablePath>,
 }
 
 impl MotionSearch {
@@ -100,6 +105,7 @@ impl MotionSearch {
             set_aside: Vec::new(),
             set_aside_restored: false,
             shortest_untried: None,
+            next_untried: None,
         }
     }
 
@@ -131,7 +137,7 @@ fn motion_tests(
     // The sweep is a cheap static filter in front of the dynamic test: always the
     // quasi-static solver, whatever the attachment test used.
     let evaluator = Evaluator::new(setup, ConnectMethod::Hermite)?;
-    let mut sweep = options
+    let sweep = options
         .static_sweep
         .then(|| MotionSweep::new(&evaluator, motion))
         .transpose()?;
@@ -153,8 +159,82 @@ fn motion_tests(
             report: Some(report),
         })
     };
+    let mut sweep = sweep.map(|pieces| SweepAtRest {
+        pieces,
+        setup,
+        motion,
+        options: MotionTestOptions {
+            first_pose_only: true,
+            record_series: false,
+            ..test_options.clone()
+        },
+    });
     let sweep = sweep.as_mut().map(|s| s as &mut dyn ChainSweep);
     try_chains(setup, chains, options, sweep, &mut test, outcome)
+}
+
+/// The static sweep of a chain: each piece over every pose of the motion, then the whole
+/// cable at rest at the motion's first pose, its pieces joined at their clamps as the motion
+/// test's first step measures them. Two pieces hanging into each other fail there, which no
+/// check of one piece sees; such a failure is the motion test's own at its first step (it
+/// starts from that rest shape), so it drops the piece the motion test would drop and spends
+/// no motion test.
+struct SweepAtRest<'a, 'e, 'v> {
+    pieces: MotionSweep<'e, 'v>,
+    setup: &'a Setup,
+    motion: &'a Motion,
+    /// The motion test's options, first pose only.
+    options: MotionTestOptions,
+}
+
+impl ChainSweep for SweepAtRest<'_, '_, '_> {
+    fn failing(
+        &mut self,
+        path: &CablePath,
+        stops: &[Option<SweptLeast>],
+    ) -> Result<Vec<Dropped>, SolveError> {
+        let failed = self.pieces.failing(path, stops)?;
+        if !failed.is_empty() {
+            return Ok(failed);
+        }
+        let report = motion_test::run(self.setup, path, self.motion, &self.options)?;
+        let Some(failure) = report.failure else {
+            return Ok(Vec::new());
+        };
+        // A failure of no single segment is left to the motion test to report.
+        let Some(m) = failure.segment else {
+            return Ok(Vec::new());
+        };
+        let rejection = match (failure.cause, &report.first_violation) {
+            (FailureCause::TooShort, _) => Rejection::TooShort,
+            (FailureCause::Violation, Some(violation)) => match violation.constraint {
+                Constraint::Contact | Constraint::ContactForce => Rejection::Contact,
+                Constraint::Stretch => Rejection::Stretch,
+                Constraint::BendRadius => Rejection::Bend,
+                Constraint::SelfContact => Rejection::SelfContact,
+            },
+            _ => Rejection::Diverged,
+        };
+        let at_rest = SweepFailure {
+            rejection,
+            sample: 0,
+            time_s: self.motion.times_s()[0],
+            detail: format!(
+                "the whole cable at rest at the first pose: {}",
+                failure.reason
+            ),
+        };
+        let piece = path.pieces().find(|&(segment, _)| segment == m);
+        Ok(piece.map(|(m, pv)| (m, pv, at_rest)).into_iter().collect())
+    }
+
+    fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast> {
+        self.pieces.least(m, pv)
+    }
+
+    fn swept(&self) -> usize {
+        self.pieces.swept()
+    }
 }
 
 /// The static sweep as the search uses it: the pieces of a chain that fail it, and the least
@@ -162,7 +242,11 @@ fn motion_tests(
 pub(super) trait ChainSweep {
     /// The pieces of `path` that fail the sweep, piece by piece; a piece's sweep may stop as
     /// soon as a least value falls below its entry in `stops` (one per piece, in order).
-    fn failing(&mut self, path: &CablePath, stops: &[Option<SweptLeast>]) -> Vec<Dropped>;
+    fn failing(
+        &mut self,
+        path: &CablePath,
+        stops: &[Option<SweptLeast>],
+    ) -> Result<Vec<Dropped>, SolveError>;
     /// The least bend radius and clearance of a swept piece.
     fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast>;
     /// Pieces swept so far.
@@ -170,15 +254,19 @@ pub(super) trait ChainSweep {
 }
 
 impl ChainSweep for MotionSweep<'_, '_> {
-    fn failing(&mut self, path: &CablePath, stops: &[Option<SweptLeast>]) -> Vec<Dropped> {
+    fn failing(
+        &mut self,
+        path: &CablePath,
+        stops: &[Option<SweptLeast>],
+    ) -> Result<Vec<Dropped>, SolveError> {
         let pvs: Vec<(usize, Pv, Option<SweptLeast>)> = (path.pieces().zip(stops))
             .map(|((m, pv), stop)| (m, pv, *stop))
             .collect();
         let failures = self.check_until(&pvs);
         let failed = pvs.iter().zip(failures);
-        failed
+        Ok(failed
             .filter_map(|(&(m, pv, _), failure)| Some((m, pv, failure?)))
-            .collect()
+            .collect())
     }
 
     fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast> {
@@ -243,7 +331,7 @@ pub(super) fn try_chains(
                 })
                 .collect();
             let clock = Instant::now();
-            let failed = sweep.failing(&path, &stops);
+            let failed = sweep.failing(&path, &stops)?;
             outcome.sweep_s += clock.elapsed().as_secs_f64();
             outcome.swept = sweep.swept();
             if !failed.is_empty() {
@@ -316,6 +404,10 @@ pub(super) fn try_chains(
     }
     let budget = options.k_best;
     outcome.budget_spent = true;
+    if !outcome.set_aside.is_empty() && !outcome.set_aside_restored {
+        restore_set_aside(&mut outcome, chains);
+    }
+    outcome.next_untried = timed_shortest(&mut outcome, chains)?;
     Ok(outcome.stopped(format!(
         "the budget of {budget} motion tests (--k-best) is spent"
     )))
@@ -443,9 +535,13 @@ mod tests {
     }
 
     impl ChainSweep for Synthetic {
-        fn failing(&mut self, path: &CablePath, _: &[Option<SweptLeast>]) -> Vec<Dropped> {
+        fn failing(
+            &mut self,
+            path: &CablePath,
+            _: &[Option<SweptLeast>],
+        ) -> Result<Vec<Dropped>, SolveError> {
             self.swept += path.pieces().count();
-            Vec::new()
+            Ok(Vec::new())
         }
 
         fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast> {

@@ -79,3 +79,34 @@ pub fn write_report(
         cable_dict::solve::ReportShapes::of(setup, motion, report).map_err(|e| e.to_string())?;
     cable_dict::report::write_report(dir, setup, motion, report, &shapes).map_err(|e| e.to_string())
 }
+
+/// The dictionary `cable-dict build` makes of the setup at `path` (from the package root)
+/// with `directions` gravity directions, built once per test run and shared by every test
+/// that asks for it (a build of a bundled setup costs tens of CPU-seconds).
+pub fn built_dictionary(
+    path: &'static str,
+    directions: usize,
+) -> &'static cable_dict::dictionary::Dictionary {
+    use cable_dict::dictionary::{BuildOptions, Dictionary, build, write_dictionary};
+    use std::collections::BTreeMap;
+    use std::sync::{Mutex, OnceLock};
+    type Cache = Mutex<BTreeMap<(&'static str, usize), &'static Dictionary>>;
+    static CACHE: OnceLock<Cache> = OnceLock::new();
+    static DIR: OnceLock<tempfile::TempDir> = OnceLock::new();
+    let dir = DIR.get_or_init(|| tempfile::tempdir().expect("temp dir"));
+    let mut cache = CACHE.get_or_init(Cache::default).lock().expect("cache");
+    cache.entry((path, directions)).or_insert_with(|| {
+        let setup = cable_dict::setup::Setup::from_file(root().join(path)).expect("setup");
+        let options = BuildOptions {
+            directions,
+            shard: None,
+        };
+        let built = build(&setup, &options).expect("builds");
+        let file = dir.path().join(format!(
+            "{}-{directions}.cdict",
+            path.replace(['/', '.'], "_")
+        ));
+        write_dictionary(&file, &built).expect("written");
+        Box::leak(Box::new(Dictionary::open(&file).expect("opens")))
+    })
+}

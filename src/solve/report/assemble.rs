@@ -13,7 +13,7 @@ use crate::motion_test::Constraint;
 use crate::mounting::mounting_plan;
 use crate::path::CablePath;
 use crate::setup::Setup;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// What the stages of a solve leave for its report.
 pub(in crate::solve) struct Stages<'s> {
@@ -49,13 +49,20 @@ impl SolveReport {
         let status = status(options, search, winner);
         let candidates = candidate_outcomes(tried, pitch_mm);
         let static_sweep = sweep_summary(setup, &outcome);
-        let motion_test = match winner {
-            Some(w) => tried[w].1.clone(),
-            None => tried.last().and_then(|(_, report)| report.clone()),
-        };
         let diagnosis = matches!(status, Status::NoChain | Status::NonePassedMotionTest)
             .then(|| diagnose(setup, motion, poses, sets, &outcome));
         let unsolved = unsolved(setup, status, &outcome);
+        let closest = (unsolved.as_ref())
+            .and_then(|u| u.closest.as_ref())
+            .map(|c| c.candidate);
+        let shown = match winner {
+            Some(w) => Some(w),
+            None => shown_index(
+                tried.iter().map(|(_, r)| r.as_ref().map(|r| r.passed)),
+                closest,
+            ),
+        };
+        let motion_test = shown.and_then(|k| tried[k].1.clone());
         SolveReport {
             status,
             explanation: explanation(
@@ -142,13 +149,14 @@ fn explanation(
         // Each candidate's failure is in `candidates` (and `solve -v`), the per-piece story
         // in the diagnosis: the reason stays one sentence.
         Status::NonePassedMotionTest => format!(
-            "{}, and {stop}{}{}",
+            "{}, and {stop}{}{}{}",
             match candidates.len() {
                 1 => "1 path was tried".to_string(),
                 n => format!("{n} paths were tried"),
             },
             sweep_note(sweep),
             closest_note(unsolved),
+            untried_note(unsolved, candidates.len()),
         ),
         Status::NoChain => unsolved_reason(sets, setup),
     }
@@ -176,6 +184,32 @@ fn closest_note(unsolved: Option<&Unsolved>) -> String {
     )
 }
 
+/// `; the 50 paths tried used 12 clamp placements; the shortest chain not tested is …`: what
+/// a spent budget left, and how to test it; nothing when the budget was not spent.
+fn untried_note(unsolved: Option<&Unsolved>, tried: usize) -> String {
+    let Some(unsolved) = unsolved.filter(|u| u.case == UnsolvedCase::BudgetSpent) else {
+        return String::new();
+    };
+    let placements = match unsolved.placements_tried {
+        1 => "one clamp placement (lengths apart)".to_string(),
+        n => format!("{n} clamp placements"),
+    };
+    let next = match &unsolved.next_untried {
+        Some(next) => format!(
+            "; the shortest chain not tested is {:.0} mm, {} (`--k-best {}` tests further)",
+            next.length_mm,
+            if next.new_placement {
+                "with clamp places none of them used"
+            } else {
+                "another length of a placement tried"
+            },
+            2 * tried
+        ),
+        None => String::new(),
+    };
+    format!("; the paths tried used {placements}{next}")
+}
+
 /// Which way the search ended without an answer, and the path tried that came closest;
 /// `None` when solved (or not motion-tested).
 fn unsolved(setup: &Setup, status: Status, outcome: &MotionSearch) -> Option<Unsolved> {
@@ -200,7 +234,19 @@ fn unsolved(setup: &Setup, status: Status, outcome: &MotionSearch) -> Option<Uns
         })
     });
     let closest = misses.min_by(|a, b| a.relax_by_mm.total_cmp(&b.relax_by_mm));
-    Some(Unsolved { case, closest })
+    let placement = |p: &CablePath| (p.segments.clone(), p.configurations.clone());
+    let placements: BTreeSet<_> = outcome.tried.iter().map(|(p, _)| placement(p)).collect();
+    let next_untried = outcome.next_untried.as_ref().map(|path| UntriedChain {
+        length_mm: path.total_sub_segments() as f64 * pitch_mm,
+        path: named_path(setup, path),
+        new_placement: !placements.contains(&placement(path)),
+    });
+    Some(Unsolved {
+        case,
+        closest,
+        placements_tried: placements.len(),
+        next_untried,
+    })
 }
 
 /// `; the static sweep over the motion dropped N cable pieces (C1 n1, …)`, or nothing when it

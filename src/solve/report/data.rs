@@ -378,6 +378,23 @@ pub struct Unsolved {
     /// The path tried that missed a limit by the least (bend radius or clearance, in mm);
     /// `None` when no path reached the motion test, or none failed by a measurable amount.
     pub closest: Option<ClosestMiss>,
+    /// How many different clamp placements (which clamps, where: the path without its
+    /// lengths) the paths tried used.
+    pub placements_tried: usize,
+    /// When the budget was spent: the shortest chain left untested.
+    pub next_untried: Option<UntriedChain>,
+}
+
+/// The shortest chain a spent budget left untested.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct UntriedChain {
+    /// Its total length (mm).
+    pub length_mm: f64,
+    /// Its clamps and pieces.
+    pub path: NamedPath,
+    /// Its clamp placement is none of the paths tried: a different family, not another
+    /// length of one tried.
+    pub new_placement: bool,
 }
 
 /// The three ways a search ends without an answer.
@@ -415,22 +432,31 @@ pub struct ClosestMiss {
 
 impl SolveReport {
     /// The candidate a report shows: the one that passed the motion test, the untested
-    /// shortest one, or the last one tried when none passed (the one whose motion test the
-    /// report keeps). `None` when there is no candidate.
+    /// shortest one, or when none passed the closest miss (`unsolved.closest`), else the
+    /// last one tried — the one whose motion test the report keeps. `None` when there is no
+    /// candidate.
     pub fn shown_candidate(&self) -> Option<&CandidateOutcome> {
         let verdicts = self.candidates.iter().map(|c| c.passed);
-        shown_index(verdicts).map(|i| &self.candidates[i])
+        let closest = (self.unsolved.as_ref())
+            .and_then(|u| u.closest.as_ref())
+            .map(|c| c.candidate);
+        shown_index(verdicts, closest).map(|i| &self.candidates[i])
     }
 }
 
 /// The index of the candidate to show among candidates with these motion-test verdicts
 /// (`Some(true)` passed, `None` untested), in the order tried: the first that passed, else
-/// the last. The one rule for [`SolveReport::shown_candidate`] and for readers of a result
-/// JSON's `candidates`.
-pub fn shown_index(verdicts: impl ExactSizeIterator<Item = Option<bool>>) -> Option<usize> {
+/// `closest` (the closest miss, when it is one of them), else the last. The one rule for
+/// [`SolveReport::shown_candidate`] and for readers of a result JSON's `candidates` and
+/// `unsolved.closest.candidate`.
+pub fn shown_index(
+    verdicts: impl ExactSizeIterator<Item = Option<bool>>,
+    closest: Option<usize>,
+) -> Option<usize> {
     let count = verdicts.len();
     let mut verdicts = verdicts;
     verdicts
         .position(|passed| passed == Some(true))
+        .or(closest.filter(|&k| k < count))
         .or(count.checked_sub(1))
 }
