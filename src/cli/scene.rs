@@ -37,7 +37,7 @@ struct PathArgs {
     #[arg(long, value_name = "RESULT.json", conflicts_with_all = ["lengths_mm", "configurations"])]
     result: Option<PathBuf>,
     /// With --result: the candidate of that rank (1 = shortest tried); default: the one
-    /// that passed, else the last one tried.
+    /// that passed, else the closest miss, else the last one tried.
     #[arg(long, value_name = "RANK", requires = "result")]
     candidate: Option<usize>,
     /// The path's piece lengths from the base end (mm): one per segment, or one per span

@@ -294,11 +294,22 @@ fn path_words(report: &SolveReport) -> String {
             "Path drawn: the shortest candidate path, {length:.0} mm of cable, not tested over \
              the motion."
         ),
-        Some(false) => format!(
-            "Path drawn: candidate {} ({length:.0} mm of cable), the last one tried. It failed \
-             the motion test: this is the nearest miss, not a working path.",
-            c.rank
-        ),
+        Some(false) => {
+            let which = match report.unsolved.as_ref().and_then(|u| u.closest.as_ref()) {
+                Some(closest) => format!(
+                    "the path tried that missed a limit by least ({:.2} mm of {} in {})",
+                    closest.relax_by_mm,
+                    closest.limit_words(),
+                    closest.segment
+                ),
+                None => "the last one tried".to_string(),
+            };
+            format!(
+                "Path drawn: candidate {} ({length:.0} mm of cable), {which}. It failed the \
+                 motion test: this is the nearest miss, not a working path.",
+                c.rank
+            )
+        }
     }
 }
 

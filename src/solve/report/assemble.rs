@@ -168,10 +168,7 @@ fn closest_note(unsolved: Option<&Unsolved>) -> String {
     let Some(closest) = unsolved.and_then(|u| u.closest.as_ref()) else {
         return String::new();
     };
-    let what = match closest.limit {
-        Constraint::BendRadius => "bend radius",
-        _ => "clearance",
-    };
+    let what = closest.limit_words();
     let by = match closest.relax_by_mm {
         v if v < 0.01 => "less than 0.01 mm".to_string(),
         v => format!("{v:.2} mm"),

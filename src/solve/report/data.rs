@@ -430,6 +430,16 @@ pub struct ClosestMiss {
     pub relax_by_mm: f64,
 }
 
+impl ClosestMiss {
+    /// `bend radius` or `clearance`: the limit it missed, in words.
+    pub fn limit_words(&self) -> &'static str {
+        match self.limit {
+            Constraint::BendRadius => "bend radius",
+            _ => "clearance",
+        }
+    }
+}
+
 impl SolveReport {
     /// The candidate a report shows: the one that passed the motion test, the untested
     /// shortest one, or when none passed the closest miss (`unsolved.closest`), else the
