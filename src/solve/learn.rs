@@ -13,13 +13,18 @@
 //! without the pieces set aside, they all come back and the search goes on without learned
 //! margins, so that a path the motion test would pass is never ruled out by a guess — only
 //! tried later ([`Learned`]).
+//!
+//! A loop that swings into another part of the cable teaches no number: the static sweep
+//! solves pieces alone and knows no distance between two of them. Its clamp pair is marked
+//! instead, and the pair's other lengths are set aside the same way, so that the budget goes
+//! to other clamp places before it comes back to lengths of a loop seen touching.
 
 use crate::attachment::SweptLeast;
 use crate::motion_test::{Constraint, Violation};
 use crate::path::Pv;
 use crate::setup::Thresholds;
 use serde::Serialize;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// How far a cable swung past its static shapes, per limit (m); `None`: not measured.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
@@ -60,13 +65,21 @@ pub struct Learned {
     pairs: BTreeMap<(usize, usize, usize), Swing>,
     /// Per segment: the smallest swing measured on any of its pairs.
     segments: BTreeMap<usize, Swing>,
+    /// Clamp pairs `(segment, start, end)` one of whose pieces touched another part of the
+    /// cable in a motion test.
+    touched: BTreeSet<(usize, usize, usize)>,
 }
 
 impl Learned {
     /// Learns from a motion test that failed with `violation` in piece `pv` of segment `m`,
     /// whose static shapes over the motion had the least values `least`. Only the bend
-    /// radius and the clearance to the robot teach a swing; the other limits teach nothing.
+    /// radius and the clearance to the robot teach a swing; a self-contact marks the clamp
+    /// pair; the other limits teach nothing.
     pub fn learn(&mut self, m: usize, pv: &Pv, violation: &Violation, least: &SweptLeast) {
+        if violation.constraint == Constraint::SelfContact {
+            self.touched.insert((m, pv.start, pv.end));
+            return;
+        }
         let swing = match violation.constraint {
             Constraint::BendRadius => Swing {
                 bend_radius_m: Some(least.bend_radius_m - violation.value),
@@ -117,6 +130,12 @@ impl Learned {
         least: &SweptLeast,
         thresholds: &Thresholds,
     ) -> Option<String> {
+        if self.touched.contains(&(m, pv.start, pv.end)) {
+            return Some(
+                "a loop of its clamp pair swung into another part of the cable in a motion test"
+                    .into(),
+            );
+        }
         // The same limits a sweep stops below ([`Learned::needed`]), compared the same way.
         let needed = self.needed(m, pv, thresholds)?;
         let mm = |v: f64| v * 1e3;
@@ -147,6 +166,13 @@ impl Learned {
     /// the limits plus its swing; `None` when nothing was learned for it. A sweep may stop as
     /// soon as a value falls below them.
     pub fn needed(&self, m: usize, pv: &Pv, thresholds: &Thresholds) -> Option<SweptLeast> {
+        if self.touched.contains(&(m, pv.start, pv.end)) {
+            // Set aside whatever its static shapes: its sweep can stop at the first pose.
+            return Some(SweptLeast {
+                bend_radius_m: f64::INFINITY,
+                clearance_m: None,
+            });
+        }
         let swing = self.swing(m, pv);
         if swing == Swing::default() {
             return None;
@@ -159,6 +185,11 @@ impl Learned {
                 .clearance_m
                 .map(|s| thresholds.contact_clearance_m + s),
         })
+    }
+
+    /// How many clamp pairs had a piece touch another part of the cable in a motion test.
+    pub fn touched_pairs(&self) -> usize {
+        self.touched.len()
     }
 
     /// The swings learned per segment (the smallest over its pairs), in segment order.
@@ -288,8 +319,8 @@ mod tests {
                 .doubt(0, &pv(22, 0, 0), &least(0.06, Some(0.0036)), &t)
                 .is_none()
         );
-        // Stretch and self-contact failures, and a static value below the simulated one
-        // (the sweep missed it), teach nothing.
+        // Stretch failures, self-contact failures and a static value below the simulated
+        // one (the sweep missed it) teach no swing.
         let mut other = Learned::default();
         other.learn(
             0,
@@ -310,5 +341,27 @@ mod tests {
             &least(0.0470, None),
         );
         assert_eq!(other.by_segment().count(), 0);
+    }
+
+    #[test]
+    fn a_loop_that_touched_the_cable_sets_aside_its_pair_and_no_other() {
+        let mut learned = Learned::default();
+        let t = thresholds();
+        learned.learn(
+            0,
+            &pv(40, 2, 3),
+            &violation(Constraint::SelfContact, -0.0001, 0),
+            &least(0.06, Some(0.01)),
+        );
+        assert_eq!(learned.touched_pairs(), 1);
+        // Every length of that pair, whatever its static values; its sweep need not go on.
+        let far = least(1.0, Some(1.0));
+        assert!(learned.doubt(0, &pv(44, 2, 3), &far, &t).is_some());
+        let needed = learned.needed(0, &pv(44, 2, 3), &t).expect("needed");
+        assert!(needed.bend_radius_m > 1.0);
+        // Another pair of the segment, and the same pair in another segment: tried.
+        assert!(learned.doubt(0, &pv(40, 2, 4), &far, &t).is_none());
+        assert!(learned.doubt(1, &pv(40, 2, 3), &far, &t).is_none());
+        assert!(learned.needed(0, &pv(40, 2, 4), &t).is_none());
     }
 }

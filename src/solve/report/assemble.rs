@@ -304,6 +304,7 @@ fn sweep_summary(setup: &Setup, outcome: &MotionSearch) -> SweepSummary {
         pvs_swept: outcome.swept,
         rejected,
         learned_swings,
+        touching_pairs: outcome.learned.touched_pairs(),
         set_aside: outcome.set_aside.len(),
         set_aside_restored: outcome.set_aside_restored,
         shortest_untried_mm: (outcome.shortest_untried)

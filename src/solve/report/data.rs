@@ -219,8 +219,12 @@ pub struct SweepSummary {
     /// How far the cable swung past its static shapes in the failed motion tests, per
     /// segment (the smallest over the clamp pairs measured), in segment order.
     pub learned_swings: Vec<LearnedSwing>,
-    /// Pieces set aside because their static shapes kept a learned swing not inside a limit
-    /// (docs/architecture.md, "Learning from failed motion tests").
+    /// Clamp pairs one of whose loops swung into another part of the cable in a motion
+    /// test: their other lengths are set aside too.
+    pub touching_pairs: usize,
+    /// Pieces set aside because their static shapes kept a learned swing not inside a
+    /// limit, or their clamp pair's loop touched the cable (docs/architecture.md, "Learning
+    /// from failed motion tests").
     pub set_aside: usize,
     /// The pieces set aside came back: no chain was left without them and the search went
     /// on without learned margins, or a chain passed and they came back to find the shortest
