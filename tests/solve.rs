@@ -577,3 +577,80 @@ fn verbosity_changes_standard_error_only() {
         Some(2)
     );
 }
+
+/// Learning from failed motion tests against the motion test of every chain: on a small
+/// real case (the hand-written inspection catalogue over the pick-and-place motion, which
+/// strictly shortest first passes after 18 failed tests), every chain of robust pieces in
+/// non-decreasing length is swept, checked at rest and simulated until one passes — no piece
+/// dropped, no swing learned. The learning search finds that chain, or one no shorter whose
+/// answer names an untried chain no longer than it; the strict search finds it exactly.
+#[test]
+fn learning_against_the_motion_test_of_every_chain_in_order() {
+    use cable_dict::attachment::{IntraLinkCriterion, MotionSweep};
+    use cable_dict::chain::ChainSearch;
+    use cable_dict::motion_test::{self, MotionTestOptions};
+    let setup = Setup::from_file("robots/viper_s850/hand_written/inspection.toml").expect("setup");
+    let motion = Motion::from_csv_file(&setup.robot, MOTION).expect("motion");
+    let learning = solve(&setup, &motion, &SolveOptions::default()).expect("solves");
+    let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+
+    let evaluator = Evaluator::new(&setup, ConnectMethod::Hermite).expect("evaluator");
+    let poses =
+        SegmentPoses::with(&setup, &motion, IntraLinkCriterion::GravityDirections).expect("poses");
+    let d2: Vec<_> = attachment_test(&evaluator, &poses)
+        .into_iter()
+        .map(|s| s.d2)
+        .collect();
+    let counts: Vec<usize> = setup
+        .guides
+        .iter()
+        .map(|g| g.configurations.len())
+        .collect();
+    let ends: Vec<(usize, usize)> = (0..setup.segment_count())
+        .map(|m| setup.segment_guides(m))
+        .collect();
+    let chains = ChainSearch::over(&counts, &ends, &d2).expect("chains");
+    let mut sweep = MotionSweep::new(&evaluator, &motion).expect("sweep");
+    let test = MotionTestOptions {
+        stop_at_first_violation: true,
+        record_series: false,
+        ..MotionTestOptions::default()
+    };
+    let mut simulated = 0;
+    let reference = chains.k_best().find(|path| {
+        let pieces: Vec<_> = path.pieces().map(|(m, pv)| (m, pv, None)).collect();
+        if sweep.check_until(&pieces).iter().any(Option::is_some) {
+            return false;
+        }
+        simulated += 1;
+        let report = motion_test::run(&setup, path, &motion, &test).expect("runs");
+        report.passed
+    });
+    let reference = reference.expect("a chain passes");
+    let reference_mm = reference.total_sub_segments() as f64 * pitch_mm;
+    println!(
+        "reference: {reference_mm} mm after simulating {simulated} chains; learning: {:?} mm \
+         after {} motion tests, shortest untried {:?} mm",
+        learning.optimal_length_mm,
+        learning.candidates.len(),
+        learning.static_sweep.shortest_untried_mm
+    );
+    let strict = SolveOptions {
+        learn: false,
+        ..SolveOptions::default()
+    };
+    let strict = solve(&setup, &motion, &strict).expect("solves");
+    assert_eq!(strict.optimal_length_mm, Some(reference_mm));
+    let answer_mm = learning.optimal_length_mm.expect("learning answers");
+    assert!(
+        answer_mm >= reference_mm - 1e-9,
+        "{answer_mm} < {reference_mm}"
+    );
+    if answer_mm > reference_mm + 1e-9 {
+        let untried = learning.static_sweep.shortest_untried_mm;
+        assert!(
+            untried.is_some_and(|u| u <= reference_mm + 1e-9),
+            "learning answered {answer_mm} mm without naming a chain of {reference_mm} mm: {untried:?}"
+        );
+    }
+}
