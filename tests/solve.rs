@@ -601,14 +601,7 @@ fn learning_against_the_motion_test_of_every_chain_in_order() {
         .into_iter()
         .map(|s| s.d2)
         .collect();
-    let counts: Vec<usize> = setup
-        .guides
-        .iter()
-        .map(|g| g.configurations.len())
-        .collect();
-    let ends: Vec<(usize, usize)> = (0..setup.segment_count())
-        .map(|m| setup.segment_guides(m))
-        .collect();
+    let (counts, ends) = (setup.configuration_counts(), setup.segment_ends());
     let chains = ChainSearch::over(&counts, &ends, &d2).expect("chains");
     let mut sweep = MotionSweep::new(&evaluator, &motion).expect("sweep");
     let test = MotionTestOptions {

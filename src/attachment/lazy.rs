@@ -419,19 +419,13 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     fn bounds(&self) -> (ChainBounds, ChainBounds) {
         let setup = self.setup();
         let robustness = &setup.robustness;
-        let counts: Vec<usize> = setup
-            .guides
-            .iter()
-            .map(|g| g.configurations.len())
-            .collect();
+        let counts = setup.configuration_counts();
         let last = counts.len() - 1;
         let mut before: ChainBounds = counts.iter().map(|&n| vec![None; n]).collect();
         let mut after = before.clone();
         before[0].iter_mut().for_each(|b| *b = Some(0));
         after[last].iter_mut().for_each(|b| *b = Some(0));
-        let ends: Vec<(usize, usize)> = (0..self.segments.len())
-            .map(|m| setup.segment_guides(m))
-            .collect();
+        let ends = setup.segment_ends();
         let relax = |slot: &mut Option<usize>, value: usize| {
             *slot = Some(slot.map_or(value, |v| v.min(value)));
         };

@@ -350,6 +350,19 @@ impl Setup {
         self.segments.len()
     }
 
+    /// How many clamp configurations each guide has, in guide order: the layers of the
+    /// graph the chains of pieces run through.
+    pub fn configuration_counts(&self) -> Vec<usize> {
+        self.guides.iter().map(|g| g.configurations.len()).collect()
+    }
+
+    /// Every segment's start and end guide, in segment order ([`Setup::segment_guides`]).
+    pub fn segment_ends(&self) -> Vec<(usize, usize)> {
+        (0..self.segment_count())
+            .map(|m| self.segment_guides(m))
+            .collect()
+    }
+
     /// Indices into [`Setup::guides`] of segment `m`'s start and end guides: `(m, m + 1)`
     /// for a declared segment, the guides a span joins for a span.
     pub fn segment_guides(&self, m: usize) -> (usize, usize) {

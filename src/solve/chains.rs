@@ -9,14 +9,7 @@ use std::collections::BTreeSet;
 
 /// The chain search over the sets `d2`, one per segment (declared ones and spans).
 pub(super) fn chain_search(setup: &Setup, d2: &[Vec<Pv>]) -> Result<ChainSearch, SolveError> {
-    let counts: Vec<usize> = setup
-        .guides
-        .iter()
-        .map(|g| g.configurations.len())
-        .collect();
-    let ends: Vec<(usize, usize)> = (0..setup.segment_count())
-        .map(|m| setup.segment_guides(m))
-        .collect();
+    let (counts, ends) = (setup.configuration_counts(), setup.segment_ends());
     Ok(ChainSearch::over(&counts, &ends, d2)?)
 }
 

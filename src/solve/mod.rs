@@ -14,7 +14,8 @@
 //!    With a dictionary, the pieces a chain takes from it are first solved exactly
 //!    ([`Certification`]): a piece the file got wrong is dropped, never reported. Each PV of a
 //!    chain is then swept statically over every pose of the motion
-//!    ([`MotionSweep`]); a PV that fails there, or the PV of the segment that failed a
+//!    ([`MotionSweep`]), and the whole cable checked at rest at the motion's first pose; a PV
+//!    that fails there, or the PV of the segment that failed a
 //!    dynamic motion test, is dropped before the next try (segments are independent between
 //!    clamps). When none passes within `k` dynamic tries, or there is no chain, the result
 //!    says so and why.
@@ -27,6 +28,7 @@ mod options;
 mod report;
 mod search;
 mod shapes;
+mod sweep;
 
 pub use certify::{Certification, Disagreement};
 use chains::{Decided, LazyChains, MIN_ROUND, chain_search};

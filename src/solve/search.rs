@@ -5,14 +5,11 @@ use super::certify::{Certification, Certified};
 use super::chains::Chains;
 use super::learn::{Learned, SetAside};
 use super::options::{SolveError, SolveOptions};
-use crate::attachment::{
-    ConnectMethod, Evaluator, MotionSweep, Rejection, SegmentPoses, SweepFailure, SweptLeast,
-};
+use super::sweep::{ChainSweep, Dropped, SweepAtRest};
+use crate::attachment::{ConnectMethod, Evaluator, MotionSweep, SegmentPoses, SweptLeast};
 use crate::dictionary::MotionLookup;
 use crate::motion::Motion;
-use crate::motion_test::{
-    self, Constraint, FailureCause, MotionTestOptions, MotionTestReport, Violation,
-};
+use crate::motion_test::{self, MotionTestOptions, MotionTestReport, Violation};
 use crate::path::{CablePath, Pv};
 use crate::setup::Setup;
 use std::time::Instant;
@@ -43,9 +40,6 @@ pub(super) fn search_chains(
 
 /// One chain put to the motion test (`None`: not tested).
 pub(crate) type Tried = (CablePath, Option<MotionTestReport>);
-
-/// A PV the static sweep dropped: segment, PV, where it failed.
-pub(crate) type Dropped = (usize, Pv, SweepFailure);
 
 /// What the search for d* did.
 pub(crate) struct MotionSearch {
@@ -159,123 +153,9 @@ fn motion_tests(
             report: Some(report),
         })
     };
-    let mut sweep = sweep.map(|pieces| SweepAtRest {
-        pieces,
-        setup,
-        motion,
-        options: MotionTestOptions {
-            first_pose_only: true,
-            record_series: false,
-            ..test_options.clone()
-        },
-    });
+    let mut sweep = sweep.map(|pieces| SweepAtRest::new(pieces, setup, motion, &test_options));
     let sweep = sweep.as_mut().map(|s| s as &mut dyn ChainSweep);
     try_chains(setup, chains, options, sweep, &mut test, outcome)
-}
-
-/// The static sweep of a chain: each piece over every pose of the motion, then the whole
-/// cable at rest at the motion's first pose, its pieces joined at their clamps as the motion
-/// test's first step measures them. Two pieces hanging into each other fail there, which no
-/// check of one piece sees; such a failure is the motion test's own at its first step (it
-/// starts from that rest shape), so it drops the piece the motion test would drop and spends
-/// no motion test.
-struct SweepAtRest<'a, 'e, 'v> {
-    pieces: MotionSweep<'e, 'v>,
-    setup: &'a Setup,
-    motion: &'a Motion,
-    /// The motion test's options, first pose only.
-    options: MotionTestOptions,
-}
-
-impl ChainSweep for SweepAtRest<'_, '_, '_> {
-    fn failing(
-        &mut self,
-        path: &CablePath,
-        stops: &[Option<SweptLeast>],
-    ) -> Result<Vec<Dropped>, SolveError> {
-        let failed = self.pieces.failing(path, stops)?;
-        if !failed.is_empty() {
-            return Ok(failed);
-        }
-        let report = motion_test::run(self.setup, path, self.motion, &self.options)?;
-        let Some(failure) = report.failure else {
-            return Ok(Vec::new());
-        };
-        // A failure of no single segment is left to the motion test to report.
-        let Some(m) = failure.segment else {
-            return Ok(Vec::new());
-        };
-        let rejection = match (failure.cause, &report.first_violation) {
-            (FailureCause::TooShort, _) => Rejection::TooShort,
-            (FailureCause::Violation, Some(violation)) => match violation.constraint {
-                Constraint::Contact | Constraint::ContactForce => Rejection::Contact,
-                Constraint::Stretch => Rejection::Stretch,
-                Constraint::BendRadius => Rejection::Bend,
-                Constraint::SelfContact => Rejection::SelfContact,
-            },
-            _ => Rejection::Diverged,
-        };
-        let at_rest = SweepFailure {
-            rejection,
-            sample: 0,
-            time_s: self.motion.times_s()[0],
-            detail: format!(
-                "the whole cable at rest at the first pose: {}",
-                failure.reason
-            ),
-        };
-        let piece = path.pieces().find(|&(segment, _)| segment == m);
-        Ok(piece.map(|(m, pv)| (m, pv, at_rest)).into_iter().collect())
-    }
-
-    fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast> {
-        self.pieces.least(m, pv)
-    }
-
-    fn swept(&self) -> usize {
-        self.pieces.swept()
-    }
-}
-
-/// The static sweep as the search uses it: the pieces of a chain that fail it, and the least
-/// values each piece swept met.
-pub(super) trait ChainSweep {
-    /// The pieces of `path` that fail the sweep, piece by piece; a piece's sweep may stop as
-    /// soon as a least value falls below its entry in `stops` (one per piece, in order).
-    fn failing(
-        &mut self,
-        path: &CablePath,
-        stops: &[Option<SweptLeast>],
-    ) -> Result<Vec<Dropped>, SolveError>;
-    /// The least bend radius and clearance of a swept piece.
-    fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast>;
-    /// Pieces swept so far.
-    fn swept(&self) -> usize;
-}
-
-impl ChainSweep for MotionSweep<'_, '_> {
-    fn failing(
-        &mut self,
-        path: &CablePath,
-        stops: &[Option<SweptLeast>],
-    ) -> Result<Vec<Dropped>, SolveError> {
-        let pvs: Vec<(usize, Pv, Option<SweptLeast>)> = (path.pieces().zip(stops))
-            .map(|((m, pv), stop)| (m, pv, *stop))
-            .collect();
-        let failures = self.check_until(&pvs);
-        let failed = pvs.iter().zip(failures);
-        Ok(failed
-            .filter_map(|(&(m, pv, _), failure)| Some((m, pv, failure?)))
-            .collect())
-    }
-
-    fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast> {
-        MotionSweep::least(self, m, pv)
-    }
-
-    fn swept(&self) -> usize {
-        MotionSweep::swept(self)
-    }
 }
 
 /// What one motion test said, as the search needs it.
