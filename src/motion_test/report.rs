@@ -241,6 +241,17 @@ pub struct SegmentNodes {
 }
 
 impl Violation {
+    /// By how much its limit would have to move for this failure to go (m), for the limits a
+    /// user may weigh against a datasheet or a bracket: the bend radius and the clearance to
+    /// the robot; `None` for the others.
+    pub fn missed_by_m(&self) -> Option<f64> {
+        matches!(
+            self.constraint,
+            Constraint::BendRadius | Constraint::Contact
+        )
+        .then(|| self.threshold - self.value)
+    }
+
     /// The violation as the worst value of its limit at that instant (a violation is the
     /// worst so far when it happens), so that it is worded as the worst values are.
     pub fn to_worst(&self) -> Worst {

@@ -343,12 +343,9 @@ fn motion_diagnosis(
         };
         if let Some(m) = failure.segment {
             dynamic[m].push((failure.reason.clone(), violation.time_s));
-            let miss = |v: &Violation| v.threshold - v.value;
-            let teaches = matches!(
-                violation.constraint,
-                Constraint::BendRadius | Constraint::Contact
-            );
-            if teaches && closest[m].is_none_or(|(c, _)| miss(violation) < miss(c)) {
+            if let Some(missed_m) = violation.missed_by_m()
+                && closest[m].is_none_or(|(c, _)| c.missed_by_m().is_some_and(|c| missed_m < c))
+            {
                 closest[m] = Some((violation, path));
             }
         }

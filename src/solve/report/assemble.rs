@@ -9,7 +9,6 @@ use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, SegmentSets, Tes
 use crate::chain::ChainSearch;
 use crate::json::tidy;
 use crate::motion::Motion;
-use crate::motion_test::Constraint;
 use crate::mounting::mounting_plan;
 use crate::path::CablePath;
 use crate::setup::Setup;
@@ -55,13 +54,9 @@ impl SolveReport {
         let closest = (unsolved.as_ref())
             .and_then(|u| u.closest.as_ref())
             .map(|c| c.candidate);
-        let shown = match winner {
-            Some(w) => Some(w),
-            None => shown_index(
-                tried.iter().map(|(_, r)| r.as_ref().map(|r| r.passed)),
-                closest,
-            ),
-        };
+        // The one that passed (the winner), else the closest miss, else the last tried.
+        let verdicts = tried.iter().map(|(_, r)| r.as_ref().map(|r| r.passed));
+        let shown = shown_index(verdicts, closest);
         let motion_test = shown.and_then(|k| tried[k].1.clone());
         SolveReport {
             status,
@@ -220,14 +215,14 @@ fn unsolved(setup: &Setup, status: Status, outcome: &MotionSearch) -> Option<Uns
     // Bend radius and clearance misses, in mm, least first (the first one tried on ties).
     let misses = (outcome.tried.iter().enumerate()).filter_map(|(k, (path, report))| {
         let v = report.as_ref()?.first_violation.as_ref()?;
-        matches!(v.constraint, Constraint::BendRadius | Constraint::Contact).then(|| ClosestMiss {
+        v.missed_by_m().map(|missed_m| ClosestMiss {
             candidate: k,
             length_mm: path.total_sub_segments() as f64 * pitch_mm,
             segment: v.segment_name.clone(),
             limit: v.constraint,
             value_mm: tidy(v.value * 1e3),
             limit_mm: tidy(v.threshold * 1e3),
-            relax_by_mm: tidy((v.threshold - v.value) * 1e3),
+            relax_by_mm: tidy(missed_m * 1e3),
         })
     });
     let closest = misses.min_by(|a, b| a.relax_by_mm.total_cmp(&b.relax_by_mm));
