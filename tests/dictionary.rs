@@ -131,6 +131,7 @@ fn stored_margins_match_the_attachment_test_at_a_pose_with_that_gravity() {
     let link_poses = setup.robot.link_poses(&joints).expect("pose");
     let link_4 = setup.robot.link_index("link_4").expect("link_4");
     let pose = TestPose {
+        motion: 0,
         sample: 0,
         time_s: 0.0,
         joints: joints.to_vec(),

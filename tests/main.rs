@@ -14,6 +14,7 @@ mod attachment;
 mod bodies;
 mod cable_spec;
 mod calibrate;
+mod cell;
 mod certified_answers;
 mod chain;
 mod cli;

@@ -479,6 +479,7 @@ fn stress_report(points: usize) -> MotionTestReport {
         worst_bend: worst(0.05, "m", 2.0, 1),
         worst_contact_force: None,
         worst_self_clearance: None,
+        pieces: Vec::new(),
         twists: Vec::new(),
         clamp_loads: Vec::new(),
         max_joint_gap_m: 1e-4,

@@ -33,6 +33,7 @@ fn bundled() -> (Setup, Motion) {
 fn sample_pose(setup: &Setup, motion: &Motion, k: usize) -> TestPose {
     let joints = motion.samples()[k].clone();
     TestPose {
+        motion: 0,
         sample: k,
         time_s: motion.times_s()[k],
         link_poses: setup.robot.link_poses(&joints).unwrap(),

@@ -12,7 +12,7 @@
 //!   rule, one arbitrary pose (the first sample), stays available for comparison
 //!   ([`IntraLinkCriterion::FirstPose`]).
 
-use crate::motion::{CriticalPose, Motion, MotionError, critical_poses, traversed_joints};
+use crate::motion::{Cell, CriticalPose, Motion, MotionError, critical_poses, traversed_joints};
 use crate::pose::Pose;
 use crate::setup::Setup;
 use nalgebra::Vector3;
@@ -42,6 +42,8 @@ pub enum IntraLinkCriterion {
 /// One robot pose of the motion at which PVs are tested.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TestPose {
+    /// Which motion of the cell it is a sample of (0 for a single motion).
+    pub motion: usize,
     /// Index of the motion sample.
     pub sample: usize,
     /// Time of the sample (s).
@@ -92,60 +94,115 @@ impl SegmentPoses {
         motion: &Motion,
         criterion: IntraLinkCriterion,
     ) -> Result<SegmentPoses, MotionError> {
+        SegmentPoses::for_motions(setup, &[motion], &[], criterion)
+    }
+
+    /// The test poses of every motion of `cell`: each inter-link segment's critical poses of
+    /// every motion (a pose another motion already has is tested once), each intra-link
+    /// segment's gravity directions over all of them (to [`GRAVITY_RESOLUTION_DEG`]). A piece
+    /// that holds at these poses holds at every motion's.
+    pub fn for_cell(
+        setup: &Setup,
+        cell: &Cell,
+        criterion: IntraLinkCriterion,
+    ) -> Result<SegmentPoses, MotionError> {
+        let motions: Vec<&Motion> = cell.motions().collect();
+        let names: Vec<&str> = match cell.len() {
+            1 => Vec::new(),
+            _ => cell.motions.iter().map(|m| m.name.as_str()).collect(),
+        };
+        SegmentPoses::for_motions(setup, &motions, &names, criterion)
+    }
+
+    /// The test poses of `motions`, reasons prefixed by `names` (when given, one per motion).
+    fn for_motions(
+        setup: &Setup,
+        motions: &[&Motion],
+        names: &[&str],
+        criterion: IntraLinkCriterion,
+    ) -> Result<SegmentPoses, MotionError> {
         let robot = &setup.robot;
+        let named = |i: usize, reason: String| match names.get(i) {
+            Some(name) => format!("{name}: {reason}"),
+            None => reason,
+        };
         let mut traversed = Vec::with_capacity(setup.segment_count());
-        let mut critical = Vec::with_capacity(setup.segment_count());
+        let mut poses = Vec::with_capacity(setup.segment_count());
         for m in 0..setup.segment_count() {
             let (a, b) = setup.segment_guides(m);
             let link_a = &robot.links[setup.guides[a].link].name;
             let link_b = &robot.links[setup.guides[b].link].name;
             let joints = traversed_joints(robot, link_a, link_b)?;
-            critical.push(critical_poses(motion, &joints)?);
-            traversed.push(joints);
-        }
-        let mut poses = Vec::with_capacity(setup.segment_count());
-        for (m, critical) in critical.into_iter().enumerate() {
-            poses.push(if setup.is_intra_link(m) {
-                intra_link_poses(setup, motion, m, criterion)?
+            if setup.is_intra_link(m) {
+                let mut chosen = Vec::new();
+                for (i, motion) in motions.iter().enumerate() {
+                    let before = chosen.len();
+                    intra_link_poses(setup, motion, m, criterion, &mut chosen)?;
+                    for pose in &mut chosen[before..] {
+                        pose.motion = i;
+                        pose.reason = named(i, std::mem::take(&mut pose.reason));
+                    }
+                }
+                poses.push(chosen);
             } else {
-                let all = critical
-                    .into_iter()
-                    .map(|pose| test_pose(setup, pose, None));
-                all.collect::<Result<Vec<_>, _>>()?
-            });
+                let mut union: Vec<TestPose> = Vec::new();
+                for (i, motion) in motions.iter().enumerate() {
+                    for pose in critical_poses(motion, &joints)? {
+                        if union.iter().any(|p| p.joints == pose.joints) {
+                            continue;
+                        }
+                        let mut pose = test_pose(setup, pose, None)?;
+                        pose.motion = i;
+                        pose.reason = named(i, pose.reason);
+                        union.push(pose);
+                    }
+                }
+                poses.push(union);
+            }
+            traversed.push(joints);
         }
         Ok(SegmentPoses { traversed, poses })
     }
 }
 
-/// The test poses of intra-link segment `m` under `criterion`, in time order.
+/// Adds to `chosen` the test poses of intra-link segment `m` under `criterion` over
+/// `motion`, in time order, that no pose chosen already stands for.
 fn intra_link_poses(
     setup: &Setup,
     motion: &Motion,
     m: usize,
     criterion: IntraLinkCriterion,
-) -> Result<Vec<TestPose>, MotionError> {
+    chosen: &mut Vec<TestPose>,
+) -> Result<(), MotionError> {
     let link = setup.guides[setup.segment_guides(m).0].body;
-    let first = test_pose(setup, motion_sample(motion, 0, "first pose"), Some(link))?;
     let gravity = &setup.gravity_m_s2;
+    let new =
+        |k: usize, reason: &str| test_pose(setup, motion_sample(motion, k, reason), Some(link));
     if criterion == IntraLinkCriterion::FirstPose || gravity.norm() == 0.0 {
-        return Ok(vec![first]);
+        if chosen.is_empty() {
+            chosen.push(new(0, "first pose")?);
+        }
+        return Ok(());
     }
     let resolution = GRAVITY_RESOLUTION_DEG.to_radians().cos();
     let link_name = &setup.robot.links[link].name;
-    let mut chosen: Vec<(Vector3<f64>, TestPose)> = Vec::new();
+    let mut directions: Vec<Vector3<f64>> = chosen
+        .iter()
+        .map(|p| p.gravity_in_link(link, gravity))
+        .collect();
     for k in 0..motion.samples().len() {
-        let mut pose = test_pose(setup, motion_sample(motion, k, ""), Some(link))?;
+        let mut pose = new(k, "")?;
         let down = pose.gravity_in_link(link, gravity);
-        if !chosen.iter().any(|(d, _)| d.dot(&down) >= resolution) {
+        if !directions.iter().any(|d| d.dot(&down) >= resolution) {
             pose.reason = format!(
                 "gravity ({:.2}, {:.2}, {:.2}) in {link_name}'s frame",
                 down.x, down.y, down.z
             );
-            chosen.push((down, pose));
+            directions.push(down);
+            chosen.push(pose);
         }
     }
-    Ok(chosen.into_iter().map(|(_, pose)| pose).collect())
+    Ok(())
 }
 
 /// Motion sample `k` as a test pose, for `reason`.
@@ -177,6 +234,7 @@ fn test_pose(
         .link_poses(&pose.joints)
         .map_err(|e| MotionError::data(format!("sample {}: {e}", pose.sample)))?;
     Ok(TestPose {
+        motion: 0,
         sample: pose.sample,
         time_s: pose.time_s,
         joints: pose.joints,
@@ -184,4 +242,81 @@ fn test_pose(
         link_poses,
         clearance_link,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fixtures::narrow_pick_and_place;
+
+    /// The cell's poses against each motion's own: every inter-link pose of each motion is
+    /// one of the cell's (same joints), none twice; every gravity direction an intra-link
+    /// segment meets in any motion is within the resolution of one the cell tests.
+    #[test]
+    fn a_cell_tests_every_pose_of_each_of_its_motions_once() {
+        let (setup, motion) = narrow_pick_and_place();
+        // A second motion: the first played backwards from another start, the joints moved.
+        let mut samples: Vec<Vec<f64>> = motion.samples().iter().rev().cloned().collect();
+        for (k, joints) in samples.iter_mut().enumerate() {
+            joints[3] = (joints[3] * 0.5 + 0.3 * (k as f64 * 0.01).sin()).clamp(-2.0, 2.0);
+        }
+        let other = Motion::new(&setup.robot, motion.times_s().to_vec(), samples)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let cell = Cell {
+            source: None,
+            description: None,
+            motions: [("a", &motion), ("b", &other)]
+                .into_iter()
+                .map(|(name, m)| crate::motion::CellMotion {
+                    name: name.into(),
+                    file: None,
+                    cycles_per_hour: None,
+                    motion: m.clone(),
+                })
+                .collect(),
+        };
+        let criterion = IntraLinkCriterion::GravityDirections;
+        let union =
+            SegmentPoses::for_cell(&setup, &cell, criterion).unwrap_or_else(|e| panic!("{e}"));
+        let resolution = GRAVITY_RESOLUTION_DEG.to_radians().cos();
+        for (i, m) in [&motion, &other].into_iter().enumerate() {
+            let alone = SegmentPoses::with(&setup, m, criterion).unwrap_or_else(|e| panic!("{e}"));
+            for s in 0..setup.segment_count() {
+                let cell_poses = &union.poses[s];
+                if setup.is_intra_link(s) {
+                    let link = setup.guides[setup.segment_guides(s).0].body;
+                    let g = &setup.gravity_m_s2;
+                    for pose in &alone.poses[s] {
+                        let down = pose.gravity_in_link(link, g);
+                        let near = cell_poses
+                            .iter()
+                            .any(|p| p.gravity_in_link(link, g).dot(&down) >= resolution);
+                        assert!(near, "motion {i}, segment {s}: direction {down:?}");
+                    }
+                } else {
+                    for pose in &alone.poses[s] {
+                        assert!(
+                            cell_poses.iter().any(|p| p.joints == pose.joints),
+                            "motion {i}, segment {s}: {}",
+                            pose.reason
+                        );
+                    }
+                }
+            }
+        }
+        for poses in &union.poses {
+            for (k, a) in poses.iter().enumerate() {
+                assert!(
+                    poses[..k].iter().all(|b| b.joints != a.joints),
+                    "{}",
+                    a.reason
+                );
+                assert!(
+                    a.reason.starts_with("a: ") || a.reason.starts_with("b: "),
+                    "{}",
+                    a.reason
+                );
+            }
+        }
+    }
 }

@@ -27,6 +27,8 @@ use std::collections::BTreeMap;
 /// Where a PV first fails the static sweep.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SweepFailure {
+    /// Which motion of a cell (0 for a single motion).
+    pub motion: usize,
     /// The limit violated first at that pose.
     pub rejection: Rejection,
     /// Motion sample of the pose.
@@ -122,6 +124,7 @@ impl<'e, 'a> MotionSweep<'e, 'a> {
             .map(|(m, pv, stop)| {
                 let swept = evaluator.sweep(*m, pv, poses, stop.as_ref());
                 let failure = swept.failure.map(|(pose, check)| SweepFailure {
+                    motion: 0,
                     rejection: check.rejection.unwrap_or(Rejection::Diverged),
                     sample: pose.sample,
                     time_s: pose.time_s,

@@ -90,20 +90,27 @@ impl SetupArg {
     }
 }
 
-/// The setup and the motion of `solve` and `critical-poses`, from `--setup` and the files
-/// after the options: `--setup SETUP.toml MOTION.csv` or `SETUP.toml MOTION.csv`. `dictionary`
-/// says whether the command takes `--dict` and whether it was given (a dictionary embeds a
-/// setup: then the motion alone will do). The errors say what to give.
-pub fn setup_and_motion<'a>(
+/// The setup and the motions of `solve` and `critical-poses`, from `--setup` and the files
+/// after the options: `--setup SETUP.toml MOTION.csv…` or `SETUP.toml MOTION.csv…`, a motion
+/// being a motion CSV or a cell file. `dictionary` says whether the command takes `--dict`
+/// and whether it was given (a dictionary embeds a setup: then the motions alone will do,
+/// the first file taken for the setup only when it is neither a CSV nor a cell file). The
+/// errors say what to give.
+pub fn setup_and_motions<'a>(
     option: Option<&'a Path>,
     files: &'a [PathBuf],
     dictionary: Option<bool>,
-) -> Result<(Option<&'a Path>, &'a Path), String> {
+) -> Result<(Option<&'a Path>, &'a [PathBuf]), String> {
     match (option, files) {
-        (Some(setup), [motion]) => Ok((Some(setup), motion)),
-        (None, [setup, motion]) => Ok((Some(setup), motion)),
-        (None, [motion]) if dictionary == Some(true) => Ok((None, motion)),
-        (None, [motion]) => Err(format!(
+        (_, []) => Err("give the motion: MOTION.csv (or a cell file, CELL.toml)".into()),
+        (Some(setup), motions) => Ok((Some(setup), motions)),
+        (None, [first, rest @ ..])
+            if dictionary == Some(true) && (rest.is_empty() || is_motion_file(first)) =>
+        {
+            Ok((None, files))
+        }
+        (None, [setup, motions @ ..]) if !motions.is_empty() => Ok((Some(setup), motions)),
+        (None, [motion, ..]) => Err(format!(
             "no setup for the motion {}: give it first (SETUP.toml {0}) or as --setup \
              SETUP.toml{}",
             motion.display(),
@@ -112,16 +119,13 @@ pub fn setup_and_motion<'a>(
                 None => "",
             }
         )),
-        (Some(_), [_, _]) => Err(
-            "two files and --setup: give the setup once, as --setup SETUP.toml or as the first \
-             file"
-                .into(),
-        ),
-        _ => Err(format!(
-            "{} files: give SETUP.toml MOTION.csv (or --setup SETUP.toml MOTION.csv)",
-            files.len()
-        )),
     }
+}
+
+/// A motion CSV or a cell file (`[[motions]]`), not a setup.
+fn is_motion_file(path: &Path) -> bool {
+    let csv = path.extension().is_some_and(|e| e == "csv");
+    csv || cable_dict::motion::Cell::is_cell_file(path)
 }
 
 #[cfg(test)]
@@ -148,22 +152,32 @@ mod tests {
         let (setup, motion) = (PathBuf::from("s.toml"), PathBuf::from("m.csv"));
         let both = [setup.clone(), motion.clone()];
         let one = [motion.clone()];
-        let given = Ok((Some(setup.as_path()), motion.as_path()));
-        assert_eq!(setup_and_motion(Some(&setup), &one, None), given);
-        assert_eq!(setup_and_motion(None, &both, Some(false)), given);
-        let embedded = Ok((None, motion.as_path()));
-        assert_eq!(setup_and_motion(None, &one, Some(true)), embedded);
-        let missing = setup_and_motion(None, &one, Some(false)).unwrap_err();
+        let given = Ok((Some(setup.as_path()), &one[..]));
+        assert_eq!(setup_and_motions(Some(&setup), &one, None), given);
+        assert_eq!(setup_and_motions(None, &both, Some(false)), given);
+        assert_eq!(setup_and_motions(None, &both, Some(true)), given);
+        let embedded = Ok((None, &one[..]));
+        assert_eq!(setup_and_motions(None, &one, Some(true)), embedded);
+        let two = [motion.clone(), PathBuf::from("n.csv")];
+        assert_eq!(
+            setup_and_motions(None, &two, Some(true)),
+            Ok((None, &two[..]))
+        );
+        assert_eq!(
+            setup_and_motions(Some(&setup), &two, None),
+            Ok((Some(setup.as_path()), &two[..]))
+        );
+        let missing = setup_and_motions(None, &one, Some(false)).unwrap_err();
         assert!(
             missing.contains("--setup") && missing.contains("--dict"),
             "{missing}"
         );
         // A command without --dict does not offer it.
-        let missing = setup_and_motion(None, &one, None).unwrap_err();
+        let missing = setup_and_motions(None, &one, None).unwrap_err();
         assert!(
             missing.contains("--setup") && !missing.contains("--dict"),
             "{missing}"
         );
-        assert!(setup_and_motion(Some(&setup), &both, None).is_err());
+        assert!(setup_and_motions(Some(&setup), &[], None).is_err());
     }
 }

@@ -2,12 +2,14 @@
 
 mod args;
 mod calibrate;
+mod check;
 mod dictionary;
 mod fk;
 mod motion;
 mod output;
 mod progress_bars;
 mod provenance;
+mod result_file;
 mod robot_info;
 mod scene;
 mod segment;
@@ -22,7 +24,8 @@ use clap::{Parser, Subcommand};
 ///
 /// Units on the command line: millimetres and degrees. Exit codes: 0 success (`solve` also
 /// when it finds no cable path: its status says so), 1 the input is valid but the command has
-/// no answer (e.g. `segment` with a cable too short for its guides), 2 invalid input.
+/// no answer (e.g. `segment` with a cable too short for its guides; `check` with a motion the
+/// mounting fails), 2 invalid input.
 #[derive(Debug, Parser)]
 #[command(name = "cable-dict", version)]
 pub struct Cli {
@@ -50,6 +53,9 @@ enum Command {
     CriticalPoses(solve::CriticalArgs),
     /// The optimal cable path for a setup (or a dictionary) and a motion.
     Solve(Box<solve::Args>),
+    /// Check an installed cable (a solve's result) against motions, no search: exit 0 when
+    /// every motion holds, 1 when one fails, 2 on invalid input.
+    Check(check::Args),
     /// Write a 3D scene (glTF .glb) of a cable path at a pose, or of one segment.
     ExportScene(scene::Args),
     /// List (or draw, glTF) the clamp sites and cable directions a setup's search will try.
@@ -84,6 +90,7 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Motion(args) => motion::run(args),
         Command::CriticalPoses(args) => solve::run_critical(args),
         Command::Solve(args) => solve::run(*args, cli.verbose > 0),
+        Command::Check(args) => check::run(args),
         Command::ExportScene(args) => scene::run(args),
         Command::Sites(args) => sites::run(args),
         Command::Build(args) => dictionary::run_build(args),

@@ -3,15 +3,16 @@
 
 use super::fk::joint_vector_si;
 use super::output::{Failure, emit, write_glb};
+use super::result_file::ResultFile;
 use super::{args, segment};
 use cable_dict::attachment::{ConnectMethod, Evaluator};
 use cable_dict::motion::Motion;
 use cable_dict::path::CablePath;
 use cable_dict::report::views::pose_scene;
 use cable_dict::setup::Setup;
-use cable_dict::solve::{CandidateOutcome, path_shape, shown_index};
+use cable_dict::solve::path_shape;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -99,7 +100,10 @@ fn run_path(args: PathArgs) -> Result<(), Failure> {
 /// and (from a result) what the motion test said of it.
 fn chosen_path(args: &PathArgs, setup: &Setup) -> Result<(CablePath, Option<String>), Failure> {
     let (path, motion_test) = match (&args.result, &args.lengths_mm, &args.configurations) {
-        (Some(file), _, _) => path_from_result(file, args.candidate)?,
+        (Some(file), _, _) => {
+            let chosen = ResultFile::read(file)?.chosen(args.candidate)?;
+            (chosen.path, Some(chosen.motion_test))
+        }
         (None, Some(lengths), Some(names)) => (path_from_names(setup, &lengths.0, names)?, None),
         _ => {
             return Err(Failure::input(anyhow::anyhow!(
@@ -109,72 +113,6 @@ fn chosen_path(args: &PathArgs, setup: &Setup) -> Result<(CablePath, Option<Stri
     };
     check_path(setup, &path)?;
     Ok((path, motion_test))
-}
-
-/// Candidate `rank` of a result JSON, or the one it passed (else its last), and a line
-/// saying what the motion test found for it: a piece can hold its limits at one pose and
-/// still fail along the motion.
-fn path_from_result(
-    file: &Path,
-    rank: Option<usize>,
-) -> Result<(CablePath, Option<String>), Failure> {
-    let fail = |what: String| Failure::input(anyhow::anyhow!("{}: {what}", file.display()));
-    let text = cable_dict::input::read_text(file, cable_dict::input::RESULT).map_err(fail)?;
-    let result: ResultCandidates = serde_json::from_str(&text)
-        .map_err(|e| fail(format!("not a cable-dict result JSON: {e}")))?;
-    let candidates = result.candidates;
-    let chosen = match rank {
-        Some(rank) => candidates.iter().find(|c| c.rank == rank),
-        None => {
-            let closest = (result.unsolved.and_then(|u| u.closest)).map(|c| c.candidate);
-            shown_index(candidates.iter().map(|c| c.passed), closest).map(|i| &candidates[i])
-        }
-    };
-    let chosen = chosen.ok_or_else(|| match rank {
-        Some(rank) => fail(format!(
-            "no candidate of rank {rank} (it lists {})",
-            candidates.len()
-        )),
-        None => fail("it lists no candidate: the solve found no chain".into()),
-    })?;
-    let mut path = chosen.path.clone();
-    if path.segments.is_empty() {
-        // Results written before spans existed list no segments: one per guide pair.
-        path.segments = (0..path.lengths.len()).collect();
-    }
-    let name = format!(
-        "candidate {} ({:.0} mm)",
-        chosen.rank, chosen.total_length_mm
-    );
-    let motion_test = match (chosen.passed, &chosen.failure) {
-        (Some(true), _) => format!("{name} passed the motion test"),
-        (Some(false), Some(why)) => format!("{name} FAILED the motion test: {why}"),
-        (Some(false), None) => format!("{name} FAILED the motion test"),
-        (None, _) => format!("{name} was not motion-tested"),
-    };
-    Ok((path, Some(motion_test)))
-}
-
-/// The part of a result JSON `export-scene` reads: the chains tried, with the types that
-/// wrote them.
-#[derive(serde::Deserialize)]
-struct ResultCandidates {
-    candidates: Vec<CandidateOutcome>,
-    /// Absent in results written before it existed.
-    #[serde(default)]
-    unsolved: Option<ResultUnsolved>,
-}
-
-/// `unsolved.closest.candidate` of a result JSON: the candidate shown when none passed.
-#[derive(serde::Deserialize)]
-struct ResultUnsolved {
-    closest: Option<ResultClosest>,
-}
-
-/// See [`ResultUnsolved`].
-#[derive(serde::Deserialize)]
-struct ResultClosest {
-    candidate: usize,
 }
 
 /// The path of lengths (mm) and configuration names.

@@ -1,18 +1,18 @@
 //! `cable-dict solve` and `cable-dict critical-poses`: a setup and a motion → the optimal
 //! cable path, or the poses each segment is tested at.
 
-use super::args::setup_and_motion;
+use super::args::setup_and_motions;
 use super::output::{Failure, emit, print_json};
 use super::provenance::open_verified;
 use cable_dict::atomic_file::write_atomically;
 use cable_dict::attachment::{ConnectMethod, IntraLinkCriterion, SegmentPoses};
-use cable_dict::motion::Motion;
+use cable_dict::motion::{Cell, Motion};
 use cable_dict::motion_test::EngineKind;
 use cable_dict::report::{ReportError, check_report_folder, write_report};
 use cable_dict::setup::Setup;
 use cable_dict::solve::{
     ReportShapes, SearchKind, Solution, SolveError, SolveOptions, SolveReport, guide_names,
-    solve_with,
+    solve_cell,
 };
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -33,8 +33,9 @@ pub struct Args {
     #[command(flatten)]
     trust: super::provenance::Trust,
     /// The motion CSV (see motions/README.md), after the setup when the setup is not given
-    /// as --setup.
-    #[arg(value_name = "[SETUP.toml] MOTION.csv", num_args = 1..=2, required = true)]
+    /// as --setup. Several motions (or a cell file naming them, docs/commands.md, "Cells"):
+    /// one cable path that holds every limit over every one of them.
+    #[arg(value_name = "[SETUP.toml] MOTION.csv|CELL.toml", num_args = 1.., required = true)]
     files: Vec<PathBuf>,
     /// Print the result as JSON instead of the summary.
     #[arg(long)]
@@ -136,7 +137,7 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
         }
         None => None,
     };
-    let (setup_path, motion_path) = setup_and_motion(
+    let (setup_path, motion_paths) = setup_and_motions(
         args.setup.as_deref(),
         &args.files,
         Some(dictionary.is_some()),
@@ -151,7 +152,7 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
             )));
         }
     };
-    let motion = Motion::from_csv_file(&setup.robot, motion_path).map_err(Failure::input)?;
+    let cell = Cell::from_files(&setup.robot, motion_paths).map_err(Failure::input)?;
     let options = SolveOptions {
         method: match args.connect {
             Connect::Hermite => ConnectMethod::Hermite,
@@ -177,7 +178,7 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
             IntraLink::FirstPose => IntraLinkCriterion::FirstPose,
         },
     };
-    let solution = solve_with(&setup, &motion, &options, dictionary.as_ref());
+    let solution = solve_cell(&setup, &cell, &options, dictionary.as_ref());
     let Solution {
         mut report,
         setup: solved,
@@ -189,7 +190,6 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
         | SolveError::Dictionary(_) => Failure::input(e),
         SolveError::Chain(_) | SolveError::MotionTest(_) => Failure::unsolved(e),
     })?;
-    report.inputs.motion_file = Some(motion_path.display().to_string());
     if let Some(used) = &mut report.inputs.dictionary {
         used.provenance = provenance;
     }
@@ -200,7 +200,7 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
             .map_err(|e| Failure::input(anyhow::anyhow!("cannot write {}: {e}", path.display())))?;
     }
     if let Some(dir) = &args.report {
-        write_report_folder(dir, &solved, &motion, &report)?;
+        write_report_folder(dir, &solved, &cell.motions[0].motion, &report)?;
     }
     if args.json {
         print_json(&report)?;
@@ -241,20 +241,14 @@ fn write_report_folder(
     Ok(())
 }
 
-/// Reads the setup and the motion for its robot.
-fn load(setup: &Path, motion: &Path) -> Result<(Setup, Motion), Failure> {
-    let setup = Setup::from_file(setup).map_err(Failure::input)?;
-    let motion = Motion::from_csv_file(&setup.robot, motion).map_err(Failure::input)?;
-    Ok((setup, motion))
-}
-
 #[derive(Debug, clap::Args)]
 pub struct CriticalArgs {
     /// The setup file; also accepted as the first file: `critical-poses SETUP.toml MOTION.csv`.
     #[arg(long, value_name = "SETUP.toml")]
     setup: Option<PathBuf>,
-    /// The motion CSV, after the setup when the setup is not given as --setup.
-    #[arg(value_name = "[SETUP.toml] MOTION.csv", num_args = 1..=2, required = true)]
+    /// The motion CSV, after the setup when the setup is not given as --setup; several
+    /// motions (or a cell file): the poses of all of them, each tested once.
+    #[arg(value_name = "[SETUP.toml] MOTION.csv|CELL.toml", num_args = 1.., required = true)]
     files: Vec<PathBuf>,
     /// Print JSON.
     #[arg(long)]
@@ -273,11 +267,14 @@ struct SegmentPosesJson {
 
 pub fn run_critical(args: CriticalArgs) -> Result<(), Failure> {
     let usage = |e: String| Failure::input(anyhow::anyhow!(e));
-    let (setup, motion) =
-        setup_and_motion(args.setup.as_deref(), &args.files, None).map_err(usage)?;
+    let (setup, motions) =
+        setup_and_motions(args.setup.as_deref(), &args.files, None).map_err(usage)?;
     let setup = setup.ok_or_else(|| usage("give the setup: --setup SETUP.toml".into()))?;
-    let (setup, motion) = load(setup, motion)?;
-    let poses = SegmentPoses::new(&setup, &motion).map_err(Failure::input)?;
+    let setup = Setup::from_file(setup).map_err(Failure::input)?;
+    let cell = Cell::from_files(&setup.robot, motions).map_err(Failure::input)?;
+    let poses = SegmentPoses::for_cell(&setup, &cell, IntraLinkCriterion::default())
+        .map_err(Failure::input)?;
+    let motion = &cell.motions[0].motion;
     let segments: Vec<SegmentPosesJson> = (0..setup.segment_count())
         .map(|m| {
             let (guides, links) = guide_names(&setup, m);
@@ -292,7 +289,7 @@ pub fn run_critical(args: CriticalArgs) -> Result<(), Failure> {
                     .collect(),
                 poses: poses.poses[m]
                     .iter()
-                    .map(|p| cable_dict::solve::pose_summary(p, &motion))
+                    .map(|p| cable_dict::solve::pose_summary(p, motion))
                     .collect(),
             }
         })

@@ -79,6 +79,7 @@
 //! interpolated (the generator samples every waypoint exactly, where point-to-point moves
 //! have their extremes).
 
+mod cell;
 mod critical;
 mod csv;
 mod error;
@@ -88,6 +89,7 @@ mod sampled;
 mod units;
 mod waypoints;
 
+pub use cell::{Cell, CellMotion, MAX_CELL_MOTIONS};
 pub use critical::{
     CriticalPose, DWELL_TOLERANCE, critical_poses, critical_poses_with_tolerance, traversed_joints,
 };

@@ -28,7 +28,7 @@ pub enum Engine {
 }
 
 /// The engine's name, for options and reports.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum EngineKind {
     /// [`Engine::Implicit`].

@@ -33,6 +33,10 @@ pub struct MotionTestReport {
     /// [`crate::stress::self_contact`]; < 0 the cable passes through itself), at the first of
     /// the two sub-segments; `None` for a cable too short to meet itself.
     pub worst_self_clearance: Option<Worst>,
+    /// Per simulated piece (in segment order), its own worst clearance, stretch and bend
+    /// radius over the run: which piece is tightest where, and which of several motions binds
+    /// each piece.
+    pub pieces: Vec<PieceWorst>,
     /// Per simulated piece, its largest twist over the run (the implicit engine; empty for
     /// the rigid chain, which does not model twist as the statics do).
     pub twists: Vec<PieceTwist>,
@@ -62,6 +66,21 @@ pub struct MotionTestReport {
     pub simulated_s: f64,
     /// Wall-clock time of the whole test, setup of the simulation included (s).
     pub wall_time_s: f64,
+}
+
+/// The worst values of one piece of cable over the motion test.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PieceWorst {
+    /// Index into the setup's segments.
+    pub segment: usize,
+    /// The segment's name (`C3`).
+    pub segment_name: String,
+    /// Its lowest clearance to the robot (m), clamp zones excluded; `None` when not checked.
+    pub worst_clearance: Option<Worst>,
+    /// Its highest stretch.
+    pub worst_stretch: Option<Worst>,
+    /// Its smallest bend radius (m).
+    pub worst_bend: Option<Worst>,
 }
 
 /// The largest twist of one piece of cable over the motion test.

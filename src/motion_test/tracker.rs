@@ -2,8 +2,8 @@
 
 use super::engine::ForceAt;
 use super::report::{
-    ClampLoadPeak, Constraint, Failure, FailureCause, MotionTestReport, PieceTwist, Place,
-    SegmentNodes, SeriesPoint, ShapeFrame, Violation, Worst,
+    ClampLoadPeak, Constraint, Failure, FailureCause, MotionTestReport, PieceTwist, PieceWorst,
+    Place, SegmentNodes, SeriesPoint, ShapeFrame, Violation, Worst,
 };
 use crate::setup::{Setup, Thresholds};
 use crate::statics::ClampLoad;
@@ -46,6 +46,7 @@ pub(super) struct Tracker<'a> {
     /// is known (see [`Tracker::keep_self_contact`]).
     self_search_due_s: f64,
     first_violation: Option<Violation>,
+    pieces: Vec<PieceWorst>,
     twists: Vec<PieceTwist>,
     clamp_loads: Vec<ClampLoadPeak>,
     max_joint_gap_m: f64,
@@ -70,6 +71,7 @@ impl<'a> Tracker<'a> {
             worst_self_clearance: None,
             self_search_due_s: f64::NEG_INFINITY,
             first_violation: None,
+            pieces: Vec::new(),
             twists: Vec::new(),
             clamp_loads: Vec::new(),
             max_joint_gap_m: 0.0,
@@ -161,6 +163,7 @@ impl<'a> Tracker<'a> {
             passed: failure.is_none(),
             failure,
             first_violation: self.first_violation,
+            pieces: self.pieces,
             worst_clearance: self.worst_clearance,
             worst_stretch: self.worst_stretch,
             worst_bend: self.worst_bend,
@@ -211,6 +214,10 @@ impl<'a> Tracker<'a> {
         if c.clearance_m < t.contact_clearance_m {
             self.violate(Constraint::Contact, t.contact_clearance_m, &worst);
         }
+        let piece = self.piece(segment);
+        keep(&mut piece.worst_clearance, worst.clone(), |new, old| {
+            new < old
+        });
         keep(&mut self.worst_clearance, worst, |new, old| new < old);
     }
 
@@ -226,6 +233,10 @@ impl<'a> Tracker<'a> {
         if stretch > t.stretch {
             self.violate(Constraint::Stretch, t.stretch, &worst);
         }
+        let piece = self.piece(segment);
+        keep(&mut piece.worst_stretch, worst.clone(), |new, old| {
+            new > old
+        });
         keep(&mut self.worst_stretch, worst, |new, old| new > old);
     }
 
@@ -246,7 +257,28 @@ impl<'a> Tracker<'a> {
         if m.bend.radius_m < t.min_bend_radius_m {
             self.violate(Constraint::BendRadius, t.min_bend_radius_m, &worst);
         }
+        let piece = self.piece(segment);
+        keep(&mut piece.worst_bend, worst.clone(), |new, old| new < old);
         keep(&mut self.worst_bend, worst, |new, old| new < old);
+    }
+
+    /// The worst values of `segment` so far, kept in segment order.
+    fn piece(&mut self, segment: usize) -> &mut PieceWorst {
+        let at = match self.pieces.binary_search_by_key(&segment, |p| p.segment) {
+            Ok(at) => at,
+            Err(at) => {
+                let piece = PieceWorst {
+                    segment,
+                    segment_name: self.setup.segment_name(segment),
+                    worst_clearance: None,
+                    worst_stretch: None,
+                    worst_bend: None,
+                };
+                self.pieces.insert(at, piece);
+                at
+            }
+        };
+        &mut self.pieces[at]
     }
 
     fn keep_contact(

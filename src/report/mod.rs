@@ -321,7 +321,7 @@ fn plot_names(
     let failure = test
         .failure
         .as_ref()
-        .map(|_| text::verdict_words(report, test, Some(&plan)));
+        .map(|_| text::verdict_words(&report.limits(), test, Some(&plan)));
     plots::PlotNames {
         pieces,
         clamps,

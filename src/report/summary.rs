@@ -266,12 +266,12 @@ fn motion_test_table(md: &mut String, report: &SolveReport, test: &MotionTestRep
     let _ = writeln!(
         md,
         "{} ({:.2} s simulated in {:.1} s).\n",
-        text(&capitalized(&verdict_words(report, test, plan))),
+        text(&capitalized(&verdict_words(&report.limits(), test, plan))),
         test.simulated_s,
         test.wall_time_s
     );
     header(md, &["limit", "worst", "limit", "margin", "when, where"]);
-    for w in worst_rows(report, test, plan) {
+    for w in worst_rows(&report.limits(), test, plan) {
         row(
             md,
             &[

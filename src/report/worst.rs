@@ -145,6 +145,7 @@ mod tests {
             worst_bend: Some(worst(0.062, 3.0, 2)),
             worst_contact_force: None,
             worst_self_clearance: None,
+            pieces: Vec::new(),
             twists: Vec::new(),
             clamp_loads: Vec::new(),
             max_joint_gap_m: 0.0,

@@ -5,7 +5,7 @@
 
 use super::search::MotionSearch;
 use crate::attachment::{Miss, Rejection, SegmentPoses, SegmentSets};
-use crate::motion::Motion;
+use crate::motion::{Cell, Motion};
 use crate::motion_test::{Constraint, Violation};
 use crate::path::CablePath;
 use crate::setup::Setup;
@@ -128,7 +128,7 @@ impl std::fmt::Display for Diagnosis {
 /// when chains were found but failed the motion test, the segments they failed in.
 pub(super) fn diagnose(
     setup: &Setup,
-    motion: &Motion,
+    cell: &Cell,
     poses: &SegmentPoses,
     sets: &[SegmentSets],
     outcome: &MotionSearch,
@@ -140,7 +140,7 @@ pub(super) fn diagnose(
             .map(|m| attachment_diagnosis(setup, poses, &sets[m], m))
             .collect()
     } else {
-        motion_diagnosis(setup, motion, outcome)
+        motion_diagnosis(setup, cell, outcome)
     };
     Diagnosis { segments }
 }
@@ -326,23 +326,29 @@ fn attachment_suggestions(
 /// Chains were found, but every one tried failed the motion test (or its static sweep):
 /// the segments they failed in, how, and — for a failure in the dynamic test — the joint that
 /// moved fastest then, and between which times.
-fn motion_diagnosis(
-    setup: &Setup,
-    motion: &Motion,
-    outcome: &MotionSearch,
-) -> Vec<SegmentDiagnosis> {
+fn motion_diagnosis(setup: &Setup, cell: &Cell, outcome: &MotionSearch) -> Vec<SegmentDiagnosis> {
     let count = setup.segment_count();
     let mut dynamic: Vec<Vec<(String, f64)>> = vec![Vec::new(); count];
     let mut swept: Vec<Vec<(String, f64)>> = vec![Vec::new(); count];
+    // Per segment, the motion of its first failure in a motion test.
+    let mut first_motion: Vec<Option<usize>> = vec![None; count];
     // Per segment, the bend-radius or clearance failure missed by the least, with its path.
     let mut closest: Vec<Option<(&Violation, &CablePath)>> = vec![None; count];
-    for (path, report) in &outcome.tried {
-        let Some(report) = report else { continue };
+    for tried in &outcome.tried {
+        let (path, Some(report)) = (&tried.path, tried.report()) else {
+            continue;
+        };
         let (Some(failure), Some(violation)) = (&report.failure, &report.first_violation) else {
             continue;
         };
         if let Some(m) = failure.segment {
-            dynamic[m].push((failure.reason.clone(), violation.time_s));
+            let motion = tried.judged.unwrap_or(0);
+            let reason = match cell.len() {
+                1 => failure.reason.clone(),
+                _ => format!("{}: {}", cell.motions[motion].name, failure.reason),
+            };
+            dynamic[m].push((reason, violation.time_s));
+            first_motion[m].get_or_insert(motion);
             if let Some(missed_m) = violation.missed_by_m()
                 && closest[m].is_none_or(|(c, _)| c.missed_by_m().is_some_and(|c| missed_m < c))
             {
@@ -361,6 +367,7 @@ fn motion_diagnosis(
             let mut suggestions: Vec<String> = (closest[m].iter())
                 .map(|(v, path)| relaxed_limit(v, path.total_sub_segments() as f64 * pitch_mm))
                 .collect();
+            let motion = &cell.motions[first_motion[m].unwrap_or(0)].motion;
             suggestions.extend((dynamic[m].first()).and_then(|&(_, t)| slower_joint(motion, t)));
             suggestions.push(format!(
                 "other clamp sites or cable directions for {} or {} (more directions_deg, a \

@@ -22,6 +22,7 @@
 
 mod certify;
 mod chains;
+mod check;
 mod diagnosis;
 mod learn;
 mod options;
@@ -32,6 +33,7 @@ mod sweep;
 
 pub use certify::{Certification, Disagreement};
 use chains::{Decided, LazyChains, MIN_ROUND, chain_search};
+pub use check::{Check, check_mounting};
 pub use diagnosis::{Diagnosis, NearestMiss, SegmentDiagnosis};
 pub use options::{SearchKind, SolveError, SolveOptions};
 use search::{MotionSearch, search_chains};
@@ -42,10 +44,11 @@ pub use shapes::{
 
 use report::Stages;
 pub use report::{
-    CandidateOutcome, ClosestMiss, DictionarySegmentUse, DictionaryUse, Inputs, LearnedSwing,
-    Margin, NamedPath, PathGuide, PathSegment, PoseSummary, SegmentReport, SolveReport, Status,
-    SweepRejection, SweepSummary, Timings, Unsolved, UnsolvedCase, UntriedChain,
-    dropped_per_segment, guide_names, named_path, pose_summary, shown_index,
+    BindingMotion, CandidateOutcome, ClosestMiss, DictionarySegmentUse, DictionaryUse, Inputs,
+    LearnedSwing, Margin, MotionVerdict, NamedPath, PathGuide, PathSegment, PieceBinding,
+    PoseSummary, SegmentReport, SolveReport, Status, SweepRejection, SweepSummary, Timings,
+    Unsolved, UnsolvedCase, UntriedChain, dropped_per_segment, guide_names, named_path,
+    pose_summary, shown_index,
 };
 
 use crate::attachment::{
@@ -53,7 +56,7 @@ use crate::attachment::{
     SegmentSets, attachment_test_with, check_size,
 };
 use crate::dictionary::{Dictionary, MotionLookup};
-use crate::motion::Motion;
+use crate::motion::{Cell, Motion};
 use crate::path::Pv;
 use crate::setup::Setup;
 use std::time::Instant;
@@ -99,13 +102,31 @@ pub fn solve_with(
     options: &SolveOptions,
     dictionary: Option<&Dictionary>,
 ) -> Result<Solution, SolveError> {
+    solve_cell(
+        setup,
+        &Cell::single(motion.clone(), None),
+        options,
+        dictionary,
+    )
+}
+
+/// The shortest path that holds every limit over every motion of `cell`: the pieces tested
+/// at the union of the motions' test poses ([`SegmentPoses::for_cell`]), each chain swept
+/// and motion-tested motion by motion ([`search`]); `dictionary` as in
+/// [`solve_with_dictionary`].
+pub fn solve_cell(
+    setup: &Setup,
+    cell: &Cell,
+    options: &SolveOptions,
+    dictionary: Option<&Dictionary>,
+) -> Result<Solution, SolveError> {
     let total = Instant::now();
     let solved = options.setup_for(setup)?;
     let setup = &solved;
     check_size(setup)
         .map_err(|e| SolveError::Options(format!("{}: {e}", setup.source.display())))?;
     let clock = Instant::now();
-    let poses = SegmentPoses::with(setup, motion, options.intra_link)?;
+    let poses = SegmentPoses::for_cell(setup, cell, options.intra_link)?;
     let critical_poses_s = clock.elapsed().as_secs_f64();
     log::info!("critical poses: {critical_poses_s:.3} s");
 
@@ -131,7 +152,7 @@ pub fn solve_with(
             let attachment_s = clock.elapsed().as_secs_f64();
             let d2: Vec<Vec<Pv>> = sets.iter().map(|s| s.d2.clone()).collect();
             let mut chains = Decided::new(setup, d2);
-            let searched = search_chains(setup, motion, options, &mut chains, certify)?;
+            let searched = search_chains(setup, cell, options, &mut chains, certify)?;
             (sets, searched, attachment_s)
         }
         SearchKind::Lazy => {
@@ -141,7 +162,7 @@ pub fn solve_with(
                 min_round: MIN_ROUND,
             };
             let (outcome, certification) =
-                search_chains(setup, motion, options, &mut chains, certify)?;
+                search_chains(setup, cell, options, &mut chains, certify)?;
             if outcome.tried.is_empty() {
                 // No chain: the diagnosis wants every piece's verdict, as without the search.
                 chains.attachment.decide_all();
@@ -187,7 +208,7 @@ pub fn solve_with(
     };
     let mut report = SolveReport::new(Stages {
         setup,
-        motion,
+        cell,
         options,
         evaluator: &evaluator,
         poses: &poses,

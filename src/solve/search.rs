@@ -5,10 +5,10 @@ use super::certify::{Certification, Certified};
 use super::chains::Chains;
 use super::learn::{Learned, SetAside};
 use super::options::{SolveError, SolveOptions};
-use super::sweep::{ChainSweep, Dropped, SweepAtRest};
-use crate::attachment::{ConnectMethod, Evaluator, MotionSweep, SegmentPoses, SweptLeast};
+use super::sweep::{CellSweep, ChainSweep, Dropped};
+use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, SweptLeast};
 use crate::dictionary::MotionLookup;
-use crate::motion::Motion;
+use crate::motion::Cell;
 use crate::motion_test::{self, MotionTestOptions, MotionTestReport, Violation};
 use crate::path::{CablePath, Pv};
 use crate::setup::Setup;
@@ -18,17 +18,17 @@ use std::time::Instant;
 /// checked against), each chain certified before it is offered ([`Certified`]).
 pub(super) fn search_chains(
     setup: &Setup,
-    motion: &Motion,
+    cell: &Cell,
     options: &SolveOptions,
     chains: &mut dyn Chains,
     certify: Option<(&Evaluator<'_>, &SegmentPoses, &MotionLookup<'_>)>,
 ) -> Result<(MotionSearch, Certification), SolveError> {
     let Some((evaluator, poses, lookup)) = certify else {
-        let outcome = motion_tests(setup, motion, chains, options)?;
+        let outcome = motion_tests(setup, cell, chains, options)?;
         return Ok((outcome, Certification::default()));
     };
     let mut certified = Certified::new(chains, evaluator, poses, lookup);
-    let outcome = motion_tests(setup, motion, &mut certified, options)?;
+    let outcome = motion_tests(setup, cell, &mut certified, options)?;
     let certification = certified.certification;
     log::info!(
         "certified: {} stored pieces solved exactly, {} records contradicted",
@@ -38,8 +38,23 @@ pub(super) fn search_chains(
     Ok((outcome, certification))
 }
 
-/// One chain put to the motion test (`None`: not tested).
-pub(crate) type Tried = (CablePath, Option<MotionTestReport>);
+/// One chain offered to the motion test.
+pub(crate) struct Tried {
+    /// The chain.
+    pub path: CablePath,
+    /// Per motion of the cell, its motion test; `None` where it did not run (an earlier
+    /// motion failed); empty when the chain was not tested (`--no-motion-test`).
+    pub runs: Vec<Option<MotionTestReport>>,
+    /// The motion the chain is judged by: the one it failed, else the first.
+    pub judged: Option<usize>,
+}
+
+impl Tried {
+    /// The motion test the chain is judged by (`None`: not tested).
+    pub fn report(&self) -> Option<&MotionTestReport> {
+        self.runs.get(self.judged?)?.as_ref()
+    }
+}
 
 /// What the search for d* did.
 pub(crate) struct MotionSearch {
@@ -110,66 +125,106 @@ impl MotionSearch {
 }
 
 /// The search for d*: the shortest chain of what is left of D2 is swept statically (its
-/// failing PVs dropped, then the next chain) and put to the dynamic motion test; after a
-/// failure that belongs to a segment, that segment's PV is dropped and the search goes on,
-/// for at most `k_best` dynamic tests. Segments are independent between clamps, so every
-/// chain with a failed PV fails too: this tries, in non-decreasing length, exactly the chains
-/// of the k-best enumeration that contain no PV already seen failing.
+/// failing PVs dropped, then the next chain) and put to the dynamic motion test of every
+/// motion of `cell`; after a failure that belongs to a segment, that segment's PV is dropped
+/// and the search goes on, for at most `k_best` chains tested. Segments are independent
+/// between clamps, so every chain with a failed PV fails too: this tries, in non-decreasing
+/// length, exactly the chains of the k-best enumeration that contain no PV already seen
+/// failing.
 fn motion_tests(
     setup: &Setup,
-    motion: &Motion,
+    cell: &Cell,
     chains: &mut dyn Chains,
     options: &SolveOptions,
 ) -> Result<MotionSearch, SolveError> {
     let mut outcome = MotionSearch::new();
     if !options.motion_test {
         let path = timed_shortest(&mut outcome, chains)?;
-        outcome.tried.extend(path.map(|path| (path, None)));
+        let untested = |path| Tried {
+            path,
+            runs: Vec::new(),
+            judged: None,
+        };
+        outcome.tried.extend(path.map(untested));
         outcome.winner = (!outcome.tried.is_empty()).then_some(0);
         return Ok(outcome);
     }
     // The sweep is a cheap static filter in front of the dynamic test: always the
     // quasi-static solver, whatever the attachment test used.
     let evaluator = Evaluator::new(setup, ConnectMethod::Hermite)?;
-    let sweep = options
-        .static_sweep
-        .then(|| MotionSweep::new(&evaluator, motion))
-        .transpose()?;
-    outcome.sweep_poses = sweep.as_ref().map_or(0, MotionSweep::pose_count);
-    // Stopping at the first violation only shortens failing runs: a passing candidate is
-    // simulated through the whole motion either way, series included.
-    let test_options = MotionTestOptions {
-        stop_at_first_violation: true,
-        shape_interval_s: options.shape_interval_s,
-        ..MotionTestOptions::new(options.engine.with_defaults(setup.gravity_m_s2))
+    let test_options = test_options(setup, options);
+    let mut sweep = match options.static_sweep {
+        true => Some(CellSweep::new(&evaluator, setup, cell, &test_options)?),
+        false => None,
     };
+    outcome.sweep_poses = sweep.as_ref().map_or(0, CellSweep::pose_count);
+    // The motions in the order they are tried: the last one a chain failed first, as the
+    // likeliest to fail the next chain too.
+    let mut order: Vec<usize> = (0..cell.len()).collect();
     let mut test = |path: &CablePath| -> Result<Tested, SolveError> {
-        let report = motion_test::run(setup, path, motion, &test_options)?;
-        Ok(Tested {
-            passed: report.passed,
-            segment: report.failure.as_ref().and_then(|f| f.segment),
-            violation: report.first_violation.clone(),
-            reason: (report.failure.as_ref()).map_or("passed".to_string(), |f| f.reason.clone()),
-            report: Some(report),
-        })
+        let mut runs: Vec<Option<MotionTestReport>> = vec![None; cell.len()];
+        for &i in &order.clone() {
+            let report = motion_test::run(setup, path, &cell.motions[i].motion, &test_options)?;
+            let failed = !report.passed;
+            runs[i] = Some(report);
+            if failed {
+                order.retain(|&k| k != i);
+                order.insert(0, i);
+                return Ok(Tested::of(runs, i, cell));
+            }
+        }
+        Ok(Tested::of(runs, 0, cell))
     };
-    let mut sweep = sweep.map(|pieces| SweepAtRest::new(pieces, setup, motion, &test_options));
     let sweep = sweep.as_mut().map(|s| s as &mut dyn ChainSweep);
     try_chains(setup, chains, options, sweep, &mut test, outcome)
 }
 
+/// The motion test as a solve runs it, and `check` after it: stopping at the first violation
+/// only shortens failing runs (a passing path is simulated through the whole motion either
+/// way, series included), so a path checked gives the margins its solve reported.
+pub(super) fn test_options(setup: &Setup, options: &SolveOptions) -> MotionTestOptions {
+    MotionTestOptions {
+        stop_at_first_violation: true,
+        shape_interval_s: options.shape_interval_s,
+        ..MotionTestOptions::new(options.engine.with_defaults(setup.gravity_m_s2))
+    }
+}
+
 /// What one motion test said, as the search needs it.
 pub(super) struct Tested {
-    /// The chain held every limit over the motion.
+    /// The chain held every limit over every motion.
     pub passed: bool,
     /// The segment its failure belongs to, if one.
     pub segment: Option<usize>,
     /// The first limit violated, if one.
     pub violation: Option<Violation>,
+    /// The motion whose test found it (the first motion when the chain passed).
+    pub motion: usize,
     /// For people: the failure, or `passed`.
     pub reason: String,
-    /// The whole report (kept with the chain tried).
-    pub report: Option<MotionTestReport>,
+    /// Per motion, its whole report (kept with the chain tried; empty for a test that
+    /// keeps none).
+    pub runs: Vec<Option<MotionTestReport>>,
+}
+
+impl Tested {
+    /// The verdict of `runs`, judged by motion `judged`'s (the one that failed, if one).
+    fn of(runs: Vec<Option<MotionTestReport>>, judged: usize, cell: &Cell) -> Tested {
+        let report = runs[judged].as_ref();
+        let failure = report.and_then(|r| r.failure.as_ref());
+        let reason = failure.map_or("passed".to_string(), |f| f.reason.clone());
+        Tested {
+            passed: report.is_some_and(|r| r.passed),
+            segment: failure.and_then(|f| f.segment),
+            violation: report.and_then(|r| r.first_violation.clone()),
+            motion: judged,
+            reason: match (cell.len(), failure) {
+                (2.., Some(_)) => format!("{}: {reason}", cell.motions[judged].name),
+                _ => reason,
+            },
+            runs,
+        }
+    }
 }
 
 /// The motion tests over `chains`, shortest first, each chain swept by `sweep` (when given)
@@ -257,12 +312,16 @@ pub(super) fn try_chains(
         if let (Some(sweep), Some(violation)) = (sweep.as_deref(), &tested.violation) {
             let m = violation.segment;
             for (_, pv) in path.pieces().filter(|&(segment, _)| segment == m) {
-                if let Some(least) = sweep.least(m, &pv) {
+                if let Some(least) = sweep.least_in(tested.motion, m, &pv) {
                     outcome.learned.learn(m, &pv, violation, &least);
                 }
             }
         }
-        outcome.tried.push((path.clone(), tested.report));
+        outcome.tried.push(Tried {
+            path: path.clone(),
+            judged: (!tested.runs.is_empty()).then_some(tested.motion),
+            runs: tested.runs,
+        });
         if passed {
             outcome.winner = Some(outcome.tried.len() - 1);
             if !outcome.set_aside.is_empty() && !outcome.set_aside_restored {
@@ -408,8 +467,9 @@ mod tests {
                     segment_name: format!("C{}", m + 1),
                     place: Place::default(),
                 }),
+                motion: 0,
                 reason: String::new(),
-                report: None,
+                runs: Vec::new(),
             }
         }
     }
@@ -487,11 +547,12 @@ mod tests {
             let shortest = reference.total_sub_segments();
 
             let strict = search(&setup, &d2, limit_m, seed, false);
-            let strict_answer = &strict.tried[strict.winner.expect("the strict search passes")].0;
+            let strict_answer =
+                &strict.tried[strict.winner.expect("the strict search passes")].path;
             assert_eq!(strict_answer.total_sub_segments(), shortest, "seed {seed}");
 
             let learned = search(&setup, &d2, limit_m, seed, true);
-            let answer = &learned.tried[learned.winner.expect("the learning search passes")].0;
+            let answer = &learned.tried[learned.winner.expect("the learning search passes")].path;
             assert!(oracle.test(answer).passed, "seed {seed}");
             let length = answer.total_sub_segments();
             assert!(length >= shortest, "seed {seed}");

@@ -1,9 +1,10 @@
 //! The static sweep as the search uses it: each piece of a chain over every pose of the
-//! motion ([`MotionSweep`]), then the whole cable at rest at the motion's first pose.
+//! motion ([`MotionSweep`]), then the whole cable at rest at the motion's first pose; for a
+//! cell, motion by motion ([`CellSweep`]).
 
 use super::options::SolveError;
-use crate::attachment::{MotionSweep, Rejection, SweepFailure, SweptLeast};
-use crate::motion::Motion;
+use crate::attachment::{Evaluator, MotionSweep, Rejection, SweepFailure, SweptLeast};
+use crate::motion::{Cell, Motion};
 use crate::motion_test::{self, Constraint, FailureCause, MotionTestOptions};
 use crate::path::{CablePath, Pv};
 use crate::setup::Setup;
@@ -76,6 +77,7 @@ impl ChainSweep for SweepAtRest<'_, '_, '_> {
             _ => Rejection::Diverged,
         };
         let at_rest = SweepFailure {
+            motion: 0,
             rejection,
             sample: 0,
             time_s: self.motion.times_s()[0],
@@ -97,6 +99,83 @@ impl ChainSweep for SweepAtRest<'_, '_, '_> {
     }
 }
 
+/// The static sweep of every motion of a cell, one after the other: a piece that fails one
+/// motion's is dropped (its failure names the motion); a piece's least values are the least
+/// over the motions. The motion that dropped a piece last is swept first: the likeliest to
+/// drop the next chain's too, before the others' whole sweeps are spent on it.
+pub(super) struct CellSweep<'a, 'e, 'v> {
+    motions: Vec<SweepAtRest<'a, 'e, 'v>>,
+    order: Vec<usize>,
+}
+
+impl<'a, 'e, 'v> CellSweep<'a, 'e, 'v> {
+    /// The sweep of every motion of `cell` with `evaluator`, each motion's whole cable
+    /// checked at rest as the motion test with `test` options checks it.
+    pub(super) fn new(
+        evaluator: &'e Evaluator<'v>,
+        setup: &'a Setup,
+        cell: &'a Cell,
+        test: &MotionTestOptions,
+    ) -> Result<Self, SolveError> {
+        let sweep = |motion: &'a Motion| -> Result<SweepAtRest<'a, 'e, 'v>, SolveError> {
+            let pieces = MotionSweep::new(evaluator, motion)?;
+            Ok(SweepAtRest::new(pieces, setup, motion, test))
+        };
+        let motions = cell.motions().map(sweep).collect::<Result<_, _>>()?;
+        let order = (0..cell.len()).collect();
+        Ok(CellSweep { motions, order })
+    }
+
+    /// Distinct poses a piece is solved at, over every motion.
+    pub(super) fn pose_count(&self) -> usize {
+        self.motions.iter().map(|s| s.pieces.pose_count()).sum()
+    }
+}
+
+impl ChainSweep for CellSweep<'_, '_, '_> {
+    fn failing(
+        &mut self,
+        path: &CablePath,
+        stops: &[Option<SweptLeast>],
+    ) -> Result<Vec<Dropped>, SolveError> {
+        for k in 0..self.order.len() {
+            let i = self.order[k];
+            let mut failed = self.motions[i].failing(path, stops)?;
+            if !failed.is_empty() {
+                for (_, _, failure) in &mut failed {
+                    failure.motion = i;
+                }
+                self.order[..=k].rotate_right(1);
+                return Ok(failed);
+            }
+        }
+        Ok(Vec::new())
+    }
+
+    fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast> {
+        let each = self.motions.iter().filter_map(|s| s.least(m, pv));
+        each.reduce(|a, b| SweptLeast {
+            bend_radius_m: a.bend_radius_m.min(b.bend_radius_m),
+            clearance_m: match (a.clearance_m, b.clearance_m) {
+                (Some(a), Some(b)) => Some(a.min(b)),
+                (a, b) => a.or(b),
+            },
+        })
+    }
+
+    fn least_in(&self, motion: usize, m: usize, pv: &Pv) -> Option<SweptLeast> {
+        self.motions.get(motion)?.least(m, pv)
+    }
+
+    fn swept(&self) -> usize {
+        self.motions
+            .iter()
+            .map(ChainSweep::swept)
+            .max()
+            .unwrap_or(0)
+    }
+}
+
 /// The static sweep as the search uses it: the pieces of a chain that fail it, and the least
 /// values each piece swept met.
 pub(super) trait ChainSweep {
@@ -109,6 +188,11 @@ pub(super) trait ChainSweep {
     ) -> Result<Vec<Dropped>, SolveError>;
     /// The least bend radius and clearance of a swept piece.
     fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast>;
+    /// The same over motion `motion` of a cell alone.
+    fn least_in(&self, motion: usize, m: usize, pv: &Pv) -> Option<SweptLeast> {
+        let _ = motion;
+        self.least(m, pv)
+    }
     /// Pieces swept so far.
     fn swept(&self) -> usize;
 }

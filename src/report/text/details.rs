@@ -11,12 +11,12 @@ impl SolveReport {
         writeln!(f, "{} — {}", self.status.describe(), self.explanation)?;
         writeln!(
             f,
-            "setup {} (hash {}), cable {}, {}, motion {}, {} samples",
+            "setup {} (hash {}), cable {}, {}, {}, {} samples",
             i.setup_file,
             i.setup_hash,
             i.cable,
             i.method,
-            super::motion_words(i),
+            super::motion_words(self),
             i.motion_samples
         )?;
         if let Some(d) = &i.dictionary {

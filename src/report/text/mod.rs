@@ -4,13 +4,17 @@
 //! the loads per clamp and piece, the verdict).
 
 mod catalogue;
+mod check;
 mod details;
 mod workshop;
 
 pub use catalogue::catalogue_listing;
-pub use workshop::{LoadRow, WorstRow, load_rows, verdict_words, worst_rows};
+pub use workshop::{
+    Limits, LoadRow, WorstRow, load_rows, motion_verdict_words, verdict_words, worst_rows,
+    write_motions,
+};
 
-use crate::solve::{Inputs, SolveReport};
+use crate::solve::SolveReport;
 use std::fmt;
 
 impl fmt::Display for SolveReport {
@@ -27,13 +31,18 @@ impl fmt::Display for SolveReport {
     }
 }
 
-/// The motion as the summaries name it: `motions/pick_and_place.csv, 8.05 s` (its file when
-/// the report knows it, and its duration).
-fn motion_words(inputs: &Inputs) -> String {
+/// The motion as the summaries name it: `motion motions/pick_and_place.csv, 8.05 s` (its
+/// file when the report knows it, and its duration), or `4 motions: pick_and_place, …`.
+fn motion_words(report: &SolveReport) -> String {
+    if report.motions.len() > 1 {
+        let names: Vec<&str> = report.motions.iter().map(|m| m.name.as_str()).collect();
+        return format!("{} motions: {}", names.len(), names.join(", "));
+    }
+    let inputs = &report.inputs;
     let file = inputs
         .motion_file
         .as_deref()
         .map(|m| format!("{m}, "))
         .unwrap_or_default();
-    format!("{file}{:.2} s", inputs.motion_duration_s)
+    format!("motion {file}{:.2} s", inputs.motion_duration_s)
 }

@@ -5,7 +5,8 @@
 
 use crate::motion_test::{Constraint, MotionTestReport, Worst};
 use crate::mounting::{self, MountingPlan, rows};
-use crate::solve::SolveReport;
+use crate::setup::Thresholds;
+use crate::solve::{BindingMotion, MotionVerdict, PieceBinding, SolveReport};
 use crate::text_table::decimal;
 use std::fmt;
 
@@ -15,10 +16,10 @@ pub(super) fn write_summary(report: &SolveReport, f: &mut fmt::Formatter<'_>) ->
     writeln!(f, "{} — {}", report.status.describe(), report.explanation)?;
     writeln!(
         f,
-        "robot setup {}, cable {}, motion {}",
+        "robot setup {}, cable {}, {}",
         i.setup_file,
         i.cable,
-        super::motion_words(i),
+        super::motion_words(report),
     )?;
     if let Some(dictionary) = &i.dictionary {
         super::details::write_dictionary(f, dictionary)?;
@@ -29,6 +30,9 @@ pub(super) fn write_summary(report: &SolveReport, f: &mut fmt::Formatter<'_>) ->
         write_installation(f, plan)?;
     }
     if let (Some(test), Some(plan)) = (&report.motion_test, &report.mounting) {
+        if report.motions.len() > 1 {
+            write_motions(f, &report.limits(), &report.motions, &report.binding, plan)?;
+        }
         write_worst(f, report, test, plan)?;
     }
     if let Some(diagnosis) = &report.diagnosis {
@@ -107,6 +111,80 @@ fn write_installation(f: &mut fmt::Formatter<'_>, plan: &MountingPlan) -> fmt::R
     writeln!(f, "\n{}", plan.installation_words())
 }
 
+/// Each motion of a cell: holds (with its tightest bend and closest approach to the robot),
+/// fails (what, when, where on the cable) or not run; then the motion that binds each piece.
+pub fn write_motions(
+    f: &mut impl fmt::Write,
+    limits: &Limits,
+    motions: &[MotionVerdict],
+    binding: &[PieceBinding],
+    plan: &MountingPlan,
+) -> fmt::Result {
+    writeln!(f, "\neach motion (simulated):")?;
+    let width = motions
+        .iter()
+        .map(|m| m.name.chars().count())
+        .max()
+        .unwrap_or(0);
+    for m in motions {
+        writeln!(
+            f,
+            "  {:<width$}  {}",
+            m.name,
+            motion_verdict_words(limits, m, plan)
+        )?;
+    }
+    if binding.is_empty() {
+        return Ok(());
+    }
+    writeln!(
+        f,
+        "\nthe motion that comes closest to each limit, piece by piece:"
+    )?;
+    for piece in binding {
+        let name = plan
+            .place_on_cable(&piece.segment, None)
+            .map(|words| words.trim_start_matches("on ").to_string())
+            .unwrap_or_else(|| format!("cable piece {}", piece.segment));
+        let words = |what: &str, b: &Option<BindingMotion>| {
+            b.as_ref().map(|b| {
+                format!(
+                    "{what} {} mm in {} (t = {:.2} s)",
+                    decimal(b.value_mm, 1),
+                    b.motion,
+                    b.time_s
+                )
+            })
+        };
+        let parts: Vec<String> = [
+            words("bend radius", &piece.bend_radius),
+            words("clearance", &piece.clearance),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        writeln!(f, "  {name}: {}", parts.join("; "))?;
+    }
+    Ok(())
+}
+
+/// One motion's verdict in a line: `holds: tightest bend radius 62.1 mm, closest to the robot
+/// 9.3 mm`, `fails: …`, or `not run: an earlier motion failed`.
+pub fn motion_verdict_words(limits: &Limits, m: &MotionVerdict, plan: &MountingPlan) -> String {
+    let Some(test) = &m.motion_test else {
+        return "not run: an earlier motion failed".into();
+    };
+    if !test.passed {
+        return verdict_words(limits, test, Some(plan)).replacen("failed", "fails", 1);
+    }
+    let rows = worst_rows(limits, test, Some(plan));
+    let shown = rows
+        .iter()
+        .filter(|r| matches!(r.what, "tightest bend radius" | "closest to the robot"))
+        .map(|r| format!("{} {} (margin {})", r.what, r.value, r.margin));
+    format!("holds: {}", shown.collect::<Vec<_>>().join(", "))
+}
+
 /// The worst value of each limit over the motion test, against its limit.
 fn write_worst(
     f: &mut fmt::Formatter<'_>,
@@ -117,9 +195,9 @@ fn write_worst(
     writeln!(
         f,
         "\nover the motion (simulated): {}",
-        verdict_words(report, test, Some(plan))
+        verdict_words(&report.limits(), test, Some(plan))
     )?;
-    let rows = worst_rows(report, test, Some(plan));
+    let rows = worst_rows(&report.limits(), test, Some(plan));
     for row in rows {
         match &row.when {
             Some(when) => writeln!(
@@ -147,6 +225,26 @@ fn write_worst(
         }
     }
     Ok(())
+}
+
+/// What the wordings of a motion test need besides the test: the limits it was held to and
+/// the cable model's sub-segment length (places along a piece are counted in it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    /// The limits.
+    pub thresholds: Thresholds,
+    /// Sub-segment length (mm).
+    pub sub_segment_pitch_mm: f64,
+}
+
+impl SolveReport {
+    /// The limits its motion tests were held to, for their wordings.
+    pub fn limits(&self) -> Limits {
+        Limits {
+            thresholds: self.thresholds,
+            sub_segment_pitch_mm: self.sub_segment_pitch_mm,
+        }
+    }
 }
 
 /// One piece's largest twist or one clamp's largest loads over the motion test, in words.
@@ -225,14 +323,14 @@ pub struct WorstRow {
 /// `held every limit`, or what failed and where, in the fitter's names when `plan` is the
 /// tested path's.
 pub fn verdict_words(
-    report: &SolveReport,
+    limits: &Limits,
     test: &MotionTestReport,
     plan: Option<&MountingPlan>,
 ) -> String {
     match (&test.failure, &test.first_violation) {
         (None, _) => "held every limit".to_string(),
         (Some(_), Some(v)) => {
-            let row = worst_row_of(report, plan, v.constraint, &v.to_worst(), v.threshold);
+            let row = worst_row_of(limits, plan, v.constraint, &v.to_worst(), v.threshold);
             format!(
                 "failed: {} {} ({}) at {}, {}",
                 row.what,
@@ -249,11 +347,11 @@ pub fn verdict_words(
 /// The worst value of each limit over `test`, places in the fitter's names when `plan` is
 /// the tested path's (else the setup's piece names).
 pub fn worst_rows(
-    report: &SolveReport,
+    limits: &Limits,
     test: &MotionTestReport,
     plan: Option<&MountingPlan>,
 ) -> Vec<WorstRow> {
-    let t = &report.thresholds;
+    let t = &limits.thresholds;
     [
         (
             Constraint::Contact,
@@ -270,7 +368,7 @@ pub fn worst_rows(
     ]
     .into_iter()
     .filter_map(|(constraint, worst, limit)| match worst {
-        Some(w) => Some(worst_row_of(report, plan, constraint, w, limit)),
+        Some(w) => Some(worst_row_of(limits, plan, constraint, w, limit)),
         // No approach to itself is an answer too: the cable never comes back toward itself.
         None if constraint == Constraint::SelfContact && test.steps > 0 => Some(WorstRow {
             what: "closest to itself",
@@ -287,7 +385,7 @@ pub fn worst_rows(
 
 /// One row: `w`, the worst of `constraint`, against `limit`.
 fn worst_row_of(
-    report: &SolveReport,
+    limits: &Limits,
     plan: Option<&MountingPlan>,
     constraint: Constraint,
     w: &Worst,
@@ -338,14 +436,14 @@ fn worst_row_of(
         limit: format!("limit {limit_text}"),
         margin,
         when: Some(format!("t = {:.2} s", w.time_s)),
-        place: where_on_cable(report, plan, w),
+        place: where_on_cable(limits, plan, w),
     }
 }
 
 /// `on piece 2 → gripper connector, 25 mm from clamp 2, near link_4`: the place of a worst
 /// value on the mounted cable, in the fitter's names.
-fn where_on_cable(report: &SolveReport, plan: Option<&MountingPlan>, w: &Worst) -> String {
-    let pitch_mm = report.sub_segment_pitch_mm;
+fn where_on_cable(limits: &Limits, plan: Option<&MountingPlan>, w: &Worst) -> String {
+    let pitch_mm = limits.sub_segment_pitch_mm;
     let along = w
         .place
         .sub_segment

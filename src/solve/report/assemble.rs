@@ -8,7 +8,8 @@ use super::margins::margins;
 use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, SegmentSets, TestPose};
 use crate::chain::ChainSearch;
 use crate::json::tidy;
-use crate::motion::Motion;
+use crate::motion::{Cell, Motion};
+use crate::motion_test::{MotionTestReport, PieceWorst, Worst};
 use crate::mounting::mounting_plan;
 use crate::path::CablePath;
 use crate::setup::Setup;
@@ -17,7 +18,7 @@ use std::collections::{BTreeMap, BTreeSet};
 /// What the stages of a solve leave for its report.
 pub(in crate::solve) struct Stages<'s> {
     pub setup: &'s Setup,
-    pub motion: &'s Motion,
+    pub cell: &'s Cell,
     pub options: &'s SolveOptions,
     pub evaluator: &'s Evaluator<'s>,
     pub poses: &'s SegmentPoses,
@@ -32,7 +33,7 @@ impl SolveReport {
     pub(in crate::solve) fn new(stages: Stages<'_>) -> SolveReport {
         let Stages {
             setup,
-            motion,
+            cell,
             options,
             evaluator,
             poses,
@@ -44,20 +45,26 @@ impl SolveReport {
         let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
         let MotionSearch { tried, winner, .. } = &outcome;
         let winner = *winner;
-        let best = winner.map(|w| tried[w].0.clone());
+        let best = winner.map(|w| tried[w].path.clone());
         let status = status(options, search, winner);
         let candidates = candidate_outcomes(tried, pitch_mm);
-        let static_sweep = sweep_summary(setup, &outcome);
+        let static_sweep = sweep_summary(setup, cell, &outcome);
         let diagnosis = matches!(status, Status::NoChain | Status::NonePassedMotionTest)
-            .then(|| diagnose(setup, motion, poses, sets, &outcome));
+            .then(|| diagnose(setup, cell, poses, sets, &outcome));
         let unsolved = unsolved(setup, status, &outcome);
         let closest = (unsolved.as_ref())
             .and_then(|u| u.closest.as_ref())
             .map(|c| c.candidate);
         // The one that passed (the winner), else the closest miss, else the last tried.
-        let verdicts = tried.iter().map(|(_, r)| r.as_ref().map(|r| r.passed));
+        let verdicts = tried.iter().map(|t| t.report().map(|r| r.passed));
         let shown = shown_index(verdicts, closest);
-        let motion_test = shown.and_then(|k| tried[k].1.clone());
+        let motion_test = shown.and_then(|k| tried[k].report().cloned());
+        let runs = shown.map_or(&[][..], |k| tried[k].runs.as_slice());
+        let motions = motion_verdicts(cell, runs);
+        let binding = match cell.len() {
+            1 => Vec::new(),
+            _ => binding(setup, &motions),
+        };
         SolveReport {
             status,
             explanation: explanation(
@@ -69,7 +76,7 @@ impl SolveReport {
                 unsolved.as_ref(),
                 setup,
             ),
-            inputs: inputs(setup, motion, options),
+            inputs: inputs(setup, cell, options),
             optimal: best.as_ref().map(|p| named_path(setup, p)),
             mounting: best.as_ref().map(|p| mounting_plan(setup, p)),
             thresholds: setup.thresholds,
@@ -81,11 +88,13 @@ impl SolveReport {
                 .as_ref()
                 .map(|p| margins(evaluator, poses, p))
                 .unwrap_or_default(),
-            segments: segment_reports(setup, poses, sets, motion),
+            segments: segment_reports(setup, poses, sets, first(cell)),
             chains: search.chain_count().to_string(),
             candidates,
             static_sweep,
             motion_test,
+            motions,
+            binding,
             motion_test_requested: options.motion_test,
             motion_engine: options.engine,
             timings,
@@ -213,8 +222,8 @@ fn unsolved(setup: &Setup, status: Status, outcome: &MotionSearch) -> Option<Uns
     };
     let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
     // Bend radius and clearance misses, in mm, least first (the first one tried on ties).
-    let misses = (outcome.tried.iter().enumerate()).filter_map(|(k, (path, report))| {
-        let v = report.as_ref()?.first_violation.as_ref()?;
+    let misses = (outcome.tried.iter().enumerate()).filter_map(|(k, tried)| {
+        let (path, v) = (&tried.path, tried.report()?.first_violation.as_ref()?);
         v.missed_by_m().map(|missed_m| ClosestMiss {
             candidate: k,
             length_mm: path.total_sub_segments() as f64 * pitch_mm,
@@ -227,7 +236,7 @@ fn unsolved(setup: &Setup, status: Status, outcome: &MotionSearch) -> Option<Uns
     });
     let closest = misses.min_by(|a, b| a.relax_by_mm.total_cmp(&b.relax_by_mm));
     let placement = |p: &CablePath| (p.segments.clone(), p.configurations.clone());
-    let placements: BTreeSet<_> = outcome.tried.iter().map(|(p, _)| placement(p)).collect();
+    let placements: BTreeSet<_> = outcome.tried.iter().map(|t| placement(&t.path)).collect();
     let next_untried = outcome.next_untried.as_ref().map(|path| UntriedChain {
         length_mm: path.total_sub_segments() as f64 * pitch_mm,
         path: named_path(setup, path),
@@ -268,7 +277,7 @@ pub fn dropped_per_segment(sweep: &SweepSummary) -> String {
 }
 
 /// The sweep's counts and dropped PVs, with names.
-fn sweep_summary(setup: &Setup, outcome: &MotionSearch) -> SweepSummary {
+fn sweep_summary(setup: &Setup, cell: &Cell, outcome: &MotionSearch) -> SweepSummary {
     let rejected = outcome
         .dropped
         .iter()
@@ -280,6 +289,7 @@ fn sweep_summary(setup: &Setup, outcome: &MotionSearch) -> SweepSummary {
                 from_configuration: setup.guides[a].configurations[pv.start].name.clone(),
                 to_configuration: setup.guides[b].configurations[pv.end].name.clone(),
                 rejection: failure.rejection,
+                motion: (cell.len() > 1).then(|| cell.motions[failure.motion].name.clone()),
                 sample: failure.sample,
                 time_s: failure.time_s,
                 detail: failure.detail.clone(),
@@ -337,7 +347,60 @@ fn unsolved_reason(sets: &[SegmentSets], setup: &Setup) -> String {
     }
 }
 
-fn inputs(setup: &Setup, motion: &Motion, options: &SolveOptions) -> Inputs {
+/// Every motion of `cell` with its run of the path shown (`runs`, one per motion, or empty).
+pub(in crate::solve) fn motion_verdicts(
+    cell: &Cell,
+    runs: &[Option<MotionTestReport>],
+) -> Vec<MotionVerdict> {
+    (cell.motions.iter().enumerate())
+        .map(|(i, m)| MotionVerdict {
+            name: m.name.clone(),
+            file: m.file.as_ref().map(|f| f.display().to_string()),
+            cycles_per_hour: m.cycles_per_hour,
+            duration_s: m.motion.duration_s(),
+            motion_test: runs.get(i).cloned().flatten(),
+        })
+        .collect()
+}
+
+/// Per piece of the path the motions were run with, the motion with its smallest bend
+/// radius and the one with its lowest clearance (first motion on ties).
+pub(in crate::solve) fn binding(setup: &Setup, motions: &[MotionVerdict]) -> Vec<PieceBinding> {
+    let t = &setup.thresholds;
+    let pieces = (motions.iter())
+        .filter_map(|m| m.motion_test.as_ref())
+        .flat_map(|test| test.pieces.iter().map(|p| p.segment));
+    let segments: BTreeSet<usize> = pieces.collect();
+    let least = |m: usize, worst: fn(&PieceWorst) -> Option<&Worst>, limit_m: f64| {
+        let each = motions.iter().filter_map(|verdict| {
+            let test = verdict.motion_test.as_ref()?;
+            let piece = test.pieces.iter().find(|p| p.segment == m)?;
+            Some((verdict, worst(piece)?))
+        });
+        let (verdict, w) = each.min_by(|a, b| a.1.value.total_cmp(&b.1.value))?;
+        Some(BindingMotion {
+            motion: verdict.name.clone(),
+            value_mm: tidy(w.value * 1e3),
+            limit_mm: tidy(limit_m * 1e3),
+            time_s: w.time_s,
+        })
+    };
+    (segments.into_iter())
+        .map(|m| PieceBinding {
+            segment: setup.segment_name(m),
+            bend_radius: least(m, |p| p.worst_bend.as_ref(), t.min_bend_radius_m),
+            clearance: least(m, |p| p.worst_clearance.as_ref(), t.contact_clearance_m),
+        })
+        .collect()
+}
+
+/// The first motion of `cell`: its joint names and units are every motion's.
+fn first(cell: &Cell) -> &Motion {
+    &cell.motions[0].motion
+}
+
+fn inputs(setup: &Setup, cell: &Cell, options: &SolveOptions) -> Inputs {
+    let motion = first(cell);
     let method = match (options.method, options.max_guides_per_link) {
         (ConnectMethod::Linear, _) => "previous method",
         (ConnectMethod::Hermite, Some(1)) => "one clamp per link",
@@ -350,7 +413,7 @@ fn inputs(setup: &Setup, motion: &Motion, options: &SolveOptions) -> Inputs {
         robot_file: setup.robot_path.display().to_string(),
         cable_file: setup.cable_path.display().to_string(),
         cable: setup.cable.name.clone(),
-        motion_file: None,
+        motion_file: (cell.motions[0].file.as_ref()).map(|f| f.display().to_string()),
         motion_duration_s: motion.duration_s(),
         motion_samples: motion.len(),
         method: method.into(),
@@ -364,13 +427,12 @@ fn candidate_outcomes(tried: &[Tried], pitch_mm: f64) -> Vec<CandidateOutcome> {
     tried
         .iter()
         .enumerate()
-        .map(|(i, (path, report))| CandidateOutcome {
+        .map(|(i, tried)| CandidateOutcome {
             rank: i + 1,
-            total_length_mm: path.total_sub_segments() as f64 * pitch_mm,
-            path: path.clone(),
-            passed: report.as_ref().map(|r| r.passed),
-            failure: report
-                .as_ref()
+            total_length_mm: tried.path.total_sub_segments() as f64 * pitch_mm,
+            path: tried.path.clone(),
+            passed: tried.report().map(|r| r.passed),
+            failure: (tried.report())
                 .and_then(|r| r.failure.as_ref())
                 .map(|f| f.reason.clone()),
         })

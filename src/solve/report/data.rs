@@ -260,6 +260,9 @@ pub struct SweepRejection {
     pub to_configuration: String,
     /// The limit violated first.
     pub rejection: Rejection,
+    /// The motion of a cell whose sweep dropped it (`None` for a single motion).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub motion: Option<String>,
     /// Motion sample and time (s) of the first pose that fails.
     pub sample: usize,
     /// Time of that pose (s).
@@ -359,8 +362,15 @@ pub struct SolveReport {
     /// The static sweep in front of the motion test.
     pub static_sweep: SweepSummary,
     /// Motion test of the optimal path, or of the last candidate tried when none passed;
-    /// `None` when none was run.
+    /// `None` when none was run. For a cell: the motion the path is judged by (the one it
+    /// failed, else the first).
     pub motion_test: Option<MotionTestReport>,
+    /// Every motion of the cell (one for a single motion) with the motion test of the path
+    /// shown, in the order given (result JSON `motions`).
+    pub motions: Vec<MotionVerdict>,
+    /// For a cell of several motions, per piece of the path shown, the motion that comes
+    /// closest to each limit (result JSON `binding`; empty for a single motion).
+    pub binding: Vec<PieceBinding>,
     /// The motion test was asked for.
     pub motion_test_requested: bool,
     /// What simulated the cable in the motion tests.
@@ -372,6 +382,57 @@ pub struct SolveReport {
     /// Which of the three ways the search ended without an answer, and the path tried that
     /// came closest to passing; `None` when solved.
     pub unsolved: Option<Unsolved>,
+}
+
+/// One motion of a cell, and how the path shown fared over it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MotionVerdict {
+    /// Its name (`pick_and_place`, or the cell file's `name`).
+    pub name: String,
+    /// Its motion CSV.
+    pub file: Option<String>,
+    /// How many times an hour it runs, when the cell file says.
+    pub cycles_per_hour: Option<f64>,
+    /// Duration (s).
+    pub duration_s: f64,
+    /// The motion test of the path shown over it; `None` when it was not run (an earlier
+    /// motion failed, or no motion test).
+    pub motion_test: Option<MotionTestReport>,
+}
+
+impl MotionVerdict {
+    /// `holds`, `fails` or `not_run`: the motion's verdict in the result JSON.
+    pub fn verdict(&self) -> &'static str {
+        match &self.motion_test {
+            Some(test) if test.passed => "holds",
+            Some(_) => "fails",
+            None => "not_run",
+        }
+    }
+}
+
+/// Which motion of a cell comes closest to each limit on one piece of the path.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PieceBinding {
+    /// `C2`.
+    pub segment: String,
+    /// The motion with the piece's smallest bend radius, and that radius.
+    pub bend_radius: Option<BindingMotion>,
+    /// The motion with the piece's lowest clearance to the robot, and that clearance.
+    pub clearance: Option<BindingMotion>,
+}
+
+/// The motion that binds one limit of a piece.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BindingMotion {
+    /// The motion's name.
+    pub motion: String,
+    /// Its worst value on the piece (mm).
+    pub value_mm: f64,
+    /// The limit (mm).
+    pub limit_mm: f64,
+    /// When in that motion (s).
+    pub time_s: f64,
 }
 
 /// How a search without an answer ended (result JSON `unsolved`).

@@ -2,13 +2,22 @@
 
 use super::super::diagnosis::Diagnosis;
 use super::data::*;
-use crate::motion_test::{ClampLoadPeak, EngineKind, MotionTestReport, PieceTwist, Worst};
+use crate::motion_test::{
+    ClampLoadPeak, EngineKind, MotionTestReport, PieceTwist, PieceWorst, Worst,
+};
 use serde::Serialize;
 
 #[derive(Serialize)]
 struct MotionTestJson<'a> {
     engine: EngineKind,
     candidates_tried: usize,
+    #[serde(flatten)]
+    test: TestJson<'a>,
+}
+
+/// One motion test's verdict and worst values.
+#[derive(Serialize)]
+struct TestJson<'a> {
     passed: Option<bool>,
     failure: Option<&'a str>,
     /// Largest contact force outside the clamp zones (N); 0 when the cable never touched.
@@ -33,16 +42,40 @@ struct MotionTestJson<'a> {
     wall_time_s: Option<f64>,
 }
 
-impl<'a> MotionTestJson<'a> {
-    fn new(
-        engine: EngineKind,
-        candidates_tried: usize,
-        report: Option<&'a MotionTestReport>,
-    ) -> Self {
+/// One motion of a cell: its name and verdict, and the path's motion test over it.
+#[derive(Serialize)]
+struct MotionJson<'a> {
+    name: &'a str,
+    file: Option<&'a str>,
+    cycles_per_hour: Option<f64>,
+    duration_s: f64,
+    /// `holds`, `fails` or `not_run`.
+    verdict: &'static str,
+    #[serde(flatten)]
+    test: TestJson<'a>,
+    /// Per piece, its own worst values over this motion.
+    pieces: Option<&'a [PieceWorst]>,
+}
+
+impl<'a> MotionJson<'a> {
+    fn new(verdict: &'a MotionVerdict) -> Self {
+        let test = verdict.motion_test.as_ref();
+        MotionJson {
+            name: &verdict.name,
+            file: verdict.file.as_deref(),
+            cycles_per_hour: verdict.cycles_per_hour,
+            duration_s: verdict.duration_s,
+            verdict: verdict.verdict(),
+            test: TestJson::new(test),
+            pieces: test.map(|t| t.pieces.as_slice()),
+        }
+    }
+}
+
+impl<'a> TestJson<'a> {
+    fn new(report: Option<&'a MotionTestReport>) -> Self {
         let mm = |w: &Option<Worst>| w.as_ref().map(|w| w.value * 1e3);
         Self {
-            engine,
-            candidates_tried,
             passed: report.map(|r| r.passed),
             failure: report
                 .and_then(|r| r.failure.as_ref())
@@ -79,6 +112,9 @@ struct ResultJson<'a> {
     sets: &'a [SegmentReport],
     chains: &'a str,
     motion_test: Option<MotionTestJson<'a>>,
+    motions: Vec<MotionJson<'a>>,
+    #[serde(skip_serializing_if = "<[_]>::is_empty")]
+    binding: &'a [PieceBinding],
     candidates: &'a [CandidateOutcome],
     static_sweep: &'a SweepSummary,
     margins: &'a [Margin],
@@ -100,13 +136,13 @@ impl Serialize for SolveReport {
             mounting: self.mounting.as_ref(),
             sets: &self.segments,
             chains: &self.chains,
-            motion_test: self.motion_test_requested.then(|| {
-                MotionTestJson::new(
-                    self.motion_engine,
-                    self.candidates.len(),
-                    self.motion_test.as_ref(),
-                )
+            motion_test: self.motion_test_requested.then(|| MotionTestJson {
+                engine: self.motion_engine,
+                candidates_tried: self.candidates.len(),
+                test: TestJson::new(self.motion_test.as_ref()),
             }),
+            motions: self.motions.iter().map(MotionJson::new).collect(),
+            binding: &self.binding,
             candidates: &self.candidates,
             static_sweep: &self.static_sweep,
             margins: &self.margins,
@@ -115,6 +151,35 @@ impl Serialize for SolveReport {
             unsolved: self.unsolved.as_ref(),
             inputs: &self.inputs,
             timings_s: &self.timings,
+        }
+        .serialize(serializer)
+    }
+}
+
+/// The JSON `check --json` prints, named as the result JSON names the same things.
+#[derive(Serialize)]
+struct CheckJson<'a> {
+    /// `holds` when every motion held every limit, else `fails`.
+    verdict: &'static str,
+    total_length_mm: f64,
+    ecpv: &'a NamedPath,
+    mounting: &'a crate::mounting::MountingPlan,
+    motions: Vec<MotionJson<'a>>,
+    #[serde(skip_serializing_if = "<[_]>::is_empty")]
+    binding: &'a [PieceBinding],
+    wall_time_s: f64,
+}
+
+impl Serialize for super::super::Check {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        CheckJson {
+            verdict: if self.holds() { "holds" } else { "fails" },
+            total_length_mm: self.length_mm,
+            ecpv: &self.path,
+            mounting: &self.mounting,
+            motions: self.motions.iter().map(MotionJson::new).collect(),
+            binding: &self.binding,
+            wall_time_s: self.wall_time_s,
         }
         .serialize(serializer)
     }

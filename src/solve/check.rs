@@ -1,0 +1,73 @@
+//! An installed cable checked against motions: the motion test of one given path over every
+//! motion of a cell, no search. What gates a new robot program: does the cable mounted as
+//! the sheet said survive it, and if not, which limit fails where on the cable and when.
+
+use super::options::{SolveError, SolveOptions};
+use super::report::{MotionVerdict, NamedPath, PieceBinding, binding, motion_verdicts, named_path};
+use super::search::test_options;
+use crate::motion::Cell;
+use crate::motion_test;
+use crate::mounting::{MountingPlan, mounting_plan};
+use crate::path::CablePath;
+use crate::setup::{Setup, Thresholds};
+use std::time::Instant;
+
+/// The verdict of one mounting over every motion of a cell.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Check {
+    /// The path checked, with its clamps' and pieces' names.
+    pub path: NamedPath,
+    /// How it is mounted: clamps, places and cable marks.
+    pub mounting: MountingPlan,
+    /// Its total length (mm).
+    pub length_mm: f64,
+    /// Every motion with the path's motion test over it, in the cell's order.
+    pub motions: Vec<MotionVerdict>,
+    /// Per piece, the motion that comes closest to each limit (several motions only).
+    pub binding: Vec<PieceBinding>,
+    /// The limits held to.
+    pub thresholds: Thresholds,
+    /// The cable model's sub-segment length (mm).
+    pub sub_segment_pitch_mm: f64,
+    /// Wall time of the whole check (s).
+    pub wall_time_s: f64,
+}
+
+impl Check {
+    /// Every motion held every limit.
+    pub fn holds(&self) -> bool {
+        (self.motions.iter()).all(|m| m.motion_test.as_ref().is_some_and(|t| t.passed))
+    }
+}
+
+/// The motion test of `path` (indices into `setup`) over every motion of `cell`, each run
+/// whole (to its first violation, as a solve runs it), with `options`' engine.
+pub fn check_mounting(
+    setup: &Setup,
+    path: &CablePath,
+    cell: &Cell,
+    options: &SolveOptions,
+) -> Result<Check, SolveError> {
+    let clock = Instant::now();
+    path.check(setup)
+        .map_err(|e| SolveError::Options(format!("the path does not fit the setup: {e}")))?;
+    let test = test_options(setup, options);
+    let runs = (cell.motions.iter())
+        .map(|m| motion_test::run(setup, path, &m.motion, &test).map(Some))
+        .collect::<Result<Vec<_>, _>>()?;
+    let motions = motion_verdicts(cell, &runs);
+    let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+    Ok(Check {
+        path: named_path(setup, path),
+        mounting: mounting_plan(setup, path),
+        length_mm: path.total_sub_segments() as f64 * pitch_mm,
+        binding: match cell.len() {
+            1 => Vec::new(),
+            _ => binding(setup, &motions),
+        },
+        motions,
+        thresholds: setup.thresholds,
+        sub_segment_pitch_mm: pitch_mm,
+        wall_time_s: clock.elapsed().as_secs_f64(),
+    })
+}

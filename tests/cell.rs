@@ -1,0 +1,161 @@
+//! A cell: one mounting for several motions (`solve` with several motions), and `check`, an
+//! installed cable against motions with no search.
+
+use crate::common::{root, run};
+use cable_dict::motion::{Cell, Motion};
+use cable_dict::motion_test::{self, MotionTestOptions};
+use cable_dict::setup::Setup;
+use cable_dict::solve::{SolveOptions, Status, solve, solve_cell};
+use serde_json::Value;
+
+fn setup() -> Setup {
+    Setup::from_file(root().join("robots/viper_s850/pick_and_place.toml"))
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn motion(setup: &Setup, name: &str) -> Motion {
+    let file = root().join(format!("motions/viper_s850/{name}.csv"));
+    Motion::from_csv_file(&setup.robot, file).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The bundled pick-and-place and machine-tending answers are mirror images of each other;
+/// one mounting for both must hold each motion's test when simulated alone, and cannot be
+/// shorter than the shortest path of either motion alone (every path that holds both holds
+/// each).
+#[test]
+fn one_mounting_for_two_motions_holds_each_and_is_no_shorter_than_either_alone() {
+    let setup = setup();
+    let names = ["pick_and_place", "machine_tending"];
+    // Strictly shortest first, so that each single answer is the shortest that passes.
+    let strict = SolveOptions {
+        learn: false,
+        ..SolveOptions::default()
+    };
+    let mut shortest_alone_mm = Vec::new();
+    for name in names {
+        let single =
+            solve(&setup, &motion(&setup, name), &strict).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(single.status, Status::Solved, "{name}");
+        assert!(single.unsolved.is_none(), "{name}: budget spent?");
+        shortest_alone_mm.push(single.optimal_length_mm.expect("a length"));
+    }
+    let files: Vec<_> = (names.iter())
+        .map(|n| root().join(format!("motions/viper_s850/{n}.csv")))
+        .collect();
+    let cell = Cell::from_files(&setup.robot, &files).unwrap_or_else(|e| panic!("{e}"));
+    let solution =
+        solve_cell(&setup, &cell, &SolveOptions::default(), None).unwrap_or_else(|e| panic!("{e}"));
+    let report = &solution.report;
+    assert_eq!(report.status, Status::Solved, "{}", report.explanation);
+    let length_mm = report.optimal_length_mm.expect("a length");
+    for (name, alone) in names.iter().zip(&shortest_alone_mm) {
+        assert!(
+            length_mm >= *alone,
+            "{length_mm} mm < {name} alone, {alone} mm"
+        );
+    }
+    // Each motion's verdict, and the same path simulated motion by motion on its own.
+    let path = &report.candidates.last().expect("the answer").path;
+    let options = MotionTestOptions::new(
+        SolveOptions::default()
+            .engine
+            .with_defaults(setup.gravity_m_s2),
+    );
+    for (verdict, name) in report.motions.iter().zip(names) {
+        assert_eq!(verdict.name, name);
+        assert_eq!(verdict.verdict(), "holds", "{name}");
+        let alone = motion_test::run(&setup, path, &motion(&setup, name), &options)
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert!(alone.passed, "{name}: {:?}", alone.failure);
+    }
+    // Each simulated piece names the motion that bends it most: one of the two.
+    assert!(!report.binding.is_empty());
+    for piece in &report.binding {
+        let motion = piece.bend_radius.as_ref().map(|b| b.motion.as_str());
+        assert!(motion.is_some_and(|m| names.contains(&m)), "{piece:?}");
+    }
+}
+
+/// `check` is the motion test of the mounting a solve found: against the motion it was
+/// solved for, the margins are the solve's to the last digit; against another motion it may
+/// fail, and says which limit, where and when; exit codes gate a pipeline.
+#[test]
+fn check_gives_the_margins_the_solve_reported_and_gates_with_exit_codes() {
+    let dir = std::env::temp_dir().join(format!("cable-dict-check-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let result = dir.join("result.json");
+    let result_arg = result.to_str().expect("a UTF-8 path");
+    let setup = "robots/viper_s850/pick_and_place.toml";
+    let pick = "motions/viper_s850/pick_and_place.csv";
+    let tending = "motions/viper_s850/machine_tending.csv";
+    let solved = run(&["solve", "--setup", setup, pick, "-o", result_arg]);
+    assert!(
+        solved.status.success(),
+        "{}",
+        String::from_utf8_lossy(&solved.stderr)
+    );
+    let json =
+        |bytes: &[u8]| -> Value { serde_json::from_slice(bytes).unwrap_or_else(|e| panic!("{e}")) };
+    let solve_json = json(&std::fs::read(&result).unwrap_or_else(|e| panic!("{e}")));
+
+    let same = run(&["check", result_arg, pick, "--json"]);
+    assert_eq!(
+        same.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&same.stderr)
+    );
+    let same = json(&same.stdout);
+    assert_eq!(same["verdict"], "holds");
+    let checked = &same["motions"][0];
+    for key in [
+        "min_clearance_mm",
+        "min_bend_radius_mm",
+        "max_stretch",
+        "min_self_clearance_mm",
+        "worst_clearance",
+        "worst_bend_radius",
+        "twists",
+        "clamp_loads",
+    ] {
+        assert_eq!(checked[key], solve_json["motion_test"][key], "{key}");
+    }
+    assert_eq!(same["total_length_mm"], solve_json["total_length_mm"]);
+
+    let other = run(&["check", result_arg, pick, tending, "--json"]);
+    assert_eq!(
+        other.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&other.stderr)
+    );
+    let other = json(&other.stdout);
+    assert_eq!(other["verdict"], "fails");
+    let tending_json = &other["motions"][1];
+    assert_eq!(tending_json["verdict"], "fails");
+    assert!(
+        tending_json["failure"]
+            .as_str()
+            .is_some_and(|f| !f.is_empty())
+    );
+    let words = run(&["check", result_arg, pick, tending]);
+    let words = String::from_utf8_lossy(&words.stdout);
+    assert!(
+        words.starts_with("fails — 1 of 2 motions fails: machine_tending"),
+        "{words}"
+    );
+    assert!(
+        words.contains(" at t = ") && words.contains("from clamp"),
+        "{words}"
+    );
+
+    // Invalid input: a motion that does not exist, a setup the result was not solved with.
+    let missing = run(&["check", result_arg, "motions/viper_s850/nothing.csv"]);
+    assert_eq!(missing.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&missing.stderr).contains("nothing.csv"));
+    let other_setup = "robots/viper_s850/inspection.toml";
+    let wrong = run(&["check", result_arg, pick, "--setup", other_setup]);
+    assert_eq!(wrong.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&wrong.stderr).contains("another setup"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
