@@ -103,7 +103,14 @@ pub fn setup_and_motions<'a>(
 ) -> Result<(Option<&'a Path>, &'a [PathBuf]), String> {
     match (option, files) {
         (_, []) => Err("give the motion: MOTION.csv (or a cell file, CELL.toml)".into()),
-        (Some(setup), motions) => Ok((Some(setup), motions)),
+        (Some(setup), motions) => match motions.iter().find(|m| is_setup_like(m)) {
+            Some(file) => Err(format!(
+                "{} is a setup, not a motion: give the setup once, as --setup SETUP.toml or as \
+                 the first file",
+                file.display()
+            )),
+            None => Ok((Some(setup), motions)),
+        },
         (None, [first, rest @ ..])
             if dictionary == Some(true) && (rest.is_empty() || is_motion_file(first)) =>
         {
@@ -120,6 +127,13 @@ pub fn setup_and_motions<'a>(
             }
         )),
     }
+}
+
+/// A `.toml` with `[[guides]]`: a setup where a motion belongs.
+fn is_setup_like(path: &Path) -> bool {
+    let toml = path.extension().is_some_and(|e| e == "toml");
+    let text = || cable_dict::input::read_text(path, cable_dict::input::SETUP);
+    toml && text().is_ok_and(|t| t.lines().any(|l| l.trim() == "[[guides]]"))
 }
 
 /// A motion CSV or a cell file (`[[motions]]`), not a setup.

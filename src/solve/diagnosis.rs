@@ -10,6 +10,7 @@ use crate::motion_test::{Constraint, Violation};
 use crate::path::CablePath;
 use crate::setup::Setup;
 use serde::Serialize;
+use std::collections::BTreeMap;
 
 /// Why no path was found, segment by segment.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -356,8 +357,18 @@ fn motion_diagnosis(setup: &Setup, cell: &Cell, outcome: &MotionSearch) -> Vec<S
             }
         }
     }
+    // Per segment and motion of a cell, how many pieces that motion's sweep dropped.
+    let mut dropped_by: Vec<BTreeMap<&str, usize>> = vec![BTreeMap::new(); count];
     for (m, _, failure) in &outcome.dropped {
-        swept[*m].push((failure.detail.clone(), failure.time_s));
+        let detail = match cell.len() {
+            1 => failure.detail.clone(),
+            _ => {
+                let name = cell.motions[failure.motion].name.as_str();
+                *dropped_by[*m].entry(name).or_insert(0) += 1;
+                format!("{name}: {}", failure.detail)
+            }
+        };
+        swept[*m].push((detail, failure.time_s));
     }
     (0..count)
         .filter(|&m| !dynamic[m].is_empty() || !swept[m].is_empty())
@@ -380,17 +391,25 @@ fn motion_diagnosis(setup: &Setup, cell: &Cell, outcome: &MotionSearch) -> Vec<S
                     .map(|(why, t)| format!("{test} at t = {t:.2} s: {why}"))
                     .collect()
             };
+            let by: Vec<String> = (dropped_by[m].iter())
+                .map(|(motion, n)| format!("{motion} {n}"))
+                .collect();
+            let by = match by.is_empty() {
+                true => String::new(),
+                false => format!(" (by motion: {})", by.join(", ")),
+            };
             SegmentDiagnosis {
                 segment: setup.segment_name(m),
                 from_guide: setup.guides[a].name.clone(),
                 problem: match (dynamic[m].len(), swept[m].len()) {
                     (0, n) => format!(
-                        "the static sweep over the motion dropped {n} of its candidate pieces"
+                        "the static sweep over the motion dropped {n} of its candidate \
+                         pieces{by}"
                     ),
                     (k, 0) => format!("{} here in the motion test", paths_failed(k)),
                     (k, n) => format!(
                         "{} here in the motion test, and the static sweep over the motion \
-                         dropped {n} of its candidate pieces",
+                         dropped {n} of its candidate pieces{by}",
                         paths_failed(k)
                     ),
                 },

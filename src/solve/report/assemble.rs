@@ -273,7 +273,17 @@ pub fn dropped_per_segment(sweep: &SweepSummary) -> String {
         .iter()
         .map(|(segment, n)| format!("{segment} {n}"))
         .collect();
-    counts.join(", ")
+    let mut per_motion: BTreeMap<&str, usize> = BTreeMap::new();
+    for motion in sweep.rejected.iter().filter_map(|r| r.motion.as_deref()) {
+        *per_motion.entry(motion).or_insert(0) += 1;
+    }
+    let by_motion: Vec<String> = (per_motion.iter())
+        .map(|(motion, n)| format!("{motion} {n}"))
+        .collect();
+    match by_motion.is_empty() {
+        true => counts.join(", "),
+        false => format!("{}; by motion: {}", counts.join(", "), by_motion.join(", ")),
+    }
 }
 
 /// The sweep's counts and dropped PVs, with names.
