@@ -9,13 +9,30 @@ use cable_dict::solve::{SolveOptions, Status, solve, solve_cell};
 use serde_json::Value;
 
 fn setup() -> Setup {
-    Setup::from_file(root().join("robots/viper_s850/pick_and_place.toml"))
-        .unwrap_or_else(|e| panic!("{e}"))
+    Setup::from_file(root().join(SETUP)).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn motion(setup: &Setup, name: &str) -> Motion {
     let file = root().join(format!("motions/viper_s850/{name}.csv"));
     Motion::from_csv_file(&setup.robot, file).unwrap_or_else(|e| panic!("{e}"))
+}
+
+const SETUP: &str = "robots/viper_s850/pick_and_place.toml";
+const PICK: &str = "motions/viper_s850/pick_and_place.csv";
+
+/// The bundled pick and place solved into a fresh folder named for `what`: the folder, the
+/// result JSON's path and its content.
+fn solved_pick_and_place(what: &str) -> (std::path::PathBuf, String, Value) {
+    let dir = std::env::temp_dir().join(format!("cable-dict-{what}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let result = dir.join("result.json");
+    let result = result.to_str().expect("a UTF-8 path").to_string();
+    let solved = run(&["solve", "--setup", SETUP, PICK, "-o", &result]);
+    let stderr = String::from_utf8_lossy(&solved.stderr);
+    assert!(solved.status.success(), "{stderr}");
+    let text = std::fs::read(&result).unwrap_or_else(|e| panic!("{e}"));
+    let json = serde_json::from_slice(&text).unwrap_or_else(|e| panic!("{e}"));
+    (dir, result, json)
 }
 
 /// The bundled pick-and-place and machine-tending answers are mirror images of each other;
@@ -81,22 +98,12 @@ fn one_mounting_for_two_motions_holds_each_and_is_no_shorter_than_either_alone()
 /// fail, and says which limit, where and when; exit codes gate a pipeline.
 #[test]
 fn check_gives_the_margins_the_solve_reported_and_gates_with_exit_codes() {
-    let dir = std::env::temp_dir().join(format!("cable-dict-check-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
-    let result = dir.join("result.json");
-    let result_arg = result.to_str().expect("a UTF-8 path");
-    let setup = "robots/viper_s850/pick_and_place.toml";
-    let pick = "motions/viper_s850/pick_and_place.csv";
+    let (dir, result, solve_json) = solved_pick_and_place("check");
+    let result_arg = result.as_str();
+    let pick = PICK;
     let tending = "motions/viper_s850/machine_tending.csv";
-    let solved = run(&["solve", "--setup", setup, pick, "-o", result_arg]);
-    assert!(
-        solved.status.success(),
-        "{}",
-        String::from_utf8_lossy(&solved.stderr)
-    );
     let json =
         |bytes: &[u8]| -> Value { serde_json::from_slice(bytes).unwrap_or_else(|e| panic!("{e}")) };
-    let solve_json = json(&std::fs::read(&result).unwrap_or_else(|e| panic!("{e}")));
 
     let same = run(&["check", result_arg, pick, "--json"]);
     assert_eq!(
@@ -141,7 +148,7 @@ fn check_gives_the_margins_the_solve_reported_and_gates_with_exit_codes() {
     let words = run(&["check", result_arg, pick, tending]);
     let words = String::from_utf8_lossy(&words.stdout);
     assert!(
-        words.starts_with("fails — 1 of 2 motions fails: machine_tending"),
+        words.contains("\nfails — 1 of 2 motions fails: machine_tending"),
         "{words}"
     );
     assert!(
@@ -157,5 +164,91 @@ fn check_gives_the_margins_the_solve_reported_and_gates_with_exit_codes() {
     let wrong = run(&["check", result_arg, pick, "--setup", other_setup]);
     assert_eq!(wrong.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&wrong.stderr).contains("another setup"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The mounting file a fitter writes from the sheet — each clamp's link, place and mark, read
+/// off a tape to the millimetre and degree — reads back into the path the solve found, and
+/// `check` then gives the solve's margins; a clamp measured where the setup has no place, or
+/// a clamp missing, is refused with what is wrong.
+#[test]
+fn a_mounting_measured_as_the_sheet_gives_it_is_the_path_the_solve_found() {
+    let (dir, _, solve_json) = solved_pick_and_place("measured");
+    let setup = root().join(SETUP);
+    let setup_arg = setup.to_str().expect("a UTF-8 path");
+    let pick = PICK;
+    // The sheet's clamps (not the fitting at the tool end), as a fitter measures them.
+    let clamps: Vec<&Value> = (solve_json["mounting"]["clamps"].as_array())
+        .expect("clamps")
+        .iter()
+        .filter(|c| c["fitting"].is_null())
+        .collect();
+    assert!(clamps.len() >= 2);
+    let file = |shift_along_mm: f64, leave_out: Option<usize>| -> String {
+        let mut text = format!("setup = {setup_arg:?}\n");
+        for (k, clamp) in clamps.iter().enumerate() {
+            if leave_out == Some(k) {
+                continue;
+            }
+            let place = &clamp["place"];
+            let along = place["along_mm"].as_f64().expect("along")
+                + if k == 0 { shift_along_mm } else { 0.0 };
+            text += &format!(
+                "\n[[clamps]]\nlink = {:?}\nalong_mm = {:.0}\naround_deg = {:.0}\n\
+                 cable_to_axis_deg = {:.0}\nmark_mm = {:.0}\n",
+                clamp["link"].as_str().expect("link"),
+                along,
+                place["around_deg"].as_f64().expect("around"),
+                place["cable_to_axis_deg"].as_f64().expect("angle"),
+                clamp["mark_mm"].as_f64().expect("mark"),
+            );
+            if let Some(turn) = place["cable_turn"].as_str() {
+                text += &format!("cable_turn = {turn:?}\n");
+            }
+        }
+        text
+    };
+    let write = |name: &str, text: String| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap_or_else(|e| panic!("{e}"));
+        path.to_str().expect("a UTF-8 path").to_string()
+    };
+    let measured = write("measured.toml", file(0.0, None));
+    let checked = run(&["check", &measured, pick, "--json"]);
+    assert_eq!(
+        checked.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&checked.stderr)
+    );
+    let checked: Value = serde_json::from_slice(&checked.stdout).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(checked["ecpv"], solve_json["ecpv"]);
+    for key in [
+        "min_clearance_mm",
+        "min_bend_radius_mm",
+        "worst_bend_radius",
+    ] {
+        assert_eq!(
+            checked["motions"][0][key], solve_json["motion_test"][key],
+            "{key}"
+        );
+    }
+
+    let far = write("far.toml", file(40.0, None));
+    let refused = run(&["check", &far, pick]);
+    assert_eq!(refused.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        stderr.contains("far.toml:3:") && stderr.contains("the nearest"),
+        "{stderr}"
+    );
+    let missing = write("missing.toml", file(0.0, Some(0)));
+    let refused = run(&["check", &missing, pick]);
+    assert_eq!(refused.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        stderr.contains("G1") && stderr.contains("not optional"),
+        "{stderr}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -5,15 +5,19 @@ use super::output::{Failure, emit, print_json};
 use super::result_file::ResultFile;
 use cable_dict::motion::Cell;
 use cable_dict::motion_test::EngineKind;
+use cable_dict::mounting::MeasuredMounting;
+use cable_dict::path::CablePath;
 use cable_dict::setup::Setup;
 use cable_dict::solve::{SolveOptions, check_mounting};
 use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The mounting: a result JSON (`solve --json`, `solve -o`, a report's result.json); its
-    /// path that passed is checked (else the closest miss), or --candidate.
-    #[arg(value_name = "RESULT.json")]
+    /// The mounting: a result JSON (`solve --json`, `solve -o`, a report's result.json), its
+    /// path that passed checked (else the closest miss, or --candidate); or a mounting file
+    /// as the fitter measured the cable on the robot (`[[clamps]]` with link, place and mark;
+    /// docs/commands.md, "check").
+    #[arg(value_name = "RESULT.json|MOUNTING.toml")]
     mounting: PathBuf,
     /// The motions to check it against: motion CSVs, or cell files naming them.
     #[arg(value_name = "MOTION.csv|CELL.toml", num_args = 1.., required = true)]
@@ -25,6 +29,10 @@ pub struct Args {
     /// Check the result's candidate of this rank (1 = the shortest tried) instead.
     #[arg(long, value_name = "RANK")]
     candidate: Option<usize>,
+    /// A measured clamp is the setup's nearest clamp place on its link within this distance
+    /// (mm: along, around as an arc, and off the link's line together).
+    #[arg(long, value_name = "MM", default_value_t = 10.0)]
+    tolerance_mm: f64,
     /// Print the verdicts as JSON (names as in the result JSON's `motions`).
     #[arg(long)]
     json: bool,
@@ -32,25 +40,20 @@ pub struct Args {
 
 /// Runs `check`: `Ok` when every motion holds; a failing motion is exit code 1.
 pub fn run(args: Args) -> Result<(), Failure> {
-    let result = ResultFile::read(&args.mounting)?;
-    let chosen = result.chosen(args.candidate)?;
-    let setup_file = match &args.setup {
-        Some(file) => file.clone(),
-        None => result.setup_file()?,
+    let (setup, path, read) = match MeasuredMounting::is_mounting_file(&args.mounting) {
+        true => measured(&args)?,
+        false => from_result(&args)?,
     };
-    let given = Setup::from_file(&setup_file).map_err(Failure::input)?;
-    let setup = solved_setup(given, result.setup_hash(), &args.mounting)?;
     let cell = Cell::from_files(&setup.robot, &args.motions).map_err(Failure::input)?;
     let options = SolveOptions {
-        engine: result.engine().unwrap_or(EngineKind::Implicit),
+        engine: read.engine,
         ..SolveOptions::default()
     };
-    let check = check_mounting(&setup, &chosen.path, &cell, &options).map_err(Failure::input)?;
-    log::info!("{}", chosen.motion_test);
+    let check = check_mounting(&setup, &path, &cell, &options).map_err(Failure::input)?;
     if args.json {
         print_json(&check)?;
     } else {
-        emit(&check.to_string())?;
+        emit(&(read.words + &check.to_string()))?;
     }
     match check.holds() {
         true => Ok(()),
@@ -59,6 +62,79 @@ pub fn run(args: Args) -> Result<(), Failure> {
             args.mounting.display()
         ))),
     }
+}
+
+/// What the check says of how it read the mounting, and the engine to simulate with.
+struct Read {
+    words: String,
+    engine: EngineKind,
+}
+
+/// The setup and path of a result JSON.
+fn from_result(args: &Args) -> Result<(Setup, CablePath, Read), Failure> {
+    let result = ResultFile::read(&args.mounting)?;
+    let chosen = result.chosen(args.candidate)?;
+    let setup_file = match &args.setup {
+        Some(file) => file.clone(),
+        None => result.setup_file()?,
+    };
+    let given = Setup::from_file(&setup_file).map_err(Failure::input)?;
+    let setup = solved_setup(given, result.setup_hash(), &args.mounting)?;
+    let read = Read {
+        words: format!("{}: {}\n", args.mounting.display(), chosen.motion_test),
+        engine: result.engine().unwrap_or(EngineKind::Implicit),
+    };
+    Ok((setup, chosen.path, read))
+}
+
+/// The setup and path of a mounting file, each clamp matched to the setup's places.
+fn measured(args: &Args) -> Result<(Setup, CablePath, Read), Failure> {
+    if args.candidate.is_some() {
+        return Err(Failure::input(anyhow::anyhow!(
+            "--candidate picks a path of a result JSON; {} is a mounting file",
+            args.mounting.display()
+        )));
+    }
+    if !(args.tolerance_mm.is_finite() && args.tolerance_mm >= 0.0) {
+        return Err(Failure::input(anyhow::anyhow!(
+            "--tolerance-mm {}: give a distance ≥ 0",
+            args.tolerance_mm
+        )));
+    }
+    let mounting = MeasuredMounting::from_file(&args.mounting).map_err(Failure::input)?;
+    let setup_file = args
+        .setup
+        .clone()
+        .or(mounting.setup.clone())
+        .ok_or_else(|| {
+            Failure::input(anyhow::anyhow!(
+                "{}: it names no setup (`setup = …`): give it with --setup",
+                args.mounting.display()
+            ))
+        })?;
+    let setup = Setup::from_file(&setup_file).map_err(Failure::input)?;
+    let (path, matched) = mounting
+        .path(&setup, args.tolerance_mm)
+        .map_err(Failure::input)?;
+    let mut words = format!(
+        "{} read against {}:\n",
+        args.mounting.display(),
+        setup_file.display()
+    );
+    for m in &matched {
+        words.push_str(&format!(
+            "  line {}: {} at `{}`, {:.1} mm from the place measured\n",
+            m.line,
+            m.guides.join(" = "),
+            m.configuration,
+            m.distance_mm
+        ));
+    }
+    let read = Read {
+        words,
+        engine: EngineKind::Implicit,
+    };
+    Ok((setup, path, read))
 }
 
 /// The setup the result's indices refer to: `given` itself, or with one clamp per link

@@ -200,7 +200,9 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
             .map_err(|e| Failure::input(anyhow::anyhow!("cannot write {}: {e}", path.display())))?;
     }
     if let Some(dir) = &args.report {
-        write_report_folder(dir, &solved, &cell.motions[0].motion, &report)?;
+        // The report animates the motion its motion test is over.
+        let motion = &cell.motions[report.shown_motion].motion;
+        write_report_folder(dir, &solved, motion, &report)?;
     }
     if args.json {
         print_json(&report)?;

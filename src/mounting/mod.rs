@@ -9,6 +9,7 @@
 //! ends. The search's names (guides G…, pieces C…) stay in `solve -v` and the JSON.
 
 mod features;
+pub mod measured;
 pub mod place;
 pub mod rows;
 
@@ -18,6 +19,7 @@ use crate::robot::{JointKind, Robot};
 use crate::setup::{ConfigurationOrigin, Setup};
 use crate::stress::contact::{Obstacles, min_clearance};
 use crate::text_table::decimal;
+pub use measured::{Matched, MeasuredError, MeasuredMounting};
 use nalgebra::Point3;
 pub use place::{
     AlongFrom, LinkFeatures, LinkKind, LinkPlace, Turn, ZeroSide, link_features, link_place,

@@ -50,7 +50,7 @@ impl ZeroSide {
 }
 
 /// Which way the cable leans around the line, as the angle is seen.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Turn {
     /// Clockwise.

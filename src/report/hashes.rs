@@ -59,14 +59,11 @@ pub fn input_hashes(setup: &Setup, report: &SolveReport) -> Vec<Hashed> {
             setup.cable_text.as_bytes(),
         ),
     ];
-    let files = [
-        ("motion", report.inputs.motion_file.as_deref()),
-        (
-            "dictionary",
-            report.inputs.dictionary.as_ref().map(|d| d.file.as_str()),
-        ),
-    ];
-    for (role, file) in files {
+    // Every motion of a cell (its first is `inputs.motion_file`), then the dictionary.
+    let motions = (report.motions.iter()).filter_map(|m| m.file.as_deref());
+    let motions = motions.map(|file| ("motion", Some(file)));
+    let dictionary = report.inputs.dictionary.as_ref().map(|d| d.file.as_str());
+    for (role, file) in motions.chain([("dictionary", dictionary)]) {
         if let Some(file) = file {
             inputs.push(Hashed::of_file(role, Path::new(file)));
         }

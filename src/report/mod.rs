@@ -161,11 +161,7 @@ fn title_block(setup: &Setup, report: &SolveReport) -> install::TitleBlock {
             Some(part) => format!("{}, part number {part}", cable.name),
             None => cable.name.clone(),
         },
-        motion: report
-            .inputs
-            .motion_file
-            .clone()
-            .unwrap_or_else(|| "(none)".into()),
+        motion: report.shown_motion_file().unwrap_or("(none)").to_string(),
         setup: report.inputs.setup_file.clone(),
         setup_hash: report.inputs.setup_hash.clone(),
         date: sheet_date(),
@@ -259,7 +255,7 @@ fn write_plots(
         figures.push((file, caption));
         folder.put(file, caption, svg.as_bytes())
     };
-    let motion_name = report.inputs.motion_file.as_deref().unwrap_or("the motion");
+    let motion_name = report.shown_motion_file().unwrap_or("the motion");
     let title = format!("Joint angles of {motion_name} and the critical poses");
     let svg = plots::joints_svg(motion, &report.segments, &title).map_err(plot("joints.svg"))?;
     add(

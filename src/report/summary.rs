@@ -2,12 +2,12 @@
 //! the motion test, the timings and the inputs with their hashes.
 
 use super::hashes::Hashed;
-use super::text::{verdict_words, worst_rows};
+use super::text::{motion_verdict_words, verdict_words, worst_rows};
 use crate::escape::markdown as text;
 use crate::motion_test::MotionTestReport;
 use crate::mounting::{self, MountingPlan, rows};
 use crate::solve::{NamedPath, SolveReport};
-use crate::text_table::decimals;
+use crate::text_table::{decimal, decimals};
 use std::fmt::Write as _;
 
 /// The whole `summary.md`; `files` are the report's other files with what each shows, and
@@ -22,6 +22,9 @@ pub fn summary_markdown(
     heading(&mut md, report);
     if let Some(plan) = &report.mounting {
         mounting_tables(&mut md, plan);
+    }
+    if let (Some(plan), true) = (&report.mounting, report.motions.len() > 1) {
+        motions_table(&mut md, report, plan);
     }
     if let Some(test) = &report.motion_test {
         motion_test_table(&mut md, report, test);
@@ -255,6 +258,51 @@ fn margins_table(md: &mut String, report: &SolveReport) {
                 show(m.threshold),
                 show(m.margin),
                 format!("t = {:.2} s, {}", m.time_s, m.reason),
+            ],
+        );
+    }
+}
+
+/// A cell: each motion's verdict, then the motion that binds each piece.
+fn motions_table(md: &mut String, report: &SolveReport, plan: &MountingPlan) {
+    section(md, "Motions of the cell");
+    header(md, &["motion", "cycles per hour", "duration", "verdict"]);
+    let limits = report.limits();
+    for m in &report.motions {
+        row(
+            md,
+            &[
+                m.name.clone(),
+                m.cycles_per_hour.map_or("–".into(), |c| decimal(c, 0)),
+                format!("{} s", decimal(m.duration_s, 2)),
+                motion_verdict_words(&limits, m, plan),
+            ],
+        );
+    }
+    if report.binding.is_empty() {
+        return;
+    }
+    let _ = writeln!(md);
+    header(
+        md,
+        &["piece", "tightest bend radius", "closest to the robot"],
+    );
+    let binding = |b: &Option<crate::solve::BindingMotion>| match b {
+        Some(b) => format!(
+            "{} mm in {} (t = {:.2} s)",
+            decimal(b.value_mm, 1),
+            b.motion,
+            b.time_s
+        ),
+        None => "–".into(),
+    };
+    for piece in &report.binding {
+        row(
+            md,
+            &[
+                piece.segment.clone(),
+                binding(&piece.bend_radius),
+                binding(&piece.clearance),
             ],
         );
     }

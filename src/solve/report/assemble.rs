@@ -60,6 +60,7 @@ impl SolveReport {
         let shown = shown_index(verdicts, closest);
         let motion_test = shown.and_then(|k| tried[k].report().cloned());
         let runs = shown.map_or(&[][..], |k| tried[k].runs.as_slice());
+        let shown_motion = shown.and_then(|k| tried[k].judged).unwrap_or(0);
         let motions = motion_verdicts(cell, runs);
         let binding = match cell.len() {
             1 => Vec::new(),
@@ -94,6 +95,7 @@ impl SolveReport {
             static_sweep,
             motion_test,
             motions,
+            shown_motion,
             binding,
             motion_test_requested: options.motion_test,
             motion_engine: options.engine,

@@ -368,6 +368,9 @@ pub struct SolveReport {
     /// Every motion of the cell (one for a single motion) with the motion test of the path
     /// shown, in the order given (result JSON `motions`).
     pub motions: Vec<MotionVerdict>,
+    /// The index in `motions` of the motion `motion_test` is over (0 for a single motion):
+    /// what a report animates.
+    pub shown_motion: usize,
     /// For a cell of several motions, per piece of the path shown, the motion that comes
     /// closest to each limit (result JSON `binding`; empty for a single motion).
     pub binding: Vec<PieceBinding>,
@@ -506,6 +509,14 @@ impl ClosestMiss {
 }
 
 impl SolveReport {
+    /// The file of the motion `motion_test` is over (for a cell, `motions[shown_motion]`'s).
+    pub fn shown_motion_file(&self) -> Option<&str> {
+        match self.motions.get(self.shown_motion) {
+            Some(m) => m.file.as_deref(),
+            None => self.inputs.motion_file.as_deref(),
+        }
+    }
+
     /// The candidate a report shows: the one that passed the motion test, the untested
     /// shortest one, or when none passed the closest miss (`unsolved.closest`), else the
     /// last one tried — the one whose motion test the report keeps. `None` when there is no
