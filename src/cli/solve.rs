@@ -6,7 +6,7 @@ use super::output::{Failure, emit, print_json};
 use super::provenance::open_verified;
 use cable_dict::atomic_file::write_atomically;
 use cable_dict::attachment::{ConnectMethod, IntraLinkCriterion, SegmentPoses};
-use cable_dict::motion::{Cell, Motion};
+use cable_dict::motion::{Cell, JointRanges, Motion};
 use cable_dict::motion_test::EngineKind;
 use cable_dict::report::{ReportError, check_report_folder, write_report};
 use cable_dict::setup::Setup;
@@ -35,8 +35,18 @@ pub struct Args {
     /// The motion CSV (see motions/README.md), after the setup when the setup is not given
     /// as --setup. Several motions (or a cell file naming them, docs/commands.md, "Cells"):
     /// one cable path that holds every limit over every one of them.
-    #[arg(value_name = "[SETUP.toml] MOTION.csv|CELL.toml", num_args = 1.., required = true)]
+    #[arg(
+        value_name = "[SETUP.toml] MOTION.csv|CELL.toml",
+        num_args = 1..,
+        required_unless_present = "ranges"
+    )]
     files: Vec<PathBuf>,
+    /// Design for axis ranges (a `[joints]` table, `name = [min_deg, max_deg]`; docs/commands.md,
+    /// "Axis ranges"): the path must hold over stress motions that drive each ranged axis
+    /// end to end at its URDF speed, alone and together (and over the motions given, if any).
+    /// So far only along those motions: poses of the box off their paths are not checked.
+    #[arg(long, value_name = "RANGES.toml")]
+    ranges: Option<PathBuf>,
     /// Print the result as JSON instead of the summary.
     #[arg(long)]
     json: bool,
@@ -137,12 +147,15 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
         }
         None => None,
     };
-    let (setup_path, motion_paths) = setup_and_motions(
-        args.setup.as_deref(),
-        &args.files,
-        Some(dictionary.is_some()),
-    )
-    .map_err(|e| Failure::input(anyhow::anyhow!(e)))?;
+    let (setup_path, motion_paths) = match (&args.ranges, args.files.as_slice()) {
+        (Some(_), []) => (args.setup.as_deref(), &[][..]),
+        _ => setup_and_motions(
+            args.setup.as_deref(),
+            &args.files,
+            Some(dictionary.is_some()),
+        )
+        .map_err(|e| Failure::input(anyhow::anyhow!(e)))?,
+    };
     let setup = match (setup_path, &dictionary) {
         (Some(path), _) => Setup::from_file(path).map_err(Failure::input)?,
         (None, Some(dictionary)) => dictionary.setup().map_err(Failure::input)?,
@@ -152,7 +165,7 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
             )));
         }
     };
-    let cell = Cell::from_files(&setup.robot, motion_paths).map_err(Failure::input)?;
+    let cell = design_cell(&setup, args.ranges.as_deref(), motion_paths)?;
     let options = SolveOptions {
         method: match args.connect {
             Connect::Hermite => ConnectMethod::Hermite,
@@ -215,6 +228,28 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
     }
     // "No cable path" is an answer, not a failure: exit 0 like "solved" (the status says which).
     Ok(())
+}
+
+/// Sample rate of the stress motions of `--ranges` (Hz), as the bundled motions'.
+const STRESS_MOTION_RATE_HZ: f64 = 100.0;
+
+/// The motions a solve answers: the stress motions of `ranges` (when given), then the
+/// motions of `files`.
+fn design_cell(setup: &Setup, ranges: Option<&Path>, files: &[PathBuf]) -> Result<Cell, Failure> {
+    let given = (!files.is_empty())
+        .then(|| Cell::from_files(&setup.robot, files))
+        .transpose()
+        .map_err(Failure::input)?;
+    let Some(ranges) = ranges else {
+        return given.ok_or_else(|| Failure::input(anyhow::anyhow!("give the motion")));
+    };
+    let ranges = JointRanges::from_file(&setup.robot, ranges).map_err(Failure::input)?;
+    let mut cell = ranges
+        .stress_motions(&setup.robot, STRESS_MOTION_RATE_HZ)
+        .map_err(Failure::input)?;
+    cell.motions
+        .extend(given.into_iter().flat_map(|g| g.motions));
+    Ok(cell)
 }
 
 /// Keyframe interval of the report scene's animation (s): 30 frames per second.

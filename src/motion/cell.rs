@@ -17,6 +17,7 @@
 //! motion file, line and column as for a single motion.
 
 use super::{Motion, MotionError};
+use crate::input::line_of;
 use crate::robot::Robot;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -232,11 +233,6 @@ fn stem(file: &Path) -> String {
 fn shown(file: &Option<PathBuf>) -> String {
     file.as_ref()
         .map_or("in memory".into(), |f| f.display().to_string())
-}
-
-/// The 1-based line of byte `offset` in `text`.
-fn line_of(text: &str, offset: usize) -> usize {
-    text[..offset.min(text.len())].matches('\n').count() + 1
 }
 
 #[cfg(test)]
