@@ -124,7 +124,7 @@ async function checkView(page, blank, problems) {
   if (share < MIN_DRAWN_SHARE) problems.push(`3D view: blank (${(100 * share).toFixed(1)} % drawn)`);
   const labels = await page.locator("model-viewer#view .clamp-label").count();
   if (labels === 0) problems.push("3D view: no clamp label");
-  const hasAnimation = await page.evaluate(() => !!window.cableDictView.animation);
+  const hasAnimation = await page.evaluate(() => !!window.cableDictView.clips[0].animation);
   let moved = "no animation";
   if (hasAnimation) {
     const t0 = await page.evaluate(() => document.getElementById("view").currentTime);
@@ -134,7 +134,7 @@ async function checkView(page, blank, problems) {
     await page.click("#view-play");
     if (!(t1 > t0)) problems.push(`3D view: playing did not advance the time (${t0} → ${t1} s)`);
     // Seek to the worst moment: the time follows, and the picture changes.
-    const worst = await page.evaluate(() => window.cableDictView.worst?.time_s ?? null);
+    const worst = await page.evaluate(() => window.cableDictView.clips[0].worst?.time_s ?? null);
     const target = worst ?? t1 / 2;
     await page.evaluate((t) => {
       const slider = document.getElementById("view-time");
@@ -166,7 +166,7 @@ async function checkView(page, blank, problems) {
         slider.dispatchEvent(new Event("input"));
         await new Promise((resolve) => setTimeout(resolve, 500));
         const v = document.getElementById("view");
-        return { name: v.animationName, t: v.currentTime, want: window.cableDictView.animation };
+        return { name: v.animationName, t: v.currentTime, want: window.cableDictView.clips[0].animation };
       });
       if (back.name !== back.want || Math.abs(back.t - 0.5) > 0.02) {
         problems.push(`3D view: back from the installation pose shows '${back.name}' at ${back.t} s`);
@@ -174,13 +174,14 @@ async function checkView(page, blank, problems) {
     }
   }
   moved += await checkWorstButton(page, viewer, problems);
+  moved += await checkMotionPicker(page, viewer, problems);
   return `3D view: loaded, ${(100 * share).toFixed(1)} % drawn, ${labels} clamp labels, ${moved}`;
 }
 
 // The worst-moment button: the time goes there, the camera turns to the spot (its target moves
 // onto it) and the red ring is shown there; the picture changes.
 async function checkWorstButton(page, viewer, problems) {
-  const worst = await page.evaluate(() => window.cableDictView.worst);
+  const worst = await page.evaluate(() => window.cableDictView.clips[0].worst);
   if (!worst || !worst.spot_m) return ", no worst spot to show";
   const before = await viewer.screenshot();
   await page.click("#view-worst");
@@ -204,6 +205,33 @@ async function checkWorstButton(page, viewer, problems) {
   const after = await viewer.screenshot();
   if (after.equals(before)) problems.push("3D view: the worst-moment button changed nothing");
   return `, worst spot shown at ${state.t.toFixed(2)} s (camera ${(1000 * off).toFixed(1)} mm from it)`;
+}
+
+// A cell's report: the list picks each other motion, whose animation then plays from its
+// start, its slider as long as its clip, and the picture changes.
+async function checkMotionPicker(page, viewer, problems) {
+  const clips = await page.evaluate(() =>
+    window.cableDictView.clips.map((c) => ({ animation: c.animation, end: c.times_s[c.times_s.length - 1] })),
+  );
+  const shown = await page.evaluate(() => !document.getElementById("view-motion").hidden);
+  if (clips.length < 2) {
+    if (shown) problems.push("3D view: a motion list for a single motion");
+    return "";
+  }
+  if (!shown) problems.push("3D view: no motion list for a cell of several motions");
+  for (let k = 1; k < clips.length; k++) {
+    const before = await viewer.screenshot();
+    await page.selectOption("#view-motion", String(k));
+    await page.waitForTimeout(800);
+    const state = await page.evaluate(() => {
+      const v = document.getElementById("view");
+      return { name: v.animationName, t: v.currentTime, max: Number(document.getElementById("view-time").max) };
+    });
+    if (state.name !== clips[k].animation) problems.push(`3D view: motion ${k} shows '${state.name}', not '${clips[k].animation}'`);
+    if (Math.abs(state.max - clips[k].end) > 1e-6) problems.push(`3D view: motion ${k}'s slider ends at ${state.max} s, not ${clips[k].end} s`);
+    if ((await viewer.screenshot()).equals(before)) problems.push(`3D view: picking motion ${k} changed nothing`);
+  }
+  return `, ${clips.length} motions to pick from`;
 }
 
 // The sheet printed as its page asks (A4 landscape): the number of pages of the PDF.

@@ -45,6 +45,12 @@ fn round(x: f64) -> f64 {
     rounded + 0.0
 }
 
+/// For `#[serde(skip_serializing_if)]`: an index that is 0 (the first motion of a cell, the
+/// only one of a single motion) is left out.
+pub fn is_zero(value: &usize) -> bool {
+    *value == 0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

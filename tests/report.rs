@@ -642,7 +642,12 @@ fn the_installation_sheet_and_the_view_agree_with_the_result() {
     let motion =
         cable_dict::motion::Motion::from_csv_file(&setup.robot, motion_file).expect("motion");
     let poses = setup.robot.link_poses(&motion.samples()[0]).expect("poses");
-    for (clamp, ((label, _, _), (names, _, _, _))) in clamps.iter().zip(rows.iter().zip(&expected))
+    // The one motion's clip: per clamp, its positions over the keyframes.
+    let tracks = view["clips"][0]["positions_m"].as_array().expect("tracks");
+    assert_eq!(view["clips"].as_array().map(Vec::len), Some(1));
+    assert_eq!(tracks.len(), clamps.len());
+    for ((clamp, track), ((label, _, _), (names, _, _, _))) in
+        clamps.iter().zip(tracks).zip(rows.iter().zip(&expected))
     {
         assert_eq!(clamp["label"].as_str(), Some(label.as_str()));
         let first = names[0].as_str();
@@ -666,10 +671,7 @@ fn the_installation_sheet_and_the_view_agree_with_the_result() {
             .as_ref()
             .expect("installation")
             .link_poses;
-        for (poses, shown) in [
-            (&poses, &clamp["positions_m"][0]),
-            (installed, &clamp["installation_m"]),
-        ] {
+        for (poses, shown) in [(&poses, &track[0]), (installed, &clamp["installation_m"])] {
             let world = poses[guide.link] * configuration.pose * nalgebra::Point3::origin();
             for (axis, value) in [world.x, world.z, -world.y].into_iter().enumerate() {
                 assert!(

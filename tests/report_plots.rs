@@ -201,6 +201,7 @@ fn motion() -> Motion {
 fn pose(sample: usize, reason: &str) -> PoseSummary {
     let t = time(sample);
     PoseSummary {
+        motion: 0,
         sample,
         time_s: t,
         joints: (0..6).map(|j| joint_deg(j, t)).collect(),

@@ -109,6 +109,7 @@ fn spec(robot: &Robot) -> SceneSpec<'_> {
             times_s: TIMES.to_vec(),
             frames: frames.clone(),
         }),
+        other_motions: Vec::new(),
         snapshots: vec![
             Snapshot {
                 name: "critical pose 1: C1 joint_2 min, t = 0.500 s".into(),
@@ -732,6 +733,7 @@ fn spheres_capsules_and_stl_meshes_are_drawn_to_size() {
         },
         guides: Vec::new(),
         animation: None,
+        other_motions: Vec::new(),
         snapshots: Vec::new(),
         tints: Vec::new(),
         installation: None,

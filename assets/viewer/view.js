@@ -20,13 +20,16 @@
   const readout = document.getElementById("view-readout");
   const worstButton = document.getElementById("view-worst");
   const worstTick = document.getElementById("view-worst-tick");
-  const duration = data.times_s.length ? data.times_s[data.times_s.length - 1] : 0;
+  const picker = document.getElementById("view-motion");
+  // The motion test played: the one the report shows, or a cell's other motion picked.
+  let clip = data.clips[0];
+  let duration = 0;
 
   data.clamps.forEach((clamp, i) => {
     const label = document.createElement("div");
     label.slot = `hotspot-clamp-${i}`;
     label.className = "clamp-label";
-    label.dataset.position = position(clamp.positions_m[0]);
+    label.dataset.position = position(clip.positions_m[i][0]);
     label.textContent = clamp.label;
     viewer.appendChild(label);
   });
@@ -40,15 +43,13 @@
   ring.slot = "hotspot-worst";
   ring.className = "worst-ring";
   ring.hidden = true;
-  if (data.worst && data.worst.spot_m) {
-    ring.dataset.position = position(data.worst.spot_m);
-    viewer.appendChild(ring);
-  }
+  ring.dataset.position = "0m 0m 0m";
+  viewer.appendChild(ring);
   const RING_WITHIN_S = 0.05;
 
   // Index of the last keyframe at or before t, and the share of the way to the next one.
   function keyframe(t) {
-    const times = data.times_s;
+    const times = clip.times_s;
     let lo = 0;
     let hi = times.length - 1;
     if (hi <= 0 || t <= times[0]) return [0, 0];
@@ -63,9 +64,9 @@
 
   function moveLabels(t) {
     const [k, s] = keyframe(t);
-    data.clamps.forEach((clamp, i) => {
-      const a = clamp.positions_m[k];
-      const b = clamp.positions_m[Math.min(k + 1, clamp.positions_m.length - 1)];
+    clip.positions_m.forEach((track, i) => {
+      const a = track[k];
+      const b = track[Math.min(k + 1, track.length - 1)];
       const p = a.map((x, j) => x + s * (b[j] - x));
       viewer.updateHotspot({ name: `hotspot-clamp-${i}`, position: position(p) });
     });
@@ -73,13 +74,13 @@
 
   function show(t) {
     slider.value = String(t);
-    const end = data.motion_end_s;
+    const end = clip.motion_end_s;
     const held = end !== null && end !== undefined && t > end + 1e-6;
     const motionEnd = end !== null && end !== undefined ? `; the motion ends at ${end.toFixed(2)} s` : "";
     readout.textContent = held
       ? `t = ${t.toFixed(2)} s: the motion's last pose held, the cable coming to rest${motionEnd}`
       : `t = ${t.toFixed(2)} s of ${duration.toFixed(2)} s${motionEnd}`;
-    ring.hidden = !(data.worst && Math.abs(t - data.worst.time_s) <= RING_WITHIN_S);
+    ring.hidden = !(clip.worst && clip.worst.spot_m && Math.abs(t - clip.worst.time_s) <= RING_WITHIN_S);
     moveLabels(t);
   }
 
@@ -107,7 +108,7 @@
   // The motion test at time t, paused.
   async function seek(t) {
     viewer.pause();
-    if (data.animation) await useAnimation(data.animation);
+    if (clip.animation) await useAnimation(clip.animation);
     viewer.currentTime = t;
     play.textContent = "Play";
     install.classList.remove("active");
@@ -129,27 +130,46 @@
     });
   }
 
-  slider.max = String(duration);
-  slider.step = "0.01";
-  if (data.worst) {
-    worstTick.style.left = `${(100 * data.worst.time_s) / Math.max(duration, 1e-9)}%`;
-    worstTick.title = data.worst.what;
-    worstButton.textContent = `Worst moment: ${data.worst.what}`;
-  } else {
-    worstButton.hidden = true;
+  // The controls for the clip played: its length, its worst moment.
+  function useClip(k) {
+    clip = data.clips[k];
+    duration = clip.times_s.length ? clip.times_s[clip.times_s.length - 1] : 0;
+    slider.max = String(duration);
+    slider.step = "0.01";
+    const worst = clip.worst;
+    worstTick.hidden = !worst;
+    worstButton.hidden = !worst;
+    if (worst) {
+      worstTick.style.left = `${(100 * worst.time_s) / Math.max(duration, 1e-9)}%`;
+      worstTick.title = worst.what;
+      worstButton.textContent = `Worst moment: ${worst.what}`;
+      if (worst.spot_m) ring.dataset.position = position(worst.spot_m);
+    }
+    for (const control of [play, slider, worstButton]) control.disabled = !clip.animation;
   }
-  if (!data.animation) {
-    for (const control of [play, slider, worstButton]) control.disabled = true;
-  }
+  useClip(0);
   install.hidden = !data.installation;
+  // A cell's motions: one choice each, names set as text.
+  picker.hidden = data.clips.length < 2;
+  data.clips.forEach((c, k) => {
+    const option = document.createElement("option");
+    option.value = String(k);
+    option.textContent = c.label;
+    picker.appendChild(option);
+  });
+  picker.addEventListener("change", async () => {
+    useClip(Number(picker.value));
+    if (clip.worst && clip.worst.spot_m) viewer.updateHotspot({ name: "hotspot-worst", position: ring.dataset.position });
+    await seek(0);
+  });
 
   viewer.addEventListener("load", async () => {
-    if (data.animation) await seek(0);
+    if (clip.animation) await seek(0);
     document.body.dataset.viewLoaded = "true";
   });
   install.addEventListener("click", showInstallation);
   play.addEventListener("click", async () => {
-    if (viewer.animationName !== data.animation) await seek(Number(slider.value));
+    if (viewer.animationName !== clip.animation) await seek(Number(slider.value));
     if (viewer.paused) {
       if (viewer.currentTime >= duration) viewer.currentTime = 0;
       viewer.play();
@@ -162,11 +182,12 @@
   slider.addEventListener("input", () => seek(Number(slider.value)));
   // The worst moment: the time there, the camera turned to the spot from outside the arm.
   worstButton.addEventListener("click", async () => {
-    if (!data.worst) return;
-    await seek(data.worst.time_s);
-    if (data.worst.spot_m && data.worst.orbit) {
-      const [azimuth, polar, distance] = data.worst.orbit;
-      viewer.cameraTarget = position(data.worst.spot_m);
+    const worst = clip.worst;
+    if (!worst) return;
+    await seek(worst.time_s);
+    if (worst.spot_m && worst.orbit) {
+      const [azimuth, polar, distance] = worst.orbit;
+      viewer.cameraTarget = position(worst.spot_m);
       viewer.cameraOrbit = `${azimuth}deg ${polar}deg ${distance}m`;
     }
   });

@@ -213,9 +213,8 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
             .map_err(|e| Failure::input(anyhow::anyhow!("cannot write {}: {e}", path.display())))?;
     }
     if let Some(dir) = &args.report {
-        // The report animates the motion its motion test is over.
-        let motion = &cell.motions[report.shown_motion].motion;
-        write_report_folder(dir, &solved, motion, &report)?;
+        let motions: Vec<&Motion> = cell.motions().collect();
+        write_report_folder(dir, &solved, &motions, &report)?;
     }
     if args.json {
         print_json(&report)?;
@@ -260,12 +259,12 @@ const SCENE_FRAME_INTERVAL_S: f64 = 1.0 / 30.0;
 fn write_report_folder(
     dir: &Path,
     solved: &Setup,
-    motion: &Motion,
+    motions: &[&Motion],
     report: &SolveReport,
 ) -> Result<(), Failure> {
     let clock = std::time::Instant::now();
-    let shapes = ReportShapes::of(solved, motion, report).map_err(Failure::unsolved)?;
-    let files = write_report(dir, solved, motion, report, &shapes).map_err(|e| match e {
+    let shapes = ReportShapes::of(solved, motions, report).map_err(Failure::unsolved)?;
+    let files = write_report(dir, solved, motions, report, &shapes).map_err(|e| match e {
         ReportError::Write { .. } => Failure::input(e),
         _ => Failure::unsolved(e),
     })?;

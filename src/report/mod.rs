@@ -38,7 +38,8 @@ use crate::setup::Setup;
 use crate::solve::{ReportShapes, SolveReport};
 use std::path::{Path, PathBuf};
 
-/// Writes the report folder `dir` of `report`, which solved `motion` with `setup` as
+/// Writes the report folder `dir` of `report`, which solved `motions` (one per
+/// `report.motions`, in order: its 3D view animates each motion test) with `setup` as
 /// solved ([`Solution::setup`](crate::solve::Solution::setup)), drawing the cable in the
 /// `shapes` solved for it ([`ReportShapes::of`]): created, or replaced as a whole when it
 /// holds only what a report writes ([`is_report_file`]). Returns the files written,
@@ -46,10 +47,18 @@ use std::path::{Path, PathBuf};
 pub fn write_report(
     dir: &Path,
     setup: &Setup,
-    motion: &Motion,
+    motions: &[&Motion],
     report: &SolveReport,
     shapes: &ReportShapes,
 ) -> Result<Vec<PathBuf>, ReportError> {
+    if motions.len() != report.motions.len().max(1) {
+        return Err(ReportError::Scene(format!(
+            "{} motions given for a report of {}",
+            motions.len(),
+            report.motions.len()
+        )));
+    }
+    let motion = motions[report.shown_motion.min(motions.len() - 1)];
     let write_error = |error| ReportError::Write {
         path: dir.to_path_buf(),
         error,
@@ -68,7 +77,7 @@ pub fn write_report(
         json.as_bytes(),
     )?;
     let plots = write_plots(&mut folder, setup, motion, report)?;
-    let (spec, problems) = views::solve_scene(setup, motion, report, shapes)
+    let (spec, problems) = views::solve_scene(setup, motions, report, shapes)
         .map_err(|e| ReportError::Scene(e.to_string()))?;
     let notes = write_scene(&mut folder, &spec, problems)?;
     for file in view::view_files(setup, report, &spec)? {
@@ -257,7 +266,14 @@ fn write_plots(
     };
     let motion_name = report.shown_motion_file().unwrap_or("the motion");
     let title = format!("Joint angles of {motion_name} and the critical poses");
-    let svg = plots::joints_svg(motion, &report.segments, &title).map_err(plot("joints.svg"))?;
+    // The critical poses of the motion drawn (a cell's others are other motions' samples).
+    let mut segments = report.segments.clone();
+    for segment in &mut segments {
+        segment
+            .test_poses
+            .retain(|p| p.motion == report.shown_motion);
+    }
+    let svg = plots::joints_svg(motion, &segments, &title).map_err(plot("joints.svg"))?;
     add(
         folder,
         "joints.svg",

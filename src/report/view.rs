@@ -8,15 +8,17 @@
 //! plain script; everything else is in the folder, nothing is fetched from a network.
 
 use super::error::ReportError;
-use super::scene::{CableTint, INSTALLATION_ANIMATION, SceneSpec, to_glb};
-use super::views::TIGHT_SHARE;
+use super::scene::{
+    CableTint, GuideMark, INSTALLATION_ANIMATION, SceneAnimation, SceneSpec, to_glb,
+};
+use super::views::{TIGHT_SHARE, other_motion_animation};
 use super::worst::{limit_words, smallest_margin};
 use crate::escape::html as escape;
 use crate::motion_test::MotionTestReport;
 use crate::mounting::mounting_plan;
 use crate::pose::Pose;
 use crate::setup::Setup;
-use crate::solve::SolveReport;
+use crate::solve::{MotionVerdict, SolveReport};
 use base64::Engine as _;
 use nalgebra::Point3;
 use serde::Serialize;
@@ -45,31 +47,42 @@ pub struct ViewFile {
 struct ViewData {
     /// The scene, a `.glb` in base64.
     glb_base64: String,
-    /// The animation's name; `None` when there is nothing to animate.
-    animation: Option<String>,
     /// The name of the one-keyframe animation holding the installation pose; `None` when
     /// the scene has none.
     installation: Option<&'static str>,
+    /// One label per physical clamp.
+    clamps: Vec<ClampLabel>,
+    /// The motion tests the view plays, the one the report shows first; a cell's other
+    /// motions after it, in the cell's order (the page offers a choice when there are
+    /// several).
+    clips: Vec<Clip>,
+}
+
+/// A clamp label, and where it is at the installation pose.
+#[derive(Serialize)]
+struct ClampLabel {
+    /// `G2 = G3`, `G4 (gripper connector)`.
+    label: String,
+    /// Its position at the installation pose (glTF frame, m, y up); `None` without one.
+    installation_m: Option<[f64; 3]>,
+}
+
+/// One motion test as the view plays it.
+#[derive(Serialize)]
+struct Clip {
+    /// The motion's name and verdict, for the choice (`pick_and_place: holds`).
+    label: String,
+    /// The animation's name; `None` when there is nothing to animate.
+    animation: Option<String>,
     /// Keyframe times (s from the start of the animation); one 0 without animation.
     times_s: Vec<f64>,
-    /// One label per physical clamp, with its position at each keyframe.
-    clamps: Vec<ClampTrack>,
+    /// Per clamp label, its position at each keyframe (glTF frame, m, y up).
+    positions_m: Vec<Vec<[f64; 3]>>,
     /// The moment to jump to; `None` without a motion test.
     worst: Option<WorstMoment>,
     /// When the motion ends (s from the animation's start): the test runs on, the motion's
     /// last pose held, so that the cable settles.
     motion_end_s: Option<f64>,
-}
-
-/// A clamp label and where it is over time.
-#[derive(Serialize)]
-struct ClampTrack {
-    /// `G2 = G3`, `G4 (gripper connector)`.
-    label: String,
-    /// Per keyframe, its position in the glTF frame (m, y up).
-    positions_m: Vec<[f64; 3]>,
-    /// Its position at the installation pose (same frame); `None` without one.
-    installation_m: Option<[f64; 3]>,
 }
 
 /// The worst moment of the motion test.
@@ -97,33 +110,44 @@ pub fn view_files(
     let mut main_only = spec.clone();
     main_only.snapshots.clear();
     let glb = to_glb(&main_only).map_err(|e| ReportError::Scene(e.to_string()))?;
-    let frames: Vec<&[Pose]> = match &spec.animation {
-        Some(animation) => animation
-            .frames
-            .iter()
-            .map(|f| f.link_poses.as_slice())
-            .collect(),
-        None => vec![spec.main.link_poses.as_slice()],
-    };
+    let marks = clamp_marks(setup, report, spec);
+    let shown = report.motions.get(report.shown_motion);
+    let mut clips = vec![clip(
+        setup,
+        report,
+        spec,
+        &marks,
+        spec.animation.as_ref(),
+        shown,
+        report.motion_test.as_ref(),
+    )];
+    for animation in &spec.other_motions {
+        let verdict =
+            (report.motions.iter()).find(|m| other_motion_animation(&m.name) == animation.name);
+        let test = verdict.and_then(|m| m.motion_test.as_ref());
+        clips.push(clip(
+            setup,
+            report,
+            spec,
+            &marks,
+            Some(animation),
+            verdict,
+            test,
+        ));
+    }
     let data = ViewData {
         glb_base64: base64::engine::general_purpose::STANDARD.encode(glb),
-        animation: spec.animation.as_ref().map(|a| a.name.clone()),
         installation: spec.installation.as_ref().map(|_| INSTALLATION_ANIMATION),
-        times_s: spec
-            .animation
-            .as_ref()
-            .map_or_else(|| vec![0.0], |a| a.times_s.clone()),
-        clamps: clamp_tracks(setup, report, spec, &frames),
-        worst: report
-            .motion_test
-            .as_ref()
-            .and_then(|test| worst_moment(setup, report, test)),
-        // The animation starts at the motion's start.
-        motion_end_s: report
-            .motion_test
-            .as_ref()
-            .filter(|_| spec.animation.is_some())
-            .map(|test| test.motion_duration_s),
+        clamps: (marks.iter())
+            .map(|(label, mark)| ClampLabel {
+                label: label.clone(),
+                installation_m: spec
+                    .installation
+                    .as_ref()
+                    .map(|i| gltf_point(&i.link_poses, mark)),
+            })
+            .collect(),
+        clips,
     };
     let script = format!(
         "// The 3D view's scene and clamp labels, written by cable-dict; read by view.js.\n\
@@ -154,36 +178,64 @@ pub fn view_files(
     ])
 }
 
-/// One track per physical clamp of the shown candidate, labelled as the mounting plan names
-/// it (guides joined by a 0 mm piece are one clamp; a fitting carries its name).
-fn clamp_tracks(
+/// One motion test as the view plays it: `animation` (none: the still main scene), the
+/// motion's verdict and its `test`.
+fn clip(
     setup: &Setup,
     report: &SolveReport,
     spec: &SceneSpec<'_>,
-    frames: &[&[Pose]],
-) -> Vec<ClampTrack> {
+    marks: &[(String, &GuideMark)],
+    animation: Option<&SceneAnimation>,
+    verdict: Option<&MotionVerdict>,
+    test: Option<&MotionTestReport>,
+) -> Clip {
+    let frames: Vec<&[Pose]> = match animation {
+        Some(animation) => (animation.frames.iter())
+            .map(|f| f.link_poses.as_slice())
+            .collect(),
+        None => vec![spec.main.link_poses.as_slice()],
+    };
+    Clip {
+        label: verdict.map_or_else(String::new, |m| {
+            format!("{}: {}", m.name, m.verdict().replace('_', " "))
+        }),
+        animation: animation.map(|a| a.name.clone()),
+        times_s: animation.map_or_else(|| vec![0.0], |a| a.times_s.clone()),
+        positions_m: (marks.iter())
+            .map(|(_, mark)| frames.iter().map(|poses| gltf_point(poses, mark)).collect())
+            .collect(),
+        worst: test.and_then(|test| worst_moment(setup, report, test)),
+        // The animation starts at the motion's start.
+        motion_end_s: test
+            .filter(|_| animation.is_some())
+            .map(|t| t.motion_duration_s),
+    }
+}
+
+/// The guide mark of every physical clamp of the shown candidate, labelled as the mounting
+/// plan names it (guides joined by a 0 mm piece are one clamp; a fitting carries its name).
+fn clamp_marks<'s>(
+    setup: &Setup,
+    report: &SolveReport,
+    spec: &'s SceneSpec<'_>,
+) -> Vec<(String, &'s GuideMark)> {
     let Some(shown) = report.shown_candidate() else {
         return Vec::new();
     };
     let plan = mounting_plan(setup, &shown.path);
-    let marks = plan.clamps.iter().filter_map(|clamp| {
-        let mark = spec.guides.iter().find(|m| m.clamp == clamp.guides[0])?;
-        Some((clamp.name(), mark))
-    });
-    marks
-        .map(|(label, mark)| {
-            // The scene's root turns the robot's z up into glTF's y up.
-            let at = |poses: &[Pose]| {
-                let p = poses[mark.link] * mark.pose_in_link * Point3::origin();
-                [p.x, p.z, -p.y]
-            };
-            ClampTrack {
-                label,
-                positions_m: frames.iter().map(|poses| at(poses)).collect(),
-                installation_m: spec.installation.as_ref().map(|i| at(&i.link_poses)),
-            }
+    (plan.clamps.iter())
+        .filter_map(|clamp| {
+            let mark = spec.guides.iter().find(|m| m.clamp == clamp.guides[0])?;
+            Some((clamp.name(), mark))
         })
         .collect()
+}
+
+/// Where `mark` is with the links at `poses`, in the glTF frame: the scene's root turns the
+/// robot's z up into glTF's y up.
+fn gltf_point(poses: &[Pose], mark: &GuideMark) -> [f64; 3] {
+    let p = poses[mark.link] * mark.pose_in_link * Point3::origin();
+    [p.x, p.z, -p.y]
 }
 
 /// The report's worst moment of the motion test ([`smallest_margin`]), from the
@@ -257,13 +309,15 @@ over the motion test; play it, or drag the slider to any moment (the red tick is
 <i>Worst moment</i> turns the camera to it and rings the spot on the cable in red; \
 <i>Installation pose</i> shows the robot where the cable is laid untwisted, with its shape there. \
 The test runs on after the motion ends, its last pose held, so that the cable comes to rest: the \
-time under the slider says where the motion ends.</p>\n\
+time under the slider says where the motion ends. For a cell of several motions, the list before \
+the buttons picks the motion played.</p>\n\
 <p class=\"view-legend\">{} (closer to the robot or to itself than one cable diameter, or within \
 {:.0} % of the bend-radius or stretch limit) {} {} <span class=\"swatch ring\"></span>the worst \
 spot</p>\n\
 <model-viewer id=\"view\" camera-controls camera-orbit=\"-40deg 70deg auto\" animation-crossfade-duration=\"0\" loading=\"eager\" interaction-prompt=\"none\" shadow-intensity=\"0\" \
 exposure=\"0.6\" alt=\"the robot and the cable in 3D\"></model-viewer>\n\
-<div class=\"view-controls\"><button id=\"view-install\" type=\"button\">Installation pose</button>\
+<div class=\"view-controls\"><select id=\"view-motion\" aria-label=\"motion\" hidden></select>\
+<button id=\"view-install\" type=\"button\">Installation pose</button>\
 <button id=\"view-play\" type=\"button\">Play</button>\
 <span class=\"view-track\"><input id=\"view-time\" type=\"range\" min=\"0\" max=\"0\" value=\"0\" \
 aria-label=\"time\"><span id=\"view-worst-tick\"></span></span>\

@@ -67,6 +67,7 @@ fn still_scene<'a>(setup: &'a Setup, path: Option<&CablePath>, main: PoseScene) 
         main,
         guides: path.map(|p| guide_marks(setup, p)).unwrap_or_default(),
         animation: None,
+        other_motions: Vec::new(),
         snapshots: Vec::new(),
         tints: Vec::new(),
         installation: None,
@@ -91,10 +92,11 @@ pub fn sites_scene(setup: &Setup) -> Result<SceneSpec<'_>, JointVectorError> {
 /// without a static equilibrium at a pose.
 pub fn solve_scene<'a>(
     setup: &'a Setup,
-    motion: &Motion,
+    motions: &[&Motion],
     report: &SolveReport,
     shapes: &ReportShapes,
 ) -> Result<(SceneSpec<'a>, Vec<String>), JointVectorError> {
+    let motion = motions[report.shown_motion.min(motions.len() - 1)];
     let path = report.shown_candidate().map(|c| &c.path);
     let (main, mut problems) = match (path, &shapes.nearest_miss) {
         (None, Some(miss)) => (pose_of(miss), Vec::new()),
@@ -104,6 +106,22 @@ pub fn solve_scene<'a>(
     spec.tints = margin_tints(setup, report);
     if let Some(test) = &report.motion_test {
         spec.animation = motion_test_animation(setup, motion, test)?;
+    }
+    // A cell's other motions, one animation each, when the one shown has one.
+    if spec.animation.is_some() && motions.len() > 1 {
+        for (i, (verdict, m)) in report.motions.iter().zip(motions).enumerate() {
+            let Some(test) = verdict
+                .motion_test
+                .as_ref()
+                .filter(|_| i != report.shown_motion)
+            else {
+                continue;
+            };
+            if let Some(mut animation) = motion_test_animation(setup, m, test)? {
+                animation.name = other_motion_animation(&verdict.name);
+                spec.other_motions.push(animation);
+            }
+        }
     }
     if let Some(animation) = &spec.animation {
         // The animated cable is the simulated one: it starts from the same equilibrium.
@@ -133,6 +151,11 @@ pub fn solve_scene<'a>(
     }
     lay_out_snapshots(&mut spec);
     Ok((spec, problems))
+}
+
+/// The name of the animation of a cell's motion `name` other than the one shown.
+pub fn other_motion_animation(name: &str) -> String {
+    format!("motion test: {name}")
 }
 
 /// Whether two scenes have the same cable lines with the same node counts.

@@ -53,6 +53,9 @@ pub struct NearestMiss {
     pub value: f64,
     /// The limit's value, in the same unit.
     pub limit_value: f64,
+    /// Which motion of a cell (absent for the first, and for a single motion).
+    #[serde(skip_serializing_if = "crate::json::is_zero")]
+    pub motion: usize,
     /// Time in the motion (s).
     pub time_s: f64,
     /// Why that pose was tested (e.g. `joint_5 max`).
@@ -245,6 +248,7 @@ fn nearest_miss(
         limit: miss.rejection,
         value,
         limit_value,
+        motion: pose.motion,
         time_s: pose.time_s,
         pose: pose.reason.clone(),
         from_start_clamp_mm: miss.at_m.is_finite().then_some(miss.at_m * 1e3),

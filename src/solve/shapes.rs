@@ -24,6 +24,9 @@ pub enum ShapeError {
     /// A joint vector does not fit the robot.
     #[error(transparent)]
     Kinematics(#[from] JointVectorError),
+    /// No motion, or a pose of a motion that was not given.
+    #[error("the report's poses name a motion not given")]
+    NoMotion,
 }
 
 /// One segment's static centreline.
@@ -50,6 +53,8 @@ pub struct PoseShape {
 /// reason that chose it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CriticalPose {
+    /// Which motion of a cell (0 for a single motion).
+    pub motion: usize,
     /// Index of the motion sample.
     pub sample: usize,
     /// Time of the sample in the motion (s).
@@ -73,12 +78,17 @@ pub struct ReportShapes {
 }
 
 impl ReportShapes {
-    /// Solves the shapes of `report`'s shown candidate for `setup` over `motion`.
+    /// Solves the shapes of `report`'s shown candidate for `setup` over `motions` (one per
+    /// `report.motions`, in order; the first and the nearest miss's at the shown one's
+    /// poses, each critical pose at its own motion's).
     pub fn of(
         setup: &Setup,
-        motion: &Motion,
+        motions: &[&Motion],
         report: &SolveReport,
     ) -> Result<ReportShapes, ShapeError> {
+        let Some(&motion) = motions.get(report.shown_motion).or(motions.first()) else {
+            return Err(ShapeError::NoMotion);
+        };
         let path = report.shown_candidate().map(|c| &c.path);
         let evaluator = Evaluator::new(setup, ConnectMethod::Hermite)?;
         let at = |joints: &[f64]| -> Result<PoseShape, ShapeError> {
@@ -94,7 +104,7 @@ impl ReportShapes {
         };
         let nearest_miss = match path {
             Some(_) => None,
-            None => nearest_miss_shape(&evaluator, motion, report).transpose()?,
+            None => nearest_miss_shape(&evaluator, motions, report).transpose()?,
         };
         let installation = match (path, &setup.installation) {
             (Some(path), Some(installation)) => Some(static_shape(
@@ -104,9 +114,16 @@ impl ReportShapes {
             )),
             _ => None,
         };
+        let sample = |pose: &CriticalPose| {
+            let motion = motions.get(pose.motion).ok_or(ShapeError::NoMotion)?;
+            motion
+                .samples()
+                .get(pose.sample)
+                .ok_or(ShapeError::NoMotion)
+        };
         let critical = critical_poses(report)
             .iter()
-            .map(|pose| at(&motion.samples()[pose.sample]))
+            .map(|pose| at(sample(pose)?))
             .collect::<Result<_, _>>()?;
         Ok(ReportShapes {
             first: at(&motion.samples()[0])?,
@@ -154,11 +171,14 @@ fn static_shape(evaluator: &Evaluator<'_>, path: &CablePath, link_poses: Vec<Pos
 /// equilibrium (no cable when it has none); `None` without a nearest miss.
 fn nearest_miss_shape(
     evaluator: &Evaluator<'_>,
-    motion: &Motion,
+    motions: &[&Motion],
     report: &SolveReport,
 ) -> Option<Result<PoseShape, ShapeError>> {
     let setup = evaluator.setup();
     let (m, _, miss) = first_nearest_miss(report)?;
+    let Some(motion) = motions.get(miss.motion) else {
+        return Some(Err(ShapeError::NoMotion));
+    };
     let (a, b) = setup.segment_guides(m);
     let index = |g: usize, name: &str| setup.guides[g].configuration_index(name);
     let pv = Pv {
@@ -195,14 +215,15 @@ pub fn first_nearest_miss(report: &SolveReport) -> Option<(usize, &str, &Nearest
     })
 }
 
-/// The inter-link segments' critical poses, one per motion sample, in sample order.
+/// The inter-link segments' critical poses, one per motion sample, in (motion, sample) order.
 pub fn critical_poses(report: &SolveReport) -> Vec<CriticalPose> {
-    let mut by_sample: BTreeMap<usize, CriticalPose> = BTreeMap::new();
+    let mut by_sample: BTreeMap<(usize, usize), CriticalPose> = BTreeMap::new();
     for segment in report.segments.iter().filter(|s| s.kind == "inter-link") {
         for pose in &segment.test_poses {
             by_sample
-                .entry(pose.sample)
+                .entry((pose.motion, pose.sample))
                 .or_insert_with(|| CriticalPose {
+                    motion: pose.motion,
                     sample: pose.sample,
                     time_s: pose.time_s,
                     reasons: Vec::new(),

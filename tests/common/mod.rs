@@ -76,8 +76,9 @@ pub fn write_report(
     report: &cable_dict::solve::SolveReport,
 ) -> Result<Vec<std::path::PathBuf>, String> {
     let shapes =
-        cable_dict::solve::ReportShapes::of(setup, motion, report).map_err(|e| e.to_string())?;
-    cable_dict::report::write_report(dir, setup, motion, report, &shapes).map_err(|e| e.to_string())
+        cable_dict::solve::ReportShapes::of(setup, &[motion], report).map_err(|e| e.to_string())?;
+    cable_dict::report::write_report(dir, setup, &[motion], report, &shapes)
+        .map_err(|e| e.to_string())
 }
 
 /// The dictionary `cable-dict build` makes of the setup at `path` (from the package root)

@@ -218,6 +218,7 @@ fn write_scene(
             guide("end guide", &args.end),
         ],
         animation: None,
+        other_motions: Vec::new(),
         snapshots: Vec::new(),
         tints: Vec::new(),
         installation: None,

@@ -27,12 +27,7 @@ pub(super) fn check_spec(spec: &SceneSpec<'_>) -> Result<(), SceneError> {
             &guide.pose_in_link,
         )?;
     }
-    for animation in spec
-        .animation
-        .iter()
-        .cloned()
-        .chain(spec.installation_animation())
-    {
+    for animation in spec.animations() {
         check_animation(&animation, spec)?;
     }
     for snapshot in &spec.snapshots {

@@ -54,12 +54,7 @@ pub fn to_glb(spec: &SceneSpec<'_>) -> Result<Vec<u8>, SceneError> {
     for snapshot in &spec.snapshots {
         graph::snapshot(&mut builder, spec, snapshot, &meshes, &mut materials, root)?;
     }
-    let animations = spec
-        .animation
-        .iter()
-        .cloned()
-        .chain(spec.installation_animation());
-    for animation in animations {
+    for animation in spec.animations() {
         animation::add_animation(&mut builder, &animation, &links, &lines);
     }
     builder.finish(vec![root])
@@ -105,6 +100,9 @@ pub struct SceneSpec<'a> {
     pub guides: Vec<GuideMark>,
     /// Robot and cable over time (the motion test); `None` when there is nothing to animate.
     pub animation: Option<SceneAnimation>,
+    /// The motion tests of a cell's other motions, one animation each (names distinct from
+    /// `animation`'s), moving the same main copy.
+    pub other_motions: Vec<SceneAnimation>,
     /// Robot and cable at the installation pose, written as a still animation named
     /// [`INSTALLATION_ANIMATION`] that moves the main copy there (so that a viewer can show
     /// it); same cable lines and node counts as [`SceneSpec::main`]. `None`: not shown.
@@ -242,6 +240,13 @@ pub struct SceneAnimation {
 pub const INSTALLATION_ANIMATION: &str = "installation pose";
 
 impl SceneSpec<'_> {
+    /// Every animation the scene writes: the motion test, the other motions', the
+    /// installation pose.
+    pub fn animations(&self) -> impl Iterator<Item = SceneAnimation> + '_ {
+        let motions = self.animation.iter().chain(&self.other_motions).cloned();
+        motions.chain(self.installation_animation())
+    }
+
     /// The installation pose as the animation the scene writes: the pose held for one
     /// second (two equal keyframes: a clip of no duration is not played by every viewer).
     pub fn installation_animation(&self) -> Option<SceneAnimation> {

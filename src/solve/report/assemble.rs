@@ -561,6 +561,7 @@ pub fn pose_summary(pose: &TestPose, motion: &Motion) -> PoseSummary {
         .map(|(v, &rotary)| if rotary { v.to_degrees() } else { v * 1e3 })
         .collect();
     PoseSummary {
+        motion: pose.motion,
         sample: pose.sample,
         time_s: pose.time_s,
         joints,

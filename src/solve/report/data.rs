@@ -182,6 +182,9 @@ pub struct SegmentReport {
 /// A test pose, without its link poses.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PoseSummary {
+    /// Which motion of a cell (absent for the first, and for a single motion).
+    #[serde(skip_serializing_if = "crate::json::is_zero")]
+    pub motion: usize,
     /// Motion sample.
     pub sample: usize,
     /// Time (s).
