@@ -97,6 +97,6 @@ pub use critical::{
 pub use error::MotionError;
 pub use generate::{Generated, WaypointTiming};
 pub use profile::{Profile, SyncMove};
-pub use ranges::{DEFAULT_TIME_TO_FULL_SPEED_S, JointRanges, STROKE_END_DWELL_S};
+pub use ranges::{DEFAULT_TIME_TO_FULL_SPEED_S, JointRanges, MAX_STROKE_S, STROKE_END_DWELL_S};
 pub use sampled::Motion;
 pub use waypoints::{Acceleration, Waypoint, WaypointFile};

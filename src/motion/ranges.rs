@@ -31,6 +31,10 @@ pub const DEFAULT_TIME_TO_FULL_SPEED_S: f64 = 0.3;
 /// stop, and the motion test sees it.
 pub const STROKE_END_DWELL_S: f64 = 1.0;
 
+/// The longest stroke a stress motion may take (s): a URDF speed limit so low that crossing
+/// the range takes longer is refused rather than sampled.
+pub const MAX_STROKE_S: f64 = 600.0;
+
 /// The box of joint values, one interval per actuated joint (rad or m, joint-vector order).
 #[derive(Debug, Clone, PartialEq)]
 pub struct JointRanges {
@@ -186,6 +190,18 @@ impl JointRanges {
     /// middle; then every ranged axis together; a rest of [`STROKE_END_DWELL_S`] at each end.
     pub fn stress_motions(&self, robot: &Robot, sample_rate_hz: f64) -> Result<Cell, MotionError> {
         let ranged: Vec<usize> = (0..self.ranges.len()).filter(|&j| self.named[j]).collect();
+        for &j in &ranged {
+            let joint = robot.actuated_joint(j);
+            let speed = joint.limits.and_then(|l| l.velocity).unwrap_or(0.0);
+            let stroke_s = (self.ranges[j][1] - self.ranges[j][0]) / speed;
+            if stroke_s.is_nan() || stroke_s > MAX_STROKE_S {
+                return Err(MotionError::data(format!(
+                    "`{}`: at its URDF speed limit ({speed}) its range takes {stroke_s:.0} s to \
+                     cross, more than {MAX_STROKE_S} s",
+                    joint.name
+                )));
+            }
+        }
         let centre = self.centre();
         let deg = |j: usize, v: f64| match robot.actuated_joint(j).kind.is_rotary() {
             true => v.to_degrees(),
@@ -305,6 +321,29 @@ mod tests {
         }
     }
 
+    /// A URDF speed limit so low that a stroke would take hours is refused before a sample
+    /// is made.
+    #[test]
+    fn a_stroke_longer_than_the_bound_is_refused() {
+        let (setup, _) = narrow_pick_and_place();
+        let mut robot = setup.robot.clone();
+        let j4 = robot.actuated_index("joint_4").expect("joint_4");
+        let joint = robot.actuated[j4];
+        if let Some(limits) = robot.joints[joint].limits.as_mut() {
+            limits.velocity = Some(1e-4);
+        }
+        let file = write("slow.toml", "[joints]\njoint_4 = [-90, 90]\n");
+        let ranges = JointRanges::from_file(&robot, &file).unwrap_or_else(|e| panic!("{e}"));
+        let error = ranges
+            .stress_motions(&robot, 100.0)
+            .expect_err("refused")
+            .to_string();
+        assert!(
+            error.contains("joint_4") && error.contains("more than 600 s"),
+            "{error}"
+        );
+    }
+
     /// Each stress motion drives its axes from the box's minimum to its maximum and back at
     /// the URDF speed limit, everything else at the middle; a trapezoidal move of distance d
     /// at speed v reaching it in t takes d / v + t (d ≥ v t).
@@ -368,6 +407,7 @@ mod tests {
                 })
                 .fold(0.0, f64::max);
             let expected_s = 3.0 * STROKE_END_DWELL_S + 2.0 * move_s;
+            assert!(expected_s < MAX_STROKE_S);
             assert!(
                 (m.duration_s() - expected_s).abs() < 0.011,
                 "{}: {} s against {expected_s} s",

@@ -410,11 +410,11 @@ impl MeasuredMounting {
         place: &dyn Fn(usize, usize) -> Option<LinkPlace>,
     ) -> String {
         let entry = &self.entries[k].entry;
-        let MeasuredEntry::Clamp { link, .. } = entry else {
-            let MeasuredEntry::Fitting { name } = entry else {
-                unreachable!("an entry is a clamp or a fitting")
-            };
-            return format!("the setup fixes no fitting `{name}` after the clamps before it");
+        let link = match entry {
+            MeasuredEntry::Clamp { link, .. } => link,
+            MeasuredEntry::Fitting { name } => {
+                return format!("the setup fixes no fitting `{name}` after the clamps before it");
+            }
         };
         let on_link: Vec<usize> = (from..setup.guides.len())
             .filter(|&g| setup.robot.links[setup.guides[g].link].name == *link)
