@@ -192,9 +192,14 @@ fn write_worst(
     test: &MotionTestReport,
     plan: &MountingPlan,
 ) -> fmt::Result {
+    // For a cell, the motion this test is over: the one the path is judged by.
+    let over = match report.motions.get(report.shown_motion) {
+        Some(m) if report.motions.len() > 1 => m.name.as_str(),
+        _ => "the motion",
+    };
     writeln!(
         f,
-        "\nover the motion (simulated): {}",
+        "\nover {over} (simulated): {}",
         verdict_words(&report.limits(), test, Some(plan))
     )?;
     let rows = worst_rows(&report.limits(), test, Some(plan));
@@ -212,8 +217,8 @@ fn write_worst(
     if !loads.is_empty() {
         writeln!(
             f,
-            "\ntwist of each piece (from the cable as laid) and loads on each clamp, over the \
-             motion:"
+            "\ntwist of each piece (from the cable as laid) and loads on each clamp, over \
+             {over}:"
         )?;
         let width = loads
             .iter()

@@ -66,17 +66,23 @@ impl SolveReport {
             1 => Vec::new(),
             _ => binding(setup, &motions),
         };
+        // For a cell, the words speak of every one of its motions.
+        let explanation = explanation(
+            status,
+            sets,
+            &candidates,
+            &outcome.stop,
+            &static_sweep,
+            unsolved.as_ref(),
+            setup,
+        );
+        let explanation = match cell.len() {
+            1 => explanation,
+            _ => explanation.replace("over the motion", "over every motion of the cell"),
+        };
         SolveReport {
             status,
-            explanation: explanation(
-                status,
-                sets,
-                &candidates,
-                &outcome.stop,
-                &static_sweep,
-                unsolved.as_ref(),
-                setup,
-            ),
+            explanation,
             inputs: inputs(setup, cell, options),
             optimal: best.as_ref().map(|p| named_path(setup, p)),
             mounting: best.as_ref().map(|p| mounting_plan(setup, p)),
