@@ -139,6 +139,14 @@ pub(crate) fn file_type(meta: &std::fs::Metadata) -> &'static str {
     }
 }
 
+/// Whether `path` is a `.toml` file of `kind` with a line that is exactly `table` (e.g.
+/// `[[motions]]`): how a command tells a cell, a mounting or a setup file apart before it
+/// parses one. Unreadable files are none of them.
+pub fn is_toml_with(path: &Path, kind: FileKind, table: &str) -> bool {
+    let toml = path.extension().is_some_and(|e| e == "toml");
+    toml && read_text(path, kind).is_ok_and(|text| text.lines().any(|l| l.trim() == table))
+}
+
 /// 1-based line number of byte `offset` in `text` (the end of the text when beyond it): how
 /// every input error names its place.
 pub(crate) fn line_of(text: &str, offset: usize) -> usize {

@@ -131,9 +131,7 @@ pub fn setup_and_motions<'a>(
 
 /// A `.toml` with `[[guides]]`: a setup where a motion belongs.
 fn is_setup_like(path: &Path) -> bool {
-    let toml = path.extension().is_some_and(|e| e == "toml");
-    let text = || cable_dict::input::read_text(path, cable_dict::input::SETUP);
-    toml && text().is_ok_and(|t| t.lines().any(|l| l.trim() == "[[guides]]"))
+    cable_dict::input::is_toml_with(path, cable_dict::input::SETUP, "[[guides]]")
 }
 
 /// A motion CSV or a cell file (`[[motions]]`), not a setup.

@@ -70,9 +70,7 @@ impl Cell {
     /// Whether `path` reads as a cell file: a `.toml` with a `[[motions]]` table (a setup or
     /// a waypoint file has none).
     pub fn is_cell_file(path: &Path) -> bool {
-        let toml = path.extension().is_some_and(|e| e == "toml");
-        toml && crate::input::read_text(path, crate::input::WAYPOINTS)
-            .is_ok_and(|text| text.lines().any(|l| l.trim() == "[[motions]]"))
+        crate::input::is_toml_with(path, crate::input::WAYPOINTS, "[[motions]]")
     }
 
     /// A cell of one motion, named after its file (or `motion`).

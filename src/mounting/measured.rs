@@ -149,9 +149,7 @@ struct RawClamp {
 impl MeasuredMounting {
     /// Whether `path` reads as a mounting file (a `.toml` with `[[clamps]]`).
     pub fn is_mounting_file(path: &Path) -> bool {
-        let toml = path.extension().is_some_and(|e| e == "toml");
-        toml && crate::input::read_text(path, crate::input::SETUP)
-            .is_ok_and(|text| text.lines().any(|l| l.trim() == "[[clamps]]"))
+        crate::input::is_toml_with(path, crate::input::SETUP, "[[clamps]]")
     }
 
     /// Reads and checks a mounting file (what can be checked without its setup).

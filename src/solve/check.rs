@@ -61,10 +61,7 @@ pub fn check_mounting(
         path: named_path(setup, path),
         mounting: mounting_plan(setup, path),
         length_mm: path.total_sub_segments() as f64 * pitch_mm,
-        binding: match cell.len() {
-            1 => Vec::new(),
-            _ => binding(setup, &motions),
-        },
+        binding: binding(setup, &motions),
         motions,
         thresholds: setup.thresholds,
         sub_segment_pitch_mm: pitch_mm,

@@ -62,10 +62,7 @@ impl SolveReport {
         let runs = shown.map_or(&[][..], |k| tried[k].runs.as_slice());
         let shown_motion = shown.and_then(|k| tried[k].judged).unwrap_or(0);
         let motions = motion_verdicts(cell, runs);
-        let binding = match cell.len() {
-            1 => Vec::new(),
-            _ => binding(setup, &motions),
-        };
+        let binding = binding(setup, &motions);
         // For a cell, the words speak of every one of its motions.
         let explanation = explanation(
             status,
@@ -382,8 +379,12 @@ pub(in crate::solve) fn motion_verdicts(
 }
 
 /// Per piece of the path the motions were run with, the motion with its smallest bend
-/// radius and the one with its lowest clearance (first motion on ties).
+/// radius and the one with its lowest clearance (first motion on ties); none for a single
+/// motion, which binds everything.
 pub(in crate::solve) fn binding(setup: &Setup, motions: &[MotionVerdict]) -> Vec<PieceBinding> {
+    if motions.len() < 2 {
+        return Vec::new();
+    }
     let t = &setup.thresholds;
     let pieces = (motions.iter())
         .filter_map(|m| m.motion_test.as_ref())
