@@ -134,6 +134,7 @@ fn stored_margins_match_the_attachment_test_at_a_pose_with_that_gravity() {
         motion: 0,
         sample: 0,
         time_s: 0.0,
+        grid: false,
         joints: joints.to_vec(),
         reason: "test".into(),
         link_poses: link_poses.clone(),

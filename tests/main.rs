@@ -35,6 +35,7 @@ mod motion_consistency;
 mod motion_test;
 mod mounting;
 mod optional_clamps;
+mod ranges;
 mod real_cables;
 mod real_meshes;
 mod report;

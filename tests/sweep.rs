@@ -36,6 +36,7 @@ fn sample_pose(setup: &Setup, motion: &Motion, k: usize) -> TestPose {
         motion: 0,
         sample: k,
         time_s: motion.times_s()[k],
+        grid: false,
         link_poses: setup.robot.link_poses(&joints).unwrap(),
         joints,
         reason: String::new(),

@@ -12,7 +12,9 @@
 //!   rule, one arbitrary pose (the first sample), stays available for comparison
 //!   ([`IntraLinkCriterion::FirstPose`]).
 
-use crate::motion::{Cell, CriticalPose, Motion, MotionError, critical_poses, traversed_joints};
+use crate::motion::{
+    Cell, CriticalPose, Motion, MotionError, RangeGrid, critical_poses, traversed_joints,
+};
 use crate::pose::Pose;
 use crate::setup::Setup;
 use nalgebra::Vector3;
@@ -48,6 +50,9 @@ pub struct TestPose {
     pub sample: usize,
     /// Time of the sample (s).
     pub time_s: f64,
+    /// A pose of an axis-range grid (a list of poses, its "time" the pose's number), not a
+    /// moment of a motion.
+    pub grid: bool,
     /// Joint vector (rad / m).
     pub joints: Vec<f64>,
     /// Why this pose, e.g. `joint_4 max` or `initial pose`.
@@ -94,38 +99,44 @@ impl SegmentPoses {
         motion: &Motion,
         criterion: IntraLinkCriterion,
     ) -> Result<SegmentPoses, MotionError> {
-        SegmentPoses::for_motions(setup, &[motion], &[], criterion)
+        let tested = Tested {
+            motion,
+            grid: None,
+            name: None,
+        };
+        SegmentPoses::for_motions(setup, &[tested], criterion)
     }
 
     /// The test poses of every motion of `cell`: each inter-link segment's critical poses of
     /// every motion (a pose another motion already has is tested once), each intra-link
     /// segment's gravity directions over all of them (to [`GRAVITY_RESOLUTION_DEG`]). A piece
-    /// that holds at these poses holds at every motion's.
+    /// that holds at these poses holds at every motion's. An axis-range grid of the cell
+    /// ([`CellMotion::grid`](crate::motion::CellMotion::grid)) adds each segment's own grid
+    /// poses (an intra-link segment's, the directions not met yet).
     pub fn for_cell(
         setup: &Setup,
         cell: &Cell,
         criterion: IntraLinkCriterion,
     ) -> Result<SegmentPoses, MotionError> {
-        let motions: Vec<&Motion> = cell.motions().collect();
-        let names: Vec<&str> = match cell.len() {
-            1 => Vec::new(),
-            _ => cell.motions.iter().map(|m| m.name.as_str()).collect(),
-        };
-        SegmentPoses::for_motions(setup, &motions, &names, criterion)
+        let motions: Vec<Tested<'_>> = cell
+            .motions
+            .iter()
+            .map(|m| Tested {
+                motion: &m.motion,
+                grid: m.grid.as_ref(),
+                name: (cell.len() > 1).then_some(m.name.as_str()),
+            })
+            .collect();
+        SegmentPoses::for_motions(setup, &motions, criterion)
     }
 
-    /// The test poses of `motions`, reasons prefixed by `names` (when given, one per motion).
+    /// The test poses of `motions`.
     fn for_motions(
         setup: &Setup,
-        motions: &[&Motion],
-        names: &[&str],
+        motions: &[Tested<'_>],
         criterion: IntraLinkCriterion,
     ) -> Result<SegmentPoses, MotionError> {
         let robot = &setup.robot;
-        let named = |i: usize, reason: String| match names.get(i) {
-            Some(name) => format!("{name}: {reason}"),
-            None => reason,
-        };
         let mut traversed = Vec::with_capacity(setup.segment_count());
         let mut poses = Vec::with_capacity(setup.segment_count());
         for m in 0..setup.segment_count() {
@@ -133,36 +144,103 @@ impl SegmentPoses {
             let link_a = &robot.links[setup.guides[a].link].name;
             let link_b = &robot.links[setup.guides[b].link].name;
             let joints = traversed_joints(robot, link_a, link_b)?;
-            if setup.is_intra_link(m) {
-                let mut chosen = Vec::new();
-                for (i, motion) in motions.iter().enumerate() {
-                    let before = chosen.len();
-                    intra_link_poses(setup, motion, m, criterion, &mut chosen)?;
-                    for pose in &mut chosen[before..] {
-                        pose.motion = i;
-                        pose.reason = named(i, std::mem::take(&mut pose.reason));
+            let mut union: Vec<TestPose> = Vec::new();
+            for (i, tested) in motions.iter().enumerate() {
+                let before = union.len();
+                match (tested.grid, setup.is_intra_link(m)) {
+                    (Some(grid), _) => grid_poses(setup, tested.motion, grid, m, &mut union)?,
+                    (None, true) => {
+                        intra_link_poses(setup, tested.motion, m, criterion, &mut union)?
                     }
-                }
-                poses.push(chosen);
-            } else {
-                let mut union: Vec<TestPose> = Vec::new();
-                for (i, motion) in motions.iter().enumerate() {
-                    for pose in critical_poses(motion, &joints)? {
-                        if union.iter().any(|p| p.joints == pose.joints) {
-                            continue;
+                    (None, false) => {
+                        for pose in critical_poses(tested.motion, &joints)? {
+                            if union.iter().all(|p| p.joints != pose.joints) {
+                                union.push(test_pose(setup, pose, None)?);
+                            }
                         }
-                        let mut pose = test_pose(setup, pose, None)?;
-                        pose.motion = i;
-                        pose.reason = named(i, pose.reason);
-                        union.push(pose);
                     }
                 }
-                poses.push(union);
+                for pose in &mut union[before..] {
+                    pose.motion = i;
+                    if let Some(name) = tested.name {
+                        pose.reason = format!("{name}: {}", pose.reason);
+                    }
+                }
             }
+            poses.push(union);
             traversed.push(joints);
         }
         Ok(SegmentPoses { traversed, poses })
     }
+}
+
+/// One motion of a cell as its test poses are chosen.
+struct Tested<'c> {
+    motion: &'c Motion,
+    /// `Some`: an axis-range grid, each segment tested at its own poses.
+    grid: Option<&'c RangeGrid>,
+    /// Its name, to prefix reasons with (a cell of several motions).
+    name: Option<&'c str>,
+}
+
+/// Adds to `chosen` segment `m`'s poses of the axis-range grid `grid` (samples of `motion`)
+/// that are not there yet: an inter-link segment's every pose (clearance against every
+/// link), an intra-link segment's directions not within [`GRAVITY_RESOLUTION_DEG`] of one
+/// chosen (clearance against its own link).
+fn grid_poses(
+    setup: &Setup,
+    motion: &Motion,
+    grid: &RangeGrid,
+    m: usize,
+    chosen: &mut Vec<TestPose>,
+) -> Result<(), MotionError> {
+    let robot = &setup.robot;
+    let intra_link = setup.is_intra_link(m);
+    let link = setup.guides[setup.segment_guides(m).0].body;
+    let gravity = &setup.gravity_m_s2;
+    let resolution = GRAVITY_RESOLUTION_DEG.to_radians().cos();
+    let mut directions: Vec<Vector3<f64>> = match intra_link {
+        true => chosen
+            .iter()
+            .map(|p| p.gravity_in_link(link, gravity))
+            .collect(),
+        false => Vec::new(),
+    };
+    let own = grid.per_segment.get(m).map_or(&[][..], Vec::as_slice);
+    let gridded = grid.gridded.get(m).map_or(&[][..], Vec::as_slice);
+    for &k in own {
+        let joints = &motion.samples()[k];
+        if !intra_link && chosen.iter().any(|p| &p.joints == joints) {
+            continue;
+        }
+        let places: Vec<String> = (gridded.iter())
+            .map(|&j| {
+                let joint = robot.actuated_joint(j);
+                let (per_si, unit) = joint.kind.display_unit();
+                format!("{} {:.1} {unit}", joint.name, joints[j] * per_si)
+            })
+            .collect();
+        let reason = format!("pose {k} ({})", places.join(", "));
+        let mut pose = test_pose(
+            setup,
+            motion_sample(motion, k, &reason),
+            intra_link.then_some(link),
+        )?;
+        pose.grid = true;
+        if intra_link {
+            let down = pose.gravity_in_link(link, gravity);
+            if directions.iter().any(|d| d.dot(&down) >= resolution) {
+                continue;
+            }
+            directions.push(down);
+            pose.reason = format!(
+                "{reason} (gravity ({:.2}, {:.2}, {:.2}) in {}'s frame)",
+                down.x, down.y, down.z, robot.links[link].name
+            );
+        }
+        chosen.push(pose);
+    }
+    Ok(())
 }
 
 /// Adds to `chosen` the test poses of intra-link segment `m` under `criterion` over
@@ -237,6 +315,7 @@ fn test_pose(
         motion: 0,
         sample: pose.sample,
         time_s: pose.time_s,
+        grid: false,
         joints: pose.joints,
         reason: pose.reason,
         link_poses,
@@ -272,6 +351,7 @@ mod tests {
                     file: None,
                     cycles_per_hour: None,
                     motion: m.clone(),
+                    grid: None,
                 })
                 .collect(),
         };

@@ -3,12 +3,12 @@
 
 use super::output::{Failure, emit, print_json};
 use super::result_file::ResultFile;
-use cable_dict::motion::Cell;
+use cable_dict::motion::{Cell, JointRanges};
 use cable_dict::motion_test::EngineKind;
 use cable_dict::mounting::MeasuredMounting;
 use cable_dict::path::CablePath;
 use cable_dict::setup::Setup;
-use cable_dict::solve::{SolveOptions, check_mounting};
+use cable_dict::solve::{DEFAULT_GRID_STEP_DEG, SolveOptions, check_mounting, check_ranges};
 use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
@@ -20,8 +20,17 @@ pub struct Args {
     #[arg(value_name = "RESULT.json|MOUNTING.toml")]
     mounting: PathBuf,
     /// The motions to check it against: motion CSVs, or cell files naming them.
-    #[arg(value_name = "MOTION.csv|CELL.toml", num_args = 1.., required = true)]
+    #[arg(value_name = "MOTION.csv|CELL.toml", num_args = 1.., required_unless_present = "ranges")]
     motions: Vec<PathBuf>,
+    /// Check it over axis ranges (a ranges file as `solve --ranges` takes): each ranged axis
+    /// end to end at its URDF speed, alone and together, and every piece at a grid of the
+    /// box's poses (--grid-step-deg), solved one by one.
+    #[arg(long, value_name = "RANGES.toml")]
+    ranges: Option<PathBuf>,
+    /// The step of --ranges' grid (degrees; millimetres for a prismatic joint). The default
+    /// is a quarter of `solve --ranges`' step: an independent check of its answer.
+    #[arg(long, value_name = "DEG", default_value_t = DEFAULT_GRID_STEP_DEG / 4.0, requires = "ranges")]
+    grid_step_deg: f64,
     /// The setup the mounting was designed with; default: the one the result names (as
     /// written, else beside the result). Its content must be the one solved (same hash).
     #[arg(long, value_name = "SETUP.toml")]
@@ -44,12 +53,24 @@ pub fn run(args: Args) -> Result<(), Failure> {
         true => measured(&args)?,
         false => from_result(&args)?,
     };
-    let cell = Cell::from_files(&setup.robot, &args.motions).map_err(Failure::input)?;
+    let given = (!args.motions.is_empty())
+        .then(|| Cell::from_files(&setup.robot, &args.motions))
+        .transpose()
+        .map_err(Failure::input)?;
     let options = SolveOptions {
         engine: read.engine,
         ..SolveOptions::default()
     };
-    let check = check_mounting(&setup, &path, &cell, &options).map_err(Failure::input)?;
+    let check = match (&args.ranges, given) {
+        (Some(ranges), given) => {
+            let ranges = JointRanges::from_file(&setup.robot, ranges).map_err(Failure::input)?;
+            let step = args.grid_step_deg;
+            check_ranges(&setup, &path, &ranges, given, step, &options)
+        }
+        (None, Some(cell)) => check_mounting(&setup, &path, &cell, &options),
+        (None, None) => return Err(Failure::input(anyhow::anyhow!("give the motions"))),
+    }
+    .map_err(Failure::input)?;
     if args.json {
         print_json(&check)?;
     } else {

@@ -11,8 +11,8 @@ use cable_dict::motion_test::EngineKind;
 use cable_dict::report::{ReportError, check_report_folder, write_report};
 use cable_dict::setup::Setup;
 use cable_dict::solve::{
-    ReportShapes, SearchKind, Solution, SolveError, SolveOptions, SolveReport, guide_names,
-    solve_cell,
+    DEFAULT_GRID_STEP_DEG, ReportShapes, SearchKind, Solution, SolveError, SolveOptions,
+    SolveReport, guide_names, solve_cell, solve_ranges,
 };
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -44,9 +44,14 @@ pub struct Args {
     /// Design for axis ranges (a `[joints]` table, `name = [min_deg, max_deg]`; docs/commands.md,
     /// "Axis ranges"): the path must hold over stress motions that drive each ranged axis
     /// end to end at its URDF speed, alone and together (and over the motions given, if any).
-    /// So far only along those motions: poses of the box off their paths are not checked.
+    /// and every piece at a grid of the box's static poses (--grid-step-deg).
     #[arg(long, value_name = "RANGES.toml")]
     ranges: Option<PathBuf>,
+    /// The step of the axis-range grid of --ranges (degrees; millimetres for a prismatic
+    /// joint): each piece is tested at the box's poses of the joints that shape it, this far
+    /// apart.
+    #[arg(long, value_name = "DEG", default_value_t = DEFAULT_GRID_STEP_DEG, requires = "ranges")]
+    grid_step_deg: f64,
     /// Print the result as JSON instead of the summary.
     #[arg(long)]
     json: bool,
@@ -165,7 +170,6 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
             )));
         }
     };
-    let cell = design_cell(&setup, args.ranges.as_deref(), motion_paths)?;
     let options = SolveOptions {
         method: match args.connect {
             Connect::Hermite => ConnectMethod::Hermite,
@@ -190,12 +194,31 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
             IntraLink::GravityDirections => IntraLinkCriterion::GravityDirections,
             IntraLink::FirstPose => IntraLinkCriterion::FirstPose,
         },
+        diagnose: true,
     };
-    let solution = solve_cell(&setup, &cell, &options, dictionary.as_ref());
-    let Solution {
-        mut report,
-        setup: solved,
-    } = solution.map_err(|e| match e {
+    let given = (!motion_paths.is_empty())
+        .then(|| Cell::from_files(&setup.robot, motion_paths))
+        .transpose()
+        .map_err(Failure::input)?;
+    let (solution, cell) = match (&args.ranges, given) {
+        (Some(ranges), given) => {
+            let ranges = JointRanges::from_file(&setup.robot, ranges).map_err(Failure::input)?;
+            let step = args.grid_step_deg;
+            solve_ranges(
+                &setup,
+                &ranges,
+                given.as_ref(),
+                step,
+                &options,
+                dictionary.as_ref(),
+            )
+        }
+        (None, Some(cell)) => {
+            solve_cell(&setup, &cell, &options, dictionary.as_ref()).map(|s| (s, cell))
+        }
+        (None, None) => return Err(Failure::input(anyhow::anyhow!("give the motion"))),
+    }
+    .map_err(|e| match e {
         SolveError::Options(_)
         | SolveError::Setup(_)
         | SolveError::Motion(_)
@@ -203,6 +226,10 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
         | SolveError::Dictionary(_) => Failure::input(e),
         SolveError::Chain(_) | SolveError::MotionTest(_) => Failure::unsolved(e),
     })?;
+    let Solution {
+        mut report,
+        setup: solved,
+    } = solution;
     if let Some(used) = &mut report.inputs.dictionary {
         used.provenance = provenance;
     }
@@ -227,28 +254,6 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
     }
     // "No cable path" is an answer, not a failure: exit 0 like "solved" (the status says which).
     Ok(())
-}
-
-/// Sample rate of the stress motions of `--ranges` (Hz), as the bundled motions'.
-const STRESS_MOTION_RATE_HZ: f64 = 100.0;
-
-/// The motions a solve answers: the stress motions of `ranges` (when given), then the
-/// motions of `files`.
-fn design_cell(setup: &Setup, ranges: Option<&Path>, files: &[PathBuf]) -> Result<Cell, Failure> {
-    let given = (!files.is_empty())
-        .then(|| Cell::from_files(&setup.robot, files))
-        .transpose()
-        .map_err(Failure::input)?;
-    let Some(ranges) = ranges else {
-        return given.ok_or_else(|| Failure::input(anyhow::anyhow!("give the motion")));
-    };
-    let ranges = JointRanges::from_file(&setup.robot, ranges).map_err(Failure::input)?;
-    let mut cell = ranges
-        .stress_motions(&setup.robot, STRESS_MOTION_RATE_HZ)
-        .map_err(Failure::input)?;
-    cell.motions
-        .extend(given.into_iter().flat_map(|g| g.motions));
-    Ok(cell)
 }
 
 /// Keyframe interval of the report scene's animation (s): 30 frames per second.

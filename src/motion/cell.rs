@@ -16,7 +16,7 @@
 //! Every motion is read for the cell's robot ([`Motion::from_csv_file`]): errors name the
 //! motion file, line and column as for a single motion.
 
-use super::{Motion, MotionError};
+use super::{Motion, MotionError, RangeGrid};
 use crate::input::line_of;
 use crate::robot::Robot;
 use serde::Deserialize;
@@ -38,6 +38,10 @@ pub struct CellMotion {
     pub cycles_per_hour: Option<f64>,
     /// The motion.
     pub motion: Motion,
+    /// `Some`: not a motion in time but an axis-range box's grid of static poses
+    /// ([`JointRanges::grid`](super::JointRanges::grid)), each piece tested at its own;
+    /// never simulated.
+    pub grid: Option<RangeGrid>,
 }
 
 /// The motions one cable must survive, in the order given.
@@ -83,6 +87,7 @@ impl Cell {
                 file: file.map(Path::to_path_buf),
                 cycles_per_hour: None,
                 motion,
+                grid: None,
             }],
         }
     }
@@ -166,6 +171,7 @@ impl Cell {
                 file: Some(file),
                 cycles_per_hour,
                 motion,
+                grid: None,
             });
         }
         Cell {

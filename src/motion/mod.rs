@@ -84,6 +84,7 @@ mod critical;
 mod csv;
 mod error;
 mod generate;
+mod grid;
 pub mod profile;
 mod ranges;
 mod sampled;
@@ -96,6 +97,7 @@ pub use critical::{
 };
 pub use error::MotionError;
 pub use generate::{Generated, WaypointTiming};
+pub use grid::{MAX_GRID_POSES_PER_PIECE, MAX_UPSTREAM_COMBINATIONS, RangeGrid};
 pub use profile::{Profile, SyncMove};
 pub use ranges::{DEFAULT_TIME_TO_FULL_SPEED_S, JointRanges, MAX_STROKE_S, STROKE_END_DWELL_S};
 pub use sampled::Motion;

@@ -180,6 +180,26 @@ impl JointRanges {
         self.ranges.iter().map(|[a, b]| 0.5 * (a + b)).collect()
     }
 
+    /// The box with joint `j`'s range narrowed to `keep` (0–1) of its width about its middle,
+    /// its ends rounded inward to 0.1° (0.1 mm for a prismatic joint; `rotary`) so that the
+    /// range printed is the range solved.
+    pub fn narrowed(&self, j: usize, keep: f64, rotary: bool) -> JointRanges {
+        let mut narrowed = self.clone();
+        let [a, b] = self.ranges[j];
+        let (middle, half) = (0.5 * (a + b), 0.5 * (b - a) * keep.clamp(0.0, 1.0));
+        let unit = match rotary {
+            true => 0.1f64.to_radians(),
+            false => 1e-4,
+        };
+        let (lo, hi) = ((middle - half) / unit, (middle + half) / unit);
+        let (lo, hi) = match (lo.ceil(), hi.floor()) {
+            (lo, hi) if lo < hi => (lo, hi),
+            _ => (lo, hi),
+        };
+        narrowed.ranges[j] = [lo * unit, hi * unit];
+        narrowed
+    }
+
     /// Whether `joints` (rad / m) lie in the box (1e-9 slack).
     pub fn contains(&self, joints: &[f64]) -> bool {
         (joints.iter().zip(&self.ranges)).all(|(v, [a, b])| *v >= a - 1e-9 && *v <= b + 1e-9)
@@ -246,6 +266,7 @@ impl JointRanges {
                 file: None,
                 cycles_per_hour: None,
                 motion: file.generate(robot)?.motion,
+                grid: None,
             })
         };
         let mut motions = Vec::with_capacity(ranged.len() + 1);

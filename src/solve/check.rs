@@ -2,10 +2,12 @@
 //! motion of a cell, no search. What gates a new robot program: does the cable mounted as
 //! the sheet said survive it, and if not, which limit fails where on the cable and when.
 
+use super::box_check::{BoxCheck, check_box};
 use super::options::{SolveError, SolveOptions};
+use super::ranges::STRESS_MOTION_RATE_HZ;
 use super::report::{MotionVerdict, NamedPath, PieceBinding, binding, motion_verdicts, named_path};
 use super::search::test_options;
-use crate::motion::Cell;
+use crate::motion::{Cell, JointRanges};
 use crate::motion_test;
 use crate::mounting::{MountingPlan, mounting_plan};
 use crate::path::CablePath;
@@ -31,12 +33,15 @@ pub struct Check {
     pub sub_segment_pitch_mm: f64,
     /// Wall time of the whole check (s).
     pub wall_time_s: f64,
+    /// Over an axis-range box ([`check_ranges`]): every piece at a grid of the box's poses.
+    pub over_box: Option<BoxCheck>,
 }
 
 impl Check {
     /// Every motion held every limit.
     pub fn holds(&self) -> bool {
         (self.motions.iter()).all(|m| m.motion_test.as_ref().is_some_and(|t| t.passed))
+            && self.over_box.as_ref().is_none_or(BoxCheck::holds)
     }
 }
 
@@ -66,5 +71,36 @@ pub fn check_mounting(
         thresholds: setup.thresholds,
         sub_segment_pitch_mm: pitch_mm,
         wall_time_s: clock.elapsed().as_secs_f64(),
+        over_box: None,
     })
+}
+
+/// The most poses [`check_ranges`] solves one piece at.
+pub const MAX_BOX_CHECK_POSES: usize = 2_000_000;
+
+/// `path` over the box `ranges`: the motion test over its stress motions (each ranged axis
+/// end to end at its URDF speed, alone and together) and over the motions of `given`, then
+/// every piece at a grid of the box's poses `grid_step_deg` apart ([`check_box`]).
+pub fn check_ranges(
+    setup: &Setup,
+    path: &CablePath,
+    ranges: &JointRanges,
+    given: Option<Cell>,
+    grid_step_deg: f64,
+    options: &SolveOptions,
+) -> Result<Check, SolveError> {
+    let clock = Instant::now();
+    let mut cell = ranges.stress_motions(&setup.robot, STRESS_MOTION_RATE_HZ)?;
+    cell.motions
+        .extend(given.into_iter().flat_map(|g| g.motions));
+    let mut check = check_mounting(setup, path, &cell, options)?;
+    check.over_box = Some(check_box(
+        setup,
+        path,
+        ranges,
+        grid_step_deg,
+        MAX_BOX_CHECK_POSES,
+    )?);
+    check.wall_time_s = clock.elapsed().as_secs_f64();
+    Ok(check)
 }

@@ -60,6 +60,10 @@ pub struct NearestMiss {
     pub time_s: f64,
     /// Why that pose was tested (e.g. `joint_5 max`).
     pub pose: String,
+    /// The pose is one of an axis-range grid's (`time_s` its number), not a moment of a
+    /// motion.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub grid: bool,
     /// Where on the piece: cable length from its start clamp (mm); `None` for the whole
     /// piece.
     pub from_start_clamp_mm: Option<f64>,
@@ -92,9 +96,21 @@ impl NearestMiss {
             .map(|mm| format!(", {mm:.0} mm of cable from {from_guide}"))
             .unwrap_or_default();
         format!(
-            "\"{}\" → \"{}\", {:.0} mm: {what} at t = {:.2} s ({}){place}",
-            self.from_configuration, self.to_configuration, self.length_mm, self.time_s, self.pose,
+            "\"{}\" → \"{}\", {:.0} mm: {what} {}{place}",
+            self.from_configuration,
+            self.to_configuration,
+            self.length_mm,
+            self.when()
         )
+    }
+
+    /// Where in the motion it failed: `at t = 4.15 s (joint_5 max)`, or on an axis-range
+    /// grid `at the axis-range grid's pose 227 (joint_5 48.1°, …)`.
+    pub fn when(&self) -> String {
+        match self.grid {
+            true => format!("at {}", self.pose),
+            false => format!("at t = {:.2} s ({})", self.time_s, self.pose),
+        }
     }
 }
 
@@ -251,6 +267,7 @@ fn nearest_miss(
         motion: pose.motion,
         time_s: pose.time_s,
         pose: pose.reason.clone(),
+        grid: pose.grid,
         from_start_clamp_mm: miss.at_m.is_finite().then_some(miss.at_m * 1e3),
     }
 }
@@ -311,9 +328,9 @@ fn attachment_suggestions(
     }
     if slack && !nearest.pose.is_empty() {
         out.push(format!(
-            "it fails at t = {:.2} s ({}): a smaller range of that joint in the motion, or \
-             clamps that keep the cable clear there",
-            nearest.time_s, nearest.pose
+            "it fails {}: a smaller range of that joint in the motion, or clamps that keep \
+             the cable clear there",
+            nearest.when()
         ));
     }
     let (a, b) = setup.segment_guides(m);

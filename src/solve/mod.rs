@@ -20,22 +20,26 @@
 //!    clamps). When none passes within `k` dynamic tries, or there is no chain, the result
 //!    says so and why.
 
+mod box_check;
 mod certify;
 mod chains;
 mod check;
 mod diagnosis;
 mod learn;
 mod options;
+mod ranges;
 mod report;
 mod search;
 mod shapes;
 mod sweep;
 
+pub use box_check::{BoxCheck, BoxFailure, GRAVITY_RESOLUTION_PER_STEP, PieceOverBox, check_box};
 pub use certify::{Certification, Disagreement};
 use chains::{Decided, LazyChains, MIN_ROUND, chain_search};
-pub use check::{Check, check_mounting};
+pub use check::{Check, MAX_BOX_CHECK_POSES, check_mounting, check_ranges};
 pub use diagnosis::{Diagnosis, NearestMiss, SegmentDiagnosis};
 pub use options::{SearchKind, SolveError, SolveOptions};
+pub use ranges::{DEFAULT_GRID_STEP_DEG, STRESS_MOTION_RATE_HZ, range_cell, solve_ranges};
 use search::{MotionSearch, search_chains};
 pub use shapes::{
     CriticalPose, PoseShape, ReportShapes, ShapeError, ShapeLine, critical_poses,
@@ -44,11 +48,11 @@ pub use shapes::{
 
 use report::Stages;
 pub use report::{
-    BindingMotion, CandidateOutcome, ClosestMiss, DictionarySegmentUse, DictionaryUse, Inputs,
-    LearnedSwing, Margin, MotionVerdict, NamedPath, PathGuide, PathSegment, PieceBinding,
-    PoseSummary, SegmentReport, SolveReport, Status, SweepRejection, SweepSummary, Timings,
-    Unsolved, UnsolvedCase, UntriedChain, dropped_per_segment, guide_names, named_path,
-    pose_summary, shown_index,
+    AxisFailures, AxisRange, BindingMotion, CandidateOutcome, ClosestMiss, DictionarySegmentUse,
+    DictionaryUse, Inputs, LearnedSwing, Margin, MotionVerdict, NamedPath, PathGuide, PathSegment,
+    PieceBinding, PoseSummary, RangeDesign, RangeProbe, SegmentReport, SolveReport, Status,
+    SweepRejection, SweepSummary, Timings, Unsolved, UnsolvedCase, UntriedChain,
+    dropped_per_segment, guide_names, named_path, pose_summary, shown_index,
 };
 
 use crate::attachment::{
@@ -163,7 +167,7 @@ pub fn solve_cell(
             };
             let (outcome, certification) =
                 search_chains(setup, cell, options, &mut chains, certify)?;
-            if outcome.tried.is_empty() {
+            if outcome.tried.is_empty() && options.diagnose {
                 // No chain: the diagnosis wants every piece's verdict, as without the search.
                 chains.attachment.decide_all();
             }

@@ -42,6 +42,10 @@ pub struct SolveOptions {
     /// answer could use (the default), or every candidate first (the reference the lazy
     /// search is tested against; same path, slower).
     pub search: SearchKind,
+    /// When there is no chain, decide every candidate piece to say why (the diagnosis).
+    /// Off: "unsolved" as soon as the search knows it, as the narrowing of axis ranges asks
+    /// of each box it tries.
+    pub diagnose: bool,
 }
 
 /// How the attachment test and the chain search work together.
@@ -69,6 +73,7 @@ impl Default for SolveOptions {
             engine: EngineKind::Implicit,
             intra_link: IntraLinkCriterion::GravityDirections,
             search: SearchKind::Lazy,
+            diagnose: true,
         }
     }
 }

@@ -160,7 +160,11 @@ fn motion_tests(
     outcome.sweep_poses = sweep.as_ref().map_or(0, CellSweep::pose_count);
     // The motions in the order they are tried: the last one a chain failed first, as the
     // likeliest to fail the next chain too.
-    let mut order: Vec<usize> = (0..cell.len()).collect();
+    // An axis-range grid is a list of static poses: the attachment test's, never simulated.
+    let mut order: Vec<usize> = (0..cell.len())
+        .filter(|&i| cell.motions[i].grid.is_none())
+        .collect();
+    let first_simulated = order.first().copied().unwrap_or(0);
     let mut test = |path: &CablePath| -> Result<Tested, SolveError> {
         let mut runs: Vec<Option<MotionTestReport>> = vec![None; cell.len()];
         for &i in &order.clone() {
@@ -173,7 +177,7 @@ fn motion_tests(
                 return Ok(Tested::of(runs, i, cell));
             }
         }
-        Ok(Tested::of(runs, 0, cell))
+        Ok(Tested::of(runs, first_simulated, cell))
     };
     let sweep = sweep.as_mut().map(|s| s as &mut dyn ChainSweep);
     try_chains(setup, chains, options, sweep, &mut test, outcome)

@@ -105,6 +105,8 @@ impl ChainSweep for SweepAtRest<'_, '_, '_> {
 /// drop the next chain's too, before the others' whole sweeps are spent on it.
 pub(super) struct CellSweep<'a, 'e, 'v> {
     motions: Vec<SweepAtRest<'a, 'e, 'v>>,
+    /// The cell's index of each motion swept (an axis-range grid is not).
+    swept: Vec<usize>,
     order: Vec<usize>,
 }
 
@@ -121,9 +123,19 @@ impl<'a, 'e, 'v> CellSweep<'a, 'e, 'v> {
             let pieces = MotionSweep::new(evaluator, motion)?;
             Ok(SweepAtRest::new(pieces, setup, motion, test))
         };
-        let motions = cell.motions().map(sweep).collect::<Result<_, _>>()?;
-        let order = (0..cell.len()).collect();
-        Ok(CellSweep { motions, order })
+        // An axis-range grid's poses are each piece's own, tested by the attachment test.
+        let swept: Vec<usize> = (0..cell.len())
+            .filter(|&i| cell.motions[i].grid.is_none())
+            .collect();
+        let motions = (swept.iter())
+            .map(|&i| sweep(&cell.motions[i].motion))
+            .collect::<Result<_, _>>()?;
+        let order = (0..swept.len()).collect();
+        Ok(CellSweep {
+            motions,
+            swept,
+            order,
+        })
     }
 
     /// Distinct poses a piece is solved at, over every motion.
@@ -143,7 +155,7 @@ impl ChainSweep for CellSweep<'_, '_, '_> {
             let mut failed = self.motions[i].failing(path, stops)?;
             if !failed.is_empty() {
                 for (_, _, failure) in &mut failed {
-                    failure.motion = i;
+                    failure.motion = self.swept[i];
                 }
                 self.order[..=k].rotate_right(1);
                 return Ok(failed);
@@ -164,7 +176,8 @@ impl ChainSweep for CellSweep<'_, '_, '_> {
     }
 
     fn least_in(&self, motion: usize, m: usize, pv: &Pv) -> Option<SweptLeast> {
-        self.motions.get(motion)?.least(m, pv)
+        let i = self.swept.iter().position(|&k| k == motion)?;
+        self.motions[i].least(m, pv)
     }
 
     fn swept(&self) -> usize {

@@ -6,7 +6,9 @@
 use crate::motion_test::{Constraint, MotionTestReport, Worst};
 use crate::mounting::{self, MountingPlan, rows};
 use crate::setup::Thresholds;
-use crate::solve::{BindingMotion, MotionVerdict, PieceBinding, SolveReport};
+use crate::solve::{
+    AxisRange, BindingMotion, MotionVerdict, PieceBinding, RangeDesign, SolveReport,
+};
 use crate::text_table::decimal;
 use std::fmt;
 
@@ -23,6 +25,9 @@ pub(super) fn write_summary(report: &SolveReport, f: &mut fmt::Formatter<'_>) ->
     )?;
     if let Some(dictionary) = &i.dictionary {
         super::details::write_dictionary(f, dictionary)?;
+    }
+    if let Some(design) = &report.ranges {
+        write_ranges(f, design)?;
     }
     if let Some(plan) = &report.mounting {
         write_clamps(f, plan)?;
@@ -46,6 +51,78 @@ pub(super) fn write_summary(report: &SolveReport, f: &mut fmt::Formatter<'_>) ->
         "\nplacements in the link frames, the search's counts and margins, timings: `solve -v`; \
          every value: `--json`; pictures, a 3D view and an installation sheet: `--report DIR`"
     )
+}
+
+/// What a design for axis ranges asked, what it answers, and the boxes it tried.
+fn write_ranges(f: &mut fmt::Formatter<'_>, design: &RangeDesign) -> fmt::Result {
+    let list = |ranges: &[AxisRange]| -> String {
+        ranges
+            .iter()
+            .map(AxisRange::words)
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    writeln!(
+        f,
+        "axis ranges{}: {} (each piece at the box's poses {}° apart; each axis end to end at \
+         its URDF speed)",
+        design
+            .file
+            .as_ref()
+            .map(|file| format!(" of {file}"))
+            .unwrap_or_default(),
+        list(&design.asked),
+        design.grid_step_deg
+    )?;
+    let narrowed: Vec<String> = design
+        .narrowed()
+        .map(|(asked, answered)| {
+            format!("{} (asked {}…{})", answered.words(), asked.min, asked.max)
+        })
+        .collect();
+    if !narrowed.is_empty() {
+        writeln!(
+            f,
+            "  the ranges asked have no path: narrow {} — the path below is for that box",
+            narrowed.join(", ")
+        )?;
+    } else if !design.tried.is_empty() {
+        writeln!(
+            f,
+            "  the ranges asked have no path, and no box tried has one (narrowing each axis to \
+             half its width about its middle, then every axis)"
+        )?;
+    }
+    let failed: Vec<String> = (design.failures.iter())
+        .filter(|a| a.total() > 0)
+        .map(|a| {
+            let plural = |n: usize, one: &str, many: &str| match n {
+                1 => format!("1 {one}"),
+                n => format!("{n} {many}"),
+            };
+            format!(
+                "{} end to end failed {} and dropped {}",
+                a.joint,
+                plural(a.motion_tests_failed, "motion test", "motion tests"),
+                plural(a.sweep_drops, "piece", "pieces")
+            )
+        })
+        .collect();
+    if !failed.is_empty() {
+        writeln!(f, "  in the box asked: {}", failed.join("; "))?;
+    }
+    for probe in &design.tried {
+        writeln!(
+            f,
+            "  tried {}: {}",
+            list(&probe.narrowed),
+            match probe.length_mm {
+                Some(mm) => format!("{mm:.0} mm"),
+                None => "no path".into(),
+            }
+        )?;
+    }
+    Ok(())
 }
 
 fn write_clamps(f: &mut fmt::Formatter<'_>, plan: &MountingPlan) -> fmt::Result {
@@ -172,7 +249,13 @@ pub fn write_motions(
 /// 9.3 mm`, `fails: …`, or `not run: an earlier motion failed`.
 pub fn motion_verdict_words(limits: &Limits, m: &MotionVerdict, plan: &MountingPlan) -> String {
     let Some(test) = &m.motion_test else {
-        return "not run: an earlier motion failed".into();
+        return match m.grid_poses {
+            Some(poses) => format!(
+                "{poses} static poses of the box: every piece held every limit at the poses of \
+                 the joints that shape it"
+            ),
+            None => "not run: an earlier motion failed".into(),
+        };
     };
     if !test.passed {
         return verdict_words(limits, test, Some(plan)).replacen("failed", "fails", 1);

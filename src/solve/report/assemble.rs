@@ -47,7 +47,7 @@ impl SolveReport {
         let winner = *winner;
         let best = winner.map(|w| tried[w].path.clone());
         let status = status(options, search, winner);
-        let candidates = candidate_outcomes(tried, pitch_mm);
+        let candidates = candidate_outcomes(tried, cell, pitch_mm);
         let static_sweep = sweep_summary(setup, cell, &outcome);
         let diagnosis = matches!(status, Status::NoChain | Status::NonePassedMotionTest)
             .then(|| diagnose(setup, cell, poses, sets, &outcome));
@@ -105,6 +105,7 @@ impl SolveReport {
             timings,
             diagnosis,
             unsolved,
+            ranges: None,
         }
     }
 }
@@ -374,6 +375,7 @@ pub(in crate::solve) fn motion_verdicts(
             cycles_per_hour: m.cycles_per_hour,
             duration_s: m.motion.duration_s(),
             motion_test: runs.get(i).cloned().flatten(),
+            grid_poses: m.grid.as_ref().map(|_| m.motion.samples().len()),
         })
         .collect()
 }
@@ -442,7 +444,7 @@ fn inputs(setup: &Setup, cell: &Cell, options: &SolveOptions) -> Inputs {
     }
 }
 
-fn candidate_outcomes(tried: &[Tried], pitch_mm: f64) -> Vec<CandidateOutcome> {
+fn candidate_outcomes(tried: &[Tried], cell: &Cell, pitch_mm: f64) -> Vec<CandidateOutcome> {
     tried
         .iter()
         .enumerate()
@@ -454,6 +456,10 @@ fn candidate_outcomes(tried: &[Tried], pitch_mm: f64) -> Vec<CandidateOutcome> {
             failure: (tried.report())
                 .and_then(|r| r.failure.as_ref())
                 .map(|f| f.reason.clone()),
+            motion: match (cell.len(), tried.report().map(|r| r.passed)) {
+                (2.., Some(false)) => tried.judged.map(|i| cell.motions[i].name.clone()),
+                _ => None,
+            },
         })
         .collect()
 }

@@ -7,6 +7,7 @@ use crate::attachment::{ConnectMethod, Rejection};
 use crate::motion_test::{Constraint, EngineKind, MotionTestReport};
 use crate::mounting::MountingPlan;
 use crate::path::CablePath;
+use crate::robot::DisplayUnit;
 use crate::setup::Thresholds;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -208,6 +209,9 @@ pub struct CandidateOutcome {
     pub passed: Option<bool>,
     /// Why it failed.
     pub failure: Option<String>,
+    /// For a cell: the motion it failed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub motion: Option<String>,
 }
 
 /// What the static sweep in front of the motion test did (result JSON `static_sweep`).
@@ -388,6 +392,9 @@ pub struct SolveReport {
     /// Which of the three ways the search ended without an answer, and the path tried that
     /// came closest to passing; `None` when solved.
     pub unsolved: Option<Unsolved>,
+    /// A design for axis ranges: the box asked for, the box answered (narrowed when the one
+    /// asked has no path) and the boxes tried on the way.
+    pub ranges: Option<RangeDesign>,
 }
 
 /// One motion of a cell, and how the path shown fared over it.
@@ -402,14 +409,18 @@ pub struct MotionVerdict {
     /// Duration (s).
     pub duration_s: f64,
     /// The motion test of the path shown over it; `None` when it was not run (an earlier
-    /// motion failed, or no motion test).
+    /// motion failed, or no motion test, or an axis-range grid).
     pub motion_test: Option<MotionTestReport>,
+    /// `Some(poses)`: an axis-range grid of that many static poses, each piece tested at its
+    /// own by the attachment test (never simulated).
+    pub grid_poses: Option<usize>,
 }
 
 impl MotionVerdict {
     /// `holds`, `fails` or `not_run`: the motion's verdict in the result JSON.
     pub fn verdict(&self) -> &'static str {
         match &self.motion_test {
+            None if self.grid_poses.is_some() => "static",
             Some(test) if test.passed => "holds",
             Some(_) => "fails",
             None => "not_run",
@@ -548,4 +559,83 @@ pub fn shown_index(
         .position(|passed| passed == Some(true))
         .or(closest.filter(|&k| k < count))
         .or(count.checked_sub(1))
+}
+
+/// What a design for axis ranges asked and answered.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RangeDesign {
+    /// The ranges file.
+    pub file: Option<String>,
+    /// The axis-range grid's step (degrees; millimetres for a prismatic joint).
+    pub grid_step_deg: f64,
+    /// The ranges asked for, of the axes the file names.
+    pub asked: Vec<AxisRange>,
+    /// The ranges of the box answered: the ones asked, or narrower when those have no path.
+    pub answered: Vec<AxisRange>,
+    /// Per ranged axis, what its stress motion failed in the box asked (empty when that box
+    /// has a path): the axes are narrowed in that order, most first.
+    pub failures: Vec<AxisFailures>,
+    /// The boxes tried to find which axis to narrow, in order (empty when the box asked has
+    /// a path).
+    pub tried: Vec<RangeProbe>,
+}
+
+/// What one ranged axis's stress motion (the axis end to end alone) failed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AxisFailures {
+    /// The joint's URDF name.
+    pub joint: String,
+    /// Chains whose motion test failed in it.
+    pub motion_tests_failed: usize,
+    /// Pieces its static sweep dropped.
+    pub sweep_drops: usize,
+}
+
+impl AxisFailures {
+    /// Both counts together.
+    pub fn total(&self) -> usize {
+        self.motion_tests_failed + self.sweep_drops
+    }
+}
+
+impl RangeDesign {
+    /// The axes whose answered range is narrower than asked.
+    pub fn narrowed(&self) -> impl Iterator<Item = (&AxisRange, &AxisRange)> {
+        (self.asked.iter().zip(&self.answered)).filter(|(a, b)| a != b)
+    }
+}
+
+/// One axis's range, in the unit people give it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AxisRange {
+    /// The joint's URDF name.
+    pub joint: String,
+    /// Its least value (deg, or mm for a prismatic joint).
+    pub min: f64,
+    /// Its greatest value.
+    pub max: f64,
+    /// `deg` or `mm`.
+    pub unit: DisplayUnit,
+}
+
+impl AxisRange {
+    /// `joint_5 -31.4…26.1°`.
+    pub fn words(&self) -> String {
+        let unit = match self.unit {
+            DisplayUnit::Deg => "°",
+            DisplayUnit::Mm => " mm",
+        };
+        format!("{} {}…{}{unit}", self.joint, self.min, self.max)
+    }
+}
+
+/// One box tried while narrowing axis ranges.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RangeProbe {
+    /// The axes narrowed in it (the others as asked).
+    pub narrowed: Vec<AxisRange>,
+    /// Its shortest path's length (mm); `None`: no path.
+    pub length_mm: Option<f64>,
+    /// Wall time of its solve (s).
+    pub time_s: f64,
 }

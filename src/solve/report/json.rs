@@ -49,8 +49,11 @@ struct MotionJson<'a> {
     file: Option<&'a str>,
     cycles_per_hour: Option<f64>,
     duration_s: f64,
-    /// `holds`, `fails` or `not_run`.
+    /// `holds`, `fails` or `not_run`; `static` for an axis-range grid.
     verdict: &'static str,
+    /// An axis-range grid: its number of static poses.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    grid_poses: Option<usize>,
     #[serde(flatten)]
     test: TestJson<'a>,
     /// Per piece, its own worst values over this motion.
@@ -66,6 +69,7 @@ impl<'a> MotionJson<'a> {
             cycles_per_hour: verdict.cycles_per_hour,
             duration_s: verdict.duration_s,
             verdict: verdict.verdict(),
+            grid_poses: verdict.grid_poses,
             test: TestJson::new(test),
             pieces: test.map(|t| t.pieces.as_slice()),
         }
@@ -121,6 +125,8 @@ struct ResultJson<'a> {
     reason: Option<&'a str>,
     diagnosis: Option<&'a Diagnosis>,
     unsolved: Option<&'a Unsolved>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    ranges: Option<&'a RangeDesign>,
     inputs: &'a Inputs,
     timings_s: &'a Timings,
 }
@@ -149,6 +155,7 @@ impl Serialize for SolveReport {
             reason: (self.status != Status::Solved).then_some(self.explanation.as_str()),
             diagnosis: self.diagnosis.as_ref(),
             unsolved: self.unsolved.as_ref(),
+            ranges: self.ranges.as_ref(),
             inputs: &self.inputs,
             timings_s: &self.timings,
         }
@@ -167,6 +174,9 @@ struct CheckJson<'a> {
     motions: Vec<MotionJson<'a>>,
     #[serde(skip_serializing_if = "<[_]>::is_empty")]
     binding: &'a [PieceBinding],
+    /// Over an axis-range box: every piece at a grid of its poses.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    over_box: Option<&'a super::super::BoxCheck>,
     wall_time_s: f64,
 }
 
@@ -179,6 +189,7 @@ impl Serialize for super::super::Check {
             mounting: &self.mounting,
             motions: self.motions.iter().map(MotionJson::new).collect(),
             binding: &self.binding,
+            over_box: self.over_box.as_ref(),
             wall_time_s: self.wall_time_s,
         }
         .serialize(serializer)

@@ -1,0 +1,209 @@
+//! A mounting checked over an axis-range box, independently of the search: each piece of the
+//! path solved cold (from its connected geometry, [`Evaluator::check_at`]) at every pose of a
+//! grid over the joints that shape it, clearance against every link. The search tests
+//! pieces at its own grid ([`JointRanges::grid`], continued from length to length); this
+//! check is the reference it is measured against, at a finer step.
+
+use super::options::SolveError;
+use crate::attachment::Evaluator;
+use crate::motion::{JointRanges, traversed_joints};
+use crate::path::CablePath;
+use crate::pose::Pose;
+use crate::setup::Setup;
+use nalgebra::Vector3;
+use rayon::prelude::*;
+
+/// Gravity directions closer than this fraction of the grid step count as one (the search
+/// keeps 3° at its 10° step).
+pub const GRAVITY_RESOLUTION_PER_STEP: f64 = 0.3;
+
+/// One piece of the path over the box.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct PieceOverBox {
+    /// The piece (`C3`).
+    pub segment: String,
+    /// The poses it was solved at.
+    pub poses: usize,
+    /// Its least bend radius over them (mm).
+    pub least_bend_radius_mm: f64,
+    /// Its least clearance to the robot over them (mm), when measured.
+    pub least_clearance_mm: Option<f64>,
+    /// The first pose (in grid order) where it violates a limit, if one.
+    pub failure: Option<BoxFailure>,
+}
+
+/// Where a piece fails over the box.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct BoxFailure {
+    /// The joints that shape the piece at that pose (name, deg or mm).
+    pub joints: Vec<(String, f64)>,
+    /// What failed, for people.
+    pub reason: String,
+}
+
+/// A path over a box: every piece's verdict.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct BoxCheck {
+    /// The grid's step (degrees; millimetres for a prismatic joint).
+    pub step_deg: f64,
+    /// Per piece with a cable.
+    pub pieces: Vec<PieceOverBox>,
+}
+
+impl BoxCheck {
+    /// Every piece held every limit at every pose.
+    pub fn holds(&self) -> bool {
+        self.pieces.iter().all(|p| p.failure.is_none())
+    }
+}
+
+/// Each piece of `path` over `ranges`: the joints from the base to its start link and those
+/// between its links on a grid of `step_deg`, poses whose gravity direction in the start
+/// link and whose joints between the links repeat an earlier one's (to
+/// [`GRAVITY_RESOLUTION_PER_STEP`] of the step) solved once, the other joints at the box's
+/// middle. Refused beyond `max_poses` poses for one piece.
+pub fn check_box(
+    setup: &Setup,
+    path: &CablePath,
+    ranges: &JointRanges,
+    step_deg: f64,
+    max_poses: usize,
+) -> Result<BoxCheck, SolveError> {
+    if !(step_deg.is_finite() && step_deg > 0.0) {
+        return Err(SolveError::Options(format!(
+            "the grid step {step_deg} must be > 0"
+        )));
+    }
+    path.check(setup)
+        .map_err(|e| SolveError::Options(format!("the path does not fit the setup: {e}")))?;
+    let robot = &setup.robot;
+    let evaluator = Evaluator::new(setup, crate::attachment::ConnectMethod::Hermite)?;
+    let down = (setup.gravity_m_s2)
+        .try_normalize(0.0)
+        .unwrap_or_else(Vector3::zeros);
+    let same = (GRAVITY_RESOLUTION_PER_STEP * step_deg).to_radians().cos();
+    let centre = ranges.centre();
+    let mut pieces = Vec::new();
+    for (m, pv) in path.pieces() {
+        if pv.sub_segments == 0 {
+            continue;
+        }
+        let (a, b) = setup.segment_guides(m);
+        let (body_a, body_b) = (setup.guides[a].body, setup.guides[b].body);
+        let name = |l: usize| robot.links[l].name.as_str();
+        let between = traversed_joints(robot, name(body_a), name(body_b))?;
+        let mut upstream: Vec<usize> = traversed_joints(robot, name(0), name(body_a))?;
+        upstream.retain(|j| !between.contains(j));
+        let grid = |joints: &[usize]| -> Vec<(usize, Vec<f64>)> {
+            (joints.iter())
+                .map(|&j| (j, ranges.grid_values(robot, j, step_deg)))
+                .collect()
+        };
+        let (up, along) = (grid(&upstream), grid(&between));
+        let count = |axes: &[(usize, Vec<f64>)]| -> f64 {
+            axes.iter().map(|(_, v)| v.len() as f64).product()
+        };
+        if count(&up).max(count(&along)) > max_poses as f64 {
+            return Err(SolveError::Options(format!(
+                "{}: {:.0} combinations of the joints up to its start link and {:.0} of those \
+                 between its links at {step_deg}° (more than {max_poses}): give a coarser step \
+                 or narrower ranges",
+                setup.segment_name(m),
+                count(&up),
+                count(&along)
+            )));
+        }
+        // Every combination of the upstream joints, the last fastest; one kept per gravity
+        // direction in the start link (to the resolution), then every combination of the
+        // joints between the links with each.
+        let mut directions: Vec<(Vec<f64>, Vector3<f64>)> = Vec::new();
+        for joints in odometer(&centre, &up) {
+            let poses = robot
+                .link_poses(&joints)
+                .map_err(|e| SolveError::Options(e.to_string()))?;
+            let g = poses[body_a].rotation.inverse_transform_vector(&down);
+            if directions.iter().all(|(_, h)| h.dot(&g) < same) {
+                directions.push((joints, g));
+            }
+        }
+        if directions.len() as f64 * count(&along) > max_poses as f64 {
+            return Err(SolveError::Options(format!(
+                "{}: {} gravity directions × {:.0} places between its links at {step_deg}° \
+                 (more than {max_poses} poses): give a coarser step or narrower ranges",
+                setup.segment_name(m),
+                directions.len(),
+                count(&along)
+            )));
+        }
+        let mut kept: Vec<(Vec<f64>, Vec<Pose>)> = Vec::new();
+        for (base, _) in &directions {
+            for joints in odometer(base, &along) {
+                let poses = robot
+                    .link_poses(&joints)
+                    .map_err(|e| SolveError::Options(e.to_string()))?;
+                kept.push((joints, poses));
+            }
+        }
+        let shaping: Vec<usize> = upstream.iter().chain(&between).copied().collect();
+        let checks: Vec<crate::attachment::Check> = kept
+            .par_iter()
+            .map(|(_, poses)| evaluator.check_at(m, &pv, poses))
+            .collect();
+        let metrics = checks.iter().filter_map(|c| c.metrics.as_ref());
+        let least_bend_radius_mm = metrics
+            .clone()
+            .map(|x| x.min_bend_radius_m * 1e3)
+            .fold(f64::INFINITY, f64::min);
+        let least_clearance_mm = metrics
+            .filter_map(|x| x.clearance_m)
+            .map(|c| c * 1e3)
+            .reduce(f64::min);
+        let failure = (kept.iter().zip(&checks)).find(|(_, c)| !c.passed());
+        pieces.push(PieceOverBox {
+            segment: setup.segment_name(m),
+            poses: kept.len(),
+            least_bend_radius_mm,
+            least_clearance_mm,
+            failure: failure.map(|((joints, _), check)| BoxFailure {
+                joints: (shaping.iter())
+                    .map(|&j| {
+                        let joint = robot.actuated_joint(j);
+                        (joint.name.clone(), joints[j] * joint.kind.display_unit().0)
+                    })
+                    .collect(),
+                reason: check
+                    .detail
+                    .clone()
+                    .unwrap_or_else(|| "no equilibrium".into()),
+            }),
+        });
+    }
+    Ok(BoxCheck { step_deg, pieces })
+}
+
+/// Every joint vector of `base` with the joints of `axes` set to each combination of their
+/// values, counted like an odometer (the last axis fastest).
+fn odometer<'a>(
+    base: &'a [f64],
+    axes: &'a [(usize, Vec<f64>)],
+) -> impl Iterator<Item = Vec<f64>> + 'a {
+    let mut digits: Option<Vec<usize>> = Some(vec![0; axes.len()]);
+    std::iter::from_fn(move || {
+        let current = digits.as_mut()?;
+        let mut joints = base.to_vec();
+        for (k, (j, values)) in axes.iter().enumerate() {
+            joints[*j] = values[current[k]];
+        }
+        match (0..axes.len())
+            .rev()
+            .find(|&k| current[k] + 1 < axes[k].1.len())
+        {
+            Some(k) => {
+                current[k] += 1;
+                current[k + 1..].iter_mut().for_each(|d| *d = 0);
+            }
+            None => digits = None,
+        }
+        Some(joints)
+    })
+}
