@@ -560,4 +560,15 @@ impl SweptLeast {
             self.clearance_m = Some(self.clearance_m.map_or(clearance, |c| c.min(clearance)));
         }
     }
+
+    /// The least of both: over the poses of two sweeps (the motions of a cell).
+    pub fn least_with(self, other: SweptLeast) -> SweptLeast {
+        SweptLeast {
+            bend_radius_m: self.bend_radius_m.min(other.bend_radius_m),
+            clearance_m: match (self.clearance_m, other.clearance_m) {
+                (Some(a), Some(b)) => Some(a.min(b)),
+                (a, b) => a.or(b),
+            },
+        }
+    }
 }

@@ -99,12 +99,7 @@ impl SegmentPoses {
         motion: &Motion,
         criterion: IntraLinkCriterion,
     ) -> Result<SegmentPoses, MotionError> {
-        let tested = Tested {
-            motion,
-            grid: None,
-            name: None,
-        };
-        SegmentPoses::for_motions(setup, &[tested], criterion)
+        SegmentPoses::for_cell(setup, &Cell::single(motion.clone(), None), criterion)
     }
 
     /// The test poses of every motion of `cell`: each inter-link segment's critical poses of
@@ -118,24 +113,6 @@ impl SegmentPoses {
         cell: &Cell,
         criterion: IntraLinkCriterion,
     ) -> Result<SegmentPoses, MotionError> {
-        let motions: Vec<Tested<'_>> = cell
-            .motions
-            .iter()
-            .map(|m| Tested {
-                motion: &m.motion,
-                grid: m.grid.as_ref(),
-                name: (cell.len() > 1).then_some(m.name.as_str()),
-            })
-            .collect();
-        SegmentPoses::for_motions(setup, &motions, criterion)
-    }
-
-    /// The test poses of `motions`.
-    fn for_motions(
-        setup: &Setup,
-        motions: &[Tested<'_>],
-        criterion: IntraLinkCriterion,
-    ) -> Result<SegmentPoses, MotionError> {
         let robot = &setup.robot;
         let mut traversed = Vec::with_capacity(setup.segment_count());
         let mut poses = Vec::with_capacity(setup.segment_count());
@@ -145,15 +122,15 @@ impl SegmentPoses {
             let link_b = &robot.links[setup.guides[b].link].name;
             let joints = traversed_joints(robot, link_a, link_b)?;
             let mut union: Vec<TestPose> = Vec::new();
-            for (i, tested) in motions.iter().enumerate() {
+            for (i, tested) in cell.motions.iter().enumerate() {
                 let before = union.len();
-                match (tested.grid, setup.is_intra_link(m)) {
-                    (Some(grid), _) => grid_poses(setup, tested.motion, grid, m, &mut union)?,
+                match (&tested.grid, setup.is_intra_link(m)) {
+                    (Some(grid), _) => grid_poses(setup, &tested.motion, grid, m, &mut union)?,
                     (None, true) => {
-                        intra_link_poses(setup, tested.motion, m, criterion, &mut union)?
+                        intra_link_poses(setup, &tested.motion, m, criterion, &mut union)?
                     }
                     (None, false) => {
-                        for pose in critical_poses(tested.motion, &joints)? {
+                        for pose in critical_poses(&tested.motion, &joints)? {
                             if union.iter().all(|p| p.joints != pose.joints) {
                                 union.push(test_pose(setup, pose, None)?);
                             }
@@ -162,9 +139,7 @@ impl SegmentPoses {
                 }
                 for pose in &mut union[before..] {
                     pose.motion = i;
-                    if let Some(name) = tested.name {
-                        pose.reason = format!("{name}: {}", pose.reason);
-                    }
+                    pose.reason = cell.label(i, &pose.reason);
                 }
             }
             poses.push(union);
@@ -172,15 +147,6 @@ impl SegmentPoses {
         }
         Ok(SegmentPoses { traversed, poses })
     }
-}
-
-/// One motion of a cell as its test poses are chosen.
-struct Tested<'c> {
-    motion: &'c Motion,
-    /// `Some`: an axis-range grid, each segment tested at its own poses.
-    grid: Option<&'c RangeGrid>,
-    /// Its name, to prefix reasons with (a cell of several motions).
-    name: Option<&'c str>,
 }
 
 /// Adds to `chosen` segment `m`'s poses of the axis-range grid `grid` (samples of `motion`)

@@ -77,6 +77,15 @@ impl Cell {
         crate::input::is_toml_with(path, crate::input::WAYPOINTS, "[[motions]]")
     }
 
+    /// `text` said of motion `i`, as people read it: prefixed with the motion's name
+    /// (`palletizing: bend radius …`) when the cell has several motions, as it is otherwise.
+    pub fn label(&self, i: usize, text: &str) -> String {
+        match (self.len(), self.motions.get(i)) {
+            (2.., Some(motion)) => format!("{}: {text}", motion.name),
+            _ => text.to_string(),
+        }
+    }
+
     /// A cell of one motion, named after its file (or `motion`).
     pub fn single(motion: Motion, file: Option<&Path>) -> Cell {
         Cell {

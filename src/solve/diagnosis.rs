@@ -365,10 +365,7 @@ fn motion_diagnosis(setup: &Setup, cell: &Cell, outcome: &MotionSearch) -> Vec<S
         };
         if let Some(m) = failure.segment {
             let motion = tried.judged.unwrap_or(0);
-            let reason = match cell.len() {
-                1 => failure.reason.clone(),
-                _ => format!("{}: {}", cell.motions[motion].name, failure.reason),
-            };
+            let reason = cell.label(motion, &failure.reason);
             dynamic[m].push((reason, violation.time_s));
             first_motion[m].get_or_insert(motion);
             if let Some(missed_m) = violation.missed_by_m()
@@ -381,15 +378,11 @@ fn motion_diagnosis(setup: &Setup, cell: &Cell, outcome: &MotionSearch) -> Vec<S
     // Per segment and motion of a cell, how many pieces that motion's sweep dropped.
     let mut dropped_by: Vec<BTreeMap<&str, usize>> = vec![BTreeMap::new(); count];
     for (m, _, failure) in &outcome.dropped {
-        let detail = match cell.len() {
-            1 => failure.detail.clone(),
-            _ => {
-                let name = cell.motions[failure.motion].name.as_str();
-                *dropped_by[*m].entry(name).or_insert(0) += 1;
-                format!("{name}: {}", failure.detail)
-            }
-        };
-        swept[*m].push((detail, failure.time_s));
+        if cell.len() > 1 {
+            let name = cell.motions[failure.motion].name.as_str();
+            *dropped_by[*m].entry(name).or_insert(0) += 1;
+        }
+        swept[*m].push((cell.label(failure.motion, &failure.detail), failure.time_s));
     }
     (0..count)
         .filter(|&m| !dynamic[m].is_empty() || !swept[m].is_empty())

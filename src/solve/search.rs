@@ -222,9 +222,9 @@ impl Tested {
             segment: failure.and_then(|f| f.segment),
             violation: report.and_then(|r| r.first_violation.clone()),
             motion: judged,
-            reason: match (cell.len(), failure) {
-                (2.., Some(_)) => format!("{}: {reason}", cell.motions[judged].name),
-                _ => reason,
+            reason: match failure {
+                Some(_) => cell.label(judged, &reason),
+                None => reason,
             },
             runs,
         }

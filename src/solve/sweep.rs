@@ -166,13 +166,7 @@ impl ChainSweep for CellSweep<'_, '_, '_> {
 
     fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast> {
         let each = self.motions.iter().filter_map(|s| s.least(m, pv));
-        each.reduce(|a, b| SweptLeast {
-            bend_radius_m: a.bend_radius_m.min(b.bend_radius_m),
-            clearance_m: match (a.clearance_m, b.clearance_m) {
-                (Some(a), Some(b)) => Some(a.min(b)),
-                (a, b) => a.or(b),
-            },
-        })
+        each.reduce(SweptLeast::least_with)
     }
 
     fn least_in(&self, motion: usize, m: usize, pv: &Pv) -> Option<SweptLeast> {

@@ -71,12 +71,8 @@ impl SolveReport {
             &outcome.stop,
             &static_sweep,
             unsolved.as_ref(),
-            setup,
+            (setup, cell_words(cell)),
         );
-        let explanation = match cell.len() {
-            1 => explanation,
-            _ => explanation.replace("over the motion", "over every motion of the cell"),
-        };
         SolveReport {
             status,
             explanation,
@@ -119,6 +115,14 @@ fn status(options: &SolveOptions, search: &ChainSearch, winner: Option<usize>) -
     }
 }
 
+/// What the answer's words speak of: `the motion`, or `every motion of the cell`.
+fn cell_words(cell: &Cell) -> &'static str {
+    match cell.len() {
+        1 => "the motion",
+        _ => "every motion of the cell",
+    }
+}
+
 fn explanation(
     status: Status,
     sets: &[SegmentSets],
@@ -126,11 +130,11 @@ fn explanation(
     stop: &str,
     sweep: &SweepSummary,
     unsolved: Option<&Unsolved>,
-    setup: &Setup,
+    (setup, over): (&Setup, &str),
 ) -> String {
     match status {
         Status::Solved if sweep.shortest_untried_mm.is_some() => format!(
-            "the shortest cable path that held every limit over the motion among the chains \
+            "the shortest cable path that held every limit over {over} among the chains \
              whose pieces kept the swings learned from {} failed motion tests inside the \
              limits; a chain of {:.0} mm (or shorter) with {} pieces set aside was not tested (`solve \
              --no-learning` tests the chains strictly shortest first)",
@@ -139,21 +143,22 @@ fn explanation(
             sweep.set_aside,
         ),
         Status::Solved => match candidates.len() {
-            1 => "the shortest cable path, and it held every limit over the motion".into(),
+            1 => format!("the shortest cable path, and it held every limit over {over}"),
             n => format!(
-                "the shortest cable path that held every limit over the motion; {} shorter or \
+                "the shortest cable path that held every limit over {over}; {} shorter or \
                  equally long ones did not",
                 n - 1
             ),
         },
         Status::Untested => {
-            "the shortest path of robust cable pieces; not simulated over the motion \
-             (--no-motion-test)"
-                .into()
+            format!(
+                "the shortest path of robust cable pieces; not simulated over {over} \
+                 (--no-motion-test)"
+            )
         }
         Status::NonePassedMotionTest if candidates.is_empty() => format!(
             "every chain of robust candidate pieces has a piece that fails the static sweep \
-             over the motion{}",
+             over {over}{}",
             sweep_note(sweep)
         ),
         // Each candidate's failure is in `candidates` (and `solve -v`), the per-piece story
