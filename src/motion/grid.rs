@@ -131,11 +131,11 @@ impl JointRanges {
                     .collect()
             };
             let up_axes = axes(&turning);
-            let combinations = count(&up_axes);
-            if combinations > MAX_UPSTREAM_COMBINATIONS as f64 {
+            let upstream_count = combination_count(&up_axes);
+            if upstream_count > MAX_UPSTREAM_COMBINATIONS as f64 {
                 return Err(too_fine(
                     format!(
-                        "the piece from {name_a} to {name_b}: {combinations:.0} combinations of \
+                        "the piece from {name_a} to {name_b}: {upstream_count:.0} combinations of \
                          the joints that turn gravity in {name_a}"
                     ),
                     step_deg,
@@ -143,7 +143,7 @@ impl JointRanges {
             }
             let mut directions: Vec<Vector3<f64>> = Vec::new();
             let mut representatives: Vec<Vec<f64>> = Vec::new();
-            for joints in product(&centre, &up_axes) {
+            for joints in combinations(&centre, &up_axes) {
                 let g = gravity_in_a(&joints)?;
                 if !directions.iter().any(|d| d.dot(&g) >= resolution) {
                     directions.push(g);
@@ -151,21 +151,21 @@ impl JointRanges {
                 }
             }
             let along = axes(&traversed);
-            let poses = representatives.len() as f64 * count(&along);
+            let poses = representatives.len() as f64 * combination_count(&along);
             if poses > MAX_GRID_POSES_PER_PIECE as f64 {
                 return Err(too_fine(
                     format!(
                         "the piece from {name_a} to {name_b}: {} gravity directions × {:.0} \
                          places of the joints between its links = {poses:.0} poses",
                         representatives.len(),
-                        count(&along)
+                        combination_count(&along)
                     ),
                     step_deg,
                 ));
             }
             let mut own = Vec::new();
             for representative in &representatives {
-                for joints in product(representative, &along) {
+                for joints in combinations(representative, &along) {
                     let key: Vec<u64> = joints.iter().map(|v| v.to_bits()).collect();
                     let k = *index.entry(key).or_insert_with(|| {
                         samples.push(joints);
@@ -198,28 +198,38 @@ impl JointRanges {
     }
 }
 
-/// How many joint vectors [`product`] gives (as a float: it may be astronomically many).
-fn count(axes: &[(usize, Vec<f64>)]) -> f64 {
+/// How many joint vectors [`combinations`] gives (as a float: it may be astronomically
+/// many).
+pub fn combination_count(axes: &[(usize, Vec<f64>)]) -> f64 {
     axes.iter().map(|(_, values)| values.len() as f64).product()
 }
 
-/// Every joint vector of `base` with the joints of `axes` set to each combination of their
-/// values, the last axis fastest; `base` alone when there are no axes.
-fn product(base: &[f64], axes: &[(usize, Vec<f64>)]) -> Vec<Vec<f64>> {
-    let mut out = vec![base.to_vec()];
-    for (j, values) in axes {
-        out = out
-            .into_iter()
-            .flat_map(|joints| {
-                values.iter().map(move |&v| {
-                    let mut next = joints.clone();
-                    next[*j] = v;
-                    next
-                })
-            })
-            .collect();
-    }
-    out
+/// Every joint vector of `base` with the joints of `axes` (joint index, its values) set to
+/// each combination of their values, counted like an odometer (the last axis fastest);
+/// `base` alone when there are no axes.
+pub fn combinations<'a>(
+    base: &'a [f64],
+    axes: &'a [(usize, Vec<f64>)],
+) -> impl Iterator<Item = Vec<f64>> + 'a {
+    let mut digits: Option<Vec<usize>> = Some(vec![0; axes.len()]);
+    std::iter::from_fn(move || {
+        let current = digits.as_mut()?;
+        let mut joints = base.to_vec();
+        for (k, (j, values)) in axes.iter().enumerate() {
+            joints[*j] = values[current[k]];
+        }
+        match (0..axes.len())
+            .rev()
+            .find(|&k| current[k] + 1 < axes[k].1.len())
+        {
+            Some(k) => {
+                current[k] += 1;
+                current[k + 1..].iter_mut().for_each(|d| *d = 0);
+            }
+            None => digits = None,
+        }
+        Some(joints)
+    })
 }
 
 fn too_fine(what: String, step_deg: f64) -> MotionError {

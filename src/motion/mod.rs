@@ -97,7 +97,9 @@ pub use critical::{
 };
 pub use error::MotionError;
 pub use generate::{Generated, WaypointTiming};
-pub use grid::{MAX_GRID_POSES_PER_PIECE, MAX_UPSTREAM_COMBINATIONS, RangeGrid};
+pub use grid::{
+    MAX_GRID_POSES_PER_PIECE, MAX_UPSTREAM_COMBINATIONS, RangeGrid, combination_count, combinations,
+};
 pub use profile::{Profile, SyncMove};
 pub use ranges::{DEFAULT_TIME_TO_FULL_SPEED_S, JointRanges, MAX_STROKE_S, STROKE_END_DWELL_S};
 pub use sampled::Motion;

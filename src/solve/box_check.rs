@@ -6,7 +6,7 @@
 
 use super::options::SolveError;
 use crate::attachment::Evaluator;
-use crate::motion::{JointRanges, traversed_joints};
+use crate::motion::{JointRanges, combination_count, combinations, traversed_joints};
 use crate::path::CablePath;
 use crate::pose::Pose;
 use crate::setup::Setup;
@@ -100,9 +100,7 @@ pub fn check_box(
                 .collect()
         };
         let (up, along) = (grid(&upstream), grid(&between));
-        let count = |axes: &[(usize, Vec<f64>)]| -> f64 {
-            axes.iter().map(|(_, v)| v.len() as f64).product()
-        };
+        let count = combination_count;
         if count(&up).max(count(&along)) > max_poses as f64 {
             return Err(SolveError::Options(format!(
                 "{}: {:.0} combinations of the joints up to its start link and {:.0} of those \
@@ -117,7 +115,7 @@ pub fn check_box(
         // direction in the start link (to the resolution), then every combination of the
         // joints between the links with each.
         let mut directions: Vec<(Vec<f64>, Vector3<f64>)> = Vec::new();
-        for joints in odometer(&centre, &up) {
+        for joints in combinations(&centre, &up) {
             let poses = robot
                 .link_poses(&joints)
                 .map_err(|e| SolveError::Options(e.to_string()))?;
@@ -137,7 +135,7 @@ pub fn check_box(
         }
         let mut kept: Vec<(Vec<f64>, Vec<Pose>)> = Vec::new();
         for (base, _) in &directions {
-            for joints in odometer(base, &along) {
+            for joints in combinations(base, &along) {
                 let poses = robot
                     .link_poses(&joints)
                     .map_err(|e| SolveError::Options(e.to_string()))?;
@@ -179,31 +177,4 @@ pub fn check_box(
         });
     }
     Ok(BoxCheck { step_deg, pieces })
-}
-
-/// Every joint vector of `base` with the joints of `axes` set to each combination of their
-/// values, counted like an odometer (the last axis fastest).
-fn odometer<'a>(
-    base: &'a [f64],
-    axes: &'a [(usize, Vec<f64>)],
-) -> impl Iterator<Item = Vec<f64>> + 'a {
-    let mut digits: Option<Vec<usize>> = Some(vec![0; axes.len()]);
-    std::iter::from_fn(move || {
-        let current = digits.as_mut()?;
-        let mut joints = base.to_vec();
-        for (k, (j, values)) in axes.iter().enumerate() {
-            joints[*j] = values[current[k]];
-        }
-        match (0..axes.len())
-            .rev()
-            .find(|&k| current[k] + 1 < axes[k].1.len())
-        {
-            Some(k) => {
-                current[k] += 1;
-                current[k + 1..].iter_mut().for_each(|d| *d = 0);
-            }
-            None => digits = None,
-        }
-        Some(joints)
-    })
 }

@@ -102,40 +102,27 @@ pub fn solve_ranges(
     order.sort_by_key(|&k| std::cmp::Reverse(design.failures[k].total()));
     let mut probe = |r: &JointRanges, changed: &[usize]| -> Result<Attempt, SolveError> {
         let tried = attempt(r, false)?;
-        log::info!(
-            "axis ranges: {} — {}",
-            axes(r, changed)
-                .iter()
-                .map(AxisRange::words)
-                .collect::<Vec<_>>()
-                .join(", "),
-            match tried.length_mm() {
-                Some(mm) => format!("{mm:.0} mm"),
-                None => "no path".into(),
-            }
-        );
-        design.tried.push(RangeProbe {
+        let probe = RangeProbe {
             narrowed: axes(r, changed),
             length_mm: tried.length_mm(),
             time_s: tried.time_s,
-        });
+        };
+        log::info!("axis ranges: {}", probe.words());
+        design.tried.push(probe);
         Ok(tried)
     };
-    // Each axis alone at half its width, until one suffices.
-    let mut halves = Vec::new();
+    // Each axis alone at half its width, until one suffices; that one widened back by
+    // bisection.
+    let mut best: Option<(JointRanges, Attempt)> = None;
     for &k in &order {
         let j = named[k];
-        let tried = probe(&ranges.narrowed(j, 0.5, rotary(j)), &[j])?;
-        if tried.solved() {
-            halves.push((j, tried));
-            break;
+        let half = ranges.narrowed(j, 0.5, rotary(j));
+        let tried = probe(&half, &[j])?;
+        if !tried.solved() {
+            continue;
         }
-    }
-    // Widened back by bisection.
-    let mut best: Option<(f64, JointRanges, Attempt, Vec<usize>)> = None;
-    for (j, at_half) in halves {
         let (mut solved, mut unsolved) = (0.5, 1.0);
-        let mut answer = (ranges.narrowed(j, 0.5, rotary(j)), at_half);
+        let mut answer = (half, tried);
         for _ in 0..2 {
             let keep = 0.5 * (solved + unsolved);
             let wider = ranges.narrowed(j, keep, rotary(j));
@@ -147,21 +134,17 @@ pub fn solve_ranges(
                 unsolved = keep;
             }
         }
-        if best.as_ref().is_none_or(|b| solved > b.0) {
-            best = Some((solved, answer.0, answer.1, vec![j]));
-        }
+        best = Some(answer);
+        break;
     }
     if best.is_none() && named.len() > 1 {
-        let mut every = ranges.clone();
-        for &j in &named {
-            every = every.narrowed(j, 0.5, rotary(j));
-        }
+        let every = (named.iter()).fold(ranges.clone(), |r, &j| r.narrowed(j, 0.5, rotary(j)));
         let tried = probe(&every, &named)?;
         if tried.solved() {
-            best = Some((0.5, every, tried, named.clone()));
+            best = Some((every, tried));
         }
     }
-    let Some((_, narrowed, answer, _)) = best else {
+    let Some((narrowed, answer)) = best else {
         // No box tried has a path: the box asked, with its diagnosis.
         return Ok(attempt(ranges, options.diagnose)?.answer(design));
     };

@@ -112,15 +112,7 @@ fn write_ranges(f: &mut fmt::Formatter<'_>, design: &RangeDesign) -> fmt::Result
         writeln!(f, "  in the box asked: {}", failed.join("; "))?;
     }
     for probe in &design.tried {
-        writeln!(
-            f,
-            "  tried {}: {}",
-            list(&probe.narrowed),
-            match probe.length_mm {
-                Some(mm) => format!("{mm:.0} mm"),
-                None => "no path".into(),
-            }
-        )?;
+        writeln!(f, "  tried {}", probe.words())?;
     }
     Ok(())
 }

@@ -629,6 +629,17 @@ impl AxisRange {
     }
 }
 
+impl RangeProbe {
+    /// `joint_5 20.6…31.4°: 620 mm`, or `…: no path`.
+    pub fn words(&self) -> String {
+        let ranges: Vec<String> = self.narrowed.iter().map(AxisRange::words).collect();
+        match self.length_mm {
+            Some(mm) => format!("{}: {mm:.0} mm", ranges.join(", ")),
+            None => format!("{}: no path", ranges.join(", ")),
+        }
+    }
+}
+
 /// One box tried while narrowing axis ranges.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RangeProbe {
