@@ -151,7 +151,7 @@ impl SegmentPoses {
 
 /// Adds to `chosen` segment `m`'s poses of the axis-range grid `grid` (samples of `motion`)
 /// that are not there yet: an inter-link segment's every pose (clearance against every
-/// link), an intra-link segment's directions not within [`GRAVITY_RESOLUTION_DEG`] of one
+/// link), an intra-link segment's directions not within the grid's gravity resolution of one
 /// chosen (clearance against its own link).
 fn grid_poses(
     setup: &Setup,
@@ -164,7 +164,7 @@ fn grid_poses(
     let intra_link = setup.is_intra_link(m);
     let link = setup.guides[setup.segment_guides(m).0].body;
     let gravity = &setup.gravity_m_s2;
-    let resolution = GRAVITY_RESOLUTION_DEG.to_radians().cos();
+    let resolution = grid.gravity_resolution_deg.to_radians().cos();
     let mut directions: Vec<Vector3<f64>> = match intra_link {
         true => chosen
             .iter()

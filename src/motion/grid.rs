@@ -37,8 +37,6 @@ pub const MAX_UPSTREAM_COMBINATIONS: usize = 200_000;
 /// Which poses of a grid's [`CellMotion`] each piece is tested at.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RangeGrid {
-    /// The grid's step: degrees for a rotary joint, millimetres for a prismatic one.
-    pub step_deg: f64,
     /// Two gravity directions closer than this (degrees) count as one.
     pub gravity_resolution_deg: f64,
     /// Per piece (segment), the samples of the grid's motion it is tested at, in grid
@@ -184,7 +182,6 @@ impl JointRanges {
             cycles_per_hour: None,
             motion: Motion::new(robot, times_s, samples)?,
             grid: Some(RangeGrid {
-                step_deg,
                 gravity_resolution_deg,
                 per_segment,
                 gridded,

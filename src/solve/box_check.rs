@@ -8,7 +8,6 @@ use super::options::SolveError;
 use crate::attachment::Evaluator;
 use crate::motion::{JointRanges, combination_count, combinations, traversed_joints};
 use crate::path::CablePath;
-use crate::pose::Pose;
 use crate::setup::Setup;
 use nalgebra::Vector3;
 use rayon::prelude::*;
@@ -133,20 +132,19 @@ pub fn check_box(
                 count(&along)
             )));
         }
-        let mut kept: Vec<(Vec<f64>, Vec<Pose>)> = Vec::new();
-        for (base, _) in &directions {
-            for joints in combinations(base, &along) {
-                let poses = robot
-                    .link_poses(&joints)
-                    .map_err(|e| SolveError::Options(e.to_string()))?;
-                kept.push((joints, poses));
-            }
-        }
+        let kept: Vec<Vec<f64>> = (directions.iter())
+            .flat_map(|(base, _)| combinations(base, &along))
+            .collect();
         let shaping: Vec<usize> = upstream.iter().chain(&between).copied().collect();
+        // The links placed where each pose is solved: a grid may have millions of poses.
         let checks: Vec<crate::attachment::Check> = kept
             .par_iter()
-            .map(|(_, poses)| evaluator.check_at(m, &pv, poses))
-            .collect();
+            .map(|joints| {
+                let poses = robot.link_poses(joints)?;
+                Ok(evaluator.check_at(m, &pv, &poses))
+            })
+            .collect::<Result<_, crate::robot::JointVectorError>>()
+            .map_err(|e| SolveError::Options(e.to_string()))?;
         let metrics = checks.iter().filter_map(|c| c.metrics.as_ref());
         let least_bend_radius_mm = metrics
             .clone()
@@ -162,7 +160,7 @@ pub fn check_box(
             poses: kept.len(),
             least_bend_radius_mm,
             least_clearance_mm,
-            failure: failure.map(|((joints, _), check)| BoxFailure {
+            failure: failure.map(|(joints, check)| BoxFailure {
                 joints: (shaping.iter())
                     .map(|&j| {
                         let joint = robot.actuated_joint(j);
