@@ -358,11 +358,13 @@ fn admissible_pairs(setup: &Setup, m: usize) -> Vec<((usize, usize), Vec<usize>)
 /// catalogue.
 #[test]
 fn solve_with_a_dictionary_equals_solve_on_the_fly_on_every_bundled_motion() {
+    // The hand-written catalogue has no path for any of them: screw driving, first, runs out
+    // of chains in a few seconds where the others spend the whole motion-test budget.
     let gripper = [
+        "screw_driving",
         "pick_and_place",
         "palletizing",
         "machine_tending",
-        "screw_driving",
     ];
     // (setup, dictionary built from, directions, motions)
     let cases = [
