@@ -1,11 +1,26 @@
 //! Axis ranges: a design for a box of joint values (`solve --ranges`), checked by an
 //! independent method on a grid four times finer than the search's, and with the motion
-//! whose joints stay inside the box.
+//! whose joints stay inside the box; the ranges a mounting allows, checked on a finer grid.
 
 use crate::common::root;
 use cable_dict::motion::{Cell, JointRanges, Motion};
 use cable_dict::setup::Setup;
-use cable_dict::solve::{SolveOptions, Status, check_box, check_mounting, solve_ranges};
+use cable_dict::solve::{
+    RangeEnd, SolveOptions, Status, allowed_box, allowed_ranges, check_box, check_mounting,
+    solve_cell, solve_ranges,
+};
+
+/// The robot-level pick-and-place setup and the bundled pick-and-place motion.
+fn pick_and_place() -> (Setup, Motion) {
+    let setup = Setup::from_file(root().join("robots/viper_s850/pick_and_place.toml"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let motion = Motion::from_csv_file(
+        &setup.robot,
+        root().join("motions/viper_s850/pick_and_place.csv"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    (setup, motion)
+}
 
 /// The bundled pick-and-place's own box (each joint's least and greatest value over the
 /// motion), joints 4 and 5 ranged (their stress motions run): the design's path must hold
@@ -14,11 +29,8 @@ use cable_dict::solve::{SolveOptions, Status, check_box, check_mounting, solve_r
 /// motion itself, which stays inside the box.
 #[test]
 fn a_range_design_holds_on_a_four_times_finer_grid_and_over_a_motion_inside_its_box() {
-    let setup = Setup::from_file(root().join("robots/viper_s850/pick_and_place.toml"))
-        .unwrap_or_else(|e| panic!("{e}"));
+    let (setup, motion) = pick_and_place();
     let robot = &setup.robot;
-    let motion = Motion::from_csv_file(robot, root().join("motions/viper_s850/pick_and_place.csv"))
-        .unwrap_or_else(|e| panic!("{e}"));
     let mut ranges = JointRanges::urdf(robot).expect("the Viper's joints have limits");
     for (j, range) in ranges.ranges.iter_mut().enumerate() {
         let series = motion.joint_series(j).expect("a joint");
@@ -32,7 +44,7 @@ fn a_range_design_holds_on_a_four_times_finer_grid_and_over_a_motion_inside_its_
     assert!(ranges.contains(&motion.samples()[0]));
     let step_deg = 10.0;
     let options = SolveOptions::default();
-    let (solution, _) = solve_ranges(&setup, &ranges, None, step_deg, &options, None)
+    let (solution, _, answered) = solve_ranges(&setup, &ranges, None, step_deg, &options, None)
         .unwrap_or_else(|e| panic!("{e}"));
     let report = &solution.report;
     assert_eq!(report.status, Status::Solved, "{}", report.explanation);
@@ -41,6 +53,7 @@ fn a_range_design_holds_on_a_four_times_finer_grid_and_over_a_motion_inside_its_
         design.asked, design.answered,
         "no narrowing for the motion's own box"
     );
+    assert_eq!(answered, ranges);
     let path = &report.candidates.last().expect("the answer").path;
 
     let finer = check_box(&solution.setup, path, &ranges, step_deg / 4.0, 200_000)
@@ -85,4 +98,90 @@ fn a_range_design_holds_on_a_four_times_finer_grid_and_over_a_motion_inside_its_
     let inside = check_mounting(&solution.setup, path, &Cell::single(motion, None), &options)
         .unwrap_or_else(|e| panic!("{e}"));
     assert!(inside.holds(), "{:?}", inside.motions[0].motion_test);
+}
+
+/// The ranges the bundled pick-and-place answer allows, each axis alone with the others
+/// anywhere in the motion's extremes, scanned on a 10° grid: the vertical first axis shapes
+/// no piece and keeps its URDF limits; every other axis's allowed range holds on the
+/// independent box check at half the step (values the scan never solved), and each end that
+/// a piece's failure sets lies beyond the range within the resolution.
+#[test]
+fn the_ranges_a_mounting_allows_hold_on_a_finer_grid_and_end_where_a_piece_fails() {
+    let (setup, motion) = pick_and_place();
+    let robot = &setup.robot;
+    let options = SolveOptions::default();
+    let cell = Cell::single(motion, None);
+    let solution = solve_cell(&setup, &cell, &options, None).unwrap_or_else(|e| panic!("{e}"));
+    let path = solution.answer().expect("the bundled answer passes");
+    let (within, words) = allowed_box(None, Some(&cell)).expect("a box");
+    let step_deg = 10.0;
+    let allowed = allowed_ranges(&solution.setup, path, &within, &words, step_deg, &options)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(allowed.box_failure.is_none(), "{:?}", allowed.box_failure);
+    assert_eq!(allowed.axes.len(), robot.dof());
+
+    let j1 = &allowed.axes[0];
+    let limits = robot.actuated_joint(0).limits.expect("limits");
+    assert!(j1.shapes.is_empty(), "{:?}", j1.shapes);
+    assert_eq!(
+        j1.allowed,
+        [
+            limits.lower.to_degrees().round(),
+            limits.upper.to_degrees().round()
+        ]
+    );
+    assert_eq!((&j1.below, &j1.above), (&RangeEnd::Limit, &RangeEnd::Limit));
+
+    let mut widened = 0;
+    for (j, axis) in allowed.axes.iter().enumerate().skip(1) {
+        // The allowed range holds the asked range, and lies in the limits.
+        let limits = robot
+            .actuated_joint(j)
+            .limits
+            .expect("limits")
+            .lower
+            .to_degrees()
+            ..=robot
+                .actuated_joint(j)
+                .limits
+                .expect("limits")
+                .upper
+                .to_degrees();
+        assert!(axis.allowed[0] <= axis.within[0] && axis.allowed[1] >= axis.within[1]);
+        assert!(limits.contains(&axis.allowed[0]) && limits.contains(&axis.allowed[1]));
+        for (end, side) in [(&axis.below, 0), (&axis.above, 1)] {
+            if let RangeEnd::Fails { at, .. } = end {
+                let beyond = if side == 0 {
+                    axis.allowed[0] - at
+                } else {
+                    at - axis.allowed[1]
+                };
+                assert!(
+                    beyond > 0.0 && beyond <= 2.0 * allowed.resolution_deg + 1e-9,
+                    "{}: fails at {at}, allows {:?}",
+                    axis.joint,
+                    axis.allowed
+                );
+            }
+        }
+        if axis.allowed == axis.within {
+            continue;
+        }
+        widened += 1;
+        let mut wider = within.clone();
+        wider.ranges[j] = axis.allowed.map(f64::to_radians);
+        let finer = check_box(&solution.setup, path, &wider, step_deg / 2.0, 200_000)
+            .unwrap_or_else(|e| panic!("{e}"));
+        for piece in &finer.pieces {
+            assert!(
+                piece.failure.is_none(),
+                "{} {:?}: {} fails at half the step: {:?}",
+                axis.joint,
+                axis.allowed,
+                piece.segment,
+                piece.failure
+            );
+        }
+    }
+    assert!(widened >= 3, "{allowed:?}");
 }

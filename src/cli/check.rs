@@ -8,7 +8,9 @@ use cable_dict::motion_test::EngineKind;
 use cable_dict::mounting::MeasuredMounting;
 use cable_dict::path::CablePath;
 use cable_dict::setup::Setup;
-use cable_dict::solve::{DEFAULT_GRID_STEP_DEG, SolveOptions, check_mounting, check_ranges};
+use cable_dict::solve::{
+    DEFAULT_GRID_STEP_DEG, SolveOptions, allowed_box, allowed_ranges, check_mounting, check_ranges,
+};
 use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
@@ -42,6 +44,11 @@ pub struct Args {
     /// (mm: along, around as an arc, and off the link's line together).
     #[arg(long, value_name = "MM", default_value_t = 10.0)]
     tolerance_mm: f64,
+    /// Also find the range each axis allows the mounting, the others anywhere in the box of
+    /// --ranges, else in the motions' extremes: scanned outward on a grid this far apart
+    /// (degrees; mm), each end found to 1° (docs/commands.md, "Allowed ranges").
+    #[arg(long, value_name = "STEP_DEG", num_args = 0..=1, default_missing_value = "10")]
+    allowed_ranges: Option<f64>,
     /// Print the verdicts as JSON (names as in the result JSON's `motions`).
     #[arg(long)]
     json: bool,
@@ -61,9 +68,13 @@ pub fn run(args: Args) -> Result<(), Failure> {
         engine: read.engine,
         ..SolveOptions::default()
     };
-    let check = match (&args.ranges, given) {
+    let ranges = (args.ranges.as_ref())
+        .map(|file| JointRanges::from_file(&setup.robot, file))
+        .transpose()
+        .map_err(Failure::input)?;
+    let within = allowed_box(ranges.as_ref().map(|r| (r, false)), given.as_ref());
+    let mut check = match (ranges, given) {
         (Some(ranges), given) => {
-            let ranges = JointRanges::from_file(&setup.robot, ranges).map_err(Failure::input)?;
             let step = args.grid_step_deg;
             check_ranges(&setup, &path, &ranges, given, step, &options)
         }
@@ -71,6 +82,11 @@ pub fn run(args: Args) -> Result<(), Failure> {
         (None, None) => return Err(Failure::input(anyhow::anyhow!("give the motions"))),
     }
     .map_err(Failure::input)?;
+    if let (Some(step), Some((box_, words))) = (args.allowed_ranges, &within) {
+        let allowed =
+            allowed_ranges(&setup, &path, box_, words, step, &options).map_err(Failure::input)?;
+        check.allowed_ranges = Some(allowed);
+    }
     if args.json {
         print_json(&check)?;
     } else {

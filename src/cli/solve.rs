@@ -12,7 +12,7 @@ use cable_dict::report::{ReportError, check_report_folder, write_report};
 use cable_dict::setup::Setup;
 use cable_dict::solve::{
     DEFAULT_GRID_STEP_DEG, ReportShapes, SearchKind, Solution, SolveError, SolveOptions,
-    SolveReport, guide_names, solve_cell, solve_ranges,
+    SolveReport, allowed_box, allowed_ranges, guide_names, solve_cell, solve_ranges,
 };
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -52,6 +52,12 @@ pub struct Args {
     /// apart.
     #[arg(long, value_name = "DEG", default_value_t = DEFAULT_GRID_STEP_DEG, requires = "ranges")]
     grid_step_deg: f64,
+    /// Also find the range each axis allows the answer, the others anywhere in the box of
+    /// --ranges (the box answered), else in the motions' extremes: scanned outward on a grid
+    /// this far apart (degrees; mm), each end found to 1° (docs/commands.md, "Allowed
+    /// ranges").
+    #[arg(long, value_name = "STEP_DEG", num_args = 0..=1, default_missing_value = "10")]
+    allowed_ranges: Option<f64>,
     /// Print the result as JSON instead of the summary.
     #[arg(long)]
     json: bool,
@@ -200,32 +206,49 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
         .then(|| Cell::from_files(&setup.robot, motion_paths))
         .transpose()
         .map_err(Failure::input)?;
-    let (solution, cell) = match (&args.ranges, given) {
-        (Some(ranges), given) => {
-            let ranges = JointRanges::from_file(&setup.robot, ranges).map_err(Failure::input)?;
-            let step = args.grid_step_deg;
-            solve_ranges(
-                &setup,
-                &ranges,
-                given.as_ref(),
-                step,
-                &options,
-                dictionary.as_ref(),
-            )
-        }
-        (None, Some(cell)) => {
-            solve_cell(&setup, &cell, &options, dictionary.as_ref()).map(|s| (s, cell))
-        }
-        (None, None) => return Err(Failure::input(anyhow::anyhow!("give the motion"))),
-    }
-    .map_err(|e| match e {
+    let failure = |e: SolveError| match e {
         SolveError::Options(_)
         | SolveError::Setup(_)
         | SolveError::Motion(_)
         | SolveError::Obstacles(_)
         | SolveError::Dictionary(_) => Failure::input(e),
         SolveError::Chain(_) | SolveError::MotionTest(_) => Failure::unsolved(e),
-    })?;
+    };
+    let (mut solution, cell, within) = match (&args.ranges, given) {
+        (Some(ranges), given) => {
+            let asked = JointRanges::from_file(&setup.robot, ranges).map_err(Failure::input)?;
+            let step = args.grid_step_deg;
+            let (solution, cell, answered) = solve_ranges(
+                &setup,
+                &asked,
+                given.as_ref(),
+                step,
+                &options,
+                dictionary.as_ref(),
+            )
+            .map_err(failure)?;
+            let narrowed = answered != asked;
+            (
+                solution,
+                cell,
+                allowed_box(Some((&answered, narrowed)), None),
+            )
+        }
+        (None, Some(cell)) => {
+            let solution =
+                solve_cell(&setup, &cell, &options, dictionary.as_ref()).map_err(failure)?;
+            let within = allowed_box(None, Some(&cell));
+            (solution, cell, within)
+        }
+        (None, None) => return Err(Failure::input(anyhow::anyhow!("give the motion"))),
+    };
+    if let (Some(step), Some((box_, words)), Some(path)) =
+        (args.allowed_ranges, &within, solution.answer())
+    {
+        let allowed =
+            allowed_ranges(&solution.setup, path, box_, words, step, &options).map_err(failure)?;
+        solution.report.allowed_ranges = Some(allowed);
+    }
     let Solution {
         mut report,
         setup: solved,

@@ -50,10 +50,13 @@ pub struct RangeGrid {
 impl JointRanges {
     /// The values (rad or m) of `robot`'s joint `j` on a grid at most `step_deg` apart
     /// (degrees, or millimetres for a prismatic joint) over its range, both ends included,
-    /// evenly spaced.
+    /// evenly spaced; one value for a range of no width.
     pub fn grid_values(&self, robot: &Robot, j: usize, step_deg: f64) -> Vec<f64> {
         let (per_si, _) = robot.actuated_joint(j).kind.display_unit();
         let [min, max] = self.ranges[j];
+        if max <= min {
+            return vec![min];
+        }
         let n = ((max - min) * per_si / step_deg).ceil().clamp(1.0, 1e6) as usize;
         (0..=n)
             .map(|i| min + (max - min) * i as f64 / n as f64)
@@ -96,30 +99,10 @@ impl JointRanges {
                 .into_iter()
                 .filter(|j| !traversed.contains(j))
                 .collect();
-            let gravity_in_a = |joints: &[f64]| -> Result<Vector3<f64>, MotionError> {
-                let poses = robot
-                    .link_poses(joints)
-                    .map_err(|e| MotionError::data(e.to_string()))?;
-                Ok(poses[a].rotation.inverse_transform_vector(&down))
-            };
-            // Upstream joints that turn gravity in A's frame, tried at the middle and at the
-            // box's two corners.
+            let gravity_in_a = |joints: &[f64]| gravity_in(robot, joints, a, &down);
             let mut turning = Vec::new();
             for &j in &upstream {
-                let corners = [centre.clone(), self.corner(0), self.corner(1)];
-                let mut turns = false;
-                for corner in corners {
-                    let at = |v: f64| {
-                        let mut joints = corner.clone();
-                        joints[j] = v;
-                        gravity_in_a(&joints)
-                    };
-                    let base = at(corner[j])?;
-                    for v in self.grid_values(robot, j, step_deg) {
-                        turns |= (at(v)? - base).norm() > 1e-9;
-                    }
-                }
-                if turns {
+                if self.turns_gravity(robot, a, &down, j, step_deg)? {
                     turning.push(j);
                 }
             }
@@ -190,9 +173,49 @@ impl JointRanges {
     }
 
     /// The box's corner with every joint at its minimum (`end` 0) or maximum (1).
+    /// Whether joint `j`, moved over its grid at `step_deg`, turns gravity (`down`, a unit
+    /// vector in the world) in link `link`'s frame: tried with the other joints at the box's
+    /// middle and at its two corners. A vertical first axis turns it in no link.
+    pub fn turns_gravity(
+        &self,
+        robot: &Robot,
+        link: usize,
+        down: &Vector3<f64>,
+        j: usize,
+        step_deg: f64,
+    ) -> Result<bool, MotionError> {
+        for corner in [self.centre(), self.corner(0), self.corner(1)] {
+            let at = |v: f64| {
+                let mut joints = corner.clone();
+                joints[j] = v;
+                gravity_in(robot, &joints, link, down)
+            };
+            let base = at(corner[j])?;
+            for v in self.grid_values(robot, j, step_deg) {
+                if (at(v)? - base).norm() > 1e-9 {
+                    return Ok(true);
+                }
+            }
+        }
+        Ok(false)
+    }
+
     fn corner(&self, end: usize) -> Vec<f64> {
         self.ranges.iter().map(|r| r[end]).collect()
     }
+}
+
+/// Gravity's direction `down` (world) in the frame of `robot`'s link `link` at `joints`.
+fn gravity_in(
+    robot: &Robot,
+    joints: &[f64],
+    link: usize,
+    down: &Vector3<f64>,
+) -> Result<Vector3<f64>, MotionError> {
+    let poses = robot
+        .link_poses(joints)
+        .map_err(|e| MotionError::data(e.to_string()))?;
+    Ok(poses[link].rotation.inverse_transform_vector(down))
 }
 
 /// How many joint vectors [`combinations`] gives (as a float: it may be astronomically

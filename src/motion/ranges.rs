@@ -69,6 +69,26 @@ impl JointRanges {
         })
     }
 
+    /// The least box holding every sample of `cell`'s motions (each joint between its least
+    /// and greatest value over them; none named): the box a mounting found for motions is
+    /// asked about when no ranges are given. `None` for a cell without samples.
+    pub fn spanned(cell: &Cell) -> Option<JointRanges> {
+        let mut samples = (cell.motions.iter()).flat_map(|m| m.motion.samples());
+        let first = samples.next()?;
+        let mut ranges: Vec<[f64; 2]> = first.iter().map(|&v| [v, v]).collect();
+        for sample in samples {
+            for (range, &v) in ranges.iter_mut().zip(sample) {
+                *range = [range[0].min(v), range[1].max(v)];
+            }
+        }
+        Some(JointRanges {
+            source: None,
+            named: vec![false; ranges.len()],
+            ranges,
+            time_to_full_speed_s: DEFAULT_TIME_TO_FULL_SPEED_S,
+        })
+    }
+
     /// Reads a ranges file for `robot`.
     pub fn from_file(robot: &Robot, path: &Path) -> Result<JointRanges, MotionError> {
         let text = crate::input::read_text(path, crate::input::WAYPOINTS)

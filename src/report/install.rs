@@ -14,6 +14,7 @@ use super::summary::capitalized;
 use super::text::LoadRow;
 use crate::escape::html as escape;
 use crate::mounting::{self, MountingPlan, rows};
+use crate::solve::{AllowedAxis, AllowedRanges};
 use std::fmt::Write;
 
 /// Width of the strip picture (px).
@@ -27,6 +28,10 @@ const STRIP_PX: f64 = 86.0;
 const PICTURE_MM: f64 = 88.0;
 const PICTURE_PER_ROW_MM: f64 = 8.0;
 const MIN_PICTURE_MM: f64 = 45.0;
+/// Height of the allowed ranges' dials beside the strip (mm), and what the arm's picture
+/// gives way to them and their step.
+const DIALS_MM: f64 = 22.0;
+const DIALS_GIVE_MM: f64 = 12.0;
 
 /// What the sheet is about, for its title block.
 #[derive(Debug, Clone, PartialEq)]
@@ -56,6 +61,8 @@ pub struct Sheet<'a> {
     pub picture: Option<&'a Picture>,
     /// The largest twist per piece and load per clamp over the motion test.
     pub loads: Vec<LoadRow>,
+    /// The range each axis allows, when found (its dials are `allowed-ranges.svg`).
+    pub allowed: Option<&'a AllowedRanges>,
 }
 
 const STRIP_STYLE: &str = "text{fill:#222;font-family:sans-serif;font-size:15px}\
@@ -132,8 +139,14 @@ pub fn install_html(sheet: &Sheet<'_>) -> String {
     html.push_str("<div class=\"top\">\n");
     if let Some(picture) = sheet.picture {
         // The picture gives way to the table's rows: one page holds both.
-        let height_mm =
-            (PICTURE_MM - PICTURE_PER_ROW_MM * plan.clamps.len() as f64).max(MIN_PICTURE_MM);
+        // … and to the dials' row and their step.
+        let dials_mm = if sheet.allowed.is_some() {
+            DIALS_GIVE_MM
+        } else {
+            0.0
+        };
+        let height_mm = (PICTURE_MM - PICTURE_PER_ROW_MM * plan.clamps.len() as f64 - dials_mm)
+            .max(MIN_PICTURE_MM - dials_mm);
         let _ = writeln!(
             html,
             "<figure class=\"arm\"><img style=\"height: {height_mm:.0}mm\" src=\"{}\" alt=\"the robot at the installation pose \
@@ -143,7 +156,7 @@ pub fn install_html(sheet: &Sheet<'_>) -> String {
             escape(&picture.caption)
         );
     }
-    steps(&mut html, plan);
+    steps(&mut html, plan, sheet.allowed);
     html.push_str("</div>\n");
     clamp_table(&mut html, plan, &sheet.loads);
     for warning in plan.warnings() {
@@ -153,10 +166,19 @@ pub fn install_html(sheet: &Sheet<'_>) -> String {
             escape(&capitalized(&warning))
         );
     }
+    // The dials beside the strip: its height leaves the row's width free.
     html.push_str(
-        "<img class=\"strip\" src=\"install.svg\" alt=\"the cable laid out straight, each \
-         clamp's mark from the tool end\">\n",
+        "<div class=\"strip\"><img class=\"strip\" src=\"install.svg\" alt=\"the cable laid \
+         out straight, each clamp's mark from the tool end\">",
     );
+    if sheet.allowed.is_some() {
+        let _ = write!(
+            html,
+            "<img class=\"dials\" style=\"height: {DIALS_MM}mm\" src=\"allowed-ranges.svg\" \
+             alt=\"a dial per axis: its limits and the range the cable allows it\">"
+        );
+    }
+    html.push_str("</div>\n");
     pieces_and_cut(&mut html, plan, &sheet.loads);
     html.push_str("</body>\n</html>\n");
     html
@@ -188,7 +210,7 @@ fn title_block(html: &mut String, title: &str, t: &TitleBlock) {
 }
 
 /// What to do, in order.
-fn steps(html: &mut String, plan: &MountingPlan) {
+fn steps(html: &mut String, plan: &MountingPlan, allowed: Option<&AllowedRanges>) {
     let end = plan.clamps.last().map(|c| c.in_words()).unwrap_or_default();
     let fitting_end = plan.clamps.last().is_some_and(|c| c.fitting.is_some());
     let mut steps = vec![
@@ -208,6 +230,15 @@ fn steps(html: &mut String, plan: &MountingPlan) {
          foot) and close it on its mark, the cable leaving as the row says."
             .into(),
     );
+    if let Some(allowed) = allowed {
+        let ranges: Vec<String> = allowed.axes.iter().map(AllowedAxis::words).collect();
+        steps.push(format!(
+            "Last check: jog each axis alone to its ends, the others anywhere in {} (the dials \
+             below): the cable holds over {}.",
+            allowed.within,
+            ranges.join(", ")
+        ));
+    }
     html.push_str("<section class=\"steps\"><h2>Steps</h2>\n<ol>\n");
     for step in steps {
         let _ = writeln!(html, "<li>{}</li>", escape(&step));
@@ -311,6 +342,9 @@ table.clamps th { background: #eef1f4; }
 td.mark { text-align: right; font-weight: bold; white-space: nowrap; }
 .note { font-weight: normal; color: #555; font-size: 8pt; }
 img.strip { width: 100%; max-height: 16mm; object-fit: contain; display: block; margin: 1mm 0; }
+div.strip { display: flex; gap: 4mm; align-items: center; margin: 1mm 0; }
+div.strip img.strip { flex: 1; min-width: 0; }
+img.dials { max-width: 40%; }
 p { margin: 1mm 0; }
 .small { font-size: 8pt; color: #555; }
 @media print { body { max-width: none; } }

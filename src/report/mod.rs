@@ -87,6 +87,14 @@ pub fn write_report(
     for picture in &pictures {
         folder.put(&picture.file, &picture.what, picture.svg.as_bytes())?;
     }
+    let dials = (report.allowed_ranges.as_ref()).and_then(pictures::dials_svg);
+    if let Some(dials) = &dials {
+        folder.put(
+            "allowed-ranges.svg",
+            "a dial per axis: its limits, the range the cable allows it, the range asked within",
+            dials.as_bytes(),
+        )?;
+    }
     if let Some(plan) = &report.mounting {
         let picture = pictures::installation_picture(setup, report, &spec);
         if let Some(picture) = &picture {
@@ -96,6 +104,7 @@ pub fn write_report(
             plan,
             title: title_block(setup, report),
             picture: picture.as_ref(),
+            allowed: (report.allowed_ranges.as_ref()).filter(|_| dials.is_some()),
             loads: report
                 .motion_test
                 .as_ref()
@@ -146,6 +155,16 @@ pub fn write_report(
                     )]
                 })
                 .unwrap_or_default(),
+        },
+        page::Section {
+            heading: "Allowed ranges",
+            intro: "How far each axis may turn with the others anywhere in the box named in the \
+                    summary before a piece of the cable breaks a limit: jog each axis to its \
+                    ends as the last check of the mounting.",
+            figures: match dials {
+                Some(_) => vec![("allowed-ranges.svg", "The range each axis allows")],
+                None => Vec::new(),
+            },
         },
         page::Section {
             heading: "Plots",

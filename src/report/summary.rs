@@ -6,7 +6,7 @@ use super::text::{motion_verdict_words, verdict_words, worst_rows};
 use crate::escape::markdown as text;
 use crate::motion_test::MotionTestReport;
 use crate::mounting::{self, MountingPlan, rows};
-use crate::solve::{NamedPath, SolveReport};
+use crate::solve::{AllowedRanges, NamedPath, SolveReport};
 use crate::text_table::{decimal, decimals};
 use std::fmt::Write as _;
 
@@ -22,6 +22,9 @@ pub fn summary_markdown(
     heading(&mut md, report);
     if let Some(plan) = &report.mounting {
         mounting_tables(&mut md, plan);
+    }
+    if let Some(allowed) = &report.allowed_ranges {
+        allowed_table(&mut md, allowed);
     }
     if let (Some(plan), true) = (&report.mounting, report.motions.len() > 1) {
         motions_table(&mut md, report, plan);
@@ -49,6 +52,49 @@ pub fn summary_markdown(
         }
     }
     md
+}
+
+/// The range each axis allows, what ends it, and the box it was asked within.
+fn allowed_table(md: &mut String, allowed: &AllowedRanges) {
+    section(md, "Allowed ranges");
+    if let Some(piece) = &allowed.box_failure {
+        let _ = writeln!(
+            md,
+            "None: with every axis anywhere in {}, {} fails ({}).",
+            text(&allowed.within),
+            text(&piece.segment),
+            text((piece.failure.as_ref()).map_or("", |f| f.reason.as_str()))
+        );
+        return;
+    }
+    let _ = writeln!(
+        md,
+        "Each axis alone, the others anywhere in {} (a {}° grid; each end to {}°).\n",
+        text(&allowed.within),
+        allowed.step_deg,
+        allowed.resolution_deg
+    );
+    header(
+        md,
+        &["axis", "allows", "asked within", "limits", "below", "above"],
+    );
+    for axis in &allowed.axes {
+        let pair = |[a, b]: [f64; 2]| format!("{}…{}", decimal(a, 1), decimal(b, 1));
+        row(
+            md,
+            &[
+                axis.joint.clone(),
+                (axis.words().strip_prefix(&axis.joint))
+                    .unwrap_or_default()
+                    .trim()
+                    .to_string(),
+                pair(axis.within),
+                axis.limits.map_or("none (continuous)".into(), pair),
+                axis.end_words(&axis.below),
+                axis.end_words(&axis.above),
+            ],
+        );
+    }
 }
 
 fn section(md: &mut String, title: &str) {

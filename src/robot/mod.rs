@@ -104,6 +104,16 @@ pub enum DisplayUnit {
     Mm,
 }
 
+impl DisplayUnit {
+    /// What follows a value in text: `°` (no space) or ` mm`.
+    pub fn suffix(self) -> &'static str {
+        match self {
+            DisplayUnit::Deg => "°",
+            DisplayUnit::Mm => " mm",
+        }
+    }
+}
+
 impl std::fmt::Display for DisplayUnit {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(match self {

@@ -7,7 +7,7 @@
 use super::options::SolveError;
 use crate::attachment::Evaluator;
 use crate::motion::{JointRanges, combination_count, combinations, traversed_joints};
-use crate::path::CablePath;
+use crate::path::{CablePath, Pv};
 use crate::setup::Setup;
 use nalgebra::Vector3;
 use rayon::prelude::*;
@@ -15,6 +15,10 @@ use rayon::prelude::*;
 /// Gravity directions closer than this fraction of the grid step count as one (the search
 /// keeps 3° at its 10° step).
 pub const GRAVITY_RESOLUTION_PER_STEP: f64 = 0.3;
+
+/// The most poses the box check ([`super::check_ranges`], [`super::allowed_ranges`]) solves
+/// one piece at.
+pub const MAX_BOX_CHECK_POSES: usize = 2_000_000;
 
 /// One piece of the path over the box.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -68,31 +72,88 @@ pub fn check_box(
     step_deg: f64,
     max_poses: usize,
 ) -> Result<BoxCheck, SolveError> {
-    if !(step_deg.is_finite() && step_deg > 0.0) {
-        return Err(SolveError::Options(format!(
-            "the grid step {step_deg} must be > 0"
-        )));
-    }
-    path.check(setup)
-        .map_err(|e| SolveError::Options(format!("the path does not fit the setup: {e}")))?;
-    let robot = &setup.robot;
-    let evaluator = Evaluator::new(setup, crate::attachment::ConnectMethod::Hermite)?;
-    let down = (setup.gravity_m_s2)
-        .try_normalize(0.0)
-        .unwrap_or_else(Vector3::zeros);
-    let same = (GRAVITY_RESOLUTION_PER_STEP * step_deg).to_radians().cos();
-    let centre = ranges.centre();
-    let mut pieces = Vec::new();
-    for (m, pv) in path.pieces() {
-        if pv.sub_segments == 0 {
-            continue;
+    let checker = PieceChecker::new(setup, path, step_deg, max_poses)?;
+    let pieces = (checker.pieces().iter())
+        .map(|&(m, pv)| checker.over(m, pv, ranges))
+        .collect::<Result<_, _>>()?;
+    Ok(BoxCheck { step_deg, pieces })
+}
+
+/// The pieces of one path, each solved cold over a box's grid ([`check_box`]'s method), for
+/// any box: what the allowed ranges of a mounting ask of many boxes in turn.
+pub(super) struct PieceChecker<'a> {
+    setup: &'a Setup,
+    path: &'a CablePath,
+    evaluator: Evaluator<'a>,
+    /// Gravity's direction in the world (unit, or zero without gravity).
+    pub(super) down: Vector3<f64>,
+    step_deg: f64,
+    max_poses: usize,
+}
+
+impl<'a> PieceChecker<'a> {
+    /// Refused when the step is not > 0 or `path` does not fit `setup`.
+    pub(super) fn new(
+        setup: &'a Setup,
+        path: &'a CablePath,
+        step_deg: f64,
+        max_poses: usize,
+    ) -> Result<Self, SolveError> {
+        if !(step_deg.is_finite() && step_deg > 0.0) {
+            return Err(SolveError::Options(format!(
+                "the grid step {step_deg} must be > 0"
+            )));
         }
-        let (a, b) = setup.segment_guides(m);
-        let (body_a, body_b) = (setup.guides[a].body, setup.guides[b].body);
+        path.check(setup)
+            .map_err(|e| SolveError::Options(format!("the path does not fit the setup: {e}")))?;
+        Ok(PieceChecker {
+            setup,
+            path,
+            evaluator: Evaluator::new(setup, crate::attachment::ConnectMethod::Hermite)?,
+            down: (setup.gravity_m_s2)
+                .try_normalize(0.0)
+                .unwrap_or_else(Vector3::zeros),
+            step_deg,
+            max_poses,
+        })
+    }
+
+    /// The path's pieces with a cable (segment index, piece), from the base end.
+    pub(super) fn pieces(&self) -> Vec<(usize, Pv)> {
+        (self.path.pieces())
+            .filter(|(_, pv)| pv.sub_segments > 0)
+            .collect()
+    }
+
+    /// The joints (joint-vector indices) that shape piece `m`: those from the base up to its
+    /// start link (not between its links), and those between its links.
+    pub(super) fn shaping_joints(&self, m: usize) -> Result<(Vec<usize>, Vec<usize>), SolveError> {
+        let robot = &self.setup.robot;
+        let (a, b) = self.setup.segment_guides(m);
+        let (body_a, body_b) = (self.setup.guides[a].body, self.setup.guides[b].body);
         let name = |l: usize| robot.links[l].name.as_str();
         let between = traversed_joints(robot, name(body_a), name(body_b))?;
         let mut upstream: Vec<usize> = traversed_joints(robot, name(0), name(body_a))?;
         upstream.retain(|j| !between.contains(j));
+        Ok((upstream, between))
+    }
+
+    /// The link piece `m` starts on (an index into the robot's links).
+    pub(super) fn start_link(&self, m: usize) -> usize {
+        self.setup.guides[self.setup.segment_guides(m).0].body
+    }
+
+    /// Piece `pv` of segment `m` over `ranges`.
+    pub(super) fn over(
+        &self,
+        m: usize,
+        pv: Pv,
+        ranges: &JointRanges,
+    ) -> Result<PieceOverBox, SolveError> {
+        let (setup, robot, step_deg) = (self.setup, &self.setup.robot, self.step_deg);
+        let body_a = self.start_link(m);
+        let same = (GRAVITY_RESOLUTION_PER_STEP * step_deg).to_radians().cos();
+        let (upstream, between) = self.shaping_joints(m)?;
         let grid = |joints: &[usize]| -> Vec<(usize, Vec<f64>)> {
             (joints.iter())
                 .map(|&j| (j, ranges.grid_values(robot, j, step_deg)))
@@ -100,6 +161,7 @@ pub fn check_box(
         };
         let (up, along) = (grid(&upstream), grid(&between));
         let count = combination_count;
+        let max_poses = self.max_poses;
         if count(&up).max(count(&along)) > max_poses as f64 {
             return Err(SolveError::Options(format!(
                 "{}: {:.0} combinations of the joints up to its start link and {:.0} of those \
@@ -114,11 +176,11 @@ pub fn check_box(
         // direction in the start link (to the resolution), then every combination of the
         // joints between the links with each.
         let mut directions: Vec<(Vec<f64>, Vector3<f64>)> = Vec::new();
-        for joints in combinations(&centre, &up) {
+        for joints in combinations(&ranges.centre(), &up) {
             let poses = robot
                 .link_poses(&joints)
                 .map_err(|e| SolveError::Options(e.to_string()))?;
-            let g = poses[body_a].rotation.inverse_transform_vector(&down);
+            let g = poses[body_a].rotation.inverse_transform_vector(&self.down);
             if directions.iter().all(|(_, h)| h.dot(&g) < same) {
                 directions.push((joints, g));
             }
@@ -141,7 +203,7 @@ pub fn check_box(
             .par_iter()
             .map(|joints| {
                 let poses = robot.link_poses(joints)?;
-                Ok(evaluator.check_at(m, &pv, &poses))
+                Ok(self.evaluator.check_at(m, &pv, &poses))
             })
             .collect::<Result<_, crate::robot::JointVectorError>>()
             .map_err(|e| SolveError::Options(e.to_string()))?;
@@ -155,7 +217,7 @@ pub fn check_box(
             .map(|c| c * 1e3)
             .reduce(f64::min);
         let failure = (kept.iter().zip(&checks)).find(|(_, c)| !c.passed());
-        pieces.push(PieceOverBox {
+        Ok(PieceOverBox {
             segment: setup.segment_name(m),
             poses: kept.len(),
             least_bend_radius_mm,
@@ -172,7 +234,6 @@ pub fn check_box(
                     .clone()
                     .unwrap_or_else(|| "no equilibrium".into()),
             }),
-        });
+        })
     }
-    Ok(BoxCheck { step_deg, pieces })
 }

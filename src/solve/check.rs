@@ -2,10 +2,12 @@
 //! motion of a cell, no search. What gates a new robot program: does the cable mounted as
 //! the sheet said survive it, and if not, which limit fails where on the cable and when.
 
-use super::box_check::{BoxCheck, check_box};
+use super::box_check::{BoxCheck, MAX_BOX_CHECK_POSES, check_box};
 use super::options::{SolveError, SolveOptions};
 use super::ranges::STRESS_MOTION_RATE_HZ;
-use super::report::{MotionVerdict, NamedPath, PieceBinding, binding, motion_verdicts, named_path};
+use super::report::{
+    AllowedRanges, MotionVerdict, NamedPath, PieceBinding, binding, motion_verdicts, named_path,
+};
 use super::search::test_options;
 use crate::motion::{Cell, JointRanges};
 use crate::motion_test;
@@ -35,6 +37,8 @@ pub struct Check {
     pub wall_time_s: f64,
     /// Over an axis-range box ([`check_ranges`]): every piece at a grid of the box's poses.
     pub over_box: Option<BoxCheck>,
+    /// The ranges the mounting allows per axis, when asked ([`super::allowed_ranges`]).
+    pub allowed_ranges: Option<AllowedRanges>,
 }
 
 impl Check {
@@ -72,11 +76,9 @@ pub fn check_mounting(
         sub_segment_pitch_mm: pitch_mm,
         wall_time_s: clock.elapsed().as_secs_f64(),
         over_box: None,
+        allowed_ranges: None,
     })
 }
-
-/// The most poses [`check_ranges`] solves one piece at.
-pub const MAX_BOX_CHECK_POSES: usize = 2_000_000;
 
 /// `path` over the box `ranges`: the motion test over its stress motions (each ranged axis
 /// end to end at its URDF speed, alone and together) and over the motions of `given`, then

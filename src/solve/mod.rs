@@ -20,6 +20,7 @@
 //!    clamps). When none passes within `k` dynamic tries, or there is no chain, the result
 //!    says so and why.
 
+mod allowed;
 mod box_check;
 mod certify;
 mod chains;
@@ -33,10 +34,15 @@ mod search;
 mod shapes;
 mod sweep;
 
-pub use box_check::{BoxCheck, BoxFailure, GRAVITY_RESOLUTION_PER_STEP, PieceOverBox, check_box};
+pub use allowed::{
+    ALLOWED_RANGE_RESOLUTION_DEG, CONTINUOUS_JOINT_SPAN_DEG, allowed_box, allowed_ranges,
+};
+pub use box_check::{
+    BoxCheck, BoxFailure, GRAVITY_RESOLUTION_PER_STEP, MAX_BOX_CHECK_POSES, PieceOverBox, check_box,
+};
 pub use certify::{Certification, Disagreement};
 use chains::{Decided, LazyChains, MIN_ROUND, chain_search};
-pub use check::{Check, MAX_BOX_CHECK_POSES, check_mounting, check_ranges};
+pub use check::{Check, check_mounting, check_ranges};
 pub use diagnosis::{Diagnosis, NearestMiss, SegmentDiagnosis};
 pub use options::{SearchKind, SolveError, SolveOptions};
 pub use ranges::{DEFAULT_GRID_STEP_DEG, STRESS_MOTION_RATE_HZ, range_cell, solve_ranges};
@@ -48,11 +54,12 @@ pub use shapes::{
 
 use report::Stages;
 pub use report::{
-    AxisFailures, AxisRange, BindingMotion, CandidateOutcome, ClosestMiss, DictionarySegmentUse,
-    DictionaryUse, Inputs, LearnedSwing, Margin, MotionVerdict, NamedPath, PathGuide, PathSegment,
-    PieceBinding, PoseSummary, RangeDesign, RangeProbe, SegmentReport, SolveReport, Status,
-    SweepRejection, SweepSummary, Timings, Unsolved, UnsolvedCase, UntriedChain,
-    dropped_per_segment, guide_names, named_path, pose_summary, shown_index,
+    AllowedAxis, AllowedRanges, AxisFailures, AxisRange, BindingMotion, CandidateOutcome,
+    ClosestMiss, DictionarySegmentUse, DictionaryUse, Inputs, LearnedSwing, Margin, MotionVerdict,
+    NamedPath, PathGuide, PathSegment, PieceBinding, PoseSummary, RangeDesign, RangeEnd,
+    RangeProbe, SegmentReport, SolveReport, Status, SweepRejection, SweepSummary, Timings,
+    Unsolved, UnsolvedCase, UntriedChain, dropped_per_segment, guide_names, named_path,
+    pose_summary, shown_index,
 };
 
 use crate::attachment::{
@@ -61,7 +68,7 @@ use crate::attachment::{
 };
 use crate::dictionary::{Dictionary, MotionLookup};
 use crate::motion::{Cell, Motion};
-use crate::path::Pv;
+use crate::path::{CablePath, Pv};
 use crate::setup::Setup;
 use std::time::Instant;
 
@@ -82,6 +89,19 @@ pub struct Solution {
     pub report: SolveReport,
     /// The setup as solved.
     pub setup: Setup,
+}
+
+impl Solution {
+    /// The path the solve answers with: the one that passed every motion test; `None` when
+    /// none did (or none was run).
+    pub fn answer(&self) -> Option<&CablePath> {
+        let report = &self.report;
+        (report.status == Status::Solved)
+            .then(|| report.shown_candidate())
+            .flatten()
+            .filter(|c| c.passed == Some(true))
+            .map(|c| &c.path)
+    }
 }
 
 /// Runs the whole pipeline with the intra-link segments' pieces answered by `dictionary`:

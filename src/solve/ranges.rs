@@ -53,7 +53,8 @@ pub fn range_cell(
 /// motion failed most chains and dropped most pieces first, until one has a path; that one
 /// widened back by bisection (to an eighth of its width); when no single axis suffices,
 /// every ranged axis halved.
-/// The report's [`RangeDesign`] says what was asked, what is answered and every box tried.
+/// The report's [`RangeDesign`] says what was asked, what is answered and every box tried;
+/// the box answered is returned with the cell.
 pub fn solve_ranges(
     setup: &Setup,
     ranges: &JointRanges,
@@ -61,7 +62,7 @@ pub fn solve_ranges(
     grid_step_deg: f64,
     options: &SolveOptions,
     dictionary: Option<&Dictionary>,
-) -> Result<(Solution, Cell), SolveError> {
+) -> Result<(Solution, Cell, JointRanges), SolveError> {
     let robot = &setup.robot;
     let attempt = |r: &JointRanges, diagnose: bool| -> Result<Attempt, SolveError> {
         let clock = Instant::now();
@@ -94,7 +95,7 @@ pub fn solve_ranges(
     };
     let first = attempt(ranges, false)?;
     if first.solved() {
-        return Ok(first.answer(design));
+        return Ok(first.answer(design, ranges.clone()));
     }
     // The axes in the order they are narrowed: the one whose stress motion failed most first.
     design.failures = failures_per_axis(&first, &named, robot);
@@ -146,10 +147,10 @@ pub fn solve_ranges(
     }
     let Some((narrowed, answer)) = best else {
         // No box tried has a path: the box asked, with its diagnosis.
-        return Ok(attempt(ranges, options.diagnose)?.answer(design));
+        return Ok(attempt(ranges, options.diagnose)?.answer(design, ranges.clone()));
     };
     design.answered = axes(&narrowed, &named);
-    Ok(answer.answer(design))
+    Ok(answer.answer(design, narrowed))
 }
 
 /// Per ranged axis (in `named` order), the chains its own stress motion failed and the
@@ -195,9 +196,13 @@ impl Attempt {
             .flatten()
     }
 
-    fn answer(mut self, design: RangeDesign) -> (Solution, Cell) {
+    fn answer(
+        mut self,
+        design: RangeDesign,
+        answered: JointRanges,
+    ) -> (Solution, Cell, JointRanges) {
         self.solution.report.ranges = Some(design);
-        (self.solution, self.cell)
+        (self.solution, self.cell, answered)
     }
 }
 

@@ -8,8 +8,11 @@
 //! the pictures cannot disagree with the 3D scene or the physics. Plain SVG, no script: the
 //! page stays a folder that works offline.
 
+mod dials;
 mod projection;
 mod svg;
+
+pub use dials::dials_svg;
 
 use super::scene::{self, CableTint, PoseScene, SceneSpec};
 use super::worst::{limit_words, smallest_margin};

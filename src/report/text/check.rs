@@ -1,6 +1,6 @@
 //! What `check` prints: the verdict of an installed cable over each motion.
 
-use super::workshop::write_motions;
+use super::workshop::{write_allowed_ranges, write_motions};
 use crate::mounting::rows;
 use crate::solve::{BoxCheck, Check};
 use crate::text_table::decimal;
@@ -48,6 +48,9 @@ impl fmt::Display for Check {
         write_motions(f, &limits, &self.motions, &self.binding, &self.mounting)?;
         if let Some(over_box) = &self.over_box {
             write_box(f, over_box)?;
+        }
+        if let Some(allowed) = &self.allowed_ranges {
+            write_allowed_ranges(f, allowed)?;
         }
         Ok(())
     }

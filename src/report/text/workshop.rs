@@ -7,7 +7,8 @@ use crate::motion_test::{Constraint, MotionTestReport, Worst};
 use crate::mounting::{self, MountingPlan, rows};
 use crate::setup::Thresholds;
 use crate::solve::{
-    AxisRange, BindingMotion, MotionVerdict, PieceBinding, RangeDesign, SolveReport,
+    AllowedAxis, AllowedRanges, AxisRange, BindingMotion, MotionVerdict, PieceBinding, RangeDesign,
+    RangeEnd, SolveReport,
 };
 use crate::text_table::decimal;
 use std::fmt;
@@ -40,6 +41,9 @@ pub(super) fn write_summary(report: &SolveReport, f: &mut fmt::Formatter<'_>) ->
         }
         write_worst(f, report, test, plan)?;
     }
+    if let Some(allowed) = &report.allowed_ranges {
+        write_allowed_ranges(f, allowed)?;
+    }
     if let Some(diagnosis) = &report.diagnosis {
         writeln!(f, "\nwhy there is no path")?;
         for line in diagnosis.to_string().lines() {
@@ -51,6 +55,58 @@ pub(super) fn write_summary(report: &SolveReport, f: &mut fmt::Formatter<'_>) ->
         "\nplacements in the link frames, the search's counts and margins, timings: `solve -v`; \
          every value: `--json`; pictures, a 3D view and an installation sheet: `--report DIR`"
     )
+}
+
+/// The ranges the mounting allows, as a vendor prints them, then what ends each.
+pub(super) fn write_allowed_ranges(
+    f: &mut fmt::Formatter<'_>,
+    allowed: &AllowedRanges,
+) -> fmt::Result {
+    if let Some(piece) = &allowed.box_failure {
+        let at: Vec<String> = (piece.failure.iter())
+            .flat_map(|failure| &failure.joints)
+            .map(|(joint, v)| format!("{joint} {}", decimal(*v, 1)))
+            .collect();
+        return writeln!(
+            f,
+            "\nallowed ranges: none — with every axis anywhere in {}, {} fails (at {}: {}); \
+             give the ranges the cell needs (`--ranges`)",
+            allowed.within,
+            piece.segment,
+            at.join(", "),
+            (piece.failure.as_ref()).map_or("", |failure| failure.reason.as_str())
+        );
+    }
+    let all: Vec<String> = allowed.axes.iter().map(AllowedAxis::words).collect();
+    writeln!(f, "\nallowed ranges: {}", all.join(", "))?;
+    writeln!(
+        f,
+        "  each axis alone, the others anywhere in {} (on a {}° grid; each end to {}°); jog \
+         each axis to its ends as the last check",
+        allowed.within, allowed.step_deg, allowed.resolution_deg
+    )?;
+    for axis in &allowed.axes {
+        let shapes = match axis.shapes.is_empty() {
+            true => "shapes no piece".to_string(),
+            false => format!("shapes {}", axis.shapes.join(", ")),
+        };
+        match (&axis.below, &axis.above) {
+            (RangeEnd::Limit, RangeEnd::Limit) => {
+                writeln!(f, "  {}: {shapes}; its limits", axis.joint)?
+            }
+            (below @ RangeEnd::FullSpeed { .. }, _) => {
+                writeln!(f, "  {}: {shapes}; {}", axis.joint, axis.end_words(below))?
+            }
+            (below, above) => writeln!(
+                f,
+                "  {}: {shapes}; below, {}; above, {}",
+                axis.joint,
+                axis.end_words(below),
+                axis.end_words(above)
+            )?,
+        }
+    }
+    Ok(())
 }
 
 /// What a design for axis ranges asked, what it answers, and the boxes it tried.

@@ -102,6 +102,7 @@ impl SolveReport {
             diagnosis,
             unsolved,
             ranges: None,
+            allowed_ranges: None,
         }
     }
 }

@@ -1,5 +1,6 @@
 //! What `solve` found, as data: the types of the result, named for people and scripts.
 
+use super::super::box_check::PieceOverBox;
 use super::super::certify::Certification;
 use super::super::diagnosis::Diagnosis;
 use super::super::options::SearchKind;
@@ -395,6 +396,8 @@ pub struct SolveReport {
     /// A design for axis ranges: the box asked for, the box answered (narrowed when the one
     /// asked has no path) and the boxes tried on the way.
     pub ranges: Option<RangeDesign>,
+    /// The ranges the path shown allows per axis (`solve --allowed-ranges`).
+    pub allowed_ranges: Option<AllowedRanges>,
 }
 
 /// One motion of a cell, and how the path shown fared over it.
@@ -605,6 +608,73 @@ impl RangeDesign {
     }
 }
 
+/// The ranges a mounting allows, per axis, with the others anywhere in a box.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AllowedRanges {
+    /// The box the other axes range over, for people (`the ranges of cell.toml`, `the
+    /// motions' extremes`).
+    pub within: String,
+    /// The grid step of the other axes, and of the outward scan (degrees; mm).
+    pub step_deg: f64,
+    /// How close each end is to the first failing value (degrees; mm).
+    pub resolution_deg: f64,
+    /// When the mounting fails in the box itself: the first piece that does, and no axis is
+    /// widened.
+    pub box_failure: Option<PieceOverBox>,
+    /// Per actuated joint, in joint-vector order (empty when the box fails).
+    pub axes: Vec<AllowedAxis>,
+    /// Wall time (s).
+    pub wall_time_s: f64,
+}
+
+/// One axis's allowed range.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AllowedAxis {
+    /// The joint's URDF name.
+    pub joint: String,
+    /// `deg` or `mm`.
+    pub unit: DisplayUnit,
+    /// Its URDF limits; `None` for a continuous joint.
+    pub limits: Option<[f64; 2]>,
+    /// Its range in the box.
+    pub within: [f64; 2],
+    /// The range it allows, ends rounded inward to the resolution (never inside `within`).
+    pub allowed: [f64; 2],
+    /// The pieces whose shape it changes (the others are not solved for it).
+    pub shapes: Vec<String>,
+    /// What ends the range below.
+    pub below: RangeEnd,
+    /// What ends it above.
+    pub above: RangeEnd,
+}
+
+/// What ends an allowed range.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "end", rename_all = "snake_case")]
+pub enum RangeEnd {
+    /// The joint's URDF limit (a full turn each way for a continuous joint).
+    Limit,
+    /// A piece breaks a limit at `at` (deg; mm), within the resolution beyond the end.
+    Fails {
+        /// The axis value where it fails.
+        at: f64,
+        /// The piece (`C3`).
+        piece: String,
+        /// The joints that shape it there (name, deg or mm), the axis among them.
+        joints: Vec<(String, f64)>,
+        /// What fails, for people.
+        reason: String,
+    },
+    /// Driven end to end at its URDF speed over the range statics allow, the cable fails:
+    /// the range is shrunk until that motion holds.
+    FullSpeed {
+        /// The range statics allow (deg; mm), over which the stroke failed.
+        statics: [f64; 2],
+        /// The motion test's failure over it.
+        reason: String,
+    },
+}
+
 /// One axis's range, in the unit people give it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct AxisRange {
@@ -621,11 +691,42 @@ pub struct AxisRange {
 impl AxisRange {
     /// `joint_5 -31.4…26.1°`.
     pub fn words(&self) -> String {
-        let unit = match self.unit {
-            DisplayUnit::Deg => "°",
-            DisplayUnit::Mm => " mm",
-        };
+        let unit = self.unit.suffix();
         format!("{} {}…{}{unit}", self.joint, self.min, self.max)
+    }
+}
+
+impl AllowedAxis {
+    /// As a vendor prints it: `joint_4 -62…+118°`, `joint_6 ±240°` (whole units).
+    pub fn words(&self) -> String {
+        let unit = self.unit.suffix();
+        let [lo, hi] = self.allowed;
+        let signed = |v: f64| match v {
+            v if v > 0.0 => format!("+{v:.0}"),
+            v if v < 0.0 => format!("-{:.0}", -v),
+            _ => "0".to_string(),
+        };
+        match lo == -hi && hi > 0.0 {
+            true => format!("{} ±{hi:.0}{unit}", self.joint),
+            false => format!("{} {}…{}{unit}", self.joint, signed(lo), signed(hi)),
+        }
+    }
+
+    /// What ends the range at one side (`below`, `above`), for people.
+    pub fn end_words(&self, end: &RangeEnd) -> String {
+        let unit = self.unit.suffix();
+        match end {
+            RangeEnd::Limit if self.limits.is_some() => "its URDF limit".into(),
+            RangeEnd::Limit => "a full turn (a continuous joint)".into(),
+            RangeEnd::Fails {
+                at, piece, reason, ..
+            } => format!("{piece} fails at {at:.1}{unit} ({reason})"),
+            RangeEnd::FullSpeed { statics, reason } => format!(
+                "statics allow {:.0}…{:.0}{unit}, but driven end to end over that at its URDF \
+                 speed the cable fails ({reason}): shrunk until that stroke holds",
+                statics[0], statics[1]
+            ),
+        }
     }
 }
 

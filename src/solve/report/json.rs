@@ -127,6 +127,8 @@ struct ResultJson<'a> {
     unsolved: Option<&'a Unsolved>,
     #[serde(skip_serializing_if = "Option::is_none")]
     ranges: Option<&'a RangeDesign>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    allowed_ranges: Option<&'a AllowedRanges>,
     inputs: &'a Inputs,
     timings_s: &'a Timings,
 }
@@ -156,6 +158,7 @@ impl Serialize for SolveReport {
             diagnosis: self.diagnosis.as_ref(),
             unsolved: self.unsolved.as_ref(),
             ranges: self.ranges.as_ref(),
+            allowed_ranges: self.allowed_ranges.as_ref(),
             inputs: &self.inputs,
             timings_s: &self.timings,
         }
@@ -177,6 +180,9 @@ struct CheckJson<'a> {
     /// Over an axis-range box: every piece at a grid of its poses.
     #[serde(skip_serializing_if = "Option::is_none")]
     over_box: Option<&'a super::super::BoxCheck>,
+    /// The ranges the mounting allows per axis (`check --allowed-ranges`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    allowed_ranges: Option<&'a AllowedRanges>,
     wall_time_s: f64,
 }
 
@@ -190,6 +196,7 @@ impl Serialize for super::super::Check {
             motions: self.motions.iter().map(MotionJson::new).collect(),
             binding: &self.binding,
             over_box: self.over_box.as_ref(),
+            allowed_ranges: self.allowed_ranges.as_ref(),
             wall_time_s: self.wall_time_s,
         }
         .serialize(serializer)
