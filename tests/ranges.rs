@@ -185,3 +185,54 @@ fn the_ranges_a_mounting_allows_hold_on_a_finer_grid_and_end_where_a_piece_fails
     }
     assert!(widened >= 3, "{allowed:?}");
 }
+
+/// The pick-and-place motion's box with joint 5 widened to 100° has no path. The design
+/// narrows joint 5 from the end where the closest pieces failed, keeping the other end, and
+/// answers a narrower box — inside the one asked, the other joints untouched — whose path
+/// holds on the independent check at a quarter of the search's step.
+#[test]
+fn a_box_without_a_path_is_narrowed_from_its_failing_end_and_holds_on_a_finer_grid() {
+    let (setup, motion) = pick_and_place();
+    let robot = &setup.robot;
+    let mut asked = JointRanges::spanned(&Cell::single(motion, None)).expect("a box");
+    let j5 = robot.actuated_index("joint_5").expect("joint_5");
+    asked.ranges[j5][1] = 100f64.to_radians();
+    asked.named[j5] = true;
+    // A coarse grid (the check below is at a quarter of it): the narrowing is what is tested.
+    let step_deg = 20.0;
+    let options = SolveOptions::default();
+    let (solution, _, answered) = solve_ranges(&setup, &asked, None, step_deg, &options, None)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let report = &solution.report;
+    assert_eq!(report.status, Status::Solved, "{}", report.explanation);
+    let design = report.ranges.as_ref().expect("the design's ranges");
+    assert!(!design.tried.is_empty(), "the box asked has no path");
+    let failures = &design.failures[0];
+    assert_eq!(failures.joint, "joint_5");
+    let [lo, hi] = answered.ranges[j5];
+    let [a, b] = asked.ranges[j5];
+    assert!(
+        a <= lo && hi <= b && hi - lo < b - a,
+        "{:?}",
+        answered.ranges[j5]
+    );
+    match failures.kept_end() {
+        Some(0) => assert_eq!(lo, a, "the lower end is kept"),
+        Some(_) => assert_eq!(hi, b, "the upper end is kept"),
+        None => panic!("the closest misses fell evenly: {failures:?}"),
+    }
+    for j in (0..robot.dof()).filter(|&j| j != j5) {
+        assert_eq!(answered.ranges[j], asked.ranges[j]);
+    }
+    let path = solution.answer().expect("the answer passed");
+    let finer = check_box(&solution.setup, path, &answered, step_deg / 4.0, 200_000)
+        .unwrap_or_else(|e| panic!("{e}"));
+    for piece in &finer.pieces {
+        assert!(
+            piece.failure.is_none(),
+            "{}: {:?}",
+            piece.segment,
+            piece.failure
+        );
+    }
+}

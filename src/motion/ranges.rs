@@ -200,18 +200,30 @@ impl JointRanges {
         self.ranges.iter().map(|[a, b]| 0.5 * (a + b)).collect()
     }
 
-    /// The box with joint `j`'s range narrowed to `keep` (0–1) of its width about its middle,
-    /// its ends rounded inward to 0.1° (0.1 mm for a prismatic joint; `rotary`) so that the
-    /// range printed is the range solved.
-    pub fn narrowed(&self, j: usize, keep: f64, rotary: bool) -> JointRanges {
+    /// The box with joint `j`'s range narrowed to `keep` (0–1) of its width, about its middle
+    /// (`kept_end` `None`) or from one end, the other kept (`Some(0)` keeps the minimum,
+    /// `Some(1)` the maximum); its ends rounded inward to 0.1° (0.1 mm for a prismatic joint;
+    /// `rotary`) so that the range printed is the range solved.
+    pub fn narrowed(
+        &self,
+        j: usize,
+        keep: f64,
+        kept_end: Option<usize>,
+        rotary: bool,
+    ) -> JointRanges {
         let mut narrowed = self.clone();
         let [a, b] = self.ranges[j];
-        let (middle, half) = (0.5 * (a + b), 0.5 * (b - a) * keep.clamp(0.0, 1.0));
+        let width = (b - a) * keep.clamp(0.0, 1.0);
+        let (lo, hi) = match kept_end {
+            Some(0) => (a, a + width),
+            Some(_) => (b - width, b),
+            None => (0.5 * (a + b - width), 0.5 * (a + b + width)),
+        };
         let unit = match rotary {
             true => 0.1f64.to_radians(),
             false => 1e-4,
         };
-        let (lo, hi) = ((middle - half) / unit, (middle + half) / unit);
+        let (lo, hi) = (lo / unit, hi / unit);
         let (lo, hi) = match (lo.ceil(), hi.floor()) {
             (lo, hi) if lo < hi => (lo, hi),
             _ => (lo, hi),

@@ -49,10 +49,11 @@ pub fn range_cell(
 
 /// The shortest path for the box `ranges` on `setup` (the cell of [`range_cell`], with the
 /// motions of `given`), and that cell. When the box has no path, the axis to narrow: each
-/// ranged axis in turn narrowed to half its width about its middle, the one whose stress
-/// motion failed most chains and dropped most pieces first, until one has a path; that one
-/// widened back by bisection (to an eighth of its width); when no single axis suffices,
-/// every ranged axis halved.
+/// ranged axis in turn narrowed to half its width — keeping the end away from where the
+/// diagnosis's closest misses had it, else about its middle — the one whose stress motion
+/// failed most chains and dropped most pieces (and with most misses) first, until one
+/// has a path; that one widened back by bisection (to an eighth of its width); when no
+/// single axis suffices, every ranged axis halved.
 /// The report's [`RangeDesign`] says what was asked, what is answered and every box tried;
 /// the box answered is returned with the cell.
 pub fn solve_ranges(
@@ -93,12 +94,14 @@ pub fn solve_ranges(
         failures: Vec::new(),
         tried: Vec::new(),
     };
+    // Without deciding every piece for the diagnosis: the closest misses of the pieces it
+    // decided tell which end of an axis to narrow from.
     let first = attempt(ranges, false)?;
     if first.solved() {
         return Ok(first.answer(design, ranges.clone()));
     }
     // The axes in the order they are narrowed: the one whose stress motion failed most first.
-    design.failures = failures_per_axis(&first, &named, robot);
+    design.failures = failures_per_axis(&first, &named, ranges, robot);
     let mut order: Vec<usize> = (0..named.len()).collect();
     order.sort_by_key(|&k| std::cmp::Reverse(design.failures[k].total()));
     let mut probe = |r: &JointRanges, changed: &[usize]| -> Result<Attempt, SolveError> {
@@ -117,7 +120,8 @@ pub fn solve_ranges(
     let mut best: Option<(JointRanges, Attempt)> = None;
     for &k in &order {
         let j = named[k];
-        let half = ranges.narrowed(j, 0.5, rotary(j));
+        let kept_end = design.failures[k].kept_end();
+        let half = ranges.narrowed(j, 0.5, kept_end, rotary(j));
         let tried = probe(&half, &[j])?;
         if !tried.solved() {
             continue;
@@ -126,7 +130,7 @@ pub fn solve_ranges(
         let mut answer = (half, tried);
         for _ in 0..2 {
             let keep = 0.5 * (solved + unsolved);
-            let wider = ranges.narrowed(j, keep, rotary(j));
+            let wider = ranges.narrowed(j, keep, kept_end, rotary(j));
             let tried = probe(&wider, &[j])?;
             if tried.solved() {
                 solved = keep;
@@ -139,14 +143,16 @@ pub fn solve_ranges(
         break;
     }
     if best.is_none() && named.len() > 1 {
-        let every = (named.iter()).fold(ranges.clone(), |r, &j| r.narrowed(j, 0.5, rotary(j)));
+        let every = (named.iter().zip(&design.failures)).fold(ranges.clone(), |r, (&j, f)| {
+            r.narrowed(j, 0.5, f.kept_end(), rotary(j))
+        });
         let tried = probe(&every, &named)?;
         if tried.solved() {
             best = Some((every, tried));
         }
     }
     let Some((narrowed, answer)) = best else {
-        // No box tried has a path: the box asked, with its diagnosis.
+        // No box tried has a path: the box asked, with its whole diagnosis.
         return Ok(attempt(ranges, options.diagnose)?.answer(design, ranges.clone()));
     };
     design.answered = axes(&narrowed, &named);
@@ -154,8 +160,14 @@ pub fn solve_ranges(
 }
 
 /// Per ranged axis (in `named` order), the chains its own stress motion failed and the
-/// pieces its static sweep dropped in `attempt`.
-fn failures_per_axis(attempt: &Attempt, named: &[usize], robot: &Robot) -> Vec<AxisFailures> {
+/// pieces its static sweep dropped in `attempt`, and in which half of its range of `ranges`
+/// the diagnosis's closest misses had it.
+fn failures_per_axis(
+    attempt: &Attempt,
+    named: &[usize],
+    ranges: &JointRanges,
+    robot: &Robot,
+) -> Vec<AxisFailures> {
     let report = &attempt.solution.report;
     let axis_of = |motion: &Option<String>| -> Option<usize> {
         let name = motion.as_deref()?;
@@ -167,8 +179,29 @@ fn failures_per_axis(attempt: &Attempt, named: &[usize], robot: &Robot) -> Vec<A
             joint: robot.actuated_joint(j).name.clone(),
             motion_tests_failed: 0,
             sweep_drops: 0,
+            closest_misses: [0, 0],
         })
         .collect();
+    let misses = (report.diagnosis.iter())
+        .flat_map(|d| &d.segments)
+        .flat_map(|s| &s.nearest_misses);
+    for miss in misses {
+        // A grid's pose is its sample at `time_s` (one a second), a motion's its moment.
+        let Some(pose) =
+            (attempt.cell.motions.get(miss.motion)).map(|m| m.motion.joints_at(miss.time_s))
+        else {
+            continue;
+        };
+        for (k, &j) in named.iter().enumerate() {
+            let [a, b] = ranges.ranges[j];
+            let middle = 0.5 * (a + b);
+            if pose[j] < middle - 1e-9 {
+                failures[k].closest_misses[0] += 1;
+            } else if pose[j] > middle + 1e-9 {
+                failures[k].closest_misses[1] += 1;
+            }
+        }
+    }
     for k in report.candidates.iter().filter_map(|c| axis_of(&c.motion)) {
         failures[k].motion_tests_failed += 1;
     }

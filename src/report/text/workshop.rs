@@ -146,11 +146,11 @@ fn write_ranges(f: &mut fmt::Formatter<'_>, design: &RangeDesign) -> fmt::Result
         writeln!(
             f,
             "  the ranges asked have no path, and no box tried has one (narrowing each axis to \
-             half its width about its middle, then every axis)"
+             half its width, then every axis)"
         )?;
     }
     let failed: Vec<String> = (design.failures.iter())
-        .filter(|a| a.total() > 0)
+        .filter(|a| a.motion_tests_failed + a.sweep_drops > 0)
         .map(|a| {
             let plural = |n: usize, one: &str, many: &str| match n {
                 1 => format!("1 {one}"),
@@ -166,6 +166,21 @@ fn write_ranges(f: &mut fmt::Formatter<'_>, design: &RangeDesign) -> fmt::Result
         .collect();
     if !failed.is_empty() {
         writeln!(f, "  in the box asked: {}", failed.join("; "))?;
+    }
+    let halves: Vec<String> = (design.failures.iter())
+        .filter(|a| a.closest_misses != [0, 0])
+        .map(|a| {
+            let [low, high] = a.closest_misses;
+            format!("{} {low} in its lower half, {high} in its upper", a.joint)
+        })
+        .collect();
+    if !halves.is_empty() {
+        writeln!(
+            f,
+            "  where the closest pieces failed: {} (each axis is narrowed from the end where \
+             more failed)",
+            halves.join("; ")
+        )?;
     }
     for probe in &design.tried {
         writeln!(f, "  tried {}", probe.words())?;

@@ -592,12 +592,30 @@ pub struct AxisFailures {
     pub motion_tests_failed: usize,
     /// Pieces its static sweep dropped.
     pub sweep_drops: usize,
+    /// The closest misses of the pieces that block the search (the diagnosis's, at the
+    /// grid's poses or the stress motions') that failed with this axis in the lower, and in
+    /// the upper half of its range: the end to narrow it from.
+    pub closest_misses: [usize; 2],
 }
 
 impl AxisFailures {
-    /// Both counts together.
+    /// Every count together.
     pub fn total(&self) -> usize {
-        self.motion_tests_failed + self.sweep_drops
+        self.motion_tests_failed
+            + self.sweep_drops
+            + self.closest_misses[0]
+            + self.closest_misses[1]
+    }
+
+    /// The end of its range to keep when narrowing it (`Some(0)` the minimum, `Some(1)` the
+    /// maximum): the one away from the half where more closest misses fell; `None` (narrow
+    /// about the middle) when they fell evenly.
+    pub fn kept_end(&self) -> Option<usize> {
+        match self.closest_misses {
+            [low, high] if low > high => Some(1),
+            [low, high] if high > low => Some(0),
+            _ => None,
+        }
     }
 }
 
