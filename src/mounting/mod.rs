@@ -281,6 +281,15 @@ impl MountingPlan {
         self.pieces.iter().find(|piece| piece.segment == segment)
     }
 
+    /// The fitter's name of the setup's piece `segment` (`C3`): `piece 2 → gripper
+    /// connector`; `segment` itself for a piece not mounted (0 mm, or not on this path).
+    pub fn piece_words(&self, segment: &str) -> String {
+        match self.piece_of_segment(segment) {
+            Some(piece) => format!("piece {}", self.piece_name(piece.from_clamp)),
+            None => segment.to_string(),
+        }
+    }
+
     /// Where on the mounted cable the setup's piece `segment` is, `along_mm` from its start
     /// (when known): `on piece 2 → gripper connector, 25 mm from clamp 2`, or `at clamp 2`
     /// for a 0 mm piece inside a clamp; `None` for a piece not on this path.

@@ -24,7 +24,7 @@ pub fn summary_markdown(
         mounting_tables(&mut md, plan);
     }
     if let Some(allowed) = &report.allowed_ranges {
-        allowed_table(&mut md, allowed);
+        allowed_table(&mut md, allowed, report.mounting.as_ref());
     }
     if let (Some(plan), true) = (&report.mounting, report.motions.len() > 1) {
         motions_table(&mut md, report, plan);
@@ -55,15 +55,18 @@ pub fn summary_markdown(
 }
 
 /// The range each axis allows, what ends it, and the box it was asked within.
-fn allowed_table(md: &mut String, allowed: &AllowedRanges) {
+fn allowed_table(md: &mut String, allowed: &AllowedRanges, plan: Option<&MountingPlan>) {
+    let piece = |segment: &str| -> String {
+        plan.map_or_else(|| segment.to_string(), |plan| plan.piece_words(segment))
+    };
     section(md, "Allowed ranges");
-    if let Some(piece) = &allowed.box_failure {
+    if let Some(failed) = &allowed.box_failure {
         let _ = writeln!(
             md,
             "None: with every axis anywhere in {}, {} fails ({}).",
             text(&allowed.within),
-            text(&piece.segment),
-            text((piece.failure.as_ref()).map_or("", |f| f.reason.as_str()))
+            text(&piece(&failed.segment)),
+            text((failed.failure.as_ref()).map_or("", |f| f.reason.as_str()))
         );
         return;
     }
@@ -90,8 +93,8 @@ fn allowed_table(md: &mut String, allowed: &AllowedRanges) {
                     .to_string(),
                 pair(axis.within),
                 axis.limits.map_or("none (continuous)".into(), pair),
-                axis.end_words(&axis.below),
-                axis.end_words(&axis.above),
+                axis.end_words(&axis.below, &piece),
+                axis.end_words(&axis.above, &piece),
             ],
         );
     }

@@ -140,8 +140,10 @@ pub fn allowed_ranges(
             step: step_deg / per_si,
             resolution: ALLOWED_RANGE_RESOLUTION_DEG / per_si,
         };
-        let (mut lo, mut below) = widen.end(ranges.ranges[j][0], limits[0], &fails_at)?;
-        let (mut hi, mut above) = widen.end(ranges.ranges[j][1], limits[1], &fails_at)?;
+        // Towards the limits, never back into the box (a motion may pass a URDF limit).
+        let [far_lo, far_hi] = whole.ranges[j];
+        let (mut lo, mut below) = widen.end(ranges.ranges[j][0], far_lo, &fails_at)?;
+        let (mut hi, mut above) = widen.end(ranges.ranges[j][1], far_hi, &fails_at)?;
         let [box_lo, box_hi] = ranges.ranges[j];
         if !shaped.is_empty() && (lo < box_lo || hi > box_hi) {
             // At full speed over [lo, hi]; shrunk towards the box's range until it holds.

@@ -50,7 +50,7 @@ impl fmt::Display for Check {
             write_box(f, over_box)?;
         }
         if let Some(allowed) = &self.allowed_ranges {
-            write_allowed_ranges(f, allowed)?;
+            write_allowed_ranges(f, allowed, Some(&self.mounting))?;
         }
         Ok(())
     }

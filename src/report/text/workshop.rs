@@ -42,7 +42,7 @@ pub(super) fn write_summary(report: &SolveReport, f: &mut fmt::Formatter<'_>) ->
         write_worst(f, report, test, plan)?;
     }
     if let Some(allowed) = &report.allowed_ranges {
-        write_allowed_ranges(f, allowed)?;
+        write_allowed_ranges(f, allowed, report.mounting.as_ref())?;
     }
     if let Some(diagnosis) = &report.diagnosis {
         writeln!(f, "\nwhy there is no path")?;
@@ -61,9 +61,13 @@ pub(super) fn write_summary(report: &SolveReport, f: &mut fmt::Formatter<'_>) ->
 pub(super) fn write_allowed_ranges(
     f: &mut fmt::Formatter<'_>,
     allowed: &AllowedRanges,
+    plan: Option<&MountingPlan>,
 ) -> fmt::Result {
-    if let Some(piece) = &allowed.box_failure {
-        let at: Vec<String> = (piece.failure.iter())
+    let piece = |segment: &str| -> String {
+        plan.map_or_else(|| segment.to_string(), |plan| plan.piece_words(segment))
+    };
+    if let Some(failed) = &allowed.box_failure {
+        let at: Vec<String> = (failed.failure.iter())
             .flat_map(|failure| &failure.joints)
             .map(|(joint, v)| format!("{joint} {}", decimal(*v, 1)))
             .collect();
@@ -72,9 +76,9 @@ pub(super) fn write_allowed_ranges(
             "\nallowed ranges: none — with every axis anywhere in {}, {} fails (at {}: {}); \
              give the ranges the cell needs (`--ranges`)",
             allowed.within,
-            piece.segment,
+            piece(&failed.segment),
             at.join(", "),
-            (piece.failure.as_ref()).map_or("", |failure| failure.reason.as_str())
+            (failed.failure.as_ref()).map_or("", |failure| failure.reason.as_str())
         );
     }
     let all: Vec<String> = allowed.axes.iter().map(AllowedAxis::words).collect();
@@ -87,22 +91,28 @@ pub(super) fn write_allowed_ranges(
     )?;
     for axis in &allowed.axes {
         let shapes = match axis.shapes.is_empty() {
-            true => "shapes no piece".to_string(),
-            false => format!("shapes {}", axis.shapes.join(", ")),
+            true => "bends no piece".to_string(),
+            false => {
+                let pieces: Vec<String> = axis.shapes.iter().map(|s| piece(s)).collect();
+                format!("bends {}", pieces.join(", "))
+            }
         };
         match (&axis.below, &axis.above) {
             (RangeEnd::Limit, RangeEnd::Limit) => {
                 writeln!(f, "  {}: {shapes}; its limits", axis.joint)?
             }
-            (below @ RangeEnd::FullSpeed { .. }, _) => {
-                writeln!(f, "  {}: {shapes}; {}", axis.joint, axis.end_words(below))?
-            }
+            (below @ RangeEnd::FullSpeed { .. }, _) => writeln!(
+                f,
+                "  {}: {shapes}; {}",
+                axis.joint,
+                axis.end_words(below, &piece)
+            )?,
             (below, above) => writeln!(
                 f,
                 "  {}: {shapes}; below, {}; above, {}",
                 axis.joint,
-                axis.end_words(below),
-                axis.end_words(above)
+                axis.end_words(below, &piece),
+                axis.end_words(above, &piece)
             )?,
         }
     }

@@ -730,15 +730,19 @@ impl AllowedAxis {
         }
     }
 
-    /// What ends the range at one side (`below`, `above`), for people.
-    pub fn end_words(&self, end: &RangeEnd) -> String {
+    /// What ends the range at one side (`below`, `above`), for people; `piece` names a
+    /// setup's piece (`C3`) as the mounting does.
+    pub fn end_words(&self, end: &RangeEnd, piece: &dyn Fn(&str) -> String) -> String {
         let unit = self.unit.suffix();
         match end {
             RangeEnd::Limit if self.limits.is_some() => "its URDF limit".into(),
             RangeEnd::Limit => "a full turn (a continuous joint)".into(),
             RangeEnd::Fails {
-                at, piece, reason, ..
-            } => format!("{piece} fails at {at:.1}{unit} ({reason})"),
+                at,
+                piece: segment,
+                reason,
+                ..
+            } => format!("{} fails at {at:.1}{unit} ({reason})", piece(segment)),
             RangeEnd::FullSpeed { statics, reason } => format!(
                 "statics allow {:.0}…{:.0}{unit}, but driven end to end over that at its URDF \
                  speed the cable fails ({reason}): shrunk until that stroke holds",
