@@ -78,7 +78,6 @@ pub fn allowed_ranges(
 ) -> Result<AllowedRanges, SolveError> {
     let clock = Instant::now();
     let checker = PieceChecker::new(setup, path, step_deg, MAX_BOX_CHECK_POSES)?;
-    let pieces = checker.pieces();
     let mut allowed = AllowedRanges {
         within: within.to_string(),
         step_deg,
@@ -87,8 +86,8 @@ pub fn allowed_ranges(
         axes: Vec::new(),
         wall_time_s: 0.0,
     };
-    for &(m, pv) in &pieces {
-        let over = checker.over(m, pv, ranges)?;
+    for piece in &checker.pieces {
+        let over = checker.over(piece, ranges)?;
         if over.failure.is_some() {
             allowed.box_failure = Some(over);
             allowed.wall_time_s = clock.elapsed().as_secs_f64();
@@ -116,20 +115,19 @@ pub fn allowed_ranges(
             limits[1].max(ranges.ranges[j][1]),
         ];
         let mut shaped = Vec::new();
-        for &(m, pv) in &pieces {
-            let (upstream, between) = checker.shaping_joints(m)?;
-            let turns = upstream.contains(&j)
-                && whole.turns_gravity(robot, checker.start_link(m), &checker.down, j, step_deg)?;
-            if between.contains(&j) || turns {
-                shaped.push((m, pv));
+        for piece in &checker.pieces {
+            let turns = piece.upstream.contains(&j)
+                && whole.turns_gravity(robot, piece.start_link, &checker.down, j, step_deg)?;
+            if piece.between.contains(&j) || turns {
+                shaped.push(piece);
             }
         }
         // The first piece that fails with the axis at `v` and the others over the box.
         let fails_at = |v: f64| -> Result<Option<(String, BoxFailure)>, SolveError> {
             let mut slice = ranges.clone();
             slice.ranges[j] = [v, v];
-            for &(m, pv) in &shaped {
-                let over = checker.over(m, pv, &slice)?;
+            for &piece in &shaped {
+                let over = checker.over(piece, &slice)?;
                 if let Some(failure) = over.failure {
                     return Ok(Some((over.segment, failure)));
                 }
@@ -208,7 +206,7 @@ pub fn allowed_ranges(
             limits: joint.limits.map(|l| [show(l.lower), show(l.upper)]),
             within: [show(box_lo), show(box_hi)],
             allowed: [inward(lo, box_lo, false), inward(hi, box_hi, true)],
-            shapes: shaped.iter().map(|&(m, _)| setup.segment_name(m)).collect(),
+            shapes: shaped.iter().map(|p| setup.segment_name(p.m)).collect(),
             below: in_units(below),
             above: in_units(above),
         });

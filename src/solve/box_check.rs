@@ -73,8 +73,8 @@ pub fn check_box(
     max_poses: usize,
 ) -> Result<BoxCheck, SolveError> {
     let checker = PieceChecker::new(setup, path, step_deg, max_poses)?;
-    let pieces = (checker.pieces().iter())
-        .map(|&(m, pv)| checker.over(m, pv, ranges))
+    let pieces = (checker.pieces.iter())
+        .map(|piece| checker.over(piece, ranges))
         .collect::<Result<_, _>>()?;
     Ok(BoxCheck { step_deg, pieces })
 }
@@ -83,12 +83,27 @@ pub fn check_box(
 /// any box: what the allowed ranges of a mounting ask of many boxes in turn.
 pub(super) struct PieceChecker<'a> {
     setup: &'a Setup,
-    path: &'a CablePath,
+    /// The path's pieces with a cable, from the base end.
+    pub(super) pieces: Vec<CheckedPiece>,
     evaluator: Evaluator<'a>,
     /// Gravity's direction in the world (unit, or zero without gravity).
     pub(super) down: Vector3<f64>,
     step_deg: f64,
     max_poses: usize,
+}
+
+/// One piece of the path and the joints that shape it.
+pub(super) struct CheckedPiece {
+    /// Its segment (an index into the setup's).
+    pub(super) m: usize,
+    pv: Pv,
+    /// The link it starts on (an index into the robot's links).
+    pub(super) start_link: usize,
+    /// The joints (joint-vector indices) from the base up to its start link, not between its
+    /// links: they turn gravity in the start link.
+    pub(super) upstream: Vec<usize>,
+    /// The joints between its links: they place its end link against its start link.
+    pub(super) between: Vec<usize>,
 }
 
 impl<'a> PieceChecker<'a> {
@@ -106,9 +121,26 @@ impl<'a> PieceChecker<'a> {
         }
         path.check(setup)
             .map_err(|e| SolveError::Options(format!("the path does not fit the setup: {e}")))?;
+        let robot = &setup.robot;
+        let name = |l: usize| robot.links[l].name.as_str();
+        let mut pieces = Vec::new();
+        for (m, pv) in path.pieces().filter(|(_, pv)| pv.sub_segments > 0) {
+            let (a, b) = setup.segment_guides(m);
+            let (body_a, body_b) = (setup.guides[a].body, setup.guides[b].body);
+            let between = traversed_joints(robot, name(body_a), name(body_b))?;
+            let mut upstream: Vec<usize> = traversed_joints(robot, name(0), name(body_a))?;
+            upstream.retain(|j| !between.contains(j));
+            pieces.push(CheckedPiece {
+                m,
+                pv,
+                start_link: body_a,
+                upstream,
+                between,
+            });
+        }
         Ok(PieceChecker {
             setup,
-            path,
+            pieces,
             evaluator: Evaluator::new(setup, crate::attachment::ConnectMethod::Hermite)?,
             down: (setup.gravity_m_s2)
                 .try_normalize(0.0)
@@ -118,48 +150,22 @@ impl<'a> PieceChecker<'a> {
         })
     }
 
-    /// The path's pieces with a cable (segment index, piece), from the base end.
-    pub(super) fn pieces(&self) -> Vec<(usize, Pv)> {
-        (self.path.pieces())
-            .filter(|(_, pv)| pv.sub_segments > 0)
-            .collect()
-    }
-
-    /// The joints (joint-vector indices) that shape piece `m`: those from the base up to its
-    /// start link (not between its links), and those between its links.
-    pub(super) fn shaping_joints(&self, m: usize) -> Result<(Vec<usize>, Vec<usize>), SolveError> {
-        let robot = &self.setup.robot;
-        let (a, b) = self.setup.segment_guides(m);
-        let (body_a, body_b) = (self.setup.guides[a].body, self.setup.guides[b].body);
-        let name = |l: usize| robot.links[l].name.as_str();
-        let between = traversed_joints(robot, name(body_a), name(body_b))?;
-        let mut upstream: Vec<usize> = traversed_joints(robot, name(0), name(body_a))?;
-        upstream.retain(|j| !between.contains(j));
-        Ok((upstream, between))
-    }
-
-    /// The link piece `m` starts on (an index into the robot's links).
-    pub(super) fn start_link(&self, m: usize) -> usize {
-        self.setup.guides[self.setup.segment_guides(m).0].body
-    }
-
-    /// Piece `pv` of segment `m` over `ranges`.
+    /// `piece` over `ranges`.
     pub(super) fn over(
         &self,
-        m: usize,
-        pv: Pv,
+        piece: &CheckedPiece,
         ranges: &JointRanges,
     ) -> Result<PieceOverBox, SolveError> {
         let (setup, robot, step_deg) = (self.setup, &self.setup.robot, self.step_deg);
-        let body_a = self.start_link(m);
+        let (m, pv, body_a) = (piece.m, piece.pv, piece.start_link);
+        let (upstream, between) = (&piece.upstream, &piece.between);
         let same = (GRAVITY_RESOLUTION_PER_STEP * step_deg).to_radians().cos();
-        let (upstream, between) = self.shaping_joints(m)?;
         let grid = |joints: &[usize]| -> Vec<(usize, Vec<f64>)> {
             (joints.iter())
                 .map(|&j| (j, ranges.grid_values(robot, j, step_deg)))
                 .collect()
         };
-        let (up, along) = (grid(&upstream), grid(&between));
+        let (up, along) = (grid(upstream), grid(between));
         let count = combination_count;
         let max_poses = self.max_poses;
         if count(&up).max(count(&along)) > max_poses as f64 {
@@ -197,7 +203,7 @@ impl<'a> PieceChecker<'a> {
         let kept: Vec<Vec<f64>> = (directions.iter())
             .flat_map(|(base, _)| combinations(base, &along))
             .collect();
-        let shaping: Vec<usize> = upstream.iter().chain(&between).copied().collect();
+        let shaping: Vec<usize> = upstream.iter().chain(between).copied().collect();
         // The links placed where each pose is solved: a grid may have millions of poses.
         let checks: Vec<crate::attachment::Check> = kept
             .par_iter()
