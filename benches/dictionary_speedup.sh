@@ -5,6 +5,8 @@
 #
 # Usage: bash benches/dictionary_speedup.sh [OUT_DIR] [SETUP DICT MOTION ...]
 #   default: the hand-written setups with the shipped dictionaries on their motions.
+#   MOTION may be --ranges=RANGES.toml: a design for axis ranges instead of a motion (its
+#   whole wall time counts every box it tried; benches/range_dictionary.sh runs one).
 # The binary is copied first, so that a build running meanwhile cannot change it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,12 +22,21 @@ if [ "$#" -eq 0 ]; then
 fi
 while [ "$#" -ge 3 ]; do
   setup="$1" dict="$2" motion="$3"; shift 3
-  name="$(basename "$setup" .toml)-$(basename "$motion" .csv)"
-  "$bin" solve --setup "$setup" "$motion" -o "$out/$name.setup.json" > /dev/null
-  "$bin" solve --dict "$dict" --setup "$setup" "$motion" -o "$out/$name.dict.json" > /dev/null
-  python3 - "$out/$name.setup.json" "$out/$name.dict.json" "$name" <<'PY'
+  case "$motion" in
+    --ranges=*) asked=(--ranges "${motion#--ranges=}"); motion="${motion#--ranges=}" ;;
+    *) asked=("$motion") ;;
+  esac
+  name="$(basename "$setup" .toml)-$(basename "$(basename "$motion" .csv)" .toml)"
+  t0=$(date +%s.%N)
+  "$bin" -q solve --setup "$setup" "${asked[@]}" -o "$out/$name.setup.json" > /dev/null
+  t1=$(date +%s.%N)
+  "$bin" -q solve --dict "$dict" --setup "$setup" "${asked[@]}" -o "$out/$name.dict.json" > /dev/null
+  t2=$(date +%s.%N)
+  python3 - "$out/$name.setup.json" "$out/$name.dict.json" "$name" "$t0" "$t1" "$t2" <<'PY'
 import json, sys
 s, d = (json.load(open(p)) for p in sys.argv[1:3])
+t0, t1, t2 = (float(t) for t in sys.argv[4:7])
+print(f"{sys.argv[3]}: whole process {t1 - t0:.2f} s -> {t2 - t1:.2f} s ({(t1 - t0) / (t2 - t1):.2f}x)")
 def intra(r):
     return r["timings_s"]["attachment_intra_link"]
 def sets(r):

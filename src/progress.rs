@@ -12,6 +12,8 @@ pub trait Progress: Send + Sync {
     fn advance(&self, steps: u64);
     /// The current stage is over.
     fn end(&self);
+    /// A line on how a long run goes, between stages (e.g. each box a range design tried).
+    fn note(&self, line: &str);
 }
 
 static SINK: OnceLock<Box<dyn Progress>> = OnceLock::new();
@@ -39,5 +41,12 @@ pub fn advance(steps: u64) {
 pub fn end() {
     if let Some(sink) = SINK.get() {
         sink.end();
+    }
+}
+
+/// A line on how a long run goes.
+pub fn note(line: &str) {
+    if let Some(sink) = SINK.get() {
+        sink.note(line);
     }
 }

@@ -60,7 +60,7 @@ fn a_window_too_short_for_the_clamps_asks_for_longer_lengths() {
     assert_eq!(nearest.length_mm, 140.0);
     let links = setup
         .robot
-        .link_poses(&motion.joints_at(nearest.time_s))
+        .link_poses(&motion.joints_at(nearest.at.time_s))
         .unwrap_or_else(|e| panic!("{e}"));
     let a = setup.guide_world_pose(
         &links,
@@ -139,7 +139,7 @@ fn an_impossible_bend_limit_reports_the_radius_the_pieces_reach() {
     };
     let links = setup
         .robot
-        .link_poses(&motion.joints_at(nearest.time_s))
+        .link_poses(&motion.joints_at(nearest.at.time_s))
         .unwrap_or_else(|e| panic!("{e}"));
     let check = evaluator.check_at(0, &pv, &links);
     let radius_mm = check.metrics.expect("metrics").min_bend_radius_m * 1e3;
@@ -175,7 +175,7 @@ fn check_nearest_miss_picture(
     };
     let links = setup
         .robot
-        .link_poses(&motion.joints_at(miss.time_s))
+        .link_poses(&motion.joints_at(miss.at.time_s))
         .unwrap_or_else(|e| panic!("{e}"));
     let nodes = evaluator
         .equilibrium_nodes(0, &pv, &links)

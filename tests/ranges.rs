@@ -6,8 +6,8 @@ use crate::common::root;
 use cable_dict::motion::{Cell, JointRanges, Motion};
 use cable_dict::setup::Setup;
 use cable_dict::solve::{
-    RangeEnd, SolveOptions, Status, allowed_box, allowed_ranges, check_box, check_mounting,
-    solve_cell, solve_ranges,
+    RangeEnd, STRESS_MOTION_RATE_HZ, SolveOptions, Status, allowed_box, allowed_ranges, check_box,
+    check_mounting, solve_cell, solve_ranges,
 };
 
 /// The robot-level pick-and-place setup and the bundled pick-and-place motion.
@@ -98,6 +98,55 @@ fn a_range_design_holds_on_a_four_times_finer_grid_and_over_a_motion_inside_its_
     let inside = check_mounting(&solution.setup, path, &Cell::single(motion, None), &options)
         .unwrap_or_else(|e| panic!("{e}"));
     assert!(inside.holds(), "{:?}", inside.motions[0].motion_test);
+}
+
+/// The pick-and-place motion's own box with all six axes named (the bundled ranges file):
+/// chains that hold every static pose of the box fail a stress motion at the acceleration
+/// asked, so the design answers the whole box at half the acceleration, not a narrower box.
+/// The independent reference is the motion test of the answer over the stress motions
+/// themselves (no search): at the answered ramp every one holds, at the asked ramp one fails
+/// — the gentler ramp was needed. (`k_best` 3 caps the motion tests of each box: what the
+/// test checks is the ramp, not the search's budget.)
+#[test]
+fn a_box_whose_axes_fail_at_speed_is_answered_with_a_gentler_ramp_the_stress_motions_confirm() {
+    let (setup, _) = pick_and_place();
+    let robot = &setup.robot;
+    let ranges = JointRanges::from_file(
+        robot,
+        &root().join("motions/viper_s850/pick_and_place_box.toml"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let options = SolveOptions {
+        k_best: 3,
+        ..SolveOptions::default()
+    };
+    let (solution, _, answered) =
+        solve_ranges(&setup, &ranges, None, 10.0, &options, None).unwrap_or_else(|e| panic!("{e}"));
+    let report = &solution.report;
+    assert_eq!(report.status, Status::Solved, "{}", report.explanation);
+    let design = report.ranges.as_ref().expect("the design's ranges");
+    assert_eq!(design.asked, design.answered, "the ranges are kept");
+    assert_eq!(answered.ranges, ranges.ranges);
+    let slower = answered.time_to_full_speed_s;
+    assert!(slower > ranges.time_to_full_speed_s, "{slower}");
+    assert_eq!(design.time_to_full_speed_answered_s, slower);
+    assert_eq!(
+        design.time_to_full_speed_asked_s,
+        ranges.time_to_full_speed_s
+    );
+    let path = solution.answer().expect("the answer passed");
+
+    let stress = |r: &JointRanges| {
+        let cell = r
+            .stress_motions(robot, STRESS_MOTION_RATE_HZ)
+            .unwrap_or_else(|e| panic!("{e}"));
+        check_mounting(&solution.setup, path, &cell, &SolveOptions::default())
+            .unwrap_or_else(|e| panic!("{e}"))
+    };
+    let at_answer = stress(&answered);
+    assert!(at_answer.holds(), "{:?}", at_answer.motions);
+    let at_asked = stress(&ranges);
+    assert!(!at_asked.holds(), "the asked acceleration must fail");
 }
 
 /// The ranges the bundled pick-and-place answer allows, each axis alone with the others

@@ -16,13 +16,19 @@
 //!
 //! Verdicts do not depend on which lengths are asked for together, nor in which batches
 //! ([`Evaluator::first_rejections`]), so the pieces decided here get exactly the verdicts of
-//! the exhaustive test ([`super::attachment_test`]).
+//! the exhaustive test ([`super::attachment_test`]). Nor do they depend on the order of the
+//! poses (each pose's lengths start from the connected geometry), so each segment's poses
+//! are tried in the order of how many pieces they rejected in the earlier batches
+//! ([`PoseOrder`]): a piece that fails, fails at the first pose it is solved at, mostly —
+//! what an axis-range grid of thousands of poses per piece needs (the order changes the
+//! pose a miss names, never a verdict).
 
 use super::evaluate::Evaluator;
 use super::jobs::{PairJob, evaluate_jobs, pair_jobs};
 use super::lookup::{IntraLinkAnswer, LookupCounts, looked_up};
-use super::poses::SegmentPoses;
+use super::poses::{SegmentPoses, TestPose};
 use super::sets::{SegmentSets, Verdicts, robust_neighbours};
+use super::verdict::Miss;
 use crate::geometry::reaches;
 use crate::path::Pv;
 use crate::pose::Pose;
@@ -63,6 +69,56 @@ struct Segment {
     /// Worker time spent on this segment's pieces (s).
     busy_s: f64,
     lookup_counts: Option<LookupCounts>,
+    /// The order its test poses are tried in.
+    order: PoseOrder,
+}
+
+/// The order a segment's test poses are tried in: the poses that rejected most pieces
+/// first (ties in the poses' own order), learned batch by batch — so the order, and with it
+/// the work, is the same at any thread count.
+#[derive(Debug)]
+struct PoseOrder {
+    /// Pieces each test pose rejected first.
+    rejected: Vec<usize>,
+    /// Test pose indices, the next batch's order.
+    order: Vec<usize>,
+}
+
+impl PoseOrder {
+    fn new(poses: usize) -> PoseOrder {
+        PoseOrder {
+            rejected: vec![0; poses],
+            order: (0..poses).collect(),
+        }
+    }
+
+    /// `poses` in this order.
+    fn arrange<'p>(&self, poses: &'p [TestPose]) -> Vec<&'p TestPose> {
+        self.order.iter().map(|&p| &poses[p]).collect()
+    }
+
+    /// Misses found over the arranged poses, their poses renumbered as the test poses.
+    fn renumber(&self, misses: &mut [Option<Miss>]) {
+        for miss in misses.iter_mut().flatten() {
+            miss.pose = self.order[miss.pose];
+        }
+    }
+
+    /// Counts the (renumbered) misses of a batch and reorders.
+    fn learn<'m>(&mut self, misses: impl Iterator<Item = &'m Option<Miss>>) {
+        let mut changed = false;
+        for miss in misses.flatten() {
+            if let Some(count) = self.rejected.get_mut(miss.pose) {
+                *count += 1;
+                changed = true;
+            }
+        }
+        if changed {
+            let rejected = &self.rejected;
+            self.order = (0..rejected.len()).collect();
+            self.order.sort_by_key(|&p| std::cmp::Reverse(rejected[p]));
+        }
+    }
 }
 
 impl Segment {
@@ -123,6 +179,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
                     busy_s: 0.0,
                     lookup_counts: (intra_link.is_some() && setup.is_intra_link(m))
                         .then(LookupCounts::default),
+                    order: PoseOrder::new(poses.poses[m].len()),
                 }
             })
             .collect();
@@ -362,6 +419,9 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
         let poses = self.poses;
         let intra_link = self.intra_link;
         let segments = &self.segments;
+        let arranged: Vec<Vec<&TestPose>> = (segments.iter().zip(&poses.poses))
+            .map(|(segment, poses)| segment.order.arrange(poses))
+            .collect();
         let timed = evaluate_jobs(stage, jobs, |job| {
             let clock = Instant::now();
             let m = job.segment;
@@ -375,7 +435,13 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
                     &job.lengths,
                     counts,
                 ),
-                _ => evaluator.first_rejections(m, job.pair, &job.lengths, &poses.poses[m]),
+                _ => {
+                    let order = &segments[m].order;
+                    let mut misses =
+                        evaluator.first_rejections(m, job.pair, &job.lengths, &arranged[m]);
+                    order.renumber(&mut misses);
+                    misses
+                }
             };
             (verdicts, clock.elapsed().as_secs_f64())
         });
@@ -388,6 +454,9 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             by_segment[job.segment].1.push(verdicts);
         }
         for (segment, (jobs, verdicts)) in self.segments.iter_mut().zip(by_segment) {
+            if segment.lookup_counts.is_none() {
+                segment.order.learn(verdicts.iter().flatten());
+            }
             segment.verdicts.extend(&jobs, verdicts);
         }
     }

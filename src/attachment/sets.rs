@@ -24,6 +24,9 @@ pub struct SegmentSets {
     /// the closest of each limit that rejected any, then the next closest, at most
     /// [`NEAREST_MISSES`], measured ones only — what a diagnosis shows.
     pub nearest_misses: Vec<(Pv, Miss)>,
+    /// Per test pose (index), how many PVs of D'0 were rejected there (the first pose that
+    /// failed them, in the order tried): where the segment's pieces fail.
+    pub rejected_at: BTreeMap<usize, usize>,
     /// (guides, length) combinations evaluated, robustness lengths included.
     pub evaluations: usize,
     /// Static solves (Newton's) started for them, at every test pose.
@@ -151,10 +154,12 @@ impl Verdicts {
     /// The sets of a segment whose `candidates` were all decided with these verdicts.
     pub(crate) fn sets(&self, setup: &Setup, candidates: &[Pv]) -> SegmentSets {
         let mut rejections = BTreeMap::new();
+        let mut rejected_at = BTreeMap::new();
         let mut misses: Vec<(Pv, Miss)> = Vec::new();
         for pv in candidates {
             if let Some(Some(miss)) = self.get(pv) {
                 *rejections.entry(miss.rejection).or_insert(0) += 1;
+                *rejected_at.entry(miss.pose).or_insert(0) += 1;
                 if miss.severity.is_finite() {
                     misses.push((*pv, miss));
                 }
@@ -174,6 +179,7 @@ impl Verdicts {
             d2,
             rejections,
             nearest_misses: nearest_misses(misses),
+            rejected_at,
             evaluations: self.len() + candidates.iter().filter(|pv| pv.sub_segments == 0).count(),
             static_solves: 0,
             looked_up: None,

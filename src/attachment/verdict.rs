@@ -67,7 +67,8 @@ pub struct Miss {
     /// The measured value: clearance to the robot or to itself (m), stretch ratio, or bend
     /// radius (m); NaN when not measured.
     pub value: f64,
-    /// Index of the test pose where it failed first.
+    /// Index of the test pose where it failed first (in the order the poses were tried:
+    /// the lazy search tries the poses that rejected most pieces first).
     pub pose: usize,
     /// Where along the piece (m of cable from its start clamp); NaN for the whole piece.
     pub at_m: f64,

@@ -1,5 +1,6 @@
 //! The library's progress ([`cable_dict::progress`]) drawn as indicatif bars with an ETA on
-//! standard error — only on a terminal (indicatif hides them on pipes), never with `--quiet`.
+//! standard error — only on a terminal (indicatif hides them on pipes), never with `--quiet`;
+//! its notes (a long run's milestones) as lines on standard error, also on pipes.
 
 use cable_dict::progress::{Progress, set_sink};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -37,6 +38,13 @@ impl Progress for Bars {
             && let Some(bar) = slot.take()
         {
             bar.finish_and_clear();
+        }
+    }
+
+    fn note(&self, line: &str) {
+        match self.bar.lock().ok().as_deref() {
+            Some(Some(bar)) => bar.suspend(|| eprintln!("{line}")),
+            _ => eprintln!("{line}"),
         }
     }
 }

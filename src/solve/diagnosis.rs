@@ -30,11 +30,64 @@ pub struct SegmentDiagnosis {
     pub problem: String,
     /// The candidate pieces that came closest, least severe first (attachment test).
     pub nearest_misses: Vec<NearestMiss>,
+    /// The test poses that rejected most of its candidate pieces, most first, at most
+    /// [`REJECTING_POSES`] (attachment test; empty when chains reached the motion test).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub rejecting_poses: Vec<RejectingPose>,
     /// How the chains tried failed in this segment, first ones first (motion test and its
     /// static sweep).
     pub failures: Vec<String>,
     /// What would help, most specific first.
     pub suggestions: Vec<String>,
+}
+
+/// Rejecting poses kept per blocking segment.
+pub const REJECTING_POSES: usize = 10;
+
+/// A test pose where candidate pieces of a segment failed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RejectingPose {
+    /// The pose.
+    #[serde(flatten)]
+    pub at: DiagnosedPose,
+    /// Candidate pieces rejected there.
+    pub pieces: usize,
+}
+
+/// A test pose a diagnosis names: a moment of a motion, or a pose of an axis-range grid.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DiagnosedPose {
+    /// Which motion of a cell (absent for the first, and for a single motion).
+    #[serde(skip_serializing_if = "crate::json::is_zero")]
+    pub motion: usize,
+    /// Time in the motion (s).
+    pub time_s: f64,
+    /// Why that pose was tested (e.g. `joint_5 max`).
+    pub pose: String,
+    /// The pose is one of an axis-range grid's (`time_s` its number), not a moment of a
+    /// motion.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub grid: bool,
+}
+
+impl DiagnosedPose {
+    fn of(pose: &crate::attachment::TestPose) -> DiagnosedPose {
+        DiagnosedPose {
+            motion: pose.motion,
+            time_s: pose.time_s,
+            pose: pose.reason.clone(),
+            grid: pose.grid,
+        }
+    }
+
+    /// Where in the motion: `at t = 4.15 s (joint_5 max)`, or on an axis-range grid `at
+    /// axis-range grid: pose 227 (joint_5 48.1 deg, …)`.
+    pub fn when(&self) -> String {
+        match self.grid {
+            true => format!("at {}", self.pose),
+            false => format!("at t = {:.2} s ({})", self.time_s, self.pose),
+        }
+    }
 }
 
 /// A candidate piece that failed one limit, and how.
@@ -53,17 +106,9 @@ pub struct NearestMiss {
     pub value: f64,
     /// The limit's value, in the same unit.
     pub limit_value: f64,
-    /// Which motion of a cell (absent for the first, and for a single motion).
-    #[serde(skip_serializing_if = "crate::json::is_zero")]
-    pub motion: usize,
-    /// Time in the motion (s).
-    pub time_s: f64,
-    /// Why that pose was tested (e.g. `joint_5 max`).
-    pub pose: String,
-    /// The pose is one of an axis-range grid's (`time_s` its number), not a moment of a
-    /// motion.
-    #[serde(skip_serializing_if = "std::ops::Not::not")]
-    pub grid: bool,
+    /// Where it failed first.
+    #[serde(flatten)]
+    pub at: DiagnosedPose,
     /// Where on the piece: cable length from its start clamp (mm); `None` for the whole
     /// piece.
     pub from_start_clamp_mm: Option<f64>,
@@ -100,17 +145,8 @@ impl NearestMiss {
             self.from_configuration,
             self.to_configuration,
             self.length_mm,
-            self.when()
+            self.at.when()
         )
-    }
-
-    /// Where in the motion it failed: `at t = 4.15 s (joint_5 max)`, or on an axis-range
-    /// grid `at the axis-range grid's pose 227 (joint_5 48.1°, …)`.
-    pub fn when(&self) -> String {
-        match self.grid {
-            true => format!("at {}", self.pose),
-            false => format!("at t = {:.2} s ({})", self.time_s, self.pose),
-        }
     }
 }
 
@@ -132,6 +168,13 @@ impl std::fmt::Display for Diagnosis {
             writeln!(f, "{}: {}", d.segment, d.problem)?;
             for miss in &d.nearest_misses {
                 writeln!(f, "  nearest miss: {}", miss.describe(&d.from_guide))?;
+            }
+            for at in d.rejecting_poses.iter().take(3) {
+                let pieces = match at.pieces {
+                    1 => "1 piece".to_string(),
+                    n => format!("{n} pieces"),
+                };
+                writeln!(f, "  failed {pieces} {}", at.at.when())?;
             }
             for failure in &d.failures {
                 writeln!(f, "  failed: {failure}")?;
@@ -204,11 +247,25 @@ fn attachment_diagnosis(
         })
         .collect();
     let suggestions = attachment_suggestions(setup, m, sets, &nearest_misses);
+    let mut rejecting: Vec<(usize, usize)> = (sets.rejected_at.iter())
+        .map(|(&p, &pieces)| (p, pieces))
+        .collect();
+    rejecting.sort_by_key(|&(p, pieces)| (std::cmp::Reverse(pieces), p));
+    let rejecting_poses = (rejecting.into_iter().take(REJECTING_POSES))
+        .filter_map(|(p, pieces)| {
+            let pose = poses.poses[m].get(p)?;
+            Some(RejectingPose {
+                at: DiagnosedPose::of(pose),
+                pieces,
+            })
+        })
+        .collect();
     SegmentDiagnosis {
         segment: setup.segment_name(m),
         from_guide: setup.guides[a].name.clone(),
         problem,
         nearest_misses,
+        rejecting_poses,
         failures: Vec::new(),
         suggestions,
     }
@@ -264,10 +321,7 @@ fn nearest_miss(
         limit: miss.rejection,
         value,
         limit_value,
-        motion: pose.motion,
-        time_s: pose.time_s,
-        pose: pose.reason.clone(),
-        grid: pose.grid,
+        at: DiagnosedPose::of(pose),
         from_start_clamp_mm: miss.at_m.is_finite().then_some(miss.at_m * 1e3),
     }
 }
@@ -326,11 +380,11 @@ fn attachment_suggestions(
             setup.robustness.range, setup.robustness.delta_s
         ));
     }
-    if slack && !nearest.pose.is_empty() {
+    if slack && !nearest.at.pose.is_empty() {
         out.push(format!(
             "it fails {}: a smaller range of that joint in the motion, or clamps that keep \
              the cable clear there",
-            nearest.when()
+            nearest.at.when()
         ));
     }
     let (a, b) = setup.segment_guides(m);
@@ -415,6 +469,7 @@ fn motion_diagnosis(setup: &Setup, cell: &Cell, outcome: &MotionSearch) -> Vec<S
             SegmentDiagnosis {
                 segment: setup.segment_name(m),
                 from_guide: setup.guides[a].name.clone(),
+                rejecting_poses: Vec::new(),
                 problem: match (dynamic[m].len(), swept[m].len()) {
                     (0, n) => format!(
                         "the static sweep over the motion dropped {n} of its candidate \

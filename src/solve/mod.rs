@@ -43,7 +43,9 @@ pub use box_check::{
 pub use certify::{Certification, Disagreement};
 use chains::{Decided, LazyChains, MIN_ROUND, chain_search};
 pub use check::{Check, check_mounting, check_ranges};
-pub use diagnosis::{Diagnosis, NearestMiss, SegmentDiagnosis};
+pub use diagnosis::{
+    DiagnosedPose, Diagnosis, NearestMiss, REJECTING_POSES, RejectingPose, SegmentDiagnosis,
+};
 pub use options::{SearchKind, SolveError, SolveOptions};
 pub use ranges::{DEFAULT_GRID_STEP_DEG, STRESS_MOTION_RATE_HZ, range_cell, solve_ranges};
 use search::{MotionSearch, search_chains};

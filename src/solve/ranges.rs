@@ -5,6 +5,7 @@ use super::{Solution, SolveError, SolveOptions, solve_cell};
 use crate::attachment::GRAVITY_RESOLUTION_DEG;
 use crate::dictionary::Dictionary;
 use crate::motion::{Cell, JointRanges, MotionError};
+use crate::progress;
 use crate::robot::Robot;
 use crate::setup::Setup;
 use std::time::Instant;
@@ -48,12 +49,18 @@ pub fn range_cell(
 }
 
 /// The shortest path for the box `ranges` on `setup` (the cell of [`range_cell`], with the
-/// motions of `given`), and that cell. When the box has no path, the axis to narrow: each
-/// ranged axis in turn narrowed to half its width — keeping the end away from where the
-/// diagnosis's closest misses had it, else about its middle — the one whose stress motion
-/// failed most chains and dropped most pieces (and with most misses) first, until one
-/// has a path; that one widened back by bisection (to an eighth of its width); when no
-/// single axis suffices, every ranged axis halved.
+/// motions of `given`), and that cell. When the box has no path:
+///
+/// - when chains held every static pose but failed a stress motion at speed, the same box
+///   with the axes reaching full speed [`RAMP_FACTORS`] times slower (no narrower range slows
+///   an axis down);
+/// - else the axis to narrow: each ranged axis in turn narrowed to half its width — keeping
+///   the end away from where the blocking pieces failed ([`AxisFailures::kept_end`]), else
+///   about its middle — the most blamed first ([`AxisFailures::blame`]), until one has a
+///   path (each half-box also with the gentler ramps when it fails at speed); that one
+///   widened back by bisection (to an eighth of its width); when no single axis suffices,
+///   every ranged axis halved.
+///
 /// The report's [`RangeDesign`] says what was asked, what is answered and every box tried;
 /// the box answered is returned with the cell.
 pub fn solve_ranges(
@@ -65,73 +72,77 @@ pub fn solve_ranges(
     dictionary: Option<&Dictionary>,
 ) -> Result<(Solution, Cell, JointRanges), SolveError> {
     let robot = &setup.robot;
-    let attempt = |r: &JointRanges, diagnose: bool| -> Result<Attempt, SolveError> {
-        let clock = Instant::now();
-        let cell = range_cell(setup, r, given.cloned(), grid_step_deg)?;
-        let options = SolveOptions {
-            diagnose,
-            ..options.clone()
-        };
-        let solution = solve_cell(setup, &cell, &options, dictionary)?;
-        Ok(Attempt {
-            solution,
-            cell,
-            time_s: clock.elapsed().as_secs_f64(),
-        })
-    };
-    let axes = |r: &JointRanges, which: &[usize]| -> Vec<AxisRange> {
-        which.iter().map(|&j| axis_range(robot, r, j)).collect()
-    };
-    let rotary = |j: usize| robot.actuated_joint(j).kind.is_rotary();
     let named: Vec<usize> = (0..ranges.ranges.len())
         .filter(|&j| ranges.named[j])
         .collect();
-    let mut design = RangeDesign {
-        file: (ranges.source.as_ref()).map(|p| p.display().to_string()),
+    let mut design = Designer {
+        setup,
+        given,
         grid_step_deg,
-        asked: axes(ranges, &named),
-        answered: axes(ranges, &named),
-        failures: Vec::new(),
-        tried: Vec::new(),
+        options,
+        dictionary,
+        asked: ranges,
+        design: RangeDesign {
+            file: (ranges.source.as_ref()).map(|p| p.display().to_string()),
+            grid_step_deg,
+            asked: axis_ranges(robot, ranges, &named),
+            answered: axis_ranges(robot, ranges, &named),
+            time_to_full_speed_asked_s: ranges.time_to_full_speed_s,
+            time_to_full_speed_answered_s: ranges.time_to_full_speed_s,
+            failures: Vec::new(),
+            tried: Vec::new(),
+        },
+        noted: false,
     };
-    // Without deciding every piece for the diagnosis: the closest misses of the pieces it
-    // decided tell which end of an axis to narrow from.
-    let first = attempt(ranges, false)?;
+    let rotary = |j: usize| robot.actuated_joint(j).kind.is_rotary();
+    // Without deciding every piece for the diagnosis: the pieces it decided tell which end of
+    // an axis to narrow from.
+    let first = design.attempt(ranges, false)?;
     if first.solved() {
-        return Ok(first.answer(design, ranges.clone()));
+        return Ok(first.answer(design.design, ranges.clone()));
     }
-    // The axes in the order they are narrowed: the one whose stress motion failed most first.
-    design.failures = failures_per_axis(&first, &named, ranges, robot);
+    // At most: the gentler ramps; each axis alone, each with the gentler ramps; two
+    // bisections; every axis together, with the gentler ramps.
+    let ramps = RAMP_FACTORS.len();
+    let most = ramps + named.len() * (1 + ramps) + 2 + usize::from(named.len() > 1) * (1 + ramps);
+    progress::note(&format!(
+        "the box asked has no path ({:.0} s); finding what to change tries up to {most} more \
+         boxes, stopping at the first with a path, each about as long (≤ {:.0} min)",
+        first.time_s,
+        (most as f64 * first.time_s / 60.0).ceil()
+    ));
+    // The axes in the order they are narrowed: the most blamed first.
+    let failures = failures_per_axis(&first, &named, ranges, setup);
     let mut order: Vec<usize> = (0..named.len()).collect();
-    order.sort_by_key(|&k| std::cmp::Reverse(design.failures[k].total()));
-    let mut probe = |r: &JointRanges, changed: &[usize]| -> Result<Attempt, SolveError> {
-        let tried = attempt(r, false)?;
-        let probe = RangeProbe {
-            narrowed: axes(r, changed),
-            length_mm: tried.length_mm(),
-            time_s: tried.time_s,
-        };
-        log::info!("axis ranges: {}", probe.words());
-        design.tried.push(probe);
-        Ok(tried)
-    };
+    order.sort_by_key(|&k| std::cmp::Reverse(failures[k].blame()));
+    design.design.failures = failures.clone();
+    let mut best = design.gentler(ranges, &first, &[])?;
     // Each axis alone at half its width, until one suffices; that one widened back by
-    // bisection.
-    let mut best: Option<(JointRanges, Attempt)> = None;
+    // bisection at the ramp it needed.
     for &k in &order {
-        let j = named[k];
-        let kept_end = design.failures[k].kept_end();
-        let half = ranges.narrowed(j, 0.5, kept_end, rotary(j));
-        let tried = probe(&half, &[j])?;
-        if !tried.solved() {
-            continue;
+        if best.is_some() {
+            break;
         }
+        let j = named[k];
+        let kept_end = failures[k].kept_end();
+        let half = ranges.narrowed(j, 0.5, kept_end, rotary(j));
+        let tried = design.probe(&half, &[j])?;
+        let Some((half, tried)) = design
+            .gentler(&half, &tried, &[j])?
+            .or(tried.solved_in(half))
+        else {
+            continue;
+        };
+        let ramp = half.time_to_full_speed_s;
         let (mut solved, mut unsolved) = (0.5, 1.0);
         let mut answer = (half, tried);
         for _ in 0..2 {
             let keep = 0.5 * (solved + unsolved);
-            let wider = ranges.narrowed(j, keep, kept_end, rotary(j));
-            let tried = probe(&wider, &[j])?;
+            let wider = JointRanges {
+                time_to_full_speed_s: ramp,
+                ..ranges.narrowed(j, keep, kept_end, rotary(j))
+            };
+            let tried = design.probe(&wider, &[j])?;
             if tried.solved() {
                 solved = keep;
                 answer = (wider, tried);
@@ -140,23 +151,139 @@ pub fn solve_ranges(
             }
         }
         best = Some(answer);
-        break;
     }
     if best.is_none() && named.len() > 1 {
-        let every = (named.iter().zip(&design.failures)).fold(ranges.clone(), |r, (&j, f)| {
+        let every = (named.iter().zip(&failures)).fold(ranges.clone(), |r, (&j, f)| {
             r.narrowed(j, 0.5, f.kept_end(), rotary(j))
         });
-        let tried = probe(&every, &named)?;
-        if tried.solved() {
-            best = Some((every, tried));
-        }
+        let tried = design.probe(&every, &named)?;
+        best = design
+            .gentler(&every, &tried, &named)?
+            .or(tried.solved_in(every));
     }
     let Some((narrowed, answer)) = best else {
         // No box tried has a path: the box asked, with its whole diagnosis.
-        return Ok(attempt(ranges, options.diagnose)?.answer(design, ranges.clone()));
+        let whole = design.attempt(ranges, options.diagnose)?;
+        return Ok(whole.answer(design.design, ranges.clone()));
     };
-    design.answered = axes(&narrowed, &named);
-    Ok(answer.answer(design, narrowed))
+    design.design.answered = axis_ranges(robot, &narrowed, &named);
+    design.design.time_to_full_speed_answered_s = narrowed.time_to_full_speed_s;
+    Ok(answer.answer(design.design, narrowed))
+}
+
+/// A range design under way: what it solves with, and what it has tried.
+struct Designer<'a> {
+    setup: &'a Setup,
+    given: Option<&'a Cell>,
+    grid_step_deg: f64,
+    options: &'a SolveOptions,
+    dictionary: Option<&'a Dictionary>,
+    asked: &'a JointRanges,
+    design: RangeDesign,
+    /// The grid of the first box was noted (before it was solved).
+    noted: bool,
+}
+
+impl Designer<'_> {
+    /// Solves the box `r`.
+    fn attempt(&mut self, r: &JointRanges, diagnose: bool) -> Result<Attempt, SolveError> {
+        let clock = Instant::now();
+        let cell = range_cell(self.setup, r, self.given.cloned(), self.grid_step_deg)?;
+        if !std::mem::replace(&mut self.noted, true) {
+            note_grid(self.setup, &cell, self.grid_step_deg);
+        }
+        let options = SolveOptions {
+            diagnose,
+            ..self.options.clone()
+        };
+        let solution = solve_cell(self.setup, &cell, &options, self.dictionary)?;
+        Ok(Attempt {
+            solution,
+            cell,
+            time_s: clock.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// Solves the box `r` (its axes `changed` named in the record) as one of the boxes tried.
+    fn probe(&mut self, r: &JointRanges, changed: &[usize]) -> Result<Attempt, SolveError> {
+        let tried = self.attempt(r, false)?;
+        let probe = RangeProbe {
+            narrowed: axis_ranges(&self.setup.robot, r, changed),
+            time_to_full_speed_s: (r.time_to_full_speed_s != self.asked.time_to_full_speed_s)
+                .then_some(r.time_to_full_speed_s),
+            length_mm: tried.length_mm(),
+            time_s: tried.time_s,
+        };
+        progress::note(&format!(
+            "  tried {} ({:.0} s)",
+            probe.words(),
+            probe.time_s
+        ));
+        self.design.tried.push(probe);
+        Ok(tried)
+    }
+
+    /// When chains of box `r` held every static pose but failed a stress motion at speed
+    /// (`tried`), the same box with gentler ramps ([`RAMP_FACTORS`]) until one has a path.
+    fn gentler(
+        &mut self,
+        r: &JointRanges,
+        tried: &Attempt,
+        changed: &[usize],
+    ) -> Result<Option<(JointRanges, Attempt)>, SolveError> {
+        let ranged = r.named.iter().filter(|&&n| n).count();
+        let mut at_speed = !tried.solved() && failed_at_speed(tried, ranged);
+        for factor in RAMP_FACTORS {
+            if !at_speed {
+                break;
+            }
+            let gentler = JointRanges {
+                time_to_full_speed_s: factor * self.asked.time_to_full_speed_s,
+                ..r.clone()
+            };
+            let tried = self.probe(&gentler, changed)?;
+            if tried.solved() {
+                return Ok(Some((gentler, tried)));
+            }
+            at_speed = failed_at_speed(&tried, ranged);
+        }
+        Ok(None)
+    }
+}
+
+/// The gentler ramps a design whose stress motions fail at speed tries, as multiples of the
+/// time to full speed asked: twice and four times as long (a quarter of the acceleration).
+pub const RAMP_FACTORS: [f64; 2] = [2.0, 4.0];
+
+/// Whether chains of `attempt` failed the motion test in a stress motion (the first
+/// `ranged + 1` motions of its cell: each ranged axis alone, then every one together).
+fn failed_at_speed(attempt: &Attempt, ranged: usize) -> bool {
+    let stress: Vec<&str> = (attempt.cell.motions.iter())
+        .take(ranged + 1)
+        .map(|m| m.name.as_str())
+        .collect();
+    (attempt.solution.report.candidates.iter())
+        .filter(|c| c.passed == Some(false))
+        .any(|c| {
+            c.motion
+                .as_deref()
+                .is_some_and(|name| stress.contains(&name))
+        })
+}
+
+/// Notes how many static poses of the box's grid each piece is tested at (what a box
+/// costs grows with them).
+fn note_grid(setup: &Setup, cell: &Cell, grid_step_deg: f64) {
+    let Some(grid) = cell.motions.iter().find_map(|m| m.grid.as_ref()) else {
+        return;
+    };
+    let counts: Vec<String> = (grid.per_segment.iter().enumerate())
+        .map(|(m, poses)| format!("{} {}", setup.segment_name(m), poses.len()))
+        .collect();
+    progress::note(&format!(
+        "axis-range grid ({grid_step_deg}° apart): each piece tested at up to {} static poses",
+        counts.join(", ")
+    ));
 }
 
 /// Per ranged axis (in `named` order), the chains its own stress motion failed and the
@@ -166,9 +293,20 @@ fn failures_per_axis(
     attempt: &Attempt,
     named: &[usize],
     ranges: &JointRanges,
-    robot: &Robot,
+    setup: &Setup,
 ) -> Vec<AxisFailures> {
+    let robot = &setup.robot;
     let report = &attempt.solution.report;
+    // The joints that shape each piece (the grid's): an axis that does not — a vertical
+    // first axis under a wrist piece — is not blamed for where the piece failed.
+    let gridded = (attempt.cell.motions.iter()).find_map(|m| m.grid.as_ref());
+    let shapes = |segment: &str, j: usize| -> bool {
+        let m = (0..setup.segment_count()).find(|&m| setup.segment_name(m) == segment);
+        match (gridded, m) {
+            (Some(grid), Some(m)) => grid.gridded.get(m).is_some_and(|g| g.contains(&j)),
+            _ => true,
+        }
+    };
     let axis_of = |motion: &Option<String>| -> Option<usize> {
         let name = motion.as_deref()?;
         let i = (attempt.cell.motions.iter()).position(|m| m.name == name)?;
@@ -179,26 +317,34 @@ fn failures_per_axis(
             joint: robot.actuated_joint(j).name.clone(),
             motion_tests_failed: 0,
             sweep_drops: 0,
-            closest_misses: [0, 0],
+            failed_in_half: [0, 0],
         })
         .collect();
-    let misses = (report.diagnosis.iter())
-        .flat_map(|d| &d.segments)
-        .flat_map(|s| &s.nearest_misses);
-    for miss in misses {
+    // Each closest miss counts once, each rejecting pose for the pieces it rejected.
+    let segments = (report.diagnosis.iter()).flat_map(|d| &d.segments);
+    let failed = segments.flat_map(|s| {
+        let misses = (s.nearest_misses.iter()).map(|miss| (miss.at.motion, miss.at.time_s, 1));
+        let rejecting =
+            (s.rejecting_poses.iter()).map(|at| (at.at.motion, at.at.time_s, at.pieces));
+        misses
+            .chain(rejecting)
+            .map(move |at| (s.segment.as_str(), at))
+    });
+    for (segment, (motion, time_s, pieces)) in failed {
         // A grid's pose is its sample at `time_s` (one a second), a motion's its moment.
-        let Some(pose) =
-            (attempt.cell.motions.get(miss.motion)).map(|m| m.motion.joints_at(miss.time_s))
+        let Some(pose) = (attempt.cell.motions.get(motion)).map(|m| m.motion.joints_at(time_s))
         else {
             continue;
         };
         for (k, &j) in named.iter().enumerate() {
             let [a, b] = ranges.ranges[j];
             let middle = 0.5 * (a + b);
-            if pose[j] < middle - 1e-9 {
-                failures[k].closest_misses[0] += 1;
+            if !shapes(segment, j) {
+                continue;
+            } else if pose[j] < middle - 1e-9 {
+                failures[k].failed_in_half[0] += pieces;
             } else if pose[j] > middle + 1e-9 {
-                failures[k].closest_misses[1] += 1;
+                failures[k].failed_in_half[1] += pieces;
             }
         }
     }
@@ -223,6 +369,11 @@ impl Attempt {
         self.solution.report.status == Status::Solved
     }
 
+    /// `(box, self)` when it has a path.
+    fn solved_in(self, r: JointRanges) -> Option<(JointRanges, Attempt)> {
+        self.solved().then_some((r, self))
+    }
+
     fn length_mm(&self) -> Option<f64> {
         self.solved()
             .then_some(self.solution.report.optimal_length_mm)
@@ -237,6 +388,14 @@ impl Attempt {
         self.solution.report.ranges = Some(design);
         (self.solution, self.cell, answered)
     }
+}
+
+/// The ranges of joints `which` in `ranges`, in the unit people give them.
+fn axis_ranges(robot: &Robot, ranges: &JointRanges, which: &[usize]) -> Vec<AxisRange> {
+    which
+        .iter()
+        .map(|&j| axis_range(robot, ranges, j))
+        .collect()
 }
 
 /// Joint `j`'s range in `ranges`, in the unit people give it.

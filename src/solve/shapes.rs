@@ -176,7 +176,7 @@ fn nearest_miss_shape(
 ) -> Option<Result<PoseShape, ShapeError>> {
     let setup = evaluator.setup();
     let (m, _, miss) = first_nearest_miss(report)?;
-    let Some(motion) = motions.get(miss.motion) else {
+    let Some(motion) = motions.get(miss.at.motion) else {
         return Some(Err(ShapeError::NoMotion));
     };
     let (a, b) = setup.segment_guides(m);
@@ -186,7 +186,7 @@ fn nearest_miss_shape(
         start: index(a, &miss.from_configuration)?,
         end: index(b, &miss.to_configuration)?,
     };
-    let link_poses = match setup.robot.link_poses(&motion.joints_at(miss.time_s)) {
+    let link_poses = match setup.robot.link_poses(&motion.joints_at(miss.at.time_s)) {
         Ok(link_poses) => link_poses,
         Err(e) => return Some(Err(e.into())),
     };

@@ -405,7 +405,7 @@ fn nearest_miss_moment<'s>(
         file: "nearest-miss.svg".into(),
         heading: format!(
             "No cable path: nearest miss of cable piece {piece}, t = {:.2} s",
-            miss.time_s
+            miss.at.time_s
         ),
         what: format!("the robot and the nearest miss of cable piece {piece}, front, side and top"),
         caption: format!(

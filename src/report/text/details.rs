@@ -22,6 +22,9 @@ impl SolveReport {
         if let Some(d) = &i.dictionary {
             write_dictionary(f, d)?;
         }
+        if let Some(design) = &self.ranges {
+            super::ranges::write_ranges(f, design)?;
+        }
         if let (Some(path), Some(total)) = (&self.optimal, self.optimal_length_mm) {
             writeln!(f, "\ncable path — total {total:.0} mm")?;
             write_path(f, path)?;

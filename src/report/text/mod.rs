@@ -6,6 +6,7 @@
 mod catalogue;
 mod check;
 mod details;
+mod ranges;
 mod workshop;
 
 pub use catalogue::catalogue_listing;

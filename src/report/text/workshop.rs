@@ -7,8 +7,7 @@ use crate::motion_test::{Constraint, MotionTestReport, Worst};
 use crate::mounting::{self, MountingPlan, rows};
 use crate::setup::Thresholds;
 use crate::solve::{
-    AllowedAxis, AllowedRanges, AxisRange, BindingMotion, MotionVerdict, PieceBinding, RangeDesign,
-    RangeEnd, SolveReport,
+    AllowedAxis, AllowedRanges, BindingMotion, MotionVerdict, PieceBinding, RangeEnd, SolveReport,
 };
 use crate::text_table::decimal;
 use std::fmt;
@@ -28,7 +27,7 @@ pub(super) fn write_summary(report: &SolveReport, f: &mut fmt::Formatter<'_>) ->
         super::details::write_dictionary(f, dictionary)?;
     }
     if let Some(design) = &report.ranges {
-        write_ranges(f, design)?;
+        super::ranges::write_ranges(f, design)?;
     }
     if let Some(plan) = &report.mounting {
         write_clamps(f, plan)?;
@@ -115,85 +114,6 @@ pub(super) fn write_allowed_ranges(
                 axis.end_words(above, &piece)
             )?,
         }
-    }
-    Ok(())
-}
-
-/// What a design for axis ranges asked, what it answers, and the boxes it tried.
-fn write_ranges(f: &mut fmt::Formatter<'_>, design: &RangeDesign) -> fmt::Result {
-    let list = |ranges: &[AxisRange]| -> String {
-        ranges
-            .iter()
-            .map(AxisRange::words)
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    writeln!(
-        f,
-        "axis ranges{}: {} (each piece at the box's poses {}° apart; each axis end to end at \
-         its URDF speed)",
-        design
-            .file
-            .as_ref()
-            .map(|file| format!(" of {file}"))
-            .unwrap_or_default(),
-        list(&design.asked),
-        design.grid_step_deg
-    )?;
-    let narrowed: Vec<String> = design
-        .narrowed()
-        .map(|(asked, answered)| {
-            format!("{} (asked {}…{})", answered.words(), asked.min, asked.max)
-        })
-        .collect();
-    if !narrowed.is_empty() {
-        writeln!(
-            f,
-            "  the ranges asked have no path: narrow {} — the path below is for that box",
-            narrowed.join(", ")
-        )?;
-    } else if !design.tried.is_empty() {
-        writeln!(
-            f,
-            "  the ranges asked have no path, and no box tried has one (narrowing each axis to \
-             half its width, then every axis)"
-        )?;
-    }
-    let failed: Vec<String> = (design.failures.iter())
-        .filter(|a| a.motion_tests_failed + a.sweep_drops > 0)
-        .map(|a| {
-            let plural = |n: usize, one: &str, many: &str| match n {
-                1 => format!("1 {one}"),
-                n => format!("{n} {many}"),
-            };
-            format!(
-                "{} end to end failed {} and dropped {}",
-                a.joint,
-                plural(a.motion_tests_failed, "motion test", "motion tests"),
-                plural(a.sweep_drops, "piece", "pieces")
-            )
-        })
-        .collect();
-    if !failed.is_empty() {
-        writeln!(f, "  in the box asked: {}", failed.join("; "))?;
-    }
-    let halves: Vec<String> = (design.failures.iter())
-        .filter(|a| a.closest_misses != [0, 0])
-        .map(|a| {
-            let [low, high] = a.closest_misses;
-            format!("{} {low} in its lower half, {high} in its upper", a.joint)
-        })
-        .collect();
-    if !halves.is_empty() {
-        writeln!(
-            f,
-            "  where the closest pieces failed: {} (each axis is narrowed from the end where \
-             more failed)",
-            halves.join("; ")
-        )?;
-    }
-    for probe in &design.tried {
-        writeln!(f, "  tried {}", probe.words())?;
     }
     Ok(())
 }

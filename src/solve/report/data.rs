@@ -573,6 +573,11 @@ pub struct RangeDesign {
     pub grid_step_deg: f64,
     /// The ranges asked for, of the axes the file names.
     pub asked: Vec<AxisRange>,
+    /// The stress motions' time from rest to full speed asked for (s).
+    pub time_to_full_speed_asked_s: f64,
+    /// The one answered: as asked, or longer when the axes' acceleration alone fails the
+    /// box (s).
+    pub time_to_full_speed_answered_s: f64,
     /// The ranges of the box answered: the ones asked, or narrower when those have no path.
     pub answered: Vec<AxisRange>,
     /// Per ranged axis, what its stress motion failed in the box asked (empty when that box
@@ -592,26 +597,31 @@ pub struct AxisFailures {
     pub motion_tests_failed: usize,
     /// Pieces its static sweep dropped.
     pub sweep_drops: usize,
-    /// The closest misses of the pieces that block the search (the diagnosis's, at the
-    /// grid's poses or the stress motions') that failed with this axis in the lower, and in
-    /// the upper half of its range: the end to narrow it from.
-    pub closest_misses: [usize; 2],
+    /// The candidate pieces of the segments that block the search (at the poses that
+    /// rejected most of them, and the closest misses: the diagnosis's, at the grid's poses
+    /// or the stress motions') that failed with this axis in the lower, and in the upper
+    /// half of its range: the end to narrow it from.
+    pub failed_in_half: [usize; 2],
 }
 
 impl AxisFailures {
-    /// Every count together.
-    pub fn total(&self) -> usize {
-        self.motion_tests_failed
-            + self.sweep_drops
-            + self.closest_misses[0]
-            + self.closest_misses[1]
+    /// How much this axis is to blame, the most blamed narrowed first: the chains its
+    /// stress motion failed and the pieces its sweep dropped, then by how many more of the
+    /// pieces failed in one half of its range than in the other (failures spread evenly
+    /// over an axis do not blame it).
+    pub fn blame(&self) -> (usize, usize) {
+        let [low, high] = self.failed_in_half;
+        (
+            self.motion_tests_failed + self.sweep_drops,
+            low.abs_diff(high),
+        )
     }
 
     /// The end of its range to keep when narrowing it (`Some(0)` the minimum, `Some(1)` the
-    /// maximum): the one away from the half where more closest misses fell; `None` (narrow
-    /// about the middle) when they fell evenly.
+    /// maximum): the one away from the half where more pieces failed; `None` (narrow about
+    /// the middle) when they fell evenly.
     pub fn kept_end(&self) -> Option<usize> {
-        match self.closest_misses {
+        match self.failed_in_half {
             [low, high] if low > high => Some(1),
             [low, high] if high > low => Some(0),
             _ => None,
@@ -753,9 +763,10 @@ impl AllowedAxis {
 }
 
 impl RangeProbe {
-    /// `joint_5 20.6…31.4°: 620 mm`, or `…: no path`.
+    /// `joint_5 20.6…31.4°: 620 mm`, `full speed in 0.6 s: 870 mm`, or `…: no path`.
     pub fn words(&self) -> String {
-        let ranges: Vec<String> = self.narrowed.iter().map(AxisRange::words).collect();
+        let mut ranges: Vec<String> = self.narrowed.iter().map(AxisRange::words).collect();
+        ranges.extend((self.time_to_full_speed_s).map(|t| format!("full speed in {t} s")));
         match self.length_mm {
             Some(mm) => format!("{}: {mm:.0} mm", ranges.join(", ")),
             None => format!("{}: no path", ranges.join(", ")),
@@ -768,6 +779,8 @@ impl RangeProbe {
 pub struct RangeProbe {
     /// The axes narrowed in it (the others as asked).
     pub narrowed: Vec<AxisRange>,
+    /// Its stress motions' time to full speed when not the one asked (s).
+    pub time_to_full_speed_s: Option<f64>,
     /// Its shortest path's length (mm); `None`: no path.
     pub length_mm: Option<f64>,
     /// Wall time of its solve (s).
