@@ -31,13 +31,7 @@ fn pick_and_place() -> (Setup, Motion) {
 fn a_range_design_holds_on_a_four_times_finer_grid_and_over_a_motion_inside_its_box() {
     let (setup, motion) = pick_and_place();
     let robot = &setup.robot;
-    let mut ranges = JointRanges::urdf(robot).expect("the Viper's joints have limits");
-    for (j, range) in ranges.ranges.iter_mut().enumerate() {
-        let series = motion.joint_series(j).expect("a joint");
-        let lo = series.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = series.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        *range = [lo, hi];
-    }
+    let mut ranges = JointRanges::spanned(&Cell::single(motion.clone(), None)).expect("a box");
     for name in ["joint_4", "joint_5"] {
         ranges.named[robot.actuated_index(name).expect(name)] = true;
     }
