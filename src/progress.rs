@@ -50,3 +50,8 @@ pub fn note(line: &str) {
         sink.note(line);
     }
 }
+
+/// Whether anything receives progress: a run may skip measuring what only a note would say.
+pub fn listening() -> bool {
+    SINK.get().is_some()
+}

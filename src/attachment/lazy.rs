@@ -198,6 +198,16 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
         self.evaluator.setup()
     }
 
+    /// What evaluates the pieces.
+    pub fn evaluator(&self) -> &'r Evaluator<'a> {
+        self.evaluator
+    }
+
+    /// The test poses of every segment.
+    pub fn poses(&self) -> &'r SegmentPoses {
+        self.poses
+    }
+
     /// The shortest any chain of robust pieces can be (sub-segments), from what is known so
     /// far; `None` when no chain is possible at all.
     pub fn lower_bound(&self) -> Option<usize> {
@@ -299,6 +309,16 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     /// use, as `(segment, pair index, decide up to)`: those of the segment that has the
     /// fewest; `None` when no segment has any.
     fn fewest_undecided(&self, bound: usize) -> Option<Deciding> {
+        self.undecided_per_segment(bound)
+            .into_iter()
+            .filter(|(count, _)| *count > 0)
+            .min_by_key(|(count, _)| *count)
+            .map(|(_, deciding)| deciding)
+    }
+
+    /// Per segment, how many undecided candidates that can be robust a chain no longer than
+    /// `bound` could use, and their pairs as `(segment, pair index, decide up to)`.
+    fn undecided_per_segment(&self, bound: usize) -> Vec<(usize, Deciding)> {
         let robustness = &self.setup().robustness;
         let mut by_segment: Vec<(usize, Deciding)> = vec![(0, Vec::new()); self.segments.len()];
         for (m, k, segment, pair, around) in self.open_pairs() {
@@ -320,10 +340,20 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             }
         }
         by_segment
-            .into_iter()
-            .filter(|(count, _)| *count > 0)
-            .min_by_key(|(count, _)| *count)
-            .map(|(_, deciding)| deciding)
+    }
+
+    /// The pieces the first widening evaluates at most — every candidate on a chain as short
+    /// as any chain can be ([`Self::lower_bound`]), with its robustness neighbours — as if
+    /// none failed (a piece that fails only spares others): what a cost estimate samples
+    /// before the search starts. Empty when no chain is possible.
+    pub(crate) fn first_round(&self) -> Vec<PairJob> {
+        let Some(bound) = self.lower_bound() else {
+            return Vec::new();
+        };
+        let deciding: Deciding = (self.undecided_per_segment(bound).into_iter())
+            .flat_map(|(_, deciding)| deciding)
+            .collect();
+        pair_jobs(self.wanted(&deciding, Evaluate::Feasible).into_iter())
     }
 
     /// The chained pairs ([`Self::chained_pairs`]) that may still need candidates decided:
@@ -359,26 +389,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     /// neighbours evaluated in one parallel batch (the progress stage names `bound`).
     fn decide_up_to(&mut self, deciding: &[(usize, usize, usize)], bound: usize, which: Evaluate) {
         let clock = Instant::now();
-        let robustness = self.setup().robustness;
-        let mut wanted: Vec<(usize, Pv)> = Vec::new();
-        for &(m, k, upto) in deciding {
-            let segment = &self.segments[m];
-            let pair = &segment.pairs[k];
-            for &s in &segment.candidate_lengths(pair)[pair.decided..upto] {
-                if which == Evaluate::Feasible && !feasible(s, pair.reach, &robustness) {
-                    continue;
-                }
-                let pv = Pv::new(s, pair.start, pair.end);
-                let neighbours = robust_neighbours(&pv, robustness.delta_s, robustness.range)
-                    .unwrap_or_default();
-                for piece in std::iter::once(pv).chain(neighbours) {
-                    if segment.verdicts.get(&piece).is_none() {
-                        wanted.push((m, piece));
-                    }
-                }
-            }
-        }
-        let jobs = pair_jobs(wanted.into_iter());
+        let jobs = pair_jobs(self.wanted(deciding, which).into_iter());
         let segments: BTreeSet<usize> = jobs.iter().map(|job| job.segment).collect();
         let solves_before: usize = (0..self.segments.len())
             .map(|m| self.evaluator.static_solves(m))
@@ -411,6 +422,31 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             jobs.len(),
             clock.elapsed().as_secs_f64()
         );
+    }
+
+    /// The pieces without a verdict that deciding `deciding` evaluates: the candidates
+    /// `which` names and their robustness neighbours, as `(segment, piece)`.
+    fn wanted(&self, deciding: &[(usize, usize, usize)], which: Evaluate) -> Vec<(usize, Pv)> {
+        let robustness = self.setup().robustness;
+        let mut wanted: Vec<(usize, Pv)> = Vec::new();
+        for &(m, k, upto) in deciding {
+            let segment = &self.segments[m];
+            let pair = &segment.pairs[k];
+            for &s in &segment.candidate_lengths(pair)[pair.decided..upto] {
+                if which == Evaluate::Feasible && !feasible(s, pair.reach, &robustness) {
+                    continue;
+                }
+                let pv = Pv::new(s, pair.start, pair.end);
+                let neighbours = robust_neighbours(&pv, robustness.delta_s, robustness.range)
+                    .unwrap_or_default();
+                for piece in std::iter::once(pv).chain(neighbours) {
+                    if segment.verdicts.get(&piece).is_none() {
+                        wanted.push((m, piece));
+                    }
+                }
+            }
+        }
+        wanted
     }
 
     /// Evaluates `jobs` in parallel and records their verdicts.
@@ -667,6 +703,7 @@ mod tests {
 
     use super::*;
     use crate::attachment::ConnectMethod;
+    use crate::attachment::sets::{admissible_pvs, needed_pvs};
     use crate::fixtures::{exhaustive_robust, narrow_pick_and_place};
 
     /// The pieces of `d2` (per segment, segment `m` from guide `m` to `m + 1`) that lie on a
@@ -804,6 +841,44 @@ mod tests {
             shortest_per_pair(&on_chains_up_to(&setup, &lazy.robust(), bound)),
             shortest_per_pair(&on_chains_up_to(&setup, &remaining, bound)),
             "after drops"
+        );
+    }
+
+    #[test]
+    fn the_first_round_foreseen_holds_every_piece_the_first_widening_evaluates() {
+        let (setup, motion) = narrow_pick_and_place();
+        let poses = SegmentPoses::new(&setup, &motion).unwrap_or_else(|e| panic!("{e}"));
+        let evaluator =
+            Evaluator::new(&setup, ConnectMethod::Hermite).unwrap_or_else(|e| panic!("{e}"));
+        let mut lazy = LazyAttachment::new(&evaluator, &poses, None);
+        let foreseen: BTreeSet<(usize, Pv)> = (lazy.first_round().iter())
+            .flat_map(|job| {
+                (job.lengths.iter()).map(|&s| (job.segment, Pv::new(s, job.pair.0, job.pair.1)))
+            })
+            .collect();
+        let bound = lazy.lower_bound().expect("a chain can exist");
+        lazy.widen_to(bound);
+        let evaluated: usize = lazy.segments.iter().map(|s| s.verdicts.len()).sum();
+        let foreseen_evaluated = (foreseen.iter())
+            .filter(|(m, pv)| lazy.segments[*m].verdicts.get(pv).is_some())
+            .count();
+        assert!(evaluated > 0, "the first widening evaluates pieces");
+        assert_eq!(
+            foreseen_evaluated, evaluated,
+            "every piece the widening evaluated was foreseen"
+        );
+        // Foreseen as if none failed: more than the widening needed here, far fewer than
+        // every candidate.
+        let every: usize = (0..setup.segment_count())
+            .map(|m| {
+                let r = setup.robustness;
+                needed_pvs(&admissible_pvs(&setup, m), r.delta_s, r.range).len()
+            })
+            .sum();
+        assert!(
+            evaluated <= foreseen.len() && 4 * foreseen.len() < every,
+            "evaluated {evaluated}, foreseen {}, every candidate {every}",
+            foreseen.len()
         );
     }
 }

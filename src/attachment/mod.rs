@@ -44,7 +44,7 @@ mod sweep;
 mod verdict;
 
 pub use continuation::CONTINUATION_BLOCK;
-pub use estimate::{CostEstimate, SAMPLE_PAIRS};
+pub use estimate::{CostEstimate, SAMPLE_PAIRS, SAMPLE_POSES};
 pub use evaluate::{ConnectMethod, Evaluator, Swept, SweptLeast};
 pub use exhaustive::{attachment_test, attachment_test_with};
 pub use lazy::LazyAttachment;

@@ -52,6 +52,11 @@ pub struct Args {
     /// apart.
     #[arg(long, value_name = "DEG", default_value_t = DEFAULT_GRID_STEP_DEG, requires = "ranges")]
     grid_step_deg: f64,
+    /// Also write the box --ranges answered (the box asked, or the narrowed one, with the
+    /// stress motions' time to full speed it needed) as a ranges file, for `check --ranges`
+    /// (replaced atomically).
+    #[arg(long, value_name = "ANSWERED.toml", requires = "ranges")]
+    write_ranges: Option<PathBuf>,
     /// Also find the range each axis allows the answer, the others anywhere in the box of
     /// --ranges (the box answered), else in the motions' extremes: scanned outward on a grid
     /// this far apart (degrees; mm), each end found to 1° (docs/commands.md, "Allowed
@@ -228,6 +233,27 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
             )
             .map_err(failure)?;
             let narrowed = answered != asked;
+            if let Some(path) = &args.write_ranges {
+                let comment = format!(
+                    "The box `cable-dict solve --ranges {}` answered on {} ({}).\n\
+                     Check a mounting over it: cable-dict check RESULT.json --ranges {}",
+                    ranges.display(),
+                    setup.source.display(),
+                    match (answered.ranges == asked.ranges, narrowed) {
+                        (false, _) => "narrowed: the box asked has no path".to_string(),
+                        (true, true) => format!(
+                            "the box asked, at a gentler acceleration: full speed in {} s, not {} s",
+                            answered.time_to_full_speed_s, asked.time_to_full_speed_s
+                        ),
+                        (true, false) => "the box asked".to_string(),
+                    },
+                    path.display()
+                );
+                write_atomically(path, answered.to_toml(&setup.robot, &comment).as_bytes())
+                    .map_err(|e| {
+                        Failure::input(anyhow::anyhow!("cannot write {}: {e}", path.display()))
+                    })?;
+            }
             (
                 solution,
                 cell,

@@ -195,6 +195,54 @@ impl JointRanges {
         })
     }
 
+    /// The box as a ranges file (the format [`JointRanges::from_file`] reads): its named
+    /// joints in degrees (mm), the stress motions' time to full speed, after `comment` (each
+    /// line as a TOML comment). What a design answered, written for `check --ranges` and for
+    /// the next design.
+    pub fn to_toml(&self, robot: &Robot, comment: &str) -> String {
+        // Control characters (a file name may carry them) have no place in a TOML comment.
+        let line = |l: &str| -> String {
+            let shown: String = (l.chars())
+                .map(|c| if c.is_control() { '?' } else { c })
+                .collect();
+            format!("# {shown}\n")
+        };
+        let mut text: String = comment.lines().map(line).collect();
+        text += &format!(
+            "time_to_full_speed_s = {}\n\n[joints]\n",
+            self.time_to_full_speed_s
+        );
+        for (j, [min, max]) in self.ranges.iter().enumerate() {
+            if !self.named[j] {
+                continue;
+            }
+            let joint = robot.actuated_joint(j);
+            let scale = match joint.kind.is_rotary() {
+                true => 1f64.to_degrees(),
+                false => 1e3,
+            };
+            // Names as TOML keys: bare when they can be, else quoted as JSON quotes them.
+            let bare =
+                (joint.name.bytes()).all(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'-');
+            let key = match bare && !joint.name.is_empty() {
+                true => joint.name.clone(),
+                false => serde_json::to_string(&joint.name).unwrap_or_default(),
+            };
+            // To a millionth of a degree (mm), inward — never wider than the box but by what
+            // converting units loses (≤ 1e-9°).
+            let tidy = |v: f64, inward: fn(f64) -> f64| {
+                let millionths = v * scale * 1e6;
+                match (millionths - millionths.round()).abs() < 1e-3 {
+                    true => millionths.round() / 1e6,
+                    false => inward(millionths) / 1e6,
+                }
+            };
+            let (min, max) = (tidy(*min, f64::ceil), tidy(*max, f64::floor));
+            text += &format!("{key} = [{min}, {max}]\n");
+        }
+        text
+    }
+
     /// The middle of the box (rad / m).
     pub fn centre(&self) -> Vec<f64> {
         self.ranges.iter().map(|[a, b]| 0.5 * (a + b)).collect()
@@ -330,6 +378,41 @@ mod tests {
         let path = dir.join(name);
         std::fs::write(&path, text).unwrap_or_else(|e| panic!("{e}"));
         path
+    }
+
+    #[test]
+    fn a_box_written_as_a_ranges_file_reads_back_as_the_same_box_never_wider() {
+        let (setup, _) = narrow_pick_and_place();
+        let robot = &setup.robot;
+        let asked = write(
+            "asked.toml",
+            "time_to_full_speed_s = 0.3\n[joints]\njoint_4 = [0, 48.8]\njoint_5 = [-62.9, 57.3]\n",
+        );
+        let asked = JointRanges::from_file(robot, &asked).unwrap_or_else(|e| panic!("{e}"));
+        let j5 = robot.actuated_index("joint_5").expect("joint_5");
+        // As a design answers: one axis narrowed from its upper end, a gentler ramp.
+        let answered = JointRanges {
+            time_to_full_speed_s: 1.2,
+            ..asked.narrowed(j5, 0.5, Some(0), true)
+        };
+        let text = answered.to_toml(robot, "answered\nsecond \r line\u{7}");
+        assert!(text.starts_with("# answered\n# second ? line?\n"), "{text}");
+        let read = JointRanges::from_file(robot, &write("answered.toml", &text))
+            .unwrap_or_else(|e| panic!("{e}\n{text}"));
+        assert_eq!(read.named, answered.named);
+        assert_eq!(read.time_to_full_speed_s, 1.2);
+        // Joint 5 narrowed to -62.9…-2.9°: the 0.1° grid the narrowing rounds to.
+        assert!(
+            (read.ranges[j5][1].to_degrees() - -2.9).abs() < 1e-6,
+            "{text}"
+        );
+        for (j, ([a, b], [c, d])) in read.ranges.iter().zip(&answered.ranges).enumerate() {
+            assert!(
+                a >= &(c - 1e-11) && b <= &(d + 1e-11),
+                "joint {j}: {a}…{b} wider than {c}…{d}"
+            );
+            assert!((a - c).abs() < 1e-7 && (b - d).abs() < 1e-7, "joint {j}");
+        }
     }
 
     #[test]

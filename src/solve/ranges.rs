@@ -2,7 +2,10 @@
 
 use super::report::{AxisFailures, AxisRange, RangeDesign, RangeProbe, Status};
 use super::{Solution, SolveError, SolveOptions, solve_cell};
-use crate::attachment::GRAVITY_RESOLUTION_DEG;
+use crate::attachment::{
+    CostEstimate, Evaluator, GRAVITY_RESOLUTION_DEG, LazyAttachment, SAMPLE_PAIRS, SAMPLE_POSES,
+    SegmentPoses,
+};
 use crate::dictionary::Dictionary;
 use crate::motion::{Cell, JointRanges, MotionError};
 use crate::progress;
@@ -93,6 +96,7 @@ pub fn solve_ranges(
             tried: Vec::new(),
         },
         noted: false,
+        most_s: None,
     };
     let rotary = |j: usize| robot.actuated_joint(j).kind.is_rotary();
     // Without deciding every piece for the diagnosis: the pieces it decided tell which end of
@@ -104,12 +108,15 @@ pub fn solve_ranges(
     // At most: the gentler ramps; each axis alone, each with the gentler ramps; two
     // bisections; every axis together, with the gentler ramps.
     let ramps = RAMP_FACTORS.len();
-    let most = ramps + named.len() * (1 + ramps) + 2 + usize::from(named.len() > 1) * (1 + ramps);
+    let boxes = ramps + named.len() * (1 + ramps) + 2 + usize::from(named.len() > 1) * (1 + ramps);
+    // A narrower box has no more grid poses than the first, so no more pieces to decide.
+    let each_s = design.most_s.unwrap_or(0.0).max(first.time_s);
     progress::note(&format!(
-        "the box asked has no path ({:.0} s); finding what to change tries up to {most} more \
-         boxes, stopping at the first with a path, each about as long (≤ {:.0} min)",
-        first.time_s,
-        (most as f64 * first.time_s / 60.0).ceil()
+        "the box asked has no path ({}); finding what to change tries up to {boxes} more \
+         boxes, stopping at the first with a path, each up to about {} (every candidate \
+         piece decided) plus its motion tests",
+        duration(first.time_s),
+        duration(each_s)
     ));
     // The axes in the order they are narrowed: the most blamed first.
     let failures = failures_per_axis(&first, &named, ranges, setup);
@@ -182,16 +189,19 @@ struct Designer<'a> {
     design: RangeDesign,
     /// The grid of the first box was noted (before it was solved).
     noted: bool,
+    /// What deciding every candidate piece of the first box's grid takes, estimated before
+    /// it was solved (s; `None` when nobody listens to progress).
+    most_s: Option<f64>,
 }
 
 impl Designer<'_> {
     /// Solves the box `r`.
     fn attempt(&mut self, r: &JointRanges, diagnose: bool) -> Result<Attempt, SolveError> {
-        let clock = Instant::now();
         let cell = range_cell(self.setup, r, self.given.cloned(), self.grid_step_deg)?;
         if !std::mem::replace(&mut self.noted, true) {
-            note_grid(self.setup, &cell, self.grid_step_deg);
+            self.most_s = note_estimate(self.setup, &cell, self.grid_step_deg, self.options)?;
         }
+        let clock = Instant::now();
         let options = SolveOptions {
             diagnose,
             ..self.options.clone()
@@ -271,11 +281,20 @@ fn failed_at_speed(attempt: &Attempt, ranged: usize) -> bool {
         })
 }
 
-/// Notes how many static poses of the box's grid each piece is tested at (what a box
-/// costs grows with them).
-fn note_grid(setup: &Setup, cell: &Cell, grid_step_deg: f64) {
-    let Some(grid) = cell.motions.iter().find_map(|m| m.grid.as_ref()) else {
-        return;
+/// Notes how many static poses of the box's grid each piece is tested at and what the
+/// box's static tests will cost, measured on a sample before it starts: at least its
+/// search's first widening (when its shortest chain holds), at most every candidate piece
+/// (when no chain holds: the search then decides them all) — the motion tests' verdicts
+/// decide where between. Nothing is measured when nobody listens. Returns the most (s).
+fn note_estimate(
+    setup: &Setup,
+    cell: &Cell,
+    grid_step_deg: f64,
+    options: &SolveOptions,
+) -> Result<Option<f64>, SolveError> {
+    let grid = cell.motions.iter().find_map(|m| m.grid.as_ref());
+    let Some(grid) = grid.filter(|_| progress::listening()) else {
+        return Ok(None);
     };
     let counts: Vec<String> = (grid.per_segment.iter().enumerate())
         .map(|(m, poses)| format!("{} {}", setup.segment_name(m), poses.len()))
@@ -284,6 +303,35 @@ fn note_grid(setup: &Setup, cell: &Cell, grid_step_deg: f64) {
         "axis-range grid ({grid_step_deg}° apart): each piece tested at up to {} static poses",
         counts.join(", ")
     ));
+    let setup = options.setup_for(setup)?;
+    let poses = SegmentPoses::for_cell(&setup, cell, options.intra_link)?;
+    let evaluator = Evaluator::new(&setup, options.method)?;
+    let lazy = LazyAttachment::new(&evaluator, &poses, None);
+    let (least, most) = (
+        CostEstimate::first_round(&lazy),
+        CostEstimate::measure(&evaluator, &poses),
+    );
+    let threads = rayon::current_num_threads();
+    progress::note(&format!(
+        "a box takes about {} if its shortest chain holds ({} pieces), up to {} if every \
+         candidate piece must be decided ({} pieces), plus its motion tests (on {threads} \
+         threads; measured on {SAMPLE_PAIRS} clamp pairs per piece at up to {SAMPLE_POSES} \
+         poses)",
+        duration(least.wall_s(threads)),
+        least.pieces(),
+        duration(most.wall_s(threads)),
+        most.pieces(),
+    ));
+    Ok(Some(most.wall_s(threads)))
+}
+
+/// `seconds` as people read a wait: "40 s", "12 min", "3.5 h".
+fn duration(seconds: f64) -> String {
+    match seconds {
+        s if s < 90.0 => format!("{:.0} s", s.max(1.0)),
+        s if s < 5400.0 => format!("{:.0} min", s / 60.0),
+        s => format!("{:.1} h", s / 3600.0),
+    }
 }
 
 /// Per ranged axis (in `named` order), the chains its own stress motion failed and the
