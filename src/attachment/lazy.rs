@@ -26,6 +26,7 @@
 use super::evaluate::Evaluator;
 use super::jobs::{PairJob, evaluate_jobs, pair_jobs};
 use super::lookup::{IntraLinkAnswer, LookupCounts, looked_up};
+use super::memory::{Known, Learnt, Recall, VerdictMemory};
 use super::poses::{SegmentPoses, TestPose};
 use super::sets::{SegmentSets, Verdicts, robust_neighbours};
 use super::verdict::Miss;
@@ -150,6 +151,9 @@ pub struct LazyAttachment<'r, 'a> {
     evaluator: &'r Evaluator<'a>,
     poses: &'r SegmentPoses,
     intra_link: Option<&'r IntraLinkAnswer<'r>>,
+    /// What earlier solves learnt of each segment's pieces, read against these poses (empty:
+    /// nothing remembered).
+    recall: Vec<Option<Recall<'r>>>,
     segments: Vec<Segment>,
     /// Every candidate on a chain no longer than this (sub-segments) is decided.
     bound: Option<usize>,
@@ -187,10 +191,30 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
             evaluator,
             poses,
             intra_link,
+            recall: Vec::new(),
             segments,
             bound: None,
             wall_s: 0.0,
         }
+    }
+
+    /// The same test, knowing what earlier solves of the setup learnt ([`VerdictMemory`]):
+    /// a piece that held at their poses is tested only at the poses new to it, one that failed
+    /// at a pose these have fails without a test. The segments a dictionary answers ignore
+    /// it.
+    pub fn remembering(mut self, memory: &'r VerdictMemory) -> LazyAttachment<'r, 'a> {
+        self.recall = memory.recall(self.poses);
+        self
+    }
+
+    /// What was decided, for the memory of the next solve ([`VerdictMemory::learn`]): the
+    /// verdicts of the segments the evaluator tested (not those a dictionary answered).
+    pub fn learnt(self) -> Learnt {
+        Learnt(
+            (self.segments.into_iter())
+                .map(|s| s.lookup_counts.is_none().then_some(s.verdicts))
+                .collect(),
+        )
     }
 
     /// The setup under test.
@@ -454,6 +478,7 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
         let evaluator = self.evaluator;
         let poses = self.poses;
         let intra_link = self.intra_link;
+        let recall = &self.recall;
         let segments = &self.segments;
         let arranged: Vec<Vec<&TestPose>> = (segments.iter().zip(&poses.poses))
             .map(|(segment, poses)| segment.order.arrange(poses))
@@ -472,11 +497,16 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
                     counts,
                 ),
                 _ => {
-                    let order = &segments[m].order;
-                    let mut misses =
-                        evaluator.first_rejections(m, job.pair, &job.lengths, &arranged[m]);
-                    order.renumber(&mut misses);
-                    misses
+                    let fresh = |lengths: &[usize]| {
+                        let mut misses =
+                            evaluator.first_rejections(m, job.pair, lengths, &arranged[m]);
+                        segments[m].order.renumber(&mut misses);
+                        misses
+                    };
+                    match recall.get(m).and_then(Option::as_ref) {
+                        Some(recall) => recalled(evaluator, job, &poses.poses[m], recall, fresh),
+                        None => fresh(&job.lengths),
+                    }
                 }
             };
             (verdicts, clock.elapsed().as_secs_f64())
@@ -618,6 +648,49 @@ type ChainBounds = Vec<Vec<Option<usize>>>;
 
 /// Pairs whose candidates a batch decides, as `(segment, pair index, decide up to)`.
 type Deciding = Vec<(usize, usize, usize)>;
+
+/// The verdicts of `job`'s lengths at `poses` (its segment's), from what `recall` knows: a
+/// remembered failure at one of them as it is, a piece that held at an earlier list tested
+/// at the poses new to it only, the others at every pose by `fresh`.
+fn recalled(
+    evaluator: &Evaluator<'_>,
+    job: &PairJob,
+    poses: &[TestPose],
+    recall: &Recall<'_>,
+    fresh: impl Fn(&[usize]) -> Vec<Option<Miss>>,
+) -> Vec<Option<Miss>> {
+    let mut verdicts: Vec<Option<Option<Miss>>> = vec![None; job.lengths.len()];
+    let mut unknown: Vec<usize> = Vec::new();
+    let mut held: BTreeMap<usize, (&[usize], Vec<usize>)> = BTreeMap::new();
+    for (i, &s) in job.lengths.iter().enumerate() {
+        match recall.known(&Pv::new(s, job.pair.0, job.pair.1)) {
+            Known::Fails(miss) => verdicts[i] = Some(Some(miss)),
+            Known::HeldExcept { poses: [], .. } => verdicts[i] = Some(None),
+            Known::HeldExcept { list, poses } => {
+                held.entry(list).or_insert((poses, vec![])).1.push(i)
+            }
+            Known::Nothing => unknown.push(i),
+        }
+    }
+    let lengths =
+        |which: &[usize]| -> Vec<usize> { which.iter().map(|&i| job.lengths[i]).collect() };
+    if !unknown.is_empty() {
+        for (&i, miss) in unknown.iter().zip(fresh(&lengths(&unknown))) {
+            verdicts[i] = Some(miss);
+        }
+    }
+    for (new, which) in held.into_values() {
+        let some: Vec<&TestPose> = new.iter().map(|&p| &poses[p]).collect();
+        let misses = evaluator.first_rejections(job.segment, job.pair, &lengths(&which), &some);
+        for (&i, miss) in which.iter().zip(misses) {
+            verdicts[i] = Some(miss.map(|miss| Miss {
+                pose: new[miss.pose],
+                ..miss
+            }));
+        }
+    }
+    verdicts.into_iter().map(Option::flatten).collect()
+}
 
 /// Which candidates a round evaluates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

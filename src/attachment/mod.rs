@@ -28,7 +28,8 @@
 //! one pose (`evaluate`), warm starts and continuation over lengths (`continuation`), the
 //! rapier baseline (`baseline`), test poses (`poses`), jobs of pieces evaluated in parallel
 //! (`jobs`), the two drivers (`exhaustive`, `lazy`), a dictionary's answers (`lookup`), the
-//! static sweep (`sweep`), cost estimates (`estimate`). This file only hands their names on.
+//! static sweep (`sweep`), cost estimates (`estimate`), verdicts kept between solves
+//! (`memory`). This file only hands their names on.
 
 mod baseline;
 mod continuation;
@@ -38,6 +39,7 @@ mod exhaustive;
 mod jobs;
 mod lazy;
 mod lookup;
+mod memory;
 mod poses;
 mod sets;
 mod sweep;
@@ -49,6 +51,7 @@ pub use evaluate::{ConnectMethod, Evaluator, Swept, SweptLeast};
 pub use exhaustive::{attachment_test, attachment_test_with};
 pub use lazy::LazyAttachment;
 pub use lookup::{IntraLinkAnswer, LookupAnswer};
+pub use memory::{Learnt, VerdictMemory};
 pub use poses::{GRAVITY_RESOLUTION_DEG, IntraLinkCriterion, SegmentPoses, TestPose};
 pub use sets::{
     LookedUp, MAX_CANDIDATE_PIECES, NEAREST_MISSES, SegmentSets, admissible_pvs, check_size,

@@ -146,6 +146,11 @@ impl Verdicts {
                 .is_some_and(|neighbours| neighbours.iter().all(|n| self.holds(n)))
     }
 
+    /// Every piece evaluated and its verdict, in order.
+    pub(crate) fn iter(&self) -> impl Iterator<Item = (&Pv, &Option<Miss>)> {
+        self.0.iter()
+    }
+
     /// Pieces evaluated (zero-length ones not counted).
     pub(crate) fn len(&self) -> usize {
         self.0.len()

@@ -66,7 +66,7 @@ pub use report::{
 
 use crate::attachment::{
     CostEstimate, Evaluator, IntraLinkAnswer, LazyAttachment, LookupAnswer, SegmentPoses,
-    SegmentSets, attachment_test_with, check_size,
+    SegmentSets, VerdictMemory, attachment_test_with, check_size,
 };
 use crate::dictionary::{Dictionary, MotionLookup};
 use crate::motion::{Cell, Motion};
@@ -146,6 +146,20 @@ pub fn solve_cell(
     options: &SolveOptions,
     dictionary: Option<&Dictionary>,
 ) -> Result<Solution, SolveError> {
+    solve_cell_remembering(setup, cell, options, dictionary, None)
+}
+
+/// [`solve_cell`], the lazy attachment test knowing what earlier solves of `setup` with
+/// the same options learnt (`memory`, [`VerdictMemory`]) and adding what this one learns:
+/// the same answer for less work when the cells share test poses, as the boxes of a range
+/// design do. Without a dictionary only (its answers are not remembered).
+pub fn solve_cell_remembering(
+    setup: &Setup,
+    cell: &Cell,
+    options: &SolveOptions,
+    dictionary: Option<&Dictionary>,
+    memory: Option<&mut VerdictMemory>,
+) -> Result<Solution, SolveError> {
     let total = Instant::now();
     let solved = options.setup_for(setup)?;
     let setup = &solved;
@@ -182,9 +196,15 @@ pub fn solve_cell(
             (sets, searched, attachment_s)
         }
         SearchKind::Lazy => {
+            let memory = memory.filter(|_| dictionary.is_none());
+            let attachment = LazyAttachment::new(&evaluator, &poses, intra_link);
+            let attachment = match memory.as_deref() {
+                Some(memory) => attachment.remembering(memory),
+                None => attachment,
+            };
             let mut chains = LazyChains {
                 setup,
-                attachment: LazyAttachment::new(&evaluator, &poses, intra_link),
+                attachment,
                 min_round: MIN_ROUND,
             };
             let (outcome, certification) =
@@ -199,7 +219,12 @@ pub fn solve_cell(
                 chain_s: (outcome.chain_s - attachment_s).max(0.0),
                 ..outcome
             };
-            (attachment.sets(), (outcome, certification), attachment_s)
+            let sets = attachment.sets();
+            let learnt = attachment.learnt();
+            if let Some(memory) = memory {
+                memory.learn(&poses, learnt);
+            }
+            (sets, (outcome, certification), attachment_s)
         }
     };
     log_sets(setup, &sets, lookup.as_ref(), attachment_s);

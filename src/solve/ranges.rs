@@ -1,10 +1,10 @@
 //! A design for axis ranges: the cell that stands for a box of joint values.
 
 use super::report::{AxisFailures, AxisRange, RangeDesign, RangeProbe, Status};
-use super::{Solution, SolveError, SolveOptions, solve_cell};
+use super::{Solution, SolveError, SolveOptions, solve_cell_remembering};
 use crate::attachment::{
     CostEstimate, Evaluator, GRAVITY_RESOLUTION_DEG, LazyAttachment, SAMPLE_PAIRS, SAMPLE_POSES,
-    SegmentPoses,
+    SegmentPoses, VerdictMemory,
 };
 use crate::dictionary::Dictionary;
 use crate::motion::{Cell, JointRanges, MotionError};
@@ -97,6 +97,7 @@ pub fn solve_ranges(
         },
         noted: false,
         most_s: None,
+        memory: VerdictMemory::new(),
     };
     let rotary = |j: usize| robot.actuated_joint(j).kind.is_rotary();
     // Without deciding every piece for the diagnosis: the pieces it decided tell which end of
@@ -192,6 +193,9 @@ struct Designer<'a> {
     /// What deciding every candidate piece of the first box's grid takes, estimated before
     /// it was solved (s; `None` when nobody listens to progress).
     most_s: Option<f64>,
+    /// What the boxes solved so far learnt of the pieces: the next box tests a piece only
+    /// at the poses new to it.
+    memory: VerdictMemory,
 }
 
 impl Designer<'_> {
@@ -206,7 +210,13 @@ impl Designer<'_> {
             diagnose,
             ..self.options.clone()
         };
-        let solution = solve_cell(self.setup, &cell, &options, self.dictionary)?;
+        let solution = solve_cell_remembering(
+            self.setup,
+            &cell,
+            &options,
+            self.dictionary,
+            Some(&mut self.memory),
+        )?;
         Ok(Attempt {
             solution,
             cell,
