@@ -152,7 +152,7 @@ pub fn solve_cell(
 /// [`solve_cell`], the lazy attachment test knowing what earlier solves of `setup` with
 /// the same options learnt (`memory`, [`VerdictMemory`]) and adding what this one learns:
 /// the same answer for less work when the cells share test poses, as the boxes of a range
-/// design do. Without a dictionary only (its answers are not remembered).
+/// design do. The pieces a dictionary answers are not remembered (it answers them again).
 pub fn solve_cell_remembering(
     setup: &Setup,
     cell: &Cell,
@@ -196,7 +196,6 @@ pub fn solve_cell_remembering(
             (sets, searched, attachment_s)
         }
         SearchKind::Lazy => {
-            let memory = memory.filter(|_| dictionary.is_none());
             let attachment = LazyAttachment::new(&evaluator, &poses, intra_link);
             let attachment = match memory.as_deref() {
                 Some(memory) => attachment.remembering(memory),
