@@ -36,6 +36,17 @@ fn trusted(keys: &[&SecretKey]) -> TrustedKeys {
 /// Rewrites `path` with its first measured margin made more favourable and every checksum
 /// recomputed: a forgery `open` and `verify` accept.
 fn forge_resealed(path: &Path) {
+    let bytes = resealed_forgery(path);
+    std::fs::write(path, bytes).expect("written");
+    let forged = Dictionary::open(path).expect("the forgery opens");
+    forged
+        .verify()
+        .expect("the resealed forgery passes verify: only the signature can tell");
+}
+
+/// The bytes of `path` with its first measured margin made more favourable and every
+/// checksum recomputed (the same length).
+fn resealed_forgery(path: &Path) -> Vec<u8> {
     let dictionary = Dictionary::open(path).expect("opens");
     let mut results = dictionary.results().to_vec();
     let record = results
@@ -51,11 +62,59 @@ fn forge_resealed(path: &Path) {
     )
     .expect("encodes");
     drop(dictionary);
-    std::fs::write(path, bytes).expect("written");
-    let forged = Dictionary::open(path).expect("the forgery opens");
-    forged
-        .verify()
-        .expect("the resealed forgery passes verify: only the signature can tell");
+    bytes
+}
+
+/// What `solve --dict` opens ([`Dictionary::read`], through the command line's check) holds
+/// the bytes it checked: a signed file rewritten in place during a run — a resealed forgery
+/// of the same length, over the same inode — changes nothing the run reads, and the
+/// signature still holds for the bytes the run holds. The reference: a memory map of the
+/// same file, opened at the same moment, reads the forgery.
+#[test]
+fn a_signed_file_changed_in_place_during_a_run_changes_nothing_the_run_reads() {
+    use std::io::Write;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = copy(dir.path(), BUNDLED, "shared.cdict");
+    let a = team_a();
+    let keys = trusted(&[&a]);
+    Dictionary::open(&path)
+        .expect("opens")
+        .sign(&a)
+        .expect("signs");
+    let run = Dictionary::read(&path).expect("reads");
+    let mapped = Dictionary::open(&path).expect("maps");
+    (run.provenance(Some(&keys)).expect("holds"))
+        .require_trusted(&path)
+        .expect("Team A signed it");
+    run.verify().expect("every byte checks");
+    let checked = run.results().to_vec();
+
+    let forgery = resealed_forgery(&path);
+    assert_eq!(
+        forgery.len(),
+        std::fs::metadata(&path).expect("size").len() as usize
+    );
+    let mut file = std::fs::OpenOptions::new()
+        .write(true)
+        .open(&path)
+        .expect("opens for writing in place");
+    file.write_all(&forgery).expect("rewritten in place");
+    drop(file);
+
+    assert_ne!(mapped.results(), &checked[..], "a map reads the forgery");
+    assert_eq!(run.results(), &checked[..], "the run reads what it checked");
+    (run.provenance(Some(&keys))
+        .expect("the signature holds for the bytes held"))
+    .require_trusted(&path)
+    .expect("still Team A's bytes");
+    let now = Dictionary::read(&path).expect("the forgery opens");
+    let refused = now
+        .provenance(Some(&keys))
+        .expect_err("a new run sees the change");
+    assert!(
+        refused.problem.contains("changed after it was signed"),
+        "{refused}"
+    );
 }
 
 #[test]

@@ -127,10 +127,11 @@ pub fn check(
     Ok(provenance)
 }
 
-/// Opens a dictionary and checks every byte of it (milliseconds for the bundled ones): a
-/// damaged file is refused before it can decide anything.
+/// Reads a dictionary into memory and checks every byte of it (milliseconds for the bundled
+/// ones): a damaged file is refused before it can decide anything, and the bytes checked —
+/// its signatures too — are the bytes the run reads, whatever happens to the file meanwhile.
 pub(super) fn open_verified(path: &Path) -> Result<Dictionary, Failure> {
-    let dictionary = Dictionary::open(path).map_err(Failure::input)?;
+    let dictionary = Dictionary::read(path).map_err(Failure::input)?;
     dictionary.verify().map_err(Failure::input)?;
     Ok(dictionary)
 }

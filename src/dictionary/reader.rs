@@ -27,8 +27,10 @@ pub struct Dictionary {
     /// The embedded setup, loaded once (parsing the URDF and meshes is the costly part of
     /// `verify` and of every caller that needs the setup).
     embedded: OnceLock<Setup>,
-    /// Set once [`Dictionary::verify`] has passed: the file cannot change under the map, so
-    /// a second call (e.g. by [`Dictionary::recompute`] after the command line's) is free.
+    /// Set once [`Dictionary::verify`] has passed, so that a second call (e.g. by
+    /// [`Dictionary::recompute`] after the command line's) is free: files are replaced by
+    /// rename, never changed in place — and a run that must not depend on that reads the file
+    /// into memory ([`Dictionary::read`]).
     verified: OnceLock<()>,
 }
 
@@ -45,6 +47,17 @@ impl Dictionary {
         // process while mapped would fault, as with any mapped reader.
         let map = unsafe { Mmap::map(&file) }.map_err(|e| error(Problem::Io(e.to_string())))?;
         Dictionary::over(path, Bytes::Mapped(map))
+    }
+
+    /// The dictionary in `path` read into private memory, with [`Dictionary::open`]'s checks:
+    /// what is checked afterwards — [`Dictionary::verify`], the signatures — is what every
+    /// lookup reads, whatever happens to the file meanwhile (a file changed in place under a
+    /// memory map would change what a run reads after its signature was checked). What a
+    /// run that trusts the file opens; it holds the whole file (the length its header
+    /// declares, checked before the copy).
+    pub fn read(path: impl AsRef<Path>) -> Result<Dictionary, DictionaryError> {
+        let mapped = Dictionary::open(&path)?;
+        Dictionary::from_bytes(&mapped.map[..], path)
     }
 
     /// The dictionary in `bytes` (any alignment: they are copied once into memory aligned for
