@@ -328,3 +328,64 @@ fn site_generators_too_many_together_are_refused_before_any_runs() {
         assert_eq!(stderr.lines().count(), 1, "{stderr}");
     }
 }
+
+/// A few bytes that would buy hours: a motion whose second row is an hour after its first
+/// (every chain's motion test integrates the whole motion: 91 CPU-s before the limit), and a
+/// waypoint file whose dwell of a day would be sampled into a motion file of gigabytes. Each
+/// is refused at once with exit code 2, naming the file and the limit, in an address space
+/// of 4 GB.
+#[test]
+fn a_motion_an_hour_long_or_a_dwell_of_a_day_is_refused_naming_the_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let bounded = |args: &[&str]| -> (i32, String) {
+        let output = std::process::Command::new("bash")
+            .arg("-c")
+            .arg("ulimit -v 4000000 && exec \"$0\" \"$@\"")
+            .arg(env!("CARGO_BIN_EXE_cable-dict"))
+            .args(args)
+            .current_dir(ROOT)
+            .output()
+            .unwrap();
+        (
+            output.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&output.stderr).into_owned(),
+        )
+    };
+    let csv = dir.path().join("hour.csv");
+    std::fs::write(
+        &csv,
+        "time_s,joint_1_deg,joint_2_deg,joint_3_deg,joint_4_deg,joint_5_deg,joint_6_deg\n\
+         0,0,-60,210,0,20,0\n3600,10,-60,210,0,20,0\n",
+    )
+    .unwrap();
+    let (code, message) = bounded(&["solve", "--setup", SETUP, csv.to_str().unwrap()]);
+    assert_eq!(code, 2, "{message}");
+    assert!(
+        message.contains("hour.csv") && message.contains("1800 s"),
+        "{message}"
+    );
+
+    let waypoints =
+        std::fs::read_to_string(Path::new(ROOT).join("motions/viper_s850/pick_and_place.toml"))
+            .unwrap()
+            .replace(
+                "robot = \"../../robots/",
+                &format!("robot = \"{ROOT}/robots/"),
+            )
+            .replacen("dwell_s = 0.2", "dwell_s = 86400.0", 1);
+    let toml = dir.path().join("day.toml");
+    std::fs::write(&toml, waypoints).unwrap();
+    let out = dir.path().join("day.csv");
+    let (code, message) = bounded(&[
+        "motion",
+        toml.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{message}");
+    assert!(
+        message.contains("day.toml") && message.contains("1800 s"),
+        "{message}"
+    );
+    assert!(!out.exists(), "nothing written");
+}

@@ -2,15 +2,16 @@
 
 use super::units::ColumnUnit;
 use super::waypoints::{Acceleration, WaypointFile};
-use super::{Motion, MotionError, SyncMove};
+use super::{MAX_MOTION_DURATION_S, Motion, MotionError, SyncMove};
 use crate::robot::Robot;
 
 /// Grid points closer than this fraction of a sample period to a phase boundary are dropped,
 /// so no two samples are nearly simultaneous.
 const MERGE_FRACTION: f64 = 1e-3;
 
-/// More samples than this is refused (a typo in the rate or the dwell).
-const MAX_SAMPLES: f64 = 1e7;
+/// More samples than this is refused (a typo in the rate): a million samples of six joints
+/// is a motion file of about 40 MB.
+const MAX_SAMPLES: f64 = 1e6;
 
 /// A generated motion and when it reaches and leaves each waypoint.
 #[derive(Debug, Clone, PartialEq)]
@@ -237,6 +238,16 @@ impl WaypointFile {
     fn sample_times(&self, phases: &[Phase]) -> Result<Vec<f64>, MotionError> {
         let rate = self.sample_rate_hz;
         let end = phases.last().map_or(0.0, |p| p.end_s);
+        if end > MAX_MOTION_DURATION_S {
+            return Err(MotionError::in_file(
+                &self.source,
+                format!(
+                    "the waypoints take {end:.0} s, more than the {MAX_MOTION_DURATION_S} s the \
+                     tool simulates (a dwell or a speed typed wrong? a longer program is several \
+                     motions of a cell)"
+                ),
+            ));
+        }
         if end * rate > MAX_SAMPLES {
             return Err(MotionError::in_file(
                 &self.source,

@@ -102,5 +102,5 @@ pub use grid::{
 };
 pub use profile::{Profile, SyncMove};
 pub use ranges::{DEFAULT_TIME_TO_FULL_SPEED_S, JointRanges, MAX_STROKE_S, STROKE_END_DWELL_S};
-pub use sampled::Motion;
+pub use sampled::{MAX_MOTION_DURATION_S, Motion};
 pub use waypoints::{Acceleration, Waypoint, WaypointFile};

@@ -145,6 +145,12 @@ impl Motion {
 }
 
 /// At least one sample, one time per sample, finite and strictly increasing times.
+/// The longest a motion may last (s): every chain's motion test integrates the whole
+/// motion, so a time typed wrong — a row an hour after the one before — would buy CPU-hours
+/// with a few bytes. Room for a long program and for the stress motions of axis ranges (two
+/// strokes of at most [`super::MAX_STROKE_S`] each, and their rests).
+pub const MAX_MOTION_DURATION_S: f64 = 1800.0;
+
 fn check_times(times_s: &[f64], samples: usize) -> Result<(), MotionError> {
     if times_s.is_empty() {
         return Err(MotionError::data("a motion needs at least one sample"));
@@ -159,6 +165,14 @@ fn check_times(times_s: &[f64], samples: usize) -> Result<(), MotionError> {
         return Err(MotionError::data(format!(
             "sample {i}: time {} is not a finite number",
             times_s[i]
+        )));
+    }
+    if let Some(i) = (1..times_s.len()).find(|&i| times_s[i] - times_s[0] > MAX_MOTION_DURATION_S) {
+        return Err(MotionError::data(format!(
+            "sample {i}: t = {} s is more than {MAX_MOTION_DURATION_S} s after the first \
+             sample's {} s — the longest motion the tool simulates (a time typed wrong? a longer \
+             program is several motions of a cell)",
+            times_s[i], times_s[0]
         )));
     }
     if let Some(i) = (1..times_s.len()).find(|&i| times_s[i] <= times_s[i - 1]) {
