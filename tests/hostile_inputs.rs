@@ -337,15 +337,8 @@ fn site_generators_too_many_together_are_refused_before_any_runs() {
 #[test]
 fn a_motion_an_hour_long_or_a_dwell_of_a_day_is_refused_naming_the_limit() {
     let dir = tempfile::tempdir().unwrap();
-    let bounded = |args: &[&str]| -> (i32, String) {
-        let output = std::process::Command::new("bash")
-            .arg("-c")
-            .arg("ulimit -v 4000000 && exec \"$0\" \"$@\"")
-            .arg(env!("CARGO_BIN_EXE_cable-dict"))
-            .args(args)
-            .current_dir(ROOT)
-            .output()
-            .unwrap();
+    let bounded = |args: &[&str]| {
+        let output = bounded(args);
         (
             output.status.code().unwrap_or(-1),
             String::from_utf8_lossy(&output.stderr).into_owned(),
@@ -388,4 +381,45 @@ fn a_motion_an_hour_long_or_a_dwell_of_a_day_is_refused_naming_the_limit() {
         "{message}"
     );
     assert!(!out.exists(), "nothing written");
+}
+
+/// The binary run with `args` from the package root in an address space of 4 GB: what a
+/// small hostile file may make it allocate.
+fn bounded(args: &[&str]) -> std::process::Output {
+    std::process::Command::new("bash")
+        .arg("-c")
+        .arg("ulimit -v 4000000 && exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_cable-dict"))
+        .args(args)
+        .current_dir(ROOT)
+        .output()
+        .unwrap()
+}
+
+/// `sites` is what `solve`'s refusal sends a user to, so it must count what `solve`
+/// refuses without making it: the bundled robot-level setup at 20 mm spacing (127 million
+/// candidate pieces; listing them for the cost estimate took 117 CPU-s and 6.15 GB) is
+/// listed with its counts per segment and the same refusal as `solve`'s, in 4 GB of address
+/// space — no estimate is timed for a setup no solve would take.
+#[test]
+fn sites_counts_a_setup_too_large_to_solve_without_making_its_pieces() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = common::bundled_setup_text().replace("spacing_mm = 80.0", "spacing_mm = 20.0");
+    let setup = dir.path().join("fine.toml");
+    std::fs::write(&setup, text).unwrap();
+    let output = bounded(&["sites", setup.to_str().unwrap()]);
+    let listing = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(
+        listing.contains("too many for solve and build: 126861480 candidate pieces"),
+        "{listing}"
+    );
+    assert!(!listing.contains("CPU-s"), "no estimate: {listing}");
+    let (code, message) = solve_refusal(&setup);
+    assert_eq!(code, 2);
+    assert!(message.contains("126861480 candidate pieces"), "{message}");
 }

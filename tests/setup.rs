@@ -907,3 +907,37 @@ fn the_example_in_the_format_documentation_loads() {
     assert_eq!(setup.pv_count(0), 56 * 2 * 2);
     assert_eq!(setup.pv_count(1), 30 * 2);
 }
+
+/// The same places between two guides, counted through a hash grid of places
+/// (`Setup::coincident_pair_count`, what `sites` and the estimates count with), are those a
+/// comparison of every pair finds — on the site-generated setups, whose intra-link segments
+/// pair every clamp place with its copy on the next guide.
+#[test]
+fn coincident_pairs_counted_through_places_are_those_every_pair_compared_finds() {
+    for file in [
+        "robots/viper_s850/pick_and_place.toml",
+        "robots/viper_s850/whole_arm.toml",
+        "tests/data/ur5/robot_level.toml",
+    ] {
+        let setup = Setup::from_file(root().join(file)).unwrap_or_else(|e| panic!("{e}"));
+        let mut found = 0;
+        for m in 0..setup.segment_count() {
+            let (a, b) = setup.segment_guides(m);
+            let (na, nb) = (
+                setup.guides[a].configurations.len(),
+                setup.guides[b].configurations.len(),
+            );
+            let every_pair = (0..na)
+                .flat_map(|i| (0..nb).map(move |j| (i, j)))
+                .filter(|&(i, j)| setup.coincident(a, i, b, j))
+                .count();
+            assert_eq!(
+                setup.coincident_pair_count(m),
+                every_pair,
+                "{file} segment {m}"
+            );
+            found += every_pair;
+        }
+        assert!(found > 0, "{file}: some places are shared");
+    }
+}

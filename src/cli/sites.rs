@@ -43,7 +43,10 @@ pub fn run(args: Args) -> Result<(), Failure> {
             .map(|e| e.to_string());
         print_json(&Catalogue::of(&setup, too_many))
     } else {
-        let estimate = CostEstimate::at_reference_pose(&setup);
+        // Beyond what solve accepts, the listing says so and nothing is timed.
+        let estimate = (cable_dict::attachment::check_size(&setup).is_ok())
+            .then(|| CostEstimate::at_reference_pose(&setup))
+            .flatten();
         emit(&catalogue_listing(&setup, args.all, estimate.as_ref()))
     }
 }

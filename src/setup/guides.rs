@@ -262,25 +262,32 @@ impl PoseIndex {
 
     /// The smallest index of an inserted pose that is [`same_pose`] as `pose`.
     pub fn find(&self, pose: &Pose) -> Option<usize> {
+        self.same_as(pose).min()
+    }
+
+    /// How many inserted poses are [`same_pose`] as `pose`.
+    pub fn count(&self, pose: &Pose) -> usize {
+        self.same_as(pose).count()
+    }
+
+    /// The indices of the inserted poses [`same_pose`] as `pose`: those in its cell and the
+    /// neighbouring ones.
+    fn same_as<'i>(&'i self, pose: &'i Pose) -> impl Iterator<Item = usize> + 'i {
         let [x, y, z] = Self::cell(pose);
-        let mut found: Option<usize> = None;
-        for dx in -1..=1i64 {
-            for dy in -1..=1i64 {
-                for dz in -1..=1i64 {
-                    let key = [
+        let near = (-1..=1i64).flat_map(move |dx| {
+            (-1..=1i64).flat_map(move |dy| {
+                (-1..=1i64).map(move |dz| {
+                    [
                         x.saturating_add(dx),
                         y.saturating_add(dy),
                         z.saturating_add(dz),
-                    ];
-                    for (other, index) in self.cells.get(&key).into_iter().flatten() {
-                        if same_pose(other, pose) && found.is_none_or(|f| *index < f) {
-                            found = Some(*index);
-                        }
-                    }
-                }
-            }
-        }
-        found
+                    ]
+                })
+            })
+        });
+        near.flat_map(|key| self.cells.get(&key).into_iter().flatten())
+            .filter(move |(other, _)| same_pose(other, pose))
+            .map(|(_, index)| *index)
     }
 
     /// Adds `pose` under `index`.

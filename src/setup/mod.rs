@@ -425,6 +425,24 @@ impl Setup {
         (s == 0) == self.coincident(a, i, b, j)
     }
 
+    /// How many pairs of segment `m`'s start and end configurations are the same place
+    /// ([`Setup::coincident`]), counted through a hash grid of places, not pair by pair (two
+    /// guides may have 10⁵ configurations each).
+    pub fn coincident_pair_count(&self, m: usize) -> usize {
+        let (a, b) = self.segment_guides(m);
+        let (ga, gb) = (&self.guides[a], &self.guides[b]);
+        if ga.body != gb.body {
+            return 0;
+        }
+        let mut ends = PoseIndex::default();
+        for c in 0..gb.configurations.len() {
+            ends.insert(&gb.pose_in_body(c), c);
+        }
+        (0..ga.configurations.len())
+            .map(|c| ends.count(&ga.pose_in_body(c)))
+            .sum()
+    }
+
     /// Number of admissible PVs of segment `m` (at most [`Setup::pv_count`]).
     pub fn admissible_pv_count(&self, m: usize) -> usize {
         let (a, b) = self.segment_guides(m);
@@ -432,8 +450,7 @@ impl Setup {
             self.guides[a].configurations.len(),
             self.guides[b].configurations.len(),
         );
-        let pairs = (0..na).flat_map(|i| (0..nb).map(move |j| (i, j)));
-        let coincident = pairs.filter(|&(i, j)| self.coincident(a, i, b, j)).count();
+        let coincident = self.coincident_pair_count(m);
         self.segments[m]
             .lengths
             .iter()
@@ -441,7 +458,7 @@ impl Setup {
                 if s == 0 {
                     coincident
                 } else {
-                    na * nb - coincident
+                    na.saturating_mul(nb) - coincident
                 }
             })
             .sum()
