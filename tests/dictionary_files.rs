@@ -852,9 +852,10 @@ fn recomputation_catches_forged_margins_and_an_altered_setup() {
 }
 
 /// Record flags a forger can reseal, with the header's counts made to agree: a failing
-/// candidate promoted to D1 and D2 (what `info` counts), and a measured record made
-/// inadmissible with its margins cleared (out of `verify --recompute`'s draw). Each opens and
-/// is refused by `verify`, naming the record and the flags.
+/// candidate promoted to D1 and D2 (what `info` counts), a measured record made
+/// inadmissible with its margins cleared (out of `verify --recompute`'s draw), and one made
+/// "too short" though its clamps are within its length. Each opens and is refused by
+/// `verify`, naming the record and the flags.
 #[test]
 fn resealed_flags_that_contradict_the_setup_or_the_margins_are_refused_by_verify() {
     use format::PvRecord;
@@ -902,6 +903,16 @@ fn resealed_flags_that_contradict_the_setup_or_the_margins_are_refused_by_verify
                 b.results[measured * n..(measured + 1) * n].fill(format::MarginRecord::UNMEASURED);
             }),
         ),
+        (
+            // "Too short" for clamps it reaches: out of every chain and of the draw.
+            measured,
+            "TOO_SHORT",
+            forged(|b| {
+                b.pvs[measured].flags |= PvRecord::TOO_SHORT;
+                b.pvs[measured].error_factor = [0; 3];
+                b.results[measured * n..(measured + 1) * n].fill(format::MarginRecord::UNMEASURED);
+            }),
+        ),
     ];
     let dir = tempfile::tempdir().expect("temp dir");
     for (i, (k, flags, bytes)) in cases.iter().enumerate() {
@@ -912,4 +923,19 @@ fn resealed_flags_that_contradict_the_setup_or_the_margins_are_refused_by_verify
         assert!(error.contains(&record), "{error}");
         assert!(error.contains(&format!("flags {flags}")), "{error}");
     }
+}
+
+/// A dictionary's verdicts are of the Hermite connected geometry it was built with: `solve
+/// --dict … --connect linear` would test its other segments another way and answer neither
+/// method's path, so it is refused naming the file and its geometry.
+#[test]
+fn a_dictionary_is_not_used_with_another_connected_geometry() {
+    let dict = "dictionaries/viper_s850_pick_and_place.cdict";
+    let output = common::run(&["solve", "--dict", dict, MOTION, "--connect", "linear"]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains(dict) && stderr.contains("built with the hermite connected geometry"),
+        "{stderr}"
+    );
 }

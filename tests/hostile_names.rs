@@ -11,9 +11,10 @@ use crate::common;
 use std::path::Path;
 
 const INJECTION: &str = "<img src=x onerror=alert(document.title)>";
-/// A clamp name with Markdown markup, a raw tag and an ANSI colour sequence (TOML escapes).
-const MARKUP_TOML: &str = r"*bold* [link](example.com) `tick` <b>raw \u001b[31mred";
-const MARKUP: &str = "*bold* [link](example.com) `tick` <b>raw \u{1b}[31mred";
+/// A clamp name with Markdown markup, a raw tag, an ANSI colour sequence and a bidi override
+/// that would show the rest of a label backwards (TOML escapes).
+const MARKUP_TOML: &str = r"*bold* [link](example.com) `tick` <b>raw \u001b[31mred \u202Eevil";
+const MARKUP: &str = "*bold* [link](example.com) `tick` <b>raw \u{1b}[31mred \u{202e}evil";
 
 /// The bundled setup with G1 renamed to [`INJECTION`] and G4's clamp to [`MARKUP`], its
 /// relative paths made absolute, written to `dir`.
@@ -105,6 +106,15 @@ fn names_from_inputs_are_shown_and_never_obeyed() {
     );
     assert!(!page.contains("<b>raw"), "a tag from a name in index.html");
     assert!(page.contains("&lt;img src=x onerror=alert(document.title)&gt;"));
+    // The 3D view's clamp labels are text on the page: what would reorder or hide it is
+    // written out.
+    let view = std::fs::read_to_string(report.join("view-data.js")).expect("view-data.js");
+    assert!(
+        !view.contains('\u{202e}') && !view.contains('\u{1b}'),
+        "raw in a label"
+    );
+    let labels = view.rsplit("\"clamps\"").next().unwrap_or_default();
+    assert!(view.contains(r"\\u{202e}evil"), "written out: {labels}");
     for entry in std::fs::read_dir(&report).expect("report folder") {
         let path = entry.expect("entry").path();
         if path.extension().is_some_and(|e| e == "svg") {

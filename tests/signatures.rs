@@ -255,11 +255,83 @@ fn the_command_line_signs_verifies_and_requires_signatures() {
     let verify = common::run(&["verify", dict, "--trusted-keys", &public]);
     let said = String::from_utf8_lossy(&verify.stdout);
     assert!(said.contains("signed by 'Team A'"), "{said}");
-    assert!(said.contains("trusted by"), "{said}");
+    // The verdict comes first: nothing a signer's name holds is printed before it.
+    assert!(said.lines().any(|l| l.starts_with("trusted by ")), "{said}");
 
     let accepted = solve(&required);
     assert!(accepted.status.success(), "{}", stderr(&accepted));
     let json: serde_json::Value = serde_json::from_slice(&accepted.stdout).expect("JSON");
     let signer = &json["inputs"]["dictionary"]["provenance"]["signers"][0];
     assert_eq!(signer["trusted_as"], "Team A", "{signer}");
+}
+
+/// Names and fields with one reading: a signer name can only be letters, digits, spaces and
+/// a little punctuation (no quote, semicolon, bracket or bidi control could print another
+/// verdict), the verdict is printed before the names, a key file an editor began with a
+/// byte-order mark reads, and a signature file holds one line per key with its length
+/// written one way.
+#[test]
+fn names_and_fields_of_keys_and_signatures_have_one_reading() {
+    for bad in [
+        "Team A'; trusted by trusted; '",
+        "QA (Munich)",
+        "Eve\u{202e}reversed",
+        "say \"hi\"",
+    ] {
+        let Err(refused) = SecretKey::generate(bad) else {
+            panic!("{bad:?} accepted as a name")
+        };
+        assert!(
+            refused.contains("a name is letters, digits, spaces"),
+            "{refused}"
+        );
+    }
+    SecretKey::generate("Équipe Zürich 4").expect("letters of any script");
+    let a = team_a();
+    let with_mark = format!("\u{feff}{}", a.public().to_line());
+    let keys =
+        TrustedKeys::parse(&with_mark, Path::new("trusted_keys")).expect("a BOM is no content");
+
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = copy(dir.path(), BUNDLED, "shared.cdict");
+    let dictionary = Dictionary::open(&path).expect("opens");
+    dictionary.sign(&a).expect("signs");
+    let said = dictionary
+        .provenance(Some(&keys))
+        .expect("holds")
+        .describe();
+    assert!(
+        said.starts_with("trusted by trusted_keys; signed by 'Team A'"),
+        "{said}"
+    );
+    let sig = signature_path(&path);
+    let genuine = std::fs::read_to_string(&sig).expect("the signature file");
+    let line = (genuine.lines())
+        .find(|l| l.starts_with("cable-dict-signature"))
+        .expect("a signature line");
+
+    std::fs::write(&sig, format!("{genuine}{line}\n")).expect("doubled");
+    let error = dictionary
+        .provenance(Some(&keys))
+        .expect_err("one line per key");
+    assert!(
+        error
+            .problem
+            .contains("a second signature by the key of line"),
+        "{error}"
+    );
+
+    let words: Vec<&str> = line.split_whitespace().collect();
+    let length = words[6];
+    for written in [format!("+{length}"), format!("0{length}")] {
+        let edited = line.replacen(&format!(" {length} "), &format!(" {written} "), 1);
+        std::fs::write(&sig, format!("{edited}\n")).expect("edited");
+        let error = dictionary.provenance(Some(&keys)).expect_err(&written);
+        assert!(
+            error
+                .problem
+                .contains("is not a whole number as `sign` writes it"),
+            "{error}"
+        );
+    }
 }

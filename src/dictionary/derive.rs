@@ -13,6 +13,7 @@ use super::format::{
     PHYSICS_VERSION, PvRecord, ShardRange, SolverParameters,
 };
 use crate::attachment::{needed_pvs, robust_neighbours};
+use crate::geometry::reaches;
 use crate::path::Pv;
 use crate::setup::{Robustness, Setup};
 use crate::statics::SolverOptions;
@@ -224,6 +225,26 @@ pub(super) fn pv_record(catalogues: &[LinkCatalogue], header: &Header, g: u64) -
     }
 }
 
+/// Whether the piece of global index `g` is a real cable too short to reach between its
+/// clamps — what a build stores unmeasured with TOO_SHORT: its clamps' distance in their
+/// link's frame beyond its length ([`reaches`], the connected geometry's own test; the same
+/// under every direction of gravity).
+fn too_short(catalogues: &[LinkCatalogue], header: &Header, g: u64) -> bool {
+    let (slot, pv) = pv_at(header, g);
+    let catalogue = &catalogues[slot].setup;
+    if pv.sub_segments == 0 || !catalogue.is_admissible(0, pv.sub_segments, pv.start, pv.end) {
+        return false;
+    }
+    let (a, b) = catalogue.segment_guides(0);
+    reaches(
+        &catalogue.guides[a].pose_in_body(pv.start),
+        &catalogue.guides[b].pose_in_body(pv.end),
+        pv.sub_segments,
+        catalogue.cable.sub_segment_pitch_m,
+    )
+    .is_err()
+}
+
 /// The link (its position in the header) and PV of global index `g`, which must be below
 /// `header.pv_total` of a header [`parse`](super::format::parse) accepted.
 pub(super) fn pv_at(header: &Header, g: u64) -> (usize, Pv) {
@@ -307,7 +328,8 @@ fn all_direction_sets(
 }
 
 /// The records' flags are what a build of `setup` derives: ADMISSIBLE and CANDIDATE from the
-/// catalogues, and (whole dictionaries) D1_ALL and D2_ALL from the stored margins. A flag is
+/// catalogues, TOO_SHORT from the clamps' distance ([`too_short`]), and (whole dictionaries)
+/// D1_ALL and D2_ALL from the stored margins. A flag is
 /// not covered by a checksum's meaning: forged, it changes what `info` counts and which
 /// records `verify --recompute` draws from.
 pub(super) fn check_flags(
@@ -323,7 +345,10 @@ pub(super) fn check_flags(
     for (k, record) in pvs.iter().enumerate() {
         let g = stored.start + k as u64;
         let mut expected = pv_record(catalogues, header, g).flags;
-        let mut compared = PvRecord::ADMISSIBLE | PvRecord::CANDIDATE;
+        if too_short(catalogues, header, g) {
+            expected |= PvRecord::TOO_SHORT;
+        }
+        let mut compared = PvRecord::ADMISSIBLE | PvRecord::CANDIDATE | PvRecord::TOO_SHORT;
         if let Some(sets) = &sets {
             let (d1, d2) = sets[k];
             expected |= all_direction_flags(d1, d2);

@@ -11,6 +11,7 @@ use super::format::{
 use crate::path::Pv;
 #[cfg(feature = "signatures")]
 use crate::provenance::{Provenance, ProvenanceError, SecretKey, TrustedKeys};
+use crate::robot::MeshFile;
 use crate::setup::Setup;
 use memmap2::Mmap;
 use std::fs::File;
@@ -372,18 +373,60 @@ pub(super) fn embedded_setup(header: &Header) -> Result<Setup, Problem> {
             computed: setup.content_hash,
         });
     }
-    // Bytes the robot does not read would ride along unchecked (and be written out by any
-    // tool that unpacks the file).
-    if let Some(unread) = embedded
-        .meshes
-        .iter()
-        .find(|m| !setup.robot.mesh_files.iter().any(|read| read.uri == m.uri))
-    {
-        return Err(Problem::Header(format!(
-            "the embedded mesh `{}` is not a mesh the embedded URDF uses (a build embeds \
-             only those)",
-            crate::escape::terminal(&unread.uri)
-        )));
+    if let Some(problem) = meshes_not_read(&embedded.meshes, &setup.robot.mesh_files) {
+        return Err(Problem::Header(problem));
     }
     Ok(setup)
+}
+
+/// What is wrong with the meshes a dictionary embeds, if anything, against those its robot
+/// reads (`read`): bytes the robot does not read would ride along unchecked (and be written
+/// out by any tool that unpacks the file) — a mesh under a URI the URDF does not use, or a
+/// second copy under one it uses (only one is read). A build embeds each mesh it reads once.
+fn meshes_not_read(embedded: &[MeshFile], read: &[MeshFile]) -> Option<String> {
+    let mut uris = std::collections::BTreeSet::new();
+    embedded.iter().find_map(|mesh| {
+        let uri = crate::escape::terminal(&mesh.uri);
+        if !read.iter().any(|r| r.uri == mesh.uri) {
+            Some(format!(
+                "the embedded mesh `{uri}` is not a mesh the embedded URDF uses (a build \
+                 embeds only those)"
+            ))
+        } else if !uris.insert(mesh.uri.as_str()) {
+            Some(format!(
+                "the embedded mesh `{uri}` is embedded twice (a build embeds each mesh once)"
+            ))
+        } else {
+            None
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mesh(uri: &str) -> MeshFile {
+        MeshFile {
+            uri: uri.into(),
+            bytes: vec![0; 84],
+        }
+    }
+
+    /// Every mesh the robot reads, each once, passes; one it does not read, or a second copy
+    /// of one it reads (which no reader would ever look at), is named.
+    #[test]
+    fn embedded_meshes_are_those_the_robot_reads_each_once() {
+        let read = [mesh("base.stl"), mesh("arm.stl")];
+        assert_eq!(meshes_not_read(&read, &read), None);
+        let extra = [mesh("base.stl"), mesh("payload.stl")];
+        let problem = meshes_not_read(&extra, &read).expect("payload.stl is not read");
+        assert!(problem.contains("`payload.stl` is not a mesh the embedded URDF uses"));
+        let twice = [mesh("base.stl"), mesh("arm.stl"), mesh("base.stl")];
+        let problem = meshes_not_read(&twice, &read).expect("base.stl twice");
+        assert!(
+            problem.contains("`base.stl` is embedded twice"),
+            "{problem}"
+        );
+    }
 }

@@ -232,7 +232,13 @@ pub(super) fn next_word(text: &str) -> (&str, &str) {
     }
 }
 
-/// A signer name: 1 to [`MAX_NAME_CHARS`] characters, no control characters.
+/// Punctuation a signer name may hold besides letters, digits and spaces: nothing that
+/// quotes, separates or brackets in a verdict (a name is printed inside one).
+pub const NAME_PUNCTUATION: &str = "-_.,@+&/:#";
+
+/// A signer name: 1 to [`MAX_NAME_CHARS`] characters, each a letter, a digit, a space or
+/// one of [`NAME_PUNCTUATION`] — so that no name can print another verdict ("…; trusted by
+/// …") or turn text around (bidi controls are not letters).
 pub(super) fn check_name(name: &str) -> Result<(), String> {
     if name.trim().is_empty() {
         return Err("no name after the key (who signs with it)".into());
@@ -242,8 +248,14 @@ pub(super) fn check_name(name: &str) -> Result<(), String> {
             "the name is longer than {MAX_NAME_CHARS} characters"
         ));
     }
-    if name.chars().any(char::is_control) {
-        return Err("the name holds control characters".into());
+    if let Some(c) =
+        (name.chars()).find(|&c| !(c.is_alphanumeric() || c == ' ' || NAME_PUNCTUATION.contains(c)))
+    {
+        return Err(format!(
+            "the name holds {:?} (U+{:04X}): a name is letters, digits, spaces and {NAME_PUNCTUATION}",
+            c.escape_default().to_string(),
+            u32::from(c)
+        ));
     }
     Ok(())
 }
@@ -301,12 +313,12 @@ mod tests {
 
     #[test]
     fn key_lines_round_trip_and_name_what_is_wrong() {
-        let key = SecretKey::from_seed([7; 32], "Team A (line 3)");
+        let key = SecretKey::from_seed([7; 32], "Team A, line 3");
         let trusted =
             TrustedKeys::parse(&key.public().to_line(), Path::new("keys")).expect("one key");
         assert_eq!(
             trusted.find(&key.public()).map(PublicKey::name),
-            Some("Team A (line 3)")
+            Some("Team A, line 3")
         );
         let wrong = |text: &str| TrustedKeys::parse(text, Path::new("keys")).unwrap_err();
         let line = key.public().to_line();
@@ -324,7 +336,7 @@ mod tests {
                 .contains("algorithm")
         );
         assert!(
-            wrong(&line.replace("Team A (line 3)", ""))
+            wrong(&line.replace("Team A, line 3", ""))
                 .problem
                 .contains("no name")
         );
@@ -337,12 +349,12 @@ mod tests {
         identity[0] = 1;
         let weak = format!("{PUBLIC_TAG} {ALGORITHM} {} x\n", hex(&identity));
         assert!(wrong(&weak).problem.contains("weak"), "{}", wrong(&weak));
-        let long = line.replace("Team A (line 3)", &"n".repeat(MAX_NAME_CHARS + 1));
+        let long = line.replace("Team A, line 3", &"n".repeat(MAX_NAME_CHARS + 1));
         assert!(wrong(&long).problem.contains("longer"));
         assert!(
-            wrong(&line.replace("(line 3)", "\u{1b}[31m"))
+            wrong(&line.replace("line 3", "\u{1b}[31m"))
                 .problem
-                .contains("control")
+                .contains("a name is letters, digits, spaces")
         );
     }
 }

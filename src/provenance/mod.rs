@@ -77,8 +77,10 @@ fn unhex<const N: usize>(text: &str) -> Option<[u8; N]> {
 
 #[cfg(feature = "signatures")]
 /// The lines of a text file that carry content, numbered from 1: blank lines and `#` comments
-/// are skipped.
+/// are skipped, and a byte-order mark before the first.
 fn content_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    // A byte-order mark some editors write first is not content.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     text.lines()
         .enumerate()
         .map(|(i, line)| (i + 1, line.trim()))

@@ -72,12 +72,13 @@ impl Provenance {
                     refuses unsigned files)"
                 .into();
         }
-        let trust = match (&self.trusted_keys, self.is_trusted()) {
-            (None, _) => "; not checked against trusted keys (--trusted-keys FILE)".to_string(),
-            (Some(keys), true) => format!("; trusted by {keys}"),
-            (Some(keys), false) => format!("; no signer is in {keys}"),
+        // The verdict first: nothing a signer's name holds comes before it.
+        let verdict = match (&self.trusted_keys, self.is_trusted()) {
+            (None, _) => "not checked against trusted keys (--trusted-keys FILE)".to_string(),
+            (Some(keys), true) => format!("trusted by {keys}"),
+            (Some(keys), false) => format!("not trusted: no signer is in {keys}"),
         };
-        format!("signed by {}{trust}", self.signer_list())
+        format!("{verdict}; signed by {}", self.signer_list())
     }
 
     fn signer_list(&self) -> String {

@@ -189,9 +189,14 @@ impl Entry {
         let signature =
             unhex::<64>(signature).ok_or_else(|| digits("signature", signature, 128))?;
         let sha512 = unhex::<64>(sha512).ok_or_else(|| digits("SHA-512", sha512, 128))?;
-        let bytes = length
-            .parse::<u64>()
-            .map_err(|_| format!("the file length '{length}' is not a whole number"))?;
+        // One way to write a length, as `sign` writes it: digits, no sign, no leading zero.
+        let canonical = length.bytes().all(|b| b.is_ascii_digit())
+            && (length == "0" || !length.starts_with('0'));
+        let bytes = (length.parse::<u64>().ok())
+            .filter(|_| canonical)
+            .ok_or_else(|| {
+                format!("the file length '{length}' is not a whole number as `sign` writes it")
+            })?;
         check_name(name)?;
         Ok(Entry {
             key: PublicKey::from_bytes(key, name.to_string())?,
@@ -254,12 +259,20 @@ fn read_lines(file: &Path) -> Result<Option<Vec<(usize, Entry)>>, ProvenanceErro
 /// The signature lines of a signature file's text, numbered; the first bad line's number and
 /// problem otherwise.
 fn parse_entries(text: &str) -> Result<Vec<(usize, Entry)>, (usize, String)> {
-    let mut lines = Vec::new();
+    let mut lines: Vec<(usize, Entry)> = Vec::new();
     for (line, content) in content_lines(text) {
         if lines.len() == MAX_SIGNATURES {
             return Err((line, format!("more than {MAX_SIGNATURES} signatures")));
         }
-        lines.push((line, Entry::parse(content).map_err(|p| (line, p))?));
+        let entry = Entry::parse(content).map_err(|p| (line, p))?;
+        // `sign` replaces a key's line: a key signing twice is a file put together by hand.
+        if let Some((first, _)) = (lines.iter()).find(|(_, e)| e.key.hex() == entry.key.hex()) {
+            return Err((
+                line,
+                format!("a second signature by the key of line {first}: one line per signer"),
+            ));
+        }
+        lines.push((line, entry));
     }
     Ok(lines)
 }

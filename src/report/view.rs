@@ -140,7 +140,8 @@ pub fn view_files(
         installation: spec.installation.as_ref().map(|_| INSTALLATION_ANIMATION),
         clamps: (marks.iter())
             .map(|(label, mark)| ClampLabel {
-                label: label.clone(),
+                // Shown as text by the page: what would reorder or hide text written out.
+                label: crate::escape::terminal(label).into_owned(),
                 installation_m: spec
                     .installation
                     .as_ref()

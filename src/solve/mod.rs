@@ -65,8 +65,8 @@ pub use report::{
 };
 
 use crate::attachment::{
-    CostEstimate, Evaluator, IntraLinkAnswer, LazyAttachment, LookupAnswer, SegmentPoses,
-    SegmentSets, VerdictMemory, attachment_test_with, check_size,
+    ConnectMethod, CostEstimate, Evaluator, IntraLinkAnswer, LazyAttachment, LookupAnswer,
+    SegmentPoses, SegmentSets, VerdictMemory, attachment_test_with, check_size,
 };
 use crate::dictionary::{Dictionary, MotionLookup};
 use crate::motion::{Cell, Motion};
@@ -161,6 +161,18 @@ pub fn solve_cell_remembering(
     memory: Option<&mut VerdictMemory>,
 ) -> Result<Solution, SolveError> {
     let total = Instant::now();
+    if let Some(dictionary) = dictionary
+        && options.method != ConnectMethod::Hermite
+    {
+        // A dictionary's verdicts are of one connected geometry; the other segments would be
+        // tested another way, and the answer would be neither method's.
+        return Err(SolveError::Options(format!(
+            "{} was built with the {} connected geometry: solve with it (drop --connect), or \
+             with --setup alone",
+            dictionary.path().display(),
+            dictionary.header().solver.connect
+        )));
+    }
     let solved = options.setup_for(setup)?;
     let setup = &solved;
     check_size(setup)
