@@ -126,3 +126,86 @@ fn a_dictionary_forged_to_pass_every_piece_yields_the_exact_path() {
 fn from_forged_file(dir: &Path) -> String {
     dir.join("forged.cdict").display().to_string()
 }
+
+/// Forgeries made to *fail*, resealed with the flags and counts they imply so that `verify`
+/// passes: the one stored piece of the exact answer's link that a chain takes, a whole
+/// link, every record, and two records' rows swapped. A piece the file rejects is solved all
+/// the same — the lazy search decides only pieces a chain within its bound could use — so
+/// each answers exactly what `--setup` answers, with the same sets, and the genuine file too.
+#[test]
+fn a_dictionary_forged_to_fail_hides_no_path() {
+    let (setup, motion) = setup_and_motion();
+    let exact = solve(&setup, &motion, &options()).unwrap_or_else(|e| panic!("{e}"));
+    assert!(exact.optimal.is_some(), "the hand-written setup has a path");
+    let genuine = build(
+        &setup,
+        &BuildOptions {
+            directions: 8,
+            shard: None,
+        },
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let n = genuine.directions.len();
+    let fail = format::MarginRecord::quantize(Some([-5.0, 0.01, 1.0]));
+    let measured: Vec<usize> = (0..genuine.pvs.len())
+        .filter(|&k| {
+            genuine.results[k * n..(k + 1) * n]
+                .iter()
+                .any(|r| r.values().is_some())
+        })
+        .collect();
+    let holding: Vec<usize> = (measured.iter().copied())
+        .filter(|&k| genuine.pvs[k].has(format::PvRecord::D1_ALL))
+        .collect();
+    assert!(holding.len() > 2, "the file has holding pieces to forge");
+    let forge = |which: &dyn Fn(usize) -> bool| {
+        let mut forged = genuine.clone();
+        for &k in measured.iter().filter(|&&k| which(k)) {
+            forged.results[k * n..(k + 1) * n].fill(fail);
+        }
+        forged.derive_flags(&setup.robustness);
+        forged
+    };
+    let first_link = genuine.pvs[holding[0]].link;
+    let mut swapped = genuine.clone();
+    let (a, b) = (
+        holding[0],
+        *measured
+            .iter()
+            .find(|&&k| !holding.contains(&k))
+            .expect("a failing piece"),
+    );
+    for d in 0..n {
+        swapped.results.swap(a * n + d, b * n + d);
+    }
+    swapped.derive_flags(&setup.robustness);
+    let cases = [
+        ("genuine", genuine.clone()),
+        ("one holding record", forge(&|k| k == holding[0])),
+        (
+            "a whole link",
+            forge(&|k| genuine.pvs[k].link == first_link),
+        ),
+        ("every record", forge(&|_| true)),
+        ("two rows swapped", swapped),
+    ];
+    let dir = tempfile::tempdir().expect("temp dir");
+    for (case, built) in &cases {
+        let report = solved_with(
+            dir.path(),
+            &format!("{}.cdict", case.replace(' ', "_")),
+            built,
+            &setup,
+            &motion,
+        );
+        assert_eq!(report.status, exact.status, "{case}");
+        assert_eq!(
+            report.optimal, exact.optimal,
+            "{case}: the file bent the path"
+        );
+        for m in 0..setup.segment_count() {
+            let (x, y) = (&exact.segments[m], &report.segments[m]);
+            assert_eq!((x.d1, x.d2), (y.d1, y.d2), "{case}: C{}", m + 1);
+        }
+    }
+}

@@ -45,7 +45,8 @@ pub const NEAREST_MISSES: usize = 3;
 pub struct LookedUp {
     /// Pieces (robustness lengths included) that hold by the lookup alone.
     pub holds: usize,
-    /// Pieces that fail by the lookup alone.
+    /// Pieces that fail by the lookup alone (none with `solve --dict`, which solves every
+    /// piece a file rejects; a lookup that does decide failures counts them here).
     pub fails: usize,
     /// Pieces the lookup could not decide, solved exactly.
     pub solved: usize,

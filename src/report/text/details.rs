@@ -205,9 +205,10 @@ pub(super) fn write_dictionary(f: &mut fmt::Formatter<'_>, d: &DictionaryUse) ->
         let p = &s.pieces;
         writeln!(
             f,
-            "  {}: {} gravity directions of the motion; {} pieces hold, {} fail by the \
-                 stored margins, {} too close to a limit were solved ({} of them failed)",
-            s.segment, s.gravity_directions, p.holds, p.fails, p.solved, p.solved_failed
+            "  {}: {} gravity directions of the motion; {} pieces hold by the stored \
+                 margins, {} were solved — those the file rejects or finds too close to a \
+                 limit — ({} of them failed)",
+            s.segment, s.gravity_directions, p.holds, p.solved, p.solved_failed
         )?;
     }
     let c = &d.certification;
