@@ -11,6 +11,9 @@
 # origins and axes, collision shapes with the same mesh files and measures), and
 # `cable-dict fk --json` poses of every link, the end effector tool0 named, equal within
 # 1e-9 m (and 1e-9 in each rotation entry) at two joint vectors.
+# Then a stranger's xacros that would copy this machine into the URDF — `$(env …)`,
+# `$(optenv …)`, an include and a YAML file outside the package — are refused, and
+# --allow-machine expands `$(env HOME)`.
 # CABLE_DICT (default target/release/cable-dict) is the binary checked.
 # Exit status: 0 the same robot, 1 a difference (each printed), 2 could not check.
 set -eu
@@ -142,3 +145,29 @@ print("xacro route: kr6r900sixx.xacro expanded without ROS is the committed kr6r
       "(%d links, %d joints of which %d actuated, limits, robot-info, fk of every link at two "
       "joint vectors within %g m)" % (len(expanded["links"]), len(expanded["joints"]), dof, TOLERANCE))
 EOF
+
+# A stranger's xacro may not copy this machine into the URDF: `$(env …)`, `$(optenv …)`, an
+# include and a YAML file outside its package are refused (exit 1, the
+# refusal named), and --allow-machine allows what the user trusts.
+hostile="$work/stranger/urdf"
+mkdir -p "$hostile"
+echo "secret: 1" > "$work/secret.yaml"
+echo '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="outside"/></robot>' > "$work/outside.xacro"
+wrap() { printf '<?xml version="1.0"?>\n<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">%s</robot>\n' "$1"; }
+wrap '<link name="$(env HOME)"/>' > "$hostile/env.xacro"
+wrap '<link name="$(optenv HOME nobody)"/>' > "$hostile/optenv.xacro"
+wrap '<xacro:include filename="../../outside.xacro"/>' > "$hostile/include.xacro"
+wrap "<xacro:property name=\"y\" value=\"\${xacro.load_yaml('$work/secret.yaml')}\"/><link name=\"l\${y['secret']}\"/>" > "$hostile/yaml.xacro"
+for case in env:environment optenv:environment include:outside yaml:outside; do
+    name="${case%%:*}" words="${case#*:}"
+    status=0
+    message="$(sh "$root/scripts/expand-xacro.sh" "$hostile/$name.xacro" "$work/$name.urdf" 2>&1)" || status=$?
+    if [ "$status" -ne 1 ] || ! printf '%s' "$message" | grep -q "$words" || [ -e "$work/$name.urdf" ]; then
+        echo "FAIL: a xacro reading this machine ($name) was not refused (exit $status): $message" >&2
+        exit 1
+    fi
+done
+sh "$root/scripts/expand-xacro.sh" --allow-machine "$hostile/env.xacro" "$work/env.urdf" \
+    || { echo "FAIL: --allow-machine refused \$(env HOME)" >&2; exit 1; }
+grep -q "name=\"$HOME\"" "$work/env.urdf" || { echo "FAIL: --allow-machine did not expand \$(env HOME)" >&2; exit 1; }
+echo "xacro route: \$(env), \$(optenv), an include and a YAML file outside the package refused; --allow-machine allows them"

@@ -1,7 +1,13 @@
 #!/bin/sh
 # Expands a xacro robot description into a URDF with PyPI's xacro, no ROS needed:
-#   scripts/expand-xacro.sh IN.xacro OUT.urdf [name:=value …]
+#   scripts/expand-xacro.sh [--allow-machine] IN.xacro OUT.urdf [name:=value …]
 # The name:=value arguments go to xacro (the xacro's <xacro:arg>s).
+# Expanding a xacro runs its author's macros and Python expressions on this machine. So that
+# a stranger's description cannot copy this machine into the URDF (which `cable-dict build`
+# then embeds in a dictionary others receive), `$(env …)` and `$(optenv …)` are refused, and
+# so is reading a file (an include, a YAML file) outside IN's folder, the folder above it
+# (IN's package in the usual pkg/urdf/ layout) and the package folders `$(find …)` found;
+# --allow-machine allows both, for a description you trust.
 # `$(find pkg)` resolves as cable-dict resolves `package://pkg/…` (docs/robots.md, "Xacro
 # packages"): to the first folder, going up from IN's folder, that is called pkg or holds a
 # folder pkg. PyPI's xacro asks ROS 2's ament_index_python for it; this script puts a
@@ -13,7 +19,9 @@
 # Exit status: 0 expanded, 1 xacro failed on IN (its message printed), 2 usage, or xacro could
 # not be installed.
 set -eu
-[ "$#" -ge 2 ] || { echo "usage: $0 IN.xacro OUT.urdf [name:=value …]" >&2; exit 2; }
+allow_machine=0
+if [ "${1:-}" = "--allow-machine" ]; then allow_machine=1; shift; fi
+[ "$#" -ge 2 ] || { echo "usage: $0 [--allow-machine] IN.xacro OUT.urdf [name:=value …]" >&2; exit 2; }
 in="$1"
 out="$2"
 shift 2
@@ -69,14 +77,20 @@ class PackageNotFoundError(LookupError):
     pass
 
 
+# The package folders found so far: files in them may be read (cable_dict_xacro_guard).
+FOUND = []
+
+
 def get_package_share_directory(package_name, print_warning=True):
     start = os.environ["CABLE_DICT_XACRO_FIND_FROM"]
     folder = start
     while True:
         if os.path.basename(folder) == package_name:
+            FOUND.append(folder)
             return folder
         inside = os.path.join(folder, package_name)
         if os.path.isdir(inside):
+            FOUND.append(inside)
             return inside
         parent = os.path.dirname(folder)
         if parent == folder:
@@ -87,10 +101,60 @@ def get_package_share_directory(package_name, print_warning=True):
         folder = parent
 EOF
 
+cat > "$work/shim/cable_dict_xacro_guard.py" << 'EOF'
+"""Written by cable-dict's scripts/expand-xacro.sh: what a xacro may read of this machine.
+
+Unless CABLE_DICT_XACRO_ALLOW_MACHINE is 1: $(env ...) and $(optenv ...) are refused, and
+xacro opens for reading only files inside the folder of the file expanded, the folder above
+it (its package, in the usual pkg/urdf/ layout) and the package folders $(find ...) found
+(symbolic links resolved).
+"""
+import builtins
+import os
+
+import xacro
+import xacro.substitution_args as substitution
+from ament_index_python import packages
+
+if os.environ.get("CABLE_DICT_XACRO_ALLOW_MACHINE") != "1":
+
+    def refuse_environment(*args, **kwargs):
+        raise substitution.SubstitutionException(
+            "$(env ...) and $(optenv ...) would copy this machine's environment into the "
+            "URDF: refused (scripts/expand-xacro.sh --allow-machine, for a xacro you trust)"
+        )
+
+    substitution._env = refuse_environment
+    substitution._optenv = refuse_environment
+    substitution._eval_dict["env"] = refuse_environment
+    substitution._eval_dict["optenv"] = refuse_environment
+
+    def inside(path, folder):
+        folder = os.path.realpath(folder)
+        return path == folder or path.startswith(folder + os.sep)
+
+    def guarded_open(file, mode="r", *args, **kwargs):
+        if not any(c in mode for c in "wax+"):
+            path = os.path.realpath(file)
+            start = os.environ["CABLE_DICT_XACRO_FIND_FROM"]
+            allowed = [start, os.path.dirname(start)] + packages.FOUND
+            if not any(inside(path, folder) for folder in allowed):
+                raise xacro.XacroException(
+                    "%s is outside the package of the file expanded and the package "
+                    "folders $(find ...) found: refused (scripts/expand-xacro.sh "
+                    "--allow-machine, for a xacro you trust)" % file
+                )
+        return builtins.open(file, mode, *args, **kwargs)
+
+    # xacro's own functions (parse, load_yaml) find `open` in the module first.
+    xacro.open = guarded_open
+EOF
+
 # The folder the search starts from, absolute and with symbolic links resolved (as cable-dict's).
 find_from="$(cd "$(dirname "$in")" && pwd -P)"
 if ! PYTHONPATH="$work/shim${PYTHONPATH:+:$PYTHONPATH}" CABLE_DICT_XACRO_FIND_FROM="$find_from" \
-    "$venv/bin/python" -c 'import sys, xacro; sys.argv[0] = "xacro"; sys.exit(xacro.main())' \
+    CABLE_DICT_XACRO_ALLOW_MACHINE="$allow_machine" \
+    "$venv/bin/python" -c 'import sys, cable_dict_xacro_guard, xacro; sys.argv[0] = "xacro"; sys.exit(xacro.main())' \
     -o "$partial" "$in" "$@"; then
     echo "$0: xacro could not expand $in; $out is left as it was" >&2
     exit 1
