@@ -128,8 +128,8 @@ fn from_forged_file(dir: &Path) -> String {
 }
 
 /// Forgeries made to *fail*, resealed with the flags and counts they imply so that `verify`
-/// passes: the one stored piece of the exact answer's link that a chain takes, a whole
-/// link, every record, and two records' rows swapped. A piece the file rejects is solved all
+/// passes: one holding record, only its robustness neighbour, every length of its clamp
+/// pair, a whole link, every record, and two records' rows swapped. A piece the file rejects is solved all
 /// the same — the lazy search decides only pieces a chain within its bound could use — so
 /// each answers exactly what `--setup` answers, with the same sets, and the genuine file too.
 #[test]
@@ -167,6 +167,17 @@ fn a_dictionary_forged_to_fail_hides_no_path() {
         forged
     };
     let first_link = genuine.pvs[holding[0]].link;
+    let held = genuine.pvs[holding[0]];
+    let same_pair = |k: usize| {
+        let r = &genuine.pvs[k];
+        (r.link, r.start, r.end) == (held.link, held.start, held.end)
+    };
+    // Its robustness neighbour one step longer (on no chain of its own: a forger's quiet
+    // way to take the piece out of every chain).
+    let delta_s = setup.robustness.delta_s as u32;
+    let neighbour = (0..genuine.pvs.len())
+        .find(|&k| same_pair(k) && genuine.pvs[k].sub_segments == held.sub_segments + delta_s)
+        .expect("a robustness neighbour is stored");
     let mut swapped = genuine.clone();
     let (a, b) = (
         holding[0],
@@ -182,6 +193,8 @@ fn a_dictionary_forged_to_fail_hides_no_path() {
     let cases = [
         ("genuine", genuine.clone()),
         ("one holding record", forge(&|k| k == holding[0])),
+        ("its robustness neighbour only", forge(&|k| k == neighbour)),
+        ("every length of its clamp pair", forge(&same_pair)),
         (
             "a whole link",
             forge(&|k| genuine.pvs[k].link == first_link),

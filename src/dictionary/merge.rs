@@ -34,7 +34,8 @@ fn merge_accepting(
 ) -> Result<Built, DictionaryError> {
     let mut shards = Vec::with_capacity(paths.len());
     for path in paths {
-        let dictionary = Dictionary::open(path)?;
+        // Read into memory: the bytes verified and signed are the bytes merged.
+        let dictionary = Dictionary::read(path)?;
         dictionary.verify()?;
         accept(&dictionary)?;
         let Some(range) = dictionary.header().shard else {
