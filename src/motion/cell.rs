@@ -71,6 +71,11 @@ struct RawMotion {
 }
 
 impl Cell {
+    /// The axis-range grid among the cell's motions (a range design's), if any.
+    pub fn grid(&self) -> Option<&RangeGrid> {
+        self.motions.iter().find_map(|m| m.grid.as_ref())
+    }
+
     /// Whether `path` reads as a cell file: a `.toml` with a `[[motions]]` table (a setup or
     /// a waypoint file has none).
     pub fn is_cell_file(path: &Path) -> bool {

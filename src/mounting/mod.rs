@@ -281,6 +281,11 @@ impl MountingPlan {
         self.pieces.iter().find(|piece| piece.segment == segment)
     }
 
+    /// [`MountingPlan::piece_words`] of `plan`, or `segment` itself without a plan.
+    pub fn piece_words_in(plan: Option<&MountingPlan>, segment: &str) -> String {
+        plan.map_or_else(|| segment.to_string(), |plan| plan.piece_words(segment))
+    }
+
     /// The fitter's name of the setup's piece `segment` (`C3`): `piece 2 → gripper
     /// connector`; `segment` itself for a piece not mounted (0 mm, or not on this path).
     pub fn piece_words(&self, segment: &str) -> String {

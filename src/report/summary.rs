@@ -56,9 +56,7 @@ pub fn summary_markdown(
 
 /// The range each axis allows, what ends it, and the box it was asked within.
 fn allowed_table(md: &mut String, allowed: &AllowedRanges, plan: Option<&MountingPlan>) {
-    let piece = |segment: &str| -> String {
-        plan.map_or_else(|| segment.to_string(), |plan| plan.piece_words(segment))
-    };
+    let piece = |segment: &str| MountingPlan::piece_words_in(plan, segment);
     section(md, "Allowed ranges");
     if let Some(failed) = &allowed.box_failure {
         let _ = writeln!(

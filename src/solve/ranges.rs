@@ -302,8 +302,7 @@ fn note_estimate(
     grid_step_deg: f64,
     options: &SolveOptions,
 ) -> Result<Option<f64>, SolveError> {
-    let grid = cell.motions.iter().find_map(|m| m.grid.as_ref());
-    let Some(grid) = grid.filter(|_| progress::listening()) else {
+    let Some(grid) = cell.grid().filter(|_| progress::listening()) else {
         return Ok(None);
     };
     let counts: Vec<String> = (grid.per_segment.iter().enumerate())
@@ -357,7 +356,7 @@ fn failures_per_axis(
     let report = &attempt.solution.report;
     // The joints that shape each piece (the grid's): an axis that does not — a vertical
     // first axis under a wrist piece — is not blamed for where the piece failed.
-    let gridded = (attempt.cell.motions.iter()).find_map(|m| m.grid.as_ref());
+    let gridded = attempt.cell.grid();
     let shapes = |segment: &str, j: usize| -> bool {
         let m = (0..setup.segment_count()).find(|&m| setup.segment_name(m) == segment);
         match (gridded, m) {

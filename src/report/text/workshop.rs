@@ -62,9 +62,7 @@ pub(super) fn write_allowed_ranges(
     allowed: &AllowedRanges,
     plan: Option<&MountingPlan>,
 ) -> fmt::Result {
-    let piece = |segment: &str| -> String {
-        plan.map_or_else(|| segment.to_string(), |plan| plan.piece_words(segment))
-    };
+    let piece = |segment: &str| MountingPlan::piece_words_in(plan, segment);
     if let Some(failed) = &allowed.box_failure {
         let at: Vec<String> = (failed.failure.iter())
             .flat_map(|failure| &failure.joints)
