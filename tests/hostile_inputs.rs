@@ -14,7 +14,11 @@ const MOTION: &str = "motions/viper_s850/pick_and_place.csv";
 
 /// Exit code and standard error of a run that must fail.
 fn refusal(args: &[&str]) -> (i32, String) {
-    let output = run(args);
+    code_and_stderr(run(args))
+}
+
+/// The exit code of `output` (-1 when killed) and its standard error.
+fn code_and_stderr(output: std::process::Output) -> (i32, String) {
     (
         output.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&output.stderr).into_owned(),
@@ -337,13 +341,7 @@ fn site_generators_too_many_together_are_refused_before_any_runs() {
 #[test]
 fn a_motion_an_hour_long_or_a_dwell_of_a_day_is_refused_naming_the_limit() {
     let dir = tempfile::tempdir().unwrap();
-    let bounded = |args: &[&str]| {
-        let output = bounded(args);
-        (
-            output.status.code().unwrap_or(-1),
-            String::from_utf8_lossy(&output.stderr).into_owned(),
-        )
-    };
+    let bounded = |args: &[&str]| code_and_stderr(bounded(args));
     let csv = dir.path().join("hour.csv");
     std::fs::write(
         &csv,

@@ -100,11 +100,7 @@ impl CostEstimate {
     /// The cost of evaluating `jobs`: per segment, its pieces, and the CPU time per piece
     /// over every test pose of the segment ([`per_evaluation`], on [`SAMPLE_PAIRS`] jobs
     /// spread over the segment's).
-    pub(crate) fn of_jobs(
-        evaluator: &Evaluator<'_>,
-        poses: &SegmentPoses,
-        jobs: &[PairJob],
-    ) -> CostEstimate {
+    fn of_jobs(evaluator: &Evaluator<'_>, poses: &SegmentPoses, jobs: &[PairJob]) -> CostEstimate {
         let segments = evaluator.setup().segment_count();
         let mut evaluations = Vec::with_capacity(segments);
         let mut sample = Vec::new();

@@ -128,7 +128,12 @@ impl<'d> MotionLookup<'d> {
 
     /// The answer for `pv` of intra-link segment `m` over its test poses. A zero-length PV
     /// holds; a PV the dictionary does not store (never after [`MotionLookup::new`]'s
-    /// coverage check) is undecided everywhere.
+    /// coverage check) is undecided everywhere — and so is one the file says fails at some
+    /// pose: a record forged (or stale) to fail would otherwise keep its piece out of every
+    /// chain and the answer longer than the truth, silently. The search decides only pieces
+    /// a chain within its bound could use, so these are the file's rejections a shorter chain
+    /// would need; what the file says holds is certified on every chain that takes it. So a
+    /// dictionary's answer is `solve --setup`'s whatever the file says.
     pub fn answer(&self, m: usize, pv: &Pv) -> LookupAnswer {
         let Some(segment) = self.segment(m) else {
             return LookupAnswer::Holds;
@@ -148,12 +153,8 @@ impl<'d> MotionLookup<'d> {
             match at_direction(record, rows, neighbours) {
                 DirectionAnswer::Holds => {}
                 DirectionAnswer::Undecided => undecided.push(pose),
-                DirectionAnswer::Fails { rejection, margins } => {
-                    return LookupAnswer::Fails {
-                        pose,
-                        rejection,
-                        margins,
-                    };
+                DirectionAnswer::Fails { .. } => {
+                    return LookupAnswer::Undecided((0..segment.neighbours.len()).collect());
                 }
             }
         }

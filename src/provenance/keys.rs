@@ -132,6 +132,11 @@ impl PublicKey {
         format!("{PUBLIC_TAG} {ALGORITHM} {} {}\n", self.hex(), self.name)
     }
 
+    /// Whether `other` is the same key, whatever either's name.
+    pub fn same_key(&self, other: &PublicKey) -> bool {
+        self.key == other.key
+    }
+
     /// The key in full: 64 hexadecimal digits.
     pub fn hex(&self) -> String {
         hex(self.key.as_bytes())
@@ -175,7 +180,7 @@ impl TrustedKeys {
             }
             let (bytes, name) = parse_line(content, PUBLIC_TAG).map_err(at)?;
             let key = PublicKey::from_bytes(bytes, name).map_err(at)?;
-            if let Some((first, _)) = keys.iter().find(|(_, k)| k.key == key.key) {
+            if let Some((first, _)) = keys.iter().find(|(_, k)| k.same_key(&key)) {
                 return Err(at(format!("the key of line {first} again")));
             }
             keys.push((line, key));

@@ -266,7 +266,7 @@ fn parse_entries(text: &str) -> Result<Vec<(usize, Entry)>, (usize, String)> {
         }
         let entry = Entry::parse(content).map_err(|p| (line, p))?;
         // `sign` replaces a key's line: a key signing twice is a file put together by hand.
-        if let Some((first, _)) = (lines.iter()).find(|(_, e)| e.key.hex() == entry.key.hex()) {
+        if let Some((first, _)) = (lines.iter()).find(|(_, e)| e.key.same_key(&entry.key)) {
             return Err((
                 line,
                 format!("a second signature by the key of line {first}: one line per signer"),

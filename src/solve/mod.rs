@@ -186,17 +186,8 @@ pub fn solve_cell_remembering(
     let lookup = dictionary
         .map(|d| MotionLookup::new(d, setup, &poses))
         .transpose()?;
-    // A piece the file says fails is solved all the same: a record forged (or stale) to fail
-    // would otherwise keep a piece out of every chain and the answer longer than the truth,
-    // silently. The lazy search decides only pieces a chain no longer than its bound could
-    // use, so these are the file's rejections a shorter chain would need; a piece it says
-    // holds is certified on every chain that takes it (`certify`). So the answer, the chains
-    // tried and the diagnosis are `--setup`'s whatever the file says.
-    let answer = |m: usize, pv: &Pv| match lookup.as_ref().map(|l| l.answer(m, pv)) {
-        Some(LookupAnswer::Fails { .. }) => {
-            LookupAnswer::Undecided((0..poses.poses[m].len()).collect())
-        }
-        Some(answer) => answer,
+    let answer = |m: usize, pv: &Pv| match &lookup {
+        Some(lookup) => lookup.answer(m, pv),
         None => LookupAnswer::Undecided(Vec::new()),
     };
     let intra_link: Option<&IntraLinkAnswer<'_>> = lookup.is_some().then_some(&answer);
