@@ -56,10 +56,10 @@ fn main() -> Result<(), Box<dyn Error>> {
     )?;
     for (direction, record) in dictionary.directions().iter().zip(margins) {
         match record.values() {
-            Some([clearance, stretch, bend]) => writeln!(
+            Some([clearance, stretch, bend, twist]) => writeln!(
                 out,
                 "  gravity {direction:.3?}: clearance {clearance:.1} mm, stretch {stretch:.4}, \
-                 curvature {bend:.2} 1/m"
+                 curvature {bend:.2} 1/m, twist {twist:.1} deg/m"
             )?,
             None => writeln!(out, "  gravity {direction:.3?}: not measured")?,
         }

@@ -65,8 +65,13 @@ pub struct CableSpec {
     pub bending_stiffness_n_m2: f64,
     /// Torsional stiffness `GJ` (N·m²).
     pub torsion_stiffness_n_m2: f64,
-    /// Smallest allowed bend radius (m).
+    /// Smallest bend radius of a fixed installation (m): what every piece must keep, the
+    /// datasheet's `min_bend_radius_fixed_mm` (or the single `min_bend_radius_mm` of older
+    /// files).
     pub min_bend_radius_m: f64,
+    /// What the datasheet states beyond the fixed bend radius: the flexing radius, the
+    /// torsion limit, a rated life and where the conductors lie. Each `None` when not stated.
+    pub datasheet: Datasheet,
     /// Length of one rigid sub-segment of the model, `l` (m): a discretization setting.
     pub sub_segment_pitch_m: f64,
     /// Axial stiffness `EA` of the model (N); see [`DEFAULT_AXIAL_STIFFNESS_N`].
@@ -191,7 +196,8 @@ impl CableSpec {
             diameter_m: file.positive("diameter_mm", &raw.diameter_mm)? * 1e-3,
             mass_per_length_kg_m: file
                 .positive("mass_per_length_kg_m", &raw.mass_per_length_kg_m)?,
-            min_bend_radius_m: file.positive("min_bend_radius_mm", &raw.min_bend_radius_mm)? * 1e-3,
+            min_bend_radius_m: file.fixed_bend_radius_mm(&raw)? * 1e-3,
+            datasheet: file.datasheet(&raw)?,
             sub_segment_pitch_m: pitch_m,
             axial_stiffness_n: match &raw.axial_stiffness_n {
                 Some(value) => file.positive("axial_stiffness_n", value)?,
@@ -220,7 +226,7 @@ impl CableSpec {
              mass_per_length_kg_m = {}\n\
              bending_stiffness_n_m2 = {}   # EI\n\
              torsion_stiffness_n_m2 = {}   # GJ\n\
-             min_bend_radius_mm = {}\n\
+             min_bend_radius_fixed_mm = {}\n\
              sub_segment_pitch_mm = {}     # discretization of the model\n",
             toml::Value::String(self.name.clone()),
             significant(self.diameter_m * 1e3),
@@ -230,7 +236,97 @@ impl CableSpec {
             significant(self.min_bend_radius_m * 1e3),
             significant(self.sub_segment_pitch_m * 1e3),
         ));
+        text.push_str(&self.datasheet.to_toml());
         text
+    }
+}
+
+/// The exponent `k` of a rated life extended to other amplitudes, `N = N_rated · (a /
+/// a_rated)^(−k)`, when the cable file's `[rated_life]` states none. See docs/physics.md,
+/// "Life": the value of flex-life tests of stranded copper conductors.
+pub const DEFAULT_LIFE_EXPONENT: f64 = 4.0;
+
+/// What a cable datasheet states besides the fixed bend radius; each `None` when the file
+/// does not say (nothing is invented: the summary says what is missing).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Datasheet {
+    /// Smallest bend radius in continuous flexing (m), ≥ the fixed one: what a piece whose
+    /// shape changes over the motion must keep.
+    pub min_bend_radius_flexing_m: Option<f64>,
+    /// Largest twist per length (deg/m, a magnitude: the datasheet's ±value).
+    pub torsion_limit_deg_per_m: Option<f64>,
+    /// The datasheet's rated life.
+    pub rated_life: Option<RatedLife>,
+    /// Distance of the outermost conductor's centre from the cable's axis (m): bending
+    /// strain is curvature times this.
+    pub conductor_offset_m: Option<f64>,
+}
+
+/// A datasheet's rated life: the cable lasted `cycles` flexing cycles from straight to
+/// `bend_radius_m` and back, twisted between ±`torsion_deg_per_m` in each.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RatedLife {
+    /// Cycles to failure at the rated point.
+    pub cycles: f64,
+    /// Bend radius of the rated flexing (m); `None`: the rating is for torsion alone.
+    pub bend_radius_m: Option<f64>,
+    /// Twist per length of the rated torsion, ± (deg/m); `None`: the rating is for bending
+    /// alone.
+    pub torsion_deg_per_m: Option<f64>,
+    /// The exponent `k` extending the rated point to other amplitudes (see
+    /// [`DEFAULT_LIFE_EXPONENT`]).
+    pub exponent: f64,
+    /// Whether the file stated the exponent (else [`DEFAULT_LIFE_EXPONENT`]).
+    pub exponent_stated: bool,
+}
+
+impl Datasheet {
+    /// The file lines of these values (empty for an empty datasheet): what
+    /// [`CableSpec::to_toml`] appends.
+    fn to_toml(&self) -> String {
+        let mut text = String::new();
+        let mm = |v: f64| significant(v * 1e3);
+        if let Some(r) = self.min_bend_radius_flexing_m {
+            text.push_str(&format!("min_bend_radius_flexing_mm = {}\n", mm(r)));
+        }
+        if let Some(t) = self.torsion_limit_deg_per_m {
+            text.push_str(&format!("torsion_limit_deg_per_m = {}\n", significant(t)));
+        }
+        if let Some(offset) = self.conductor_offset_m {
+            text.push_str(&format!("conductor_offset_mm = {}\n", mm(offset)));
+        }
+        if let Some(life) = &self.rated_life {
+            text.push_str(&format!(
+                "\n[rated_life]\ncycles = {}\n",
+                significant(life.cycles)
+            ));
+            if let Some(r) = life.bend_radius_m {
+                text.push_str(&format!("bend_radius_mm = {}\n", mm(r)));
+            }
+            if let Some(t) = life.torsion_deg_per_m {
+                text.push_str(&format!("torsion_deg_per_m = {}\n", significant(t)));
+            }
+            if life.exponent_stated {
+                text.push_str(&format!("exponent = {}\n", significant(life.exponent)));
+            }
+        }
+        text
+    }
+
+    /// What the datasheet leaves out that the checks would use, one phrase each (empty when
+    /// nothing is missing): for the summary.
+    pub fn missing(&self) -> Vec<&'static str> {
+        let mut missing = Vec::new();
+        if self.min_bend_radius_flexing_m.is_none() {
+            missing.push("no flexing bend radius (flexing pieces keep the fixed one)");
+        }
+        if self.torsion_limit_deg_per_m.is_none() {
+            missing.push("no torsion limit (twist reported, not limited)");
+        }
+        if self.rated_life.is_none() && self.conductor_offset_m.is_none() {
+            missing.push("neither a rated life nor the conductors' offset (no life predicted)");
+        }
+        missing
     }
 }
 
@@ -254,12 +350,27 @@ struct RawCable {
     torsion_stiffness_n_m2: Option<Spanned<f64>>,
     bending_stiffness_nm_per_rad: Option<Spanned<f64>>,
     torsion_stiffness_nm_per_rad: Option<Spanned<f64>>,
-    min_bend_radius_mm: Spanned<f64>,
+    min_bend_radius_mm: Option<Spanned<f64>>,
+    min_bend_radius_fixed_mm: Option<Spanned<f64>>,
+    min_bend_radius_flexing_mm: Option<Spanned<f64>>,
+    torsion_limit_deg_per_m: Option<Spanned<f64>>,
+    conductor_offset_mm: Option<Spanned<f64>>,
+    rated_life: Option<Spanned<RawRatedLife>>,
     sub_segment_pitch_mm: Option<Spanned<f64>>,
     axial_stiffness_n: Option<Spanned<f64>>,
     tool_end_allowance_mm: Option<Spanned<f64>>,
     base_end_allowance_mm: Option<Spanned<f64>>,
     part_number: Option<Spanned<String>>,
+}
+
+/// `[rated_life]`: the datasheet's rated point.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawRatedLife {
+    cycles: Spanned<f64>,
+    bend_radius_mm: Option<Spanned<f64>>,
+    torsion_deg_per_m: Option<Spanned<f64>>,
+    exponent: Option<Spanned<f64>>,
 }
 
 /// A cable file's text, for messages that name the line of a value.
@@ -292,6 +403,112 @@ impl FileValues<'_> {
                 SUB_SEGMENT_PITCH_RANGE_MM.end()
             ),
         ))
+    }
+
+    /// The fixed-installation bend radius (mm): `min_bend_radius_fixed_mm`, or the single
+    /// `min_bend_radius_mm` of files written before datasheets had two; exactly one.
+    fn fixed_bend_radius_mm(&self, raw: &RawCable) -> Result<f64, CableError> {
+        match (&raw.min_bend_radius_fixed_mm, &raw.min_bend_radius_mm) {
+            (Some(value), None) => self.positive("min_bend_radius_fixed_mm", value),
+            (None, Some(value)) => self.positive("min_bend_radius_mm", value),
+            (Some(_), Some(value)) => Err(self.error(
+                Some(line_of(self.text, value.span().start)),
+                "give either `min_bend_radius_fixed_mm` (with `min_bend_radius_flexing_mm` \
+                 for flexing) or the older single `min_bend_radius_mm`, not both"
+                    .into(),
+            )),
+            (None, None) => Err(self.error(
+                None,
+                "missing `min_bend_radius_fixed_mm` (the datasheet's bend radius for a fixed \
+                 installation, mm; files before datasheets had two: `min_bend_radius_mm`)"
+                    .into(),
+            )),
+        }
+    }
+
+    /// The datasheet values beyond the fixed radius, each checked: the flexing radius not
+    /// below the fixed one, the conductors inside the cable, a rated point that states a
+    /// radius or a torsion.
+    fn datasheet(&self, raw: &RawCable) -> Result<Datasheet, CableError> {
+        let optional = |key: &str, value: &Option<Spanned<f64>>| {
+            value.as_ref().map(|v| self.positive(key, v)).transpose()
+        };
+        let at = |value: &Spanned<f64>| Some(line_of(self.text, value.span().start));
+        let flexing = optional(
+            "min_bend_radius_flexing_mm",
+            &raw.min_bend_radius_flexing_mm,
+        )?;
+        let fixed = self.fixed_bend_radius_mm(raw)?;
+        if let (Some(flexing), Some(value)) = (flexing, &raw.min_bend_radius_flexing_mm)
+            && flexing < fixed
+        {
+            return Err(self.error(
+                at(value),
+                format!(
+                    "`min_bend_radius_flexing_mm` = {flexing} is below the fixed-installation \
+                     radius {fixed} mm: a cable that moves needs the larger radius"
+                ),
+            ));
+        }
+        let diameter = *raw.diameter_mm.get_ref();
+        let offset = optional("conductor_offset_mm", &raw.conductor_offset_mm)?;
+        if let (Some(offset), Some(value)) = (offset, &raw.conductor_offset_mm)
+            && offset >= 0.5 * diameter
+        {
+            return Err(self.error(
+                at(value),
+                format!(
+                    "`conductor_offset_mm` = {offset} is not inside the cable (its radius is \
+                     {} mm)",
+                    0.5 * diameter
+                ),
+            ));
+        }
+        let rated_life = match &raw.rated_life {
+            Some(life) => Some(self.rated_life(life.get_ref(), life.span().start)?),
+            None => None,
+        };
+        Ok(Datasheet {
+            min_bend_radius_flexing_m: flexing.map(|r| r * 1e-3),
+            torsion_limit_deg_per_m: optional(
+                "torsion_limit_deg_per_m",
+                &raw.torsion_limit_deg_per_m,
+            )?,
+            rated_life,
+            conductor_offset_m: offset.map(|o| o * 1e-3),
+        })
+    }
+
+    /// `[rated_life]`: at least one cycle, a radius or a torsion (or both), an exponent > 0.
+    fn rated_life(&self, raw: &RawRatedLife, start: usize) -> Result<RatedLife, CableError> {
+        let optional = |key: &str, value: &Option<Spanned<f64>>| {
+            value.as_ref().map(|v| self.positive(key, v)).transpose()
+        };
+        let cycles = self.positive("rated_life.cycles", &raw.cycles)?;
+        if cycles < 1.0 {
+            return Err(self.error(
+                Some(line_of(self.text, raw.cycles.span().start)),
+                format!("`rated_life.cycles` = {cycles}: a rated life is at least one cycle"),
+            ));
+        }
+        let bend_radius_mm = optional("rated_life.bend_radius_mm", &raw.bend_radius_mm)?;
+        let torsion = optional("rated_life.torsion_deg_per_m", &raw.torsion_deg_per_m)?;
+        if bend_radius_mm.is_none() && torsion.is_none() {
+            return Err(self.error(
+                Some(line_of(self.text, start)),
+                "`[rated_life]` states neither `bend_radius_mm` nor `torsion_deg_per_m`: the \
+                 cycles mean nothing without the conditions they were rated at"
+                    .into(),
+            ));
+        }
+        let exponent = optional("rated_life.exponent", &raw.exponent)?;
+        Ok(RatedLife {
+            cycles,
+            bend_radius_m: bend_radius_mm.map(|r| r * 1e-3),
+            torsion_deg_per_m: torsion,
+            exponent: exponent.unwrap_or(DEFAULT_LIFE_EXPONENT),
+            exponent_stated: exponent.is_some(),
+        })
     }
 
     /// The optional part number: one line of at most [`MAX_PART_NUMBER_CHARS`] characters.

@@ -263,3 +263,85 @@ fn a_part_number_is_one_short_line() {
         assert!(error.contains(&format!(":{lines}")), "{error}");
     }
 }
+
+/// A datasheet's limits: both bend radii, the torsion limit, the conductors' offset and a
+/// rated life read in SI units and written back by `to_toml`; a file with the single older
+/// radius keeps loading, that radius the fixed one and nothing else invented (the summary's
+/// list of what is missing says so); contradictions are refused naming the line and key.
+#[test]
+fn a_datasheet_states_two_radii_a_torsion_limit_and_a_rated_life() {
+    let sheet = GOOD.replace(
+        "min_bend_radius_mm = 48.0\n",
+        "min_bend_radius_fixed_mm = 32.0\nmin_bend_radius_flexing_mm = 80.0\n\
+         torsion_limit_deg_per_m = 360.0\nconductor_offset_mm = 2.5\n",
+    ) + "\n[rated_life]\ncycles = 5e6\nbend_radius_mm = 80.0\ntorsion_deg_per_m = 360.0\n";
+    let cable = parse(&sheet).unwrap();
+    assert!(close(cable.min_bend_radius_m, 0.032));
+    let d = &cable.datasheet;
+    assert!(close(d.min_bend_radius_flexing_m.unwrap(), 0.080));
+    assert_eq!(d.torsion_limit_deg_per_m, Some(360.0));
+    assert!(close(d.conductor_offset_m.unwrap(), 0.0025));
+    let life = d.rated_life.unwrap();
+    assert_eq!(life.cycles, 5e6);
+    assert!(close(life.bend_radius_m.unwrap(), 0.080));
+    assert_eq!(life.torsion_deg_per_m, Some(360.0));
+    assert!(!life.exponent_stated);
+    assert!(d.missing().is_empty(), "{:?}", d.missing());
+    assert_eq!(parse(&cable.to_toml("")).unwrap(), cable);
+
+    let older = parse(GOOD).unwrap();
+    assert!(close(older.min_bend_radius_m, 0.048));
+    assert_eq!(older.datasheet, Default::default());
+    assert_eq!(older.datasheet.missing().len(), 3);
+
+    let cases = [
+        (
+            sheet.replace(
+                "min_bend_radius_flexing_mm = 80.0",
+                "min_bend_radius_flexing_mm = 30.0",
+            ),
+            "c.toml:7",
+            "min_bend_radius_flexing_mm",
+        ),
+        (
+            sheet.replace("conductor_offset_mm = 2.5", "conductor_offset_mm = 4.0"),
+            "c.toml:9",
+            "conductor_offset_mm",
+        ),
+        (
+            sheet.replace(
+                "min_bend_radius_fixed_mm = 32.0\n",
+                "min_bend_radius_fixed_mm = 32.0\nmin_bend_radius_mm = 48.0\n",
+            ),
+            "c.toml:7",
+            "min_bend_radius_mm",
+        ),
+        (
+            sheet
+                .replace("bend_radius_mm = 80.0\n", "")
+                .replace("torsion_deg_per_m = 360.0\n", ""),
+            "c.toml:13",
+            "neither",
+        ),
+        (
+            sheet.replace("cycles = 5e6", "cycles = 0.5"),
+            "c.toml:14",
+            "rated_life.cycles",
+        ),
+        (
+            sheet.replace(
+                "torsion_limit_deg_per_m = 360.0",
+                "torsion_limit_deg_per_m = -1.0",
+            ),
+            "c.toml:8",
+            "torsion_limit_deg_per_m",
+        ),
+    ];
+    for (text, line, key) in cases {
+        let message = refusal(&text);
+        assert!(
+            message.contains(line) && message.contains(key),
+            "«{message}»"
+        );
+    }
+}

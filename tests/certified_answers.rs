@@ -69,7 +69,7 @@ fn a_dictionary_forged_to_pass_every_piece_yields_the_exact_path() {
     };
     let genuine = build(&setup, &options).unwrap_or_else(|e| panic!("{e}"));
     let mut forged = genuine.clone();
-    let pass = format::MarginRecord::quantize(Some([5.0, 0.01, 1.0]));
+    let pass = format::MarginRecord::quantize(Some([5.0, 0.01, 1.0, 100.0]));
     for row in forged
         .results
         .iter_mut()
@@ -146,7 +146,7 @@ fn a_dictionary_forged_to_fail_hides_no_path() {
     )
     .unwrap_or_else(|e| panic!("{e}"));
     let n = genuine.directions.len();
-    let fail = format::MarginRecord::quantize(Some([-5.0, 0.01, 1.0]));
+    let fail = format::MarginRecord::quantize(Some([-5.0, 0.01, 1.0, 100.0]));
     let measured: Vec<usize> = (0..genuine.pvs.len())
         .filter(|&k| {
             genuine.results[k * n..(k + 1) * n]

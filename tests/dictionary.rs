@@ -204,18 +204,25 @@ fn interpolation_uses_the_nearest_directions_and_stays_in_their_range() {
         let total: f64 = neighbours.weights.iter().sum();
         assert!((total - 1.0).abs() < 1e-12);
         let constant = neighbours
-            .interpolate(|_| Some([2.5, -1.0, 0.25]))
+            .interpolate(|_| Some([2.5, -1.0, 0.25, 30.0]))
             .expect("values");
         assert!(
             constant
                 .mean
                 .iter()
-                .zip([2.5, -1.0, 0.25])
+                .zip([2.5, -1.0, 0.25, 30.0])
                 .all(|(a, b)| (a - b).abs() < 1e-12)
         );
-        let value = |k: usize| Some([k as f64, (k * k) as f64, -(k as f64)]);
+        let value = |k: usize| {
+            Some([
+                k as f64,
+                (k * k) as f64,
+                -(k as f64),
+                1.0 / (1.0 + k as f64),
+            ])
+        };
         let interpolated = neighbours.interpolate(value).expect("values");
-        for c in 0..3 {
+        for c in 0..4 {
             let values: Vec<f64> = neighbours
                 .indices
                 .iter()

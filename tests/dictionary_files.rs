@@ -165,28 +165,28 @@ fn a_wrong_magic_is_not_a_dictionary() {
 fn a_future_old_or_unknown_version_is_refused_as_such() {
     let bytes = whole().1.to_bytes().expect("encodes");
     let dir = tempfile::tempdir().expect("temp dir");
-    for version in [4u32, 2, 1, 0] {
+    for version in [5u32, 3, 2, 1, 0] {
         let mut altered = bytes.clone();
         altered[8..12].copy_from_slice(&version.to_le_bytes());
         let path = write(dir.path(), &format!("v{version}.cdict"), &altered);
         let error = open_error(&path);
         match version {
-            4 => {
+            5 => {
                 assert!(
                     matches!(
                         error.problem,
                         Problem::FutureVersion {
-                            found: 4,
-                            supported: 3
+                            found: 5,
+                            supported: 4
                         }
                     ),
                     "{error}"
                 );
                 assert_names(&error, &path, "newer");
             }
-            // Versions 1 (verdicts) and 2 (one block per segment) are refused with the
-            // command that rebuilds them.
-            1 | 2 => {
+            // Versions 1 (verdicts), 2 (one block per segment) and 3 (no twist margin) are
+            // refused with the command that rebuilds them.
+            1..=3 => {
                 assert!(
                     matches!(error.problem, Problem::OldVersion { found } if found == version),
                     "{error}"
@@ -199,7 +199,7 @@ fn a_future_old_or_unknown_version_is_refused_as_such() {
                         error.problem,
                         Problem::UnknownVersion {
                             found: 0,
-                            supported: 3
+                            supported: 4
                         }
                     ),
                     "{error}"
@@ -647,7 +647,7 @@ fn resealed_headers_that_would_change_answers_are_refused_by_verify() {
         ),
         (
             "an error bound lowered",
-            forged(|b| b.header.links[0].margin_error = [0.0; 3]),
+            forged(|b| b.header.links[0].margin_error = [0.0; 4]),
             "error bounds",
         ),
         (
@@ -788,7 +788,7 @@ fn recomputation_catches_forged_margins_and_an_altered_setup() {
     let (setup, built) = whole();
     let k = a_failing_piece(built);
     let n = built.directions.len();
-    let pass = format::MarginRecord::quantize(Some([5.0, 0.01, 1.0]));
+    let pass = format::MarginRecord::quantize(Some([5.0, 0.01, 1.0, 100.0]));
     let margins = forged(|b| {
         b.results[k * n..(k + 1) * n].fill(pass);
         // A careful forger also sets the flags and counts the forged margins imply.
@@ -878,7 +878,7 @@ fn resealed_flags_that_contradict_the_setup_or_the_margins_are_refused_by_verify
             r.has(PvRecord::ADMISSIBLE)
                 && !r.has(PvRecord::D1_ALL)
                 && r.sub_segments > 0
-                && r.error_factor == [0; 3]
+                && r.error_factor == [0; 4]
                 && built.results[k * n..(k + 1) * n]
                     .iter()
                     .any(|row| row.values().is_some())
@@ -909,7 +909,7 @@ fn resealed_flags_that_contradict_the_setup_or_the_margins_are_refused_by_verify
             "TOO_SHORT",
             forged(|b| {
                 b.pvs[measured].flags |= PvRecord::TOO_SHORT;
-                b.pvs[measured].error_factor = [0; 3];
+                b.pvs[measured].error_factor = [0; 4];
                 b.results[measured * n..(measured + 1) * n].fill(format::MarginRecord::UNMEASURED);
             }),
         ),

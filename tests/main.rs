@@ -20,6 +20,7 @@ mod chain;
 mod cli;
 mod connected_geometry;
 mod contact;
+mod datasheet_limits;
 mod design_space;
 mod diagnosis;
 mod dictionary;

@@ -444,6 +444,9 @@ fn thresholds(clearance_mm: f64) -> Thresholds {
         min_bend_radius_source: BendRadiusSource::Setup,
         clamp_zone_m: 0.02,
         static_bend_margin_m: 0.0,
+        cable_flexing_bend_radius_m: None,
+        torsion_limit_deg_per_m: None,
+        flexing_curvature_change_per_m: 1.0,
     }
 }
 
@@ -477,6 +480,7 @@ fn stress_report(points: usize) -> MotionTestReport {
         first_violation: None,
         worst_clearance: worst(CLEARANCE_MIN_MM * 1e-3, "m", CLEARANCE_MIN_T, 2),
         worst_stretch: worst(1.01, "1", 1.5, 0),
+        worst_twist: None,
         worst_bend: worst(0.05, "m", 2.0, 1),
         worst_contact_force: None,
         worst_self_clearance: None,

@@ -120,7 +120,7 @@ fn a_spent_budget_names_its_closest_miss_its_placements_and_the_chain_left() {
     let miss = |v: &Violation| v.threshold - v.value;
     let (k, v) = (violations.iter().enumerate())
         .filter_map(|(k, v)| Some((k, v.as_ref()?)))
-        .filter(|(_, v)| matches!(v.constraint, Constraint::BendRadius | Constraint::Contact))
+        .filter(|(_, v)| v.missed_by_m().is_some())
         .min_by(|a, b| miss(a.1).total_cmp(&miss(b.1)))
         .expect("a bend-radius or clearance failure among the paths tried");
     let closest = unsolved.closest.as_ref().expect("a closest miss");

@@ -72,7 +72,7 @@ impl Evaluator<'_> {
         }
         match solved {
             Ok(solved) => {
-                let check = self.judge(m, &guides.0, &guides.1, &solved.nodes, length, scene);
+                let check = self.judge(m, guides, &solved, scene);
                 earlier.insert(0, solved);
                 earlier.truncate(EXTRAPOLATION_POINTS);
                 check

@@ -10,6 +10,7 @@ use crate::statics::{RodParameters, SolverOptions, StaticSolver};
 use crate::stress::contact::{
     ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
 };
+use crate::stress::{CurvatureRange, curvatures_per_m};
 use nalgebra::{Point3, Vector3};
 use serde::Serialize;
 use std::borrow::Borrow;
@@ -178,6 +179,7 @@ impl<'a> Evaluator<'a> {
             self.setup
                 .clamp_poses(link_poses, m, pv.sub_segments, (pv.start, pv.end));
         self.equilibrium(m, &start, &end, pv.sub_segments, self.rod.gravity_m_s2)
+            .map(|solved| solved.nodes)
             .map_err(|check| check.detail.unwrap_or_else(|| "no equilibrium".into()))
     }
 
@@ -188,11 +190,10 @@ impl<'a> Evaluator<'a> {
         let (start, end) =
             self.setup
                 .clamp_poses(scene.link_poses, m, pv.sub_segments, (pv.start, pv.end));
-        let nodes = match self.equilibrium(m, &start, &end, pv.sub_segments, scene.gravity_m_s2) {
-            Ok(nodes) => nodes,
-            Err(check) => return check,
-        };
-        self.judge(m, &start, &end, &nodes, pv.sub_segments, scene)
+        match self.equilibrium(m, &start, &end, pv.sub_segments, scene.gravity_m_s2) {
+            Ok(solved) => self.judge(m, &(start, end), &solved, scene),
+            Err(check) => check,
+        }
     }
 
     /// How each length of `lengths` (sorted, > 0) fails (its [`Miss`]; `None`: it holds) at
@@ -270,7 +271,9 @@ impl<'a> Evaluator<'a> {
 
     /// The first pose of `poses` (in their order) where PV `pv` of segment `m` violates a
     /// limit, with its check (`None` when it holds them all), and the least bend radius and
-    /// clearance met on the way. With `stop_below`, it stops as soon as a least value is
+    /// clearance met on the way. A piece whose curvature changes somewhere by more than the
+    /// setup's flexing amount over the poses must keep the flexing bend radius: when it does
+    /// not, it fails at the pose of its tightest bend. With `stop_below`, it stops as soon as a least value is
     /// below that one's (the least can only fall further: the caller's verdict is known). Each pose's equilibrium starts
     /// from the previous poses', carried along by the guides' motion and extrapolated
     /// ([`follow_guides_extrapolated`](crate::statics::continuation::follow_guides_extrapolated)):
@@ -300,6 +303,10 @@ impl<'a> Evaluator<'a> {
         let turn = self
             .setup
             .end_clamp_turn(m, pv.sub_segments, (pv.start, pv.end));
+        let mut flex = CurvatureRange::default();
+        let mut tightest: Option<(&TestPose, Check)> = None;
+        let pitch = self.setup.cable.sub_segment_pitch_m;
+        let axis = |pose: &Pose| pose.rotation * Vector3::z();
         for pose in poses {
             let (scene, declared) = self.at_pose(m, (pv.start, pv.end), pose);
             let guides = (declared.0, declared.1 * turn);
@@ -307,14 +314,13 @@ impl<'a> Evaluator<'a> {
             let check =
                 match self.solve_warm(&mut solver, m, &guides, pv.sub_segments, &scene, warm) {
                     Ok(solved) => {
-                        let check = self.judge(
-                            m,
-                            &guides.0,
-                            &guides.1,
+                        let check = self.judge(m, &guides, &solved, &scene);
+                        flex.take(&curvatures_per_m(
                             &solved.nodes,
-                            pv.sub_segments,
-                            &scene,
-                        );
+                            &axis(&guides.0),
+                            &axis(&guides.1),
+                            pitch,
+                        ));
                         earlier.insert(0, (solved, guides));
                         earlier.truncate(2);
                         check
@@ -325,6 +331,13 @@ impl<'a> Evaluator<'a> {
                     }
                 };
             if let Some(metrics) = &check.metrics {
+                let radius = |c: &Check| c.metrics.map_or(f64::INFINITY, |m| m.min_bend_radius_m);
+                if tightest
+                    .as_ref()
+                    .is_none_or(|(_, t)| metrics.min_bend_radius_m < radius(t))
+                {
+                    tightest = Some((pose, check.clone()));
+                }
                 swept.least.take(metrics);
             }
             if !check.passed() {
@@ -336,7 +349,33 @@ impl<'a> Evaluator<'a> {
                 return swept;
             }
         }
+        swept.failure = tightest.and_then(|(pose, check)| {
+            let flexing = self.flexing_failure(&flex, check)?;
+            Some((pose, flexing))
+        });
         swept
+    }
+
+    /// The failure of a piece that flexes over a sweep (`flex`) with its tightest static
+    /// shape `tightest` below the flexing bend radius; `None` when it does not flex or keeps
+    /// that radius.
+    fn flexing_failure(&self, flex: &CurvatureRange, tightest: Check) -> Option<Check> {
+        let limits = &self.setup.thresholds;
+        let (change, node) = flex.largest_change();
+        let metrics = tightest.metrics?;
+        let limit = limits.bend_radius_for(true, true);
+        if change <= limits.flexing_curvature_change_per_m || metrics.min_bend_radius_m >= limit {
+            return None;
+        }
+        let detail = format!(
+            "bend radius {:.1} mm at node {} of a flexing piece (its curvature changes by \
+             {change:.1} 1/m at node {node}; flexing limit {:.1} mm{})",
+            metrics.min_bend_radius_m * 1e3,
+            metrics.min_bend_node,
+            limit * 1e3,
+            super::verdict::static_margin_note(limits)
+        );
+        Some(Check::fail(Rejection::Bend, detail, Some(metrics)))
     }
 
     /// The distance between the clamps of configurations `pair` of segment `m` at `pose`
@@ -364,7 +403,7 @@ impl<'a> Evaluator<'a> {
         (scene, guides)
     }
 
-    /// Equilibrium nodes between two guide poses, or the failed check.
+    /// The equilibrium between two guide poses, or the failed check.
     fn equilibrium(
         &self,
         m: usize,
@@ -372,7 +411,7 @@ impl<'a> Evaluator<'a> {
         end: &Pose,
         sub_segments: usize,
         gravity_m_s2: Vector3<f64>,
-    ) -> Result<Vec<Point3<f64>>, Check> {
+    ) -> Result<Solved, Check> {
         let scene = Scene {
             link_poses: &[],
             gravity_m_s2,
@@ -387,20 +426,18 @@ impl<'a> Evaluator<'a> {
             &scene,
             Warm::Length(&[]),
         )
-        .map(|solved| solved.nodes)
     }
 
-    /// The three metrics of an equilibrium shape against the thresholds.
+    /// The metrics of an equilibrium `solved` between `(start, end)` against the limits.
     pub(super) fn judge(
         &self,
         m: usize,
-        start: &Pose,
-        end: &Pose,
-        nodes: &[Point3<f64>],
-        sub_segments: usize,
+        (start, end): &(Pose, Pose),
+        solved: &Solved,
         scene: &Scene<'_>,
     ) -> Check {
         let setup = self.setup;
+        let nodes = &solved.nodes;
         let (a, b) = setup.segment_guides(m);
         let zones = [
             setup.clamp_zone(GuideEnd::Start, setup.guides[a].link),
@@ -422,7 +459,6 @@ impl<'a> Evaluator<'a> {
             Ok(clearance) => clearance,
             Err(e) => return Check::fail(Rejection::Diverged, e.to_string(), None),
         };
-        debug_assert_eq!(nodes.len(), sub_segments + 1);
         // The stored margin is the lower of the clearances to the robot and to itself: an
         // approach to itself farther than the robot's clearance changes nothing.
         let limit = setup.thresholds.contact_clearance_m;
@@ -435,6 +471,7 @@ impl<'a> Evaluator<'a> {
             (start, end),
             clearance.as_ref(),
             within,
+            solved.twist_rad,
         );
         verdict(setup, metrics)
     }

@@ -22,7 +22,7 @@ pub enum LookupAnswer {
         /// The limit.
         rejection: Rejection,
         /// The looked-up margins, when there are any (not for a cable too short).
-        margins: Option<[f64; 3]>,
+        margins: Option<super::MarginValues>,
     },
     /// The lookup cannot decide at these test poses (indices, ascending): solve them.
     Undecided(Vec<usize>),

@@ -58,4 +58,4 @@ pub use sets::{
     needed_pvs, robust_neighbours,
 };
 pub use sweep::{MotionSweep, SweepFailure};
-pub use verdict::{Check, Margins, Metrics, Miss, Rejection};
+pub use verdict::{Check, MARGIN_COUNT, MarginValues, Margins, Metrics, Miss, Rejection};

@@ -6,12 +6,18 @@ use crate::geometry::ConnectError;
 use crate::pose::Pose;
 use crate::setup::{Setup, Thresholds};
 use crate::stress::contact::Clearance;
-use crate::stress::{min_bend_radius, self_contact_within, stretch};
+use crate::stress::{min_bend_radius, self_contact_within, stretch, twist_per_length_deg_per_m};
 use nalgebra::{Point3, Vector3};
 use serde::Serialize;
 
+/// How many margins a verdict has: clearance, stretch, curvature and twist.
+pub const MARGIN_COUNT: usize = 4;
+
+/// The margins of one piece at one pose, in the order of [`Margins::to_array`].
+pub type MarginValues = [f64; MARGIN_COUNT];
+
 /// The stress limit a PV violates first (in the order contact, self-contact, stretch,
-/// bend), or why it could not be evaluated.
+/// bend, twist), or why it could not be evaluated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Rejection {
@@ -27,17 +33,20 @@ pub enum Rejection {
     Stretch,
     /// Bend radius below the minimum.
     Bend,
+    /// Twist per length above the cable's torsion limit.
+    Twist,
 }
 
 impl Rejection {
     /// Every kind, in report order.
-    pub const ALL: [Rejection; 6] = [
+    pub const ALL: [Rejection; 7] = [
         Rejection::TooShort,
         Rejection::Diverged,
         Rejection::Contact,
         Rejection::SelfContact,
         Rejection::Stretch,
         Rejection::Bend,
+        Rejection::Twist,
     ];
 
     /// Short name for people.
@@ -49,6 +58,7 @@ impl Rejection {
             Rejection::SelfContact => "touches itself",
             Rejection::Stretch => "stretch",
             Rejection::Bend => "bend radius",
+            Rejection::Twist => "twist",
         }
     }
 }
@@ -61,11 +71,12 @@ pub struct Miss {
     pub rejection: Rejection,
     /// How far past the limit, relative to it: contact (with the robot or itself), the
     /// clearance deficit over the cable's diameter; stretch (and a cable too short for its clamps), the excess stretch
-    /// over the allowed excess; bend, the radius deficit over the minimum radius. Infinite
+    /// over the allowed excess; bend, the radius deficit over the minimum radius; twist, the
+    /// excess twist per length over the limit. Infinite
     /// when nothing was measured (a failed solve, a verdict read from a dictionary).
     pub severity: f64,
-    /// The measured value: clearance to the robot or to itself (m), stretch ratio, or bend
-    /// radius (m); NaN when not measured.
+    /// The measured value: clearance to the robot or to itself (m), stretch ratio, bend
+    /// radius (m), or twist per length (deg/m, magnitude); NaN when not measured.
     pub value: f64,
     /// Index of the test pose where it failed first (in the order the poses were tried:
     /// the lazy search tries the poses that rejected most pieces first).
@@ -87,12 +98,12 @@ impl Miss {
     }
 
     /// The miss of a limit a lookup found violated at test pose `pose`, from the looked-up
-    /// margins `[clearance mm, stretch, curvature 1/m]` (unmeasured without them). The
-    /// place on the cable is not known.
+    /// margins `[clearance mm, stretch, curvature 1/m, twist deg/m]` (unmeasured without
+    /// them). The place on the cable is not known.
     pub fn looked_up(
         setup: &Setup,
         rejection: Rejection,
-        margins: Option<[f64; 3]>,
+        margins: Option<MarginValues>,
         pose: usize,
     ) -> Miss {
         let limits = &setup.thresholds;
@@ -100,7 +111,7 @@ impl Miss {
             pose,
             ..Miss::unmeasured(rejection)
         };
-        let Some([clearance_mm, stretch, curvature]) = margins else {
+        let Some([clearance_mm, stretch, curvature, twist]) = margins else {
             return unmeasured;
         };
         let (severity, value) = match rejection {
@@ -120,6 +131,10 @@ impl Miss {
                 let radius = 1.0 / (1.0 / limit - curvature);
                 ((limit - radius) / limit, radius)
             }
+            Rejection::Twist => match limits.torsion_limit_deg_per_m {
+                Some(limit) => ((-twist) / limit, limit - twist),
+                None => return unmeasured,
+            },
             // A looked-up clearance margin is the lower of the two clearances.
             Rejection::TooShort | Rejection::Diverged | Rejection::SelfContact => {
                 return unmeasured;
@@ -167,7 +182,7 @@ impl Miss {
                 let deficit = limits.contact_clearance_m - clearance;
                 let at = m
                     .clearance_sub_segment
-                    .map_or(f64::NAN, |k| (k as f64 + 0.5) * pitch);
+                    .map_or(f64::NAN, |k| (f64::from(k) + 0.5) * pitch);
                 measured(deficit / setup.cable.diameter_m, clearance, at)
             }
             (Rejection::SelfContact, Some(m)) => {
@@ -185,6 +200,11 @@ impl Miss {
                     at,
                 )
             }
+            (Rejection::Twist, Some(m)) => {
+                let limit = limits.torsion_limit_deg_per_m.unwrap_or(f64::INFINITY);
+                let twist = m.twist_deg_per_m.abs();
+                measured((twist - limit) / limit, twist, f64::NAN)
+            }
             _ => Miss {
                 pose,
                 ..Miss::unmeasured(rejection)
@@ -199,10 +219,10 @@ pub struct Metrics {
     /// Lowest signed clearance to the robot (m), clamp zones excluded; `None` when nothing
     /// was checked.
     pub clearance_m: Option<f64>,
-    /// Link of the lowest clearance (index into `robot.links`).
-    pub clearance_link: Option<usize>,
+    /// Link of the lowest clearance (index into `robot.links`; u32 keeps `Check` small).
+    pub clearance_link: Option<u32>,
     /// Sub-segment of the lowest clearance.
-    pub clearance_sub_segment: Option<usize>,
+    pub clearance_sub_segment: Option<u32>,
     /// The cable's clearance to itself (m, [`crate::stress::self_contact`]); infinite when no
     /// part of the piece comes back toward another closer than it was asked to look
     /// (`self_within_m` of [`Metrics::of_shape`]).
@@ -215,6 +235,10 @@ pub struct Metrics {
     pub min_bend_radius_m: f64,
     /// Node of the smallest bend radius (0 = start guide).
     pub min_bend_node: usize,
+    /// Twist per length (deg/m, signed: right-handed about the cable toward the tool),
+    /// relative to the cable as installed; uniform along the piece. 0 where the model has
+    /// no twist (the rapier baseline).
+    pub twist_deg_per_m: f64,
 }
 
 impl Metrics {
@@ -222,14 +246,15 @@ impl Metrics {
     /// and `end` (their +z the cable direction), with its lowest clearance to the robot
     /// (`None` when nothing was checked); approaches of the cable to itself are looked for
     /// where its centreline comes closer than `self_within_m` (touching is always found: pass
-    /// at least the diameter). The one measure of a shape for every caller: the attachment
-    /// test and `cable-dict segment`.
+    /// at least the diameter); `twist_rad` is its total twist between the clamps. The one
+    /// measure of a shape for every caller: the attachment test and `cable-dict segment`.
     pub fn of_shape(
         cable: &CableSpec,
         nodes: &[Point3<f64>],
         (start, end): (&Pose, &Pose),
         clearance: Option<&Clearance>,
         self_within_m: f64,
+        twist_rad: f64,
     ) -> Metrics {
         let pitch = cable.sub_segment_pitch_m;
         let z = |pose: &Pose| pose.rotation.transform_vector(&Vector3::z());
@@ -239,8 +264,9 @@ impl Metrics {
         let sub_segments = nodes.len().saturating_sub(1);
         Metrics {
             clearance_m: clearance.map(|c| c.clearance_m),
-            clearance_link: clearance.map(|c| c.link),
-            clearance_sub_segment: clearance.map(|c| c.sub_segment),
+            // Link and sub-segment indices are bounded by the robot and the segment lengths.
+            clearance_link: clearance.map(|c| c.link as u32),
+            clearance_sub_segment: clearance.map(|c| c.sub_segment as u32),
             self_clearance_m: itself.map_or(f64::INFINITY, |c| c.clearance_m),
             // Sub-segment indices are bounded by the setup's segment lengths (u32 keeps
             // `Check` small: it is returned by value in every solve).
@@ -248,6 +274,7 @@ impl Metrics {
             stretch: stretch(nodes, sub_segments as f64 * pitch),
             min_bend_radius_m: bend.radius_m,
             min_bend_node: bend.node,
+            twist_deg_per_m: twist_per_length_deg_per_m(twist_rad, sub_segments as f64 * pitch),
         }
     }
 }
@@ -265,6 +292,8 @@ pub struct Margins {
     /// 1/(minimum bend radius) − 1/(bend radius) (1/m): curvature, so that a straight cable
     /// has a finite margin and the value changes smoothly with the shape.
     pub curvature_per_m: f64,
+    /// Torsion limit − |twist per length| (deg/m); infinite when the cable states no limit.
+    pub twist_deg_per_m: f64,
 }
 
 impl Margins {
@@ -278,19 +307,30 @@ impl Margins {
             stretch: limits.stretch - metrics.stretch,
             curvature_per_m: 1.0 / limits.static_min_bend_radius_m()
                 - 1.0 / metrics.min_bend_radius_m,
+            twist_deg_per_m: limits.twist_margin_deg_per_m(metrics.twist_deg_per_m),
         }
     }
 
-    /// `[clearance_mm, stretch, curvature_per_m]`.
-    pub fn to_array(self) -> [f64; 3] {
-        [self.clearance_mm, self.stretch, self.curvature_per_m]
+    /// `[clearance_mm, stretch, curvature_per_m, twist_deg_per_m]`.
+    pub fn to_array(self) -> MarginValues {
+        [
+            self.clearance_mm,
+            self.stretch,
+            self.curvature_per_m,
+            self.twist_deg_per_m,
+        ]
     }
 
-    /// The limit `[clearance, stretch, curvature]` margins violate first, in the order of
-    /// [`Evaluator::check`](super::Evaluator::check) (contact, stretch, bend); `None` when all
-    /// are non-negative.
-    pub fn first_violation(margins: [f64; 3]) -> Option<Rejection> {
-        let kinds = [Rejection::Contact, Rejection::Stretch, Rejection::Bend];
+    /// The limit `[clearance, stretch, curvature, twist]` margins violate first, in the
+    /// order of [`Evaluator::check`](super::Evaluator::check) (contact, stretch, bend,
+    /// twist); `None` when all are non-negative.
+    pub fn first_violation(margins: MarginValues) -> Option<Rejection> {
+        let kinds = [
+            Rejection::Contact,
+            Rejection::Stretch,
+            Rejection::Bend,
+            Rejection::Twist,
+        ];
         kinds
             .into_iter()
             .zip(margins)
@@ -333,7 +373,8 @@ impl Check {
     }
 }
 
-/// The first limit `metrics` violates, in the order contact, self-contact, stretch, bend.
+/// The first limit `metrics` violates, in the order contact, self-contact, stretch, bend,
+/// twist.
 pub(super) fn verdict(setup: &Setup, metrics: Metrics) -> Check {
     let limits = &setup.thresholds;
     if let (Some(clearance), Some(link)) = (metrics.clearance_m, metrics.clearance_link)
@@ -342,7 +383,7 @@ pub(super) fn verdict(setup: &Setup, metrics: Metrics) -> Check {
         let detail = format!(
             "clearance {:.1} mm to {} (limit {:.1} mm)",
             clearance * 1e3,
-            setup.robot.links[link].name,
+            setup.robot.links[link as usize].name,
             limits.contact_clearance_m * 1e3
         );
         return Check::fail(Rejection::Contact, detail, Some(metrics));
@@ -371,11 +412,20 @@ pub(super) fn verdict(setup: &Setup, metrics: Metrics) -> Check {
         );
         return Check::fail(Rejection::Bend, detail, Some(metrics));
     }
+    if let Some(limit) = limits.torsion_limit_deg_per_m
+        && metrics.twist_deg_per_m.abs() > limit
+    {
+        let detail = format!(
+            "twist {:.0}°/m (limit ±{limit:.0}°/m)",
+            metrics.twist_deg_per_m
+        );
+        return Check::fail(Rejection::Twist, detail, Some(metrics));
+    }
     Check::pass(Some(metrics))
 }
 
 /// " incl. a 4.0 mm static margin" when the setup asks for one.
-fn static_margin_note(limits: &Thresholds) -> String {
+pub(super) fn static_margin_note(limits: &Thresholds) -> String {
     if limits.static_bend_margin_m > 0.0 {
         format!(
             " incl. a {:.1} mm static margin",
@@ -440,6 +490,7 @@ mod tests {
             stretch,
             min_bend_radius_m: 1.0,
             min_bend_node: 4,
+            twist_deg_per_m: 0.0,
         };
         let through = verdict(&setup, metrics(-0.002, 1.5));
         assert_eq!(through.rejection, Some(Rejection::SelfContact));

@@ -101,6 +101,7 @@ pub fn run(args: Args) -> Result<(), Failure> {
         bending_stiffness_n_m2: ei,
         torsion_stiffness_n_m2: gj,
         min_bend_radius_m: args.min_bend_radius_mm * 1e-3,
+        datasheet: Default::default(),
         sub_segment_pitch_m: DEFAULT_SUB_SEGMENT_PITCH_M,
         axial_stiffness_n: DEFAULT_AXIAL_STIFFNESS_N,
         tool_end_allowance_m: None,

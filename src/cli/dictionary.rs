@@ -350,7 +350,7 @@ mod tests {
             candidates: 12_345,
             d1_all: 7,
             d2_all: 0,
-            margin_error: [15.9375; 3],
+            margin_error: [15.9375; 4],
             undecided_share: Some(0.017),
         }
     }

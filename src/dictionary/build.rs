@@ -23,7 +23,7 @@ use super::error::Problem;
 use super::format::{
     ERROR_SAFETY, HEADER_LIMIT, Header, MARGIN_UNITS, MarginRecord, PvRecord, ShardRange, encode,
 };
-use crate::attachment::{ConnectMethod, Evaluator, Margins, Rejection};
+use crate::attachment::{ConnectMethod, Evaluator, MARGIN_COUNT, MarginValues, Margins, Rejection};
 use crate::progress;
 use crate::setup::{Robustness, Setup};
 use nalgebra::Vector3;
@@ -168,13 +168,13 @@ impl DirectionSample {
 
 /// The largest sign-flipping interpolation error per unit of neighbour spread, per margin.
 #[derive(Default)]
-struct ErrorRatio([f64; 3]);
+struct ErrorRatio(MarginValues);
 
 impl ErrorRatio {
     /// Adds the comparison of `interpolated` with the `exact` margins (clamped to the stored
     /// range): only an error that flips a margin's sign can flip a verdict.
-    fn add(&mut self, interpolated: &Interpolated, exact: &[f64; 3]) {
-        for k in 0..3 {
+    fn add(&mut self, interpolated: &Interpolated, exact: &MarginValues) {
+        for k in 0..MARGIN_COUNT {
             let range = f64::from(i16::MAX) * MARGIN_UNITS[k];
             let exact = exact[k].clamp(-range, range);
             let mean = interpolated.mean[k];
@@ -186,12 +186,12 @@ impl ErrorRatio {
         }
     }
 
-    /// The stored factor: [`ERROR_SAFETY`] × the largest ratio of the three, in sixteenths,
-    /// for all three margins: a piece that changes branch moves its whole shape, so an
+    /// The stored factor: [`ERROR_SAFETY`] × the largest ratio of the margins, in
+    /// sixteenths, for all of them: a piece that changes branch moves its whole shape, so an
     /// irregular margin makes the others suspect too.
-    fn factor(&self) -> [u8; 3] {
+    fn factor(&self) -> [u8; MARGIN_COUNT] {
         let worst = self.0.iter().fold(0.0f64, |a, &b| a.max(b));
-        [PvRecord::quantize_factor(ERROR_SAFETY * worst); 3]
+        [PvRecord::quantize_factor(ERROR_SAFETY * worst); MARGIN_COUNT]
     }
 }
 
@@ -237,7 +237,7 @@ struct SolvedPair<'p> {
 /// error factor.
 pub(super) struct Piece {
     pub rows: Option<Vec<MarginRecord>>,
-    pub error_factor: [u8; 3],
+    pub error_factor: [u8; MARGIN_COUNT],
 }
 
 /// Every admissible length of `pair` under every stored direction, then at the probes; each
@@ -288,7 +288,7 @@ pub(super) fn solve_lengths(
     let m = 0;
     let limits = &evaluator.setup().thresholds;
     let sub_segments: Vec<usize> = lengths.iter().map(|&(_, s)| s).collect();
-    let margins_at = |d: &[f64; 3]| -> Vec<Result<[f64; 3], Rejection>> {
+    let margins_at = |d: &[f64; 3]| -> Vec<Result<MarginValues, Rejection>> {
         let down = Vector3::from(*d);
         let metrics = evaluator.link_frame_metrics(m, (pair.start, pair.end), &sub_segments, &down);
         metrics
@@ -331,7 +331,11 @@ pub(super) fn solve_lengths(
         .map(|((((g, _), rows), short), ratio)| {
             let piece = Piece {
                 rows: (!short).then_some(rows),
-                error_factor: if short { [0; 3] } else { ratio.factor() },
+                error_factor: if short {
+                    [0; MARGIN_COUNT]
+                } else {
+                    ratio.factor()
+                },
             };
             (*g, piece)
         })

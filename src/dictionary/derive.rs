@@ -12,7 +12,7 @@ use super::format::{
     ClampEntry, DirectionParameters, EmbeddedSetup, Header, LinkEntry, MarginRecord,
     PHYSICS_VERSION, PvRecord, ShardRange, SolverParameters,
 };
-use crate::attachment::{needed_pvs, robust_neighbours};
+use crate::attachment::{MARGIN_COUNT, needed_pvs, robust_neighbours};
 use crate::geometry::reaches;
 use crate::path::Pv;
 use crate::setup::{Robustness, Setup};
@@ -76,7 +76,7 @@ pub(super) fn header(
             first_pv,
             d1_all: 0,
             d2_all: 0,
-            margin_error: [0.0; 3],
+            margin_error: [0.0; MARGIN_COUNT],
         };
         first_pv += entry.pv_count();
         links.push(entry);
@@ -220,8 +220,7 @@ pub(super) fn pv_record(catalogues: &[LinkCatalogue], header: &Header, g: u64) -
         link: slot as u16,
         flags: if admissible { PvRecord::ADMISSIBLE } else { 0 }
             | if candidate { PvRecord::CANDIDATE } else { 0 },
-        error_factor: [0; 3],
-        reserved: 0,
+        error_factor: [0; MARGIN_COUNT],
     }
 }
 

@@ -9,6 +9,7 @@
 //! estimated on a 64× denser spiral (at least 16384 points) and rounded up by that spiral's
 //! own half spacing.
 
+use crate::attachment::{MARGIN_COUNT, MarginValues};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
 
@@ -129,13 +130,16 @@ impl Neighbours {
 
     /// The weighted mean of `value(index)` over the neighbours and the spread (largest −
     /// smallest) of their values, per component; `None` when any value is `None`.
-    pub fn interpolate(&self, value: impl Fn(usize) -> Option<[f64; 3]>) -> Option<Interpolated> {
-        let mut mean = [0.0; 3];
-        let mut low = [f64::INFINITY; 3];
-        let mut high = [f64::NEG_INFINITY; 3];
+    pub fn interpolate(
+        &self,
+        value: impl Fn(usize) -> Option<MarginValues>,
+    ) -> Option<Interpolated> {
+        let mut mean = [0.0; MARGIN_COUNT];
+        let mut low = [f64::INFINITY; MARGIN_COUNT];
+        let mut high = [f64::NEG_INFINITY; MARGIN_COUNT];
         for (&k, &w) in self.indices.iter().zip(&self.weights) {
             let v = value(k)?;
-            for c in 0..3 {
+            for c in 0..MARGIN_COUNT {
                 mean[c] += w * v[c];
                 low[c] = low[c].min(v[c]);
                 high[c] = high[c].max(v[c]);
@@ -153,9 +157,9 @@ impl Neighbours {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Interpolated {
     /// The weighted mean.
-    pub mean: [f64; 3],
+    pub mean: MarginValues,
     /// Largest − smallest neighbour value.
-    pub spread: [f64; 3],
+    pub spread: MarginValues,
 }
 
 /// `n` probe directions for measuring the interpolation error: the golden-angle spiral of

@@ -48,8 +48,9 @@ pub enum Problem {
     },
     /// Written by an older cable-dict in a format this one no longer reads.
     #[error(
-        "format version {found} is no longer read; this cable-dict reads version 3 (margins \
-         per direction for every pair of clamps of each link's catalogue): rebuild it from the \
+        "format version {found} is no longer read; this cable-dict reads version 4 (margins, \
+         the twist's among them, per direction for every pair of clamps of each link's \
+         catalogue): rebuild it from the \
          setup it was built for with `cable-dict build SETUP.toml -o FILE.cdict` (`cable-dict \
          info` on it with the cable-dict that wrote it names that setup)"
     )]

@@ -1,15 +1,17 @@
-//! The `.cdict` byte layout, version 3 (docs/cdict-format.md): a checksummed preamble, a
+//! The `.cdict` byte layout, version 4 (docs/cdict-format.md): a checksummed preamble, a
 //! checksummed section table, then four sections at 16-byte aligned offsets — the header
 //! (bincode), the gravity directions, the PV records and the margin records (fixed-size,
 //! little-endian, read in place from the memory map). Version 1 stored verdicts instead of
 //! margins, version 2 one block per segment of one setup instead of one per link's clamp
-//! catalogue; both are refused with the command that rebuilds them.
+//! catalogue, version 3 three margins (no twist); all are refused with the command that
+//! rebuilds them.
 //!
 //! [`parse`] checks everything that is O(1) or O(header): magic, version, length, the
 //! preamble's and the table's checksums, every section's bounds, alignment and record size,
 //! and the header's own checksum; [`verify_sections`] checks the bulk sections' checksums.
 
 use super::error::Problem;
+use crate::attachment::{MARGIN_COUNT, MarginValues};
 use crate::path::Pv;
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
@@ -21,7 +23,7 @@ compile_error!("the .cdict records are read in place as little-endian values");
 /// The first 8 bytes of every dictionary (the CR LF catches text-mode copies).
 pub const MAGIC: [u8; 8] = *b"CDICT\0\r\n";
 /// The format version this build writes and reads.
-pub const FORMAT_VERSION: u32 = 3;
+pub const FORMAT_VERSION: u32 = 4;
 /// Bytes of the preamble; the section table follows.
 pub const PREAMBLE_LEN: usize = 64;
 /// Bytes of one section-table entry.
@@ -41,7 +43,8 @@ pub const ALIGNMENT: usize = 16;
 /// ([`crate::stress::self_contact`]).
 /// 8: the clearance to itself counts only where the cable comes back toward itself (a local
 /// minimum of the distance between its parts), not its own neighbourhood.
-pub const PHYSICS_VERSION: u32 = 8;
+/// 9: a fourth margin, the twist per length against the cable's torsion limit.
+pub const PHYSICS_VERSION: u32 = 9;
 /// Largest header accepted when decoding (the URDF text dominates it).
 pub const HEADER_LIMIT: usize = 64 << 20;
 
@@ -106,14 +109,12 @@ pub struct PvRecord {
     /// [`PvRecord::D2_ALL`] | [`PvRecord::TOO_SHORT`].
     pub flags: u16,
     /// This PV's interpolation error per unit of neighbour spread (clearance, stretch,
-    /// curvature), in sixteenths, rounded up: the largest `(error − one unit) / spread`
+    /// curvature, twist), in sixteenths, rounded up: the largest `(error − one unit) / spread`
     /// that flipped a margin's sign, measured anywhere on the sphere — leaving each stored
     /// direction out in turn, and at the probe directions — × [`ERROR_SAFETY`]. A piece
     /// that changes branch somewhere (a loop that can hang on either side of its link) gets
     /// a large factor everywhere, so the lookup leaves it to the exact check.
-    pub error_factor: [u8; 3],
-    /// Zero.
-    pub reserved: u8,
+    pub error_factor: [u8; MARGIN_COUNT],
 }
 
 impl PvRecord {
@@ -135,7 +136,7 @@ impl PvRecord {
         Self::ADMISSIBLE | Self::CANDIDATE | Self::D1_ALL | Self::D2_ALL | Self::TOO_SHORT;
 
     /// [`PvRecord::error_factor`] as numbers.
-    pub fn error_factors(&self) -> [f64; 3] {
+    pub fn error_factors(&self) -> MarginValues {
         self.error_factor.map(|f| f64::from(f) / 16.0)
     }
 
@@ -159,10 +160,11 @@ impl PvRecord {
     }
 }
 
-/// The three margins of one PV under one gravity direction, in fixed point: how far the
+/// The four margins of one PV under one gravity direction, in fixed point: how far the
 /// static equilibrium is from each limit of the embedded setup, positive when the limit
 /// holds ([`crate::attachment::Margins`]). Values beyond the `i16` range saturate (a
-/// saturated margin is at least that large); [`MarginRecord::NOT_MEASURED`] in all three
+/// saturated margin is at least that large; a cable without a torsion limit stores the
+/// positive maximum); [`MarginRecord::NOT_MEASURED`] in all four
 /// marks a direction without an equilibrium (a failed solve, a cable too short for its
 /// clamps, a grid placeholder).
 #[repr(C)]
@@ -176,11 +178,15 @@ pub struct MarginRecord {
     /// 1/(minimum bend radius) − 1/(bend radius), in [`MARGIN_UNITS`]`[2]` 1/m (saturates
     /// at ±65 1/m).
     pub bend: i16,
+    /// Torsion limit − |twist per length|, in [`MARGIN_UNITS`]`[3]` deg/m (saturates at
+    /// ±3 276 deg/m).
+    pub twist: i16,
 }
 
 /// The fixed-point units of a [`MarginRecord`]'s fields: clearance (mm), stretch ratio,
-/// curvature (1/m). Rounding costs half a unit, which the lookup adds to its error bound.
-pub const MARGIN_UNITS: [f64; 3] = [0.01, 1e-5, 0.002];
+/// curvature (1/m), twist (deg/m). Rounding costs half a unit, which the lookup adds to its
+/// error bound.
+pub const MARGIN_UNITS: MarginValues = [0.01, 1e-5, 0.002, 0.1];
 
 impl MarginRecord {
     /// The marker of a direction without an equilibrium.
@@ -191,11 +197,12 @@ impl MarginRecord {
         clearance: Self::NOT_MEASURED,
         stretch: Self::NOT_MEASURED,
         bend: Self::NOT_MEASURED,
+        twist: Self::NOT_MEASURED,
     };
 
-    /// The record of `margins` (clearance mm, stretch, curvature 1/m; `None`: no
-    /// equilibrium), rounded and saturated.
-    pub fn quantize(margins: Option<[f64; 3]>) -> MarginRecord {
+    /// The record of `margins` (clearance mm, stretch, curvature 1/m, twist deg/m; `None`:
+    /// no equilibrium), rounded and saturated.
+    pub fn quantize(margins: Option<MarginValues>) -> MarginRecord {
         let Some(values) = margins else {
             return Self::UNMEASURED;
         };
@@ -208,24 +215,33 @@ impl MarginRecord {
             clearance: fixed(0),
             stretch: fixed(1),
             bend: fixed(2),
+            twist: fixed(3),
         }
     }
 
-    /// The margins in their units (clearance mm, stretch, curvature 1/m), `None` for a
-    /// direction without an equilibrium.
-    pub fn values(&self) -> Option<[f64; 3]> {
-        let raw = [self.clearance, self.stretch, self.bend];
+    /// The margins in their units (clearance mm, stretch, curvature 1/m, twist deg/m),
+    /// `None` for a direction without an equilibrium.
+    pub fn values(&self) -> Option<MarginValues> {
+        let raw = self.raw();
         if raw.contains(&Self::NOT_MEASURED) {
             return None;
         }
         Some(std::array::from_fn(|k| f64::from(raw[k]) * MARGIN_UNITS[k]))
     }
 
-    /// True for a well-formed record: all three fields measured, or none.
+    /// True for a well-formed record: all fields measured, or none.
     pub fn is_consistent(&self) -> bool {
-        let raw = [self.clearance, self.stretch, self.bend];
-        let missing = raw.iter().filter(|&&v| v == Self::NOT_MEASURED).count();
-        missing == 0 || missing == 3
+        let missing = self
+            .raw()
+            .iter()
+            .filter(|&&v| v == Self::NOT_MEASURED)
+            .count();
+        missing == 0 || missing == MARGIN_COUNT
+    }
+
+    /// The stored fields, in the order of [`MARGIN_UNITS`].
+    fn raw(&self) -> [i16; MARGIN_COUNT] {
+        [self.clearance, self.stretch, self.bend, self.twist]
     }
 }
 
@@ -315,8 +331,8 @@ pub struct LinkEntry {
     /// |D2| over every stored direction (0 in a shard).
     pub d2_all: u64,
     /// The largest [`PvRecord::error_factor`] of this file's PVs (clearance, stretch,
-    /// curvature): how irregular the link's worst piece is (for `info`).
-    pub margin_error: [f64; 3],
+    /// curvature, twist): how irregular the link's worst piece is (for `info`).
+    pub margin_error: MarginValues,
 }
 
 /// One clamp of a link's catalogue: where a setup's guide configuration must be to use the
@@ -343,7 +359,7 @@ impl ClampEntry {
 impl PvRecord {
     /// The error bound of a margin of this PV interpolated from neighbours of `spread`:
     /// its error factor (at least [`MIN_ERROR_FACTOR`]) × spread, plus one fixed-point unit.
-    pub fn error_bound(&self, spread: [f64; 3]) -> [f64; 3] {
+    pub fn error_bound(&self, spread: MarginValues) -> MarginValues {
         let factors = self.error_factors();
         std::array::from_fn(|k| factors[k].max(MIN_ERROR_FACTOR) * spread[k] + MARGIN_UNITS[k])
     }

@@ -3,6 +3,7 @@
 
 use super::format::{FORMAT_VERSION, PvRecord};
 use super::reader::{Dictionary, embedded_setup};
+use crate::attachment::MarginValues;
 use serde::Serialize;
 
 /// A dictionary's description.
@@ -71,7 +72,7 @@ pub struct LinkInfo {
     /// |D2| for every stored direction (0 in a shard).
     pub d2_all: u64,
     /// The lookup's error bound: clearance (mm), stretch, curvature (1/m).
-    pub margin_error: [f64; 3],
+    pub margin_error: MarginValues,
     /// Share of the candidate pieces' lookups the dictionary cannot decide (the exact check
     /// then solves them), over gravity directions spread over the sphere
     /// ([`Dictionary::undecided_share`]); `None` without candidates (and in a shard).

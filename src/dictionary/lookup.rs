@@ -22,7 +22,7 @@ use super::error::{DictionaryError, Problem};
 use super::format::{ClampEntry, MarginRecord, PvRecord};
 use super::reader::Dictionary;
 use crate::attachment::{
-    LookupAnswer, Margins, Rejection, SegmentPoses, admissible_pvs, needed_pvs,
+    LookupAnswer, MarginValues, Margins, Rejection, SegmentPoses, admissible_pvs, needed_pvs,
 };
 use crate::path::Pv;
 use crate::pose::Pose;
@@ -176,8 +176,8 @@ pub enum DirectionAnswer {
     Fails {
         /// The limit.
         rejection: Rejection,
-        /// Interpolated `[clearance mm, stretch, curvature 1/m]`.
-        margins: Option<[f64; 3]>,
+        /// Interpolated `[clearance mm, stretch, curvature 1/m, twist deg/m]`.
+        margins: Option<MarginValues>,
     },
     /// The error bound straddles zero, or a neighbour has no equilibrium.
     Undecided,
@@ -255,14 +255,14 @@ fn at_direction(
     };
     let margins = interpolated.mean;
     let error = record.error_bound(interpolated.spread);
-    let upper: [f64; 3] = std::array::from_fn(|k| margins[k] + error[k]);
+    let upper: MarginValues = std::array::from_fn(|k| margins[k] + error[k]);
     if let Some(rejection) = Margins::first_violation(upper) {
         return DirectionAnswer::Fails {
             rejection,
             margins: Some(margins),
         };
     }
-    let lower: [f64; 3] = std::array::from_fn(|k| margins[k] - error[k]);
+    let lower: MarginValues = std::array::from_fn(|k| margins[k] - error[k]);
     match Margins::first_violation(lower) {
         None => DirectionAnswer::Holds,
         Some(_) => DirectionAnswer::Undecided,

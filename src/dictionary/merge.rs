@@ -5,6 +5,7 @@ use super::build::Built;
 use super::error::{DictionaryError, Problem};
 use super::format::{Header, ShardRange};
 use super::reader::{Dictionary, embedded_setup};
+use crate::attachment::MARGIN_COUNT;
 #[cfg(feature = "signatures")]
 use crate::provenance::TrustedKeys;
 use std::path::PathBuf;
@@ -100,7 +101,7 @@ fn unsharded(header: &Header) -> Header {
         ..header.clone()
     };
     for entry in &mut whole.links {
-        entry.margin_error = [0.0; 3];
+        entry.margin_error = [0.0; MARGIN_COUNT];
     }
     whole
 }

@@ -8,6 +8,7 @@ use super::format::{
     Header, Layout, LinkEntry, MarginRecord, PHYSICS_VERSION, PvRecord, SectionKind, parse,
     verify_sections,
 };
+use crate::attachment::{MARGIN_COUNT, MarginValues};
 use crate::path::Pv;
 #[cfg(feature = "signatures")]
 use crate::provenance::{Provenance, ProvenanceError, SecretKey, TrustedKeys};
@@ -227,7 +228,7 @@ fn check_records(
 ) -> Result<(), Problem> {
     let stored = header.stored_pvs();
     let mut counts = vec![(0u64, 0u64); header.links.len()];
-    let mut worst = vec![[0.0f64; 3]; header.links.len()];
+    let mut worst = vec![[0.0f64; MARGIN_COUNT]; header.links.len()];
     let n = usize::try_from(header.directions.count).unwrap_or(usize::MAX);
     for (k, record) in pv_records.iter().enumerate() {
         let g = stored.start + k as u64;
@@ -237,7 +238,7 @@ fn check_records(
         let unmeasured = !record.has(PvRecord::ADMISSIBLE)
             || record.sub_segments == 0
             || record.has(PvRecord::TOO_SHORT);
-        if !at_place || record.reserved != 0 || (unmeasured && record.error_factor != [0; 3]) {
+        if !at_place || (unmeasured && record.error_factor != [0; MARGIN_COUNT]) {
             return Err(record_error(place(), "does not match its grid position"));
         }
         let rows = results.get(k * n..(k + 1) * n).unwrap_or_default();
@@ -249,7 +250,7 @@ fn check_records(
         counts[slot].1 += u64::from(record.has(PvRecord::D2_ALL));
     }
     for (entry, worst) in header.links.iter().zip(worst) {
-        let bits = |e: [f64; 3]| e.map(f64::to_bits);
+        let bits = |e: MarginValues| e.map(f64::to_bits);
         if bits(entry.margin_error) != bits(worst) {
             return Err(Problem::Header(format!(
                 "link {}: error bounds {:?} in the header, the records' largest are {worst:?}",

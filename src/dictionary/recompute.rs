@@ -10,7 +10,7 @@ use super::directions::probe_directions;
 use super::error::{DictionaryError, Problem};
 use super::format::{MARGIN_UNITS, MarginRecord, PvRecord};
 use super::reader::Dictionary;
-use crate::attachment::{ConnectMethod, Evaluator};
+use crate::attachment::{ConnectMethod, Evaluator, MARGIN_COUNT};
 use crate::progress;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -200,7 +200,7 @@ fn first_row_difference(
     None
 }
 
-fn factor_difference(stored: [u8; 3], recomputed: [u8; 3]) -> Option<String> {
+fn factor_difference(stored: [u8; MARGIN_COUNT], recomputed: [u8; MARGIN_COUNT]) -> Option<String> {
     let differs = stored
         .iter()
         .zip(&recomputed)
@@ -272,6 +272,7 @@ mod tests {
             clearance: 100,
             stretch: 10,
             bend,
+            twist: 20,
         };
         assert_eq!(
             first_row_difference(&directions, &[record(50)], &[record(51)]),

@@ -26,6 +26,9 @@ pub struct MotionTestReport {
     pub worst_stretch: Option<Worst>,
     /// Smallest bend radius (m).
     pub worst_bend: Option<Worst>,
+    /// Largest twist per length of a piece (deg/m, its magnitude), relative to the cable as
+    /// installed; `None` where the engine does not model twist.
+    pub worst_twist: Option<Worst>,
     /// Largest contact force on one sub-segment outside the clamp zones in the simulation
     /// (N); `None` when the cable never touched the robot there.
     pub worst_contact_force: Option<Worst>,
@@ -81,6 +84,13 @@ pub struct PieceWorst {
     pub worst_stretch: Option<Worst>,
     /// Its smallest bend radius (m).
     pub worst_bend: Option<Worst>,
+    /// Whether it flexes: somewhere along it the curvature changed by more than the setup's
+    /// `flexing_curvature_change_per_m`, so it kept the flexing bend radius.
+    pub flexes: bool,
+    /// The largest change of curvature at one place over the run (1/m).
+    pub largest_curvature_change_per_m: f64,
+    /// The bend radius it had to keep (m): the flexing one when it flexes, else the fixed.
+    pub bend_radius_limit_m: f64,
 }
 
 /// The largest twist of one piece of cable over the motion test.
@@ -159,8 +169,12 @@ pub enum Constraint {
     ContactForce,
     /// Stretch above the `stretch` limit.
     Stretch,
-    /// Bend radius below `min_bend_radius_m`.
+    /// Bend radius below `min_bend_radius_m` (fixed installation).
     BendRadius,
+    /// Bend radius of a flexing piece below the cable's flexing radius.
+    FlexingBendRadius,
+    /// Twist per length above the cable's torsion limit (deg/m).
+    Twist,
     /// The cable touches or passes through itself (clearance to itself below 0).
     SelfContact,
 }
@@ -266,7 +280,7 @@ impl Violation {
     pub fn missed_by_m(&self) -> Option<f64> {
         matches!(
             self.constraint,
-            Constraint::BendRadius | Constraint::Contact
+            Constraint::BendRadius | Constraint::FlexingBendRadius | Constraint::Contact
         )
         .then(|| self.threshold - self.value)
     }
@@ -292,6 +306,8 @@ impl fmt::Display for Constraint {
             Constraint::ContactForce => "contact force",
             Constraint::Stretch => "stretch",
             Constraint::BendRadius => "bend radius",
+            Constraint::FlexingBendRadius => "flexing bend radius",
+            Constraint::Twist => "twist",
             Constraint::SelfContact => "self-contact",
         })
     }
@@ -345,6 +361,18 @@ impl fmt::Display for Violation {
                 format!("{:.2} mm", self.value * 1e3),
                 "<",
                 format!("{:.2} mm", self.threshold * 1e3),
+            ),
+            Constraint::FlexingBendRadius => (
+                "bend radius of a flexing piece",
+                format!("{:.2} mm", self.value * 1e3),
+                "<",
+                format!("{:.2} mm", self.threshold * 1e3),
+            ),
+            Constraint::Twist => (
+                "twist",
+                format!("{:.0}°/m", self.value),
+                ">",
+                format!("{:.0}°/m", self.threshold),
             ),
             Constraint::SelfContact => (
                 "clearance to itself",

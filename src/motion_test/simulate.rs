@@ -13,7 +13,7 @@ use crate::pose::Pose;
 use crate::progress;
 use crate::setup::Setup;
 use crate::statics::{RodParameters, clamp_loads};
-use crate::stress::{min_bend_radius, stretch};
+use crate::stress::{curvatures_per_m, min_bend_radius, stretch};
 use nalgebra::Vector3;
 
 /// How often (s of the motion) the loads on the clamps are taken.
@@ -151,6 +151,8 @@ impl Context<'_> {
             let segment = planned.setup_index;
             let nodes = std::mem::take(&mut state.nodes);
             let natural = planned.sub_segments as f64 * pitch;
+            let curvatures =
+                curvatures_per_m(&nodes, &axis(&guides[j]), &axis(&guides[j + 1]), pitch);
             let loads = state.twist_rad.filter(|_| with_loads).and_then(|twist| {
                 let (start, end) =
                     clamp_loads(&params, &guides[j], Some(&guides[j + 1]), &nodes, twist);
@@ -169,6 +171,7 @@ impl Context<'_> {
                 })?,
                 stretch: stretch(&nodes, natural),
                 bend: min_bend_radius(&nodes, &axis(&guides[j]), &axis(&guides[j + 1]), pitch),
+                curvatures_per_m: curvatures,
                 contact: state.contact,
                 max_joint_gap_m: state.max_joint_gap_m,
                 nodes,

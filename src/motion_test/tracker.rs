@@ -7,7 +7,9 @@ use super::report::{
 };
 use crate::setup::{Setup, Thresholds};
 use crate::statics::ClampLoad;
-use crate::stress::{BendRadius, Clearance, self_contact_within};
+use crate::stress::{
+    BendRadius, Clearance, CurvatureRange, self_contact_within, twist_per_length_deg_per_m,
+};
 use nalgebra::Point3;
 
 /// The metrics of one segment at one instant.
@@ -22,6 +24,8 @@ pub(super) struct SegmentMeasure {
     pub stretch: f64,
     /// Tightest joint.
     pub bend: BendRadius,
+    /// Curvature at every joint (1/m, [`crate::stress::curvatures_per_m`]).
+    pub curvatures_per_m: Vec<f64>,
     /// Most loaded sub-segment outside the clamp zones in the simulation, if any touched.
     pub contact: Option<ForceAt>,
     /// Largest joint gap (m); 0 for a shape that was not simulated.
@@ -40,6 +44,7 @@ pub(super) struct Tracker<'a> {
     worst_clearance: Option<Worst>,
     worst_stretch: Option<Worst>,
     worst_bend: Option<Worst>,
+    worst_twist: Option<Worst>,
     worst_contact_force: Option<Worst>,
     worst_self_clearance: Option<Worst>,
     /// When the next search for any approach of the cable to itself is due (s), while none
@@ -47,6 +52,8 @@ pub(super) struct Tracker<'a> {
     self_search_due_s: f64,
     first_violation: Option<Violation>,
     pieces: Vec<PieceWorst>,
+    /// Per piece (in the order of `pieces`), how its curvature changed so far.
+    flex: Vec<CurvatureRange>,
     twists: Vec<PieceTwist>,
     clamp_loads: Vec<ClampLoadPeak>,
     max_joint_gap_m: f64,
@@ -67,11 +74,13 @@ impl<'a> Tracker<'a> {
             worst_clearance: None,
             worst_stretch: None,
             worst_bend: None,
+            worst_twist: None,
             worst_contact_force: None,
             worst_self_clearance: None,
             self_search_due_s: f64::NEG_INFINITY,
             first_violation: None,
             pieces: Vec::new(),
+            flex: Vec::new(),
             twists: Vec::new(),
             clamp_loads: Vec::new(),
             max_joint_gap_m: 0.0,
@@ -167,6 +176,7 @@ impl<'a> Tracker<'a> {
             worst_clearance: self.worst_clearance,
             worst_stretch: self.worst_stretch,
             worst_bend: self.worst_bend,
+            worst_twist: self.worst_twist,
             worst_contact_force: self.worst_contact_force,
             worst_self_clearance: self.worst_self_clearance,
             twists: self.twists,
@@ -193,7 +203,29 @@ impl<'a> Tracker<'a> {
             self.keep_contact(time_s, segment, contact, &measure.nodes);
         }
         self.keep_stretch(time_s, segment, measure.stretch, thresholds);
-        self.keep_bend(time_s, segment, measure, thresholds);
+        self.keep_bend(time_s, segment, measure);
+        self.keep_flex(segment, &measure.curvatures_per_m, thresholds);
+    }
+
+    /// How `segment`'s curvature changed, with its shape now: once it flexes (by more than
+    /// the setup's amount somewhere), its tightest bend so far must keep the flexing radius.
+    fn keep_flex(&mut self, segment: usize, curvatures_per_m: &[f64], t: Thresholds) {
+        let at = self.piece_index(segment);
+        self.flex[at].take(curvatures_per_m);
+        let (change, _) = self.flex[at].largest_change();
+        let piece = &mut self.pieces[at];
+        piece.largest_curvature_change_per_m = change;
+        if change <= t.flexing_curvature_change_per_m || piece.flexes {
+            return;
+        }
+        piece.flexes = true;
+        piece.bend_radius_limit_m = t.bend_radius_for(true, false);
+        let limit = piece.bend_radius_limit_m;
+        if let Some(worst) = piece.worst_bend.clone()
+            && worst.value < limit
+        {
+            self.violate(Constraint::FlexingBendRadius, limit, &worst);
+        }
     }
 
     fn keep_clearance(&mut self, time_s: f64, segment: usize, c: &Clearance, t: Thresholds) {
@@ -240,7 +272,7 @@ impl<'a> Tracker<'a> {
         keep(&mut self.worst_stretch, worst, |new, old| new > old);
     }
 
-    fn keep_bend(&mut self, time_s: f64, segment: usize, m: &SegmentMeasure, t: Thresholds) {
+    fn keep_bend(&mut self, time_s: f64, segment: usize, m: &SegmentMeasure) {
         let place = Place {
             node: Some(m.bend.node),
             position_m: m.nodes.get(m.bend.node).map(xyz),
@@ -254,8 +286,16 @@ impl<'a> Tracker<'a> {
             segment_name: self.setup.segment_name(segment),
             place,
         };
-        if m.bend.radius_m < t.min_bend_radius_m {
-            self.violate(Constraint::BendRadius, t.min_bend_radius_m, &worst);
+        let piece = self.piece(segment);
+        let limit = piece.bend_radius_limit_m;
+        if m.bend.radius_m < limit {
+            // The flexing radius is a limit of its own only where it is the larger one.
+            let constraint = if limit > self.setup.thresholds.min_bend_radius_m {
+                Constraint::FlexingBendRadius
+            } else {
+                Constraint::BendRadius
+            };
+            self.violate(constraint, limit, &worst);
         }
         let piece = self.piece(segment);
         keep(&mut piece.worst_bend, worst.clone(), |new, old| new < old);
@@ -264,7 +304,13 @@ impl<'a> Tracker<'a> {
 
     /// The worst values of `segment` so far, kept in segment order.
     fn piece(&mut self, segment: usize) -> &mut PieceWorst {
-        let at = match self.pieces.binary_search_by_key(&segment, |p| p.segment) {
+        let at = self.piece_index(segment);
+        &mut self.pieces[at]
+    }
+
+    /// Where `segment` is in `pieces` (and `flex`), added when new.
+    fn piece_index(&mut self, segment: usize) -> usize {
+        match self.pieces.binary_search_by_key(&segment, |p| p.segment) {
             Ok(at) => at,
             Err(at) => {
                 let piece = PieceWorst {
@@ -273,12 +319,15 @@ impl<'a> Tracker<'a> {
                     worst_clearance: None,
                     worst_stretch: None,
                     worst_bend: None,
+                    flexes: false,
+                    largest_curvature_change_per_m: 0.0,
+                    bend_radius_limit_m: self.setup.thresholds.bend_radius_for(false, false),
                 };
                 self.pieces.insert(at, piece);
+                self.flex.insert(at, CurvatureRange::default());
                 at
             }
-        };
-        &mut self.pieces[at]
+        }
     }
 
     fn keep_contact(
@@ -361,17 +410,28 @@ impl<'a> Tracker<'a> {
             let length_m =
                 m.nodes.len().saturating_sub(1) as f64 * self.setup.cable.sub_segment_pitch_m;
             let twist_deg = twist.to_degrees();
+            let per_m = twist_per_length_deg_per_m(twist, length_m);
             let candidate = PieceTwist {
                 segment: m.segment,
                 segment_name: self.setup.segment_name(m.segment),
                 twist_deg,
-                twist_deg_per_m: if length_m > 0.0 {
-                    twist_deg / length_m
-                } else {
-                    0.0
-                },
+                twist_deg_per_m: per_m,
                 time_s,
             };
+            let worst = Worst {
+                value: per_m.abs(),
+                unit: "deg/m",
+                time_s,
+                segment: m.segment,
+                segment_name: candidate.segment_name.clone(),
+                place: Place::default(),
+            };
+            if let Some(limit) = self.setup.thresholds.torsion_limit_deg_per_m
+                && per_m.abs() > limit
+            {
+                self.violate(Constraint::Twist, limit, &worst);
+            }
+            keep(&mut self.worst_twist, worst, |new, old| new > old);
             match self.twists.iter_mut().find(|t| t.segment == m.segment) {
                 Some(old) if twist_deg.abs() > old.twist_deg.abs() => *old = candidate,
                 Some(_) => {}
@@ -639,6 +699,7 @@ mod tests {
                 radius_m: f64::INFINITY,
                 node: 0,
             },
+            curvatures_per_m: Vec::new(),
             contact: None,
             max_joint_gap_m: 0.0,
             twist_rad: None,

@@ -20,9 +20,10 @@ pub(super) struct SmallestMargin {
     pub violated: bool,
 }
 
-/// Where the motion test failed; else the worst of clearance, stretch and bend radius,
-/// each relative to its limit as the diagnosis ranks its nearest misses (clearance over the
-/// cable's diameter, stretch over the allowed excess, bend radius over the minimum radius).
+/// Where the motion test failed; else the worst of clearance, stretch, each piece's bend
+/// radius and the twist, each relative to its limit as the diagnosis ranks its nearest
+/// misses (clearance over the cable's diameter, stretch over the allowed excess, bend radius
+/// over the radius the piece keeps, twist over the torsion limit).
 /// `None` when nothing was measured.
 pub(super) fn smallest_margin(
     test: &MotionTestReport,
@@ -40,19 +41,33 @@ pub(super) fn smallest_margin(
             violated: true,
         });
     }
-    let worst = [
+    let mut worst = vec![
         (
             Constraint::Contact,
             &test.worst_clearance,
             limits.contact_clearance_m,
         ),
         (Constraint::Stretch, &test.worst_stretch, limits.stretch),
-        (
+    ];
+    // Each piece's bend against the radius it had to keep (flexing or fixed).
+    for piece in &test.pieces {
+        let constraint = if piece.flexes {
+            Constraint::FlexingBendRadius
+        } else {
+            Constraint::BendRadius
+        };
+        worst.push((constraint, &piece.worst_bend, piece.bend_radius_limit_m));
+    }
+    if test.pieces.is_empty() {
+        worst.push((
             Constraint::BendRadius,
             &test.worst_bend,
             limits.min_bend_radius_m,
-        ),
-    ];
+        ));
+    }
+    if let Some(limit) = limits.torsion_limit_deg_per_m {
+        worst.push((Constraint::Twist, &test.worst_twist, limit));
+    }
     worst
         .into_iter()
         .filter_map(|(constraint, worst, limit)| {
@@ -60,6 +75,7 @@ pub(super) fn smallest_margin(
             let relative = match constraint {
                 Constraint::Contact => (w.value - limit) / cable_diameter_m,
                 Constraint::Stretch => (limit - w.value) / (limit - 1.0).max(1e-12),
+                Constraint::Twist => (limit - w.value) / limit,
                 _ => (w.value - limit) / limit,
             };
             let margin = SmallestMargin {
@@ -92,6 +108,12 @@ pub(super) fn limit_words(constraint: Constraint, value: f64, limit: f64) -> Str
             millimetres(value),
             millimetres(limit)
         ),
+        Constraint::FlexingBendRadius => format!(
+            "bend radius {} of a flexing piece (flexing limit {})",
+            millimetres(value),
+            millimetres(limit)
+        ),
+        Constraint::Twist => format!("twist {value:.0}°/m (limit ±{limit:.0}°/m)"),
         Constraint::SelfContact => format!(
             "clearance of the cable to itself {} (limit {})",
             millimetres(value),
@@ -133,6 +155,9 @@ mod tests {
             min_bend_radius_source: crate::setup::BendRadiusSource::Cable,
             clamp_zone_m: 0.02,
             static_bend_margin_m: 0.0,
+            cable_flexing_bend_radius_m: None,
+            torsion_limit_deg_per_m: None,
+            flexing_curvature_change_per_m: 1.0,
         };
         // Clearance 4 mm of an 8 mm cable: 0.5. Stretch 1.015: 0.25 of the allowed 0.02 left.
         // Bend 62 mm against 48 mm: 0.29.
@@ -143,6 +168,7 @@ mod tests {
             worst_clearance: Some(worst(0.004, 1.0, 0)),
             worst_stretch: Some(worst(1.015, 2.0, 1)),
             worst_bend: Some(worst(0.062, 3.0, 2)),
+            worst_twist: None,
             worst_contact_force: None,
             worst_self_clearance: None,
             pieces: Vec::new(),

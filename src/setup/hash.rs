@@ -44,6 +44,11 @@ pub(super) fn canonical_bytes(setup: &Setup) -> Vec<u8> {
         t.clamp_zone_m,
         t.static_bend_margin_m,
     ]);
+    // The datasheet's limits, written only when given (older setups keep their hash).
+    if t.flexing_curvature_change_per_m != super::DEFAULT_FLEXING_CURVATURE_CHANGE_PER_M {
+        out.str("flexing change");
+        out.floats(&[t.flexing_curvature_change_per_m]);
+    }
     out.usize(setup.robustness.delta_s);
     out.usize(setup.robustness.range);
     guides(&mut out, setup);
@@ -195,6 +200,16 @@ fn cable(out: &mut Canon, cable: &CableSpec) {
         cable.sub_segment_pitch_m,
         cable.axial_stiffness_n,
     ]);
+    // Written only when given, so that cables without them keep their hash.
+    let sheet = &cable.datasheet;
+    if let Some(r) = sheet.min_bend_radius_flexing_m {
+        out.str("flexing radius");
+        out.floats(&[r]);
+    }
+    if let Some(t) = sheet.torsion_limit_deg_per_m {
+        out.str("torsion limit");
+        out.floats(&[t]);
+    }
 }
 
 fn guides(out: &mut Canon, setup: &Setup) {

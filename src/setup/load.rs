@@ -278,6 +278,15 @@ fn thresholds(
         Some(margin) => finite_at_least(src, margin, "thresholds.static_bend_margin_mm", 0.0)?,
         None => 0.0,
     };
+    let flexing_change = match &raw.flexing_curvature_change_per_m {
+        Some(change) => finite_at_least(
+            src,
+            change,
+            "thresholds.flexing_curvature_change_per_m",
+            0.0,
+        )?,
+        None => super::DEFAULT_FLEXING_CURVATURE_CHANGE_PER_M,
+    };
     Ok(Thresholds {
         contact_clearance_m: clearance * 1e-3,
         stretch,
@@ -285,6 +294,9 @@ fn thresholds(
         min_bend_radius_source,
         clamp_zone_m: clamp_zone * 1e-3,
         static_bend_margin_m: static_bend_margin * 1e-3,
+        cable_flexing_bend_radius_m: cable.datasheet.min_bend_radius_flexing_m,
+        torsion_limit_deg_per_m: cable.datasheet.torsion_limit_deg_per_m,
+        flexing_curvature_change_per_m: flexing_change,
     })
 }
 

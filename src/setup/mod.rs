@@ -17,6 +17,8 @@
 //! min_bend_radius_mm = "cable" # the cable file's value, or a number of mm
 //! clamp_zone_mm = 20.0         # cable next to a guide not checked against the guide's link
 //! static_bend_margin_mm = 4.0  # optional (default 0): extra radius the static tests demand
+//! flexing_curvature_change_per_m = 1.0 # optional (default 1): a piece whose curvature
+//!                              # changes more than this somewhere keeps the flexing radius
 //!
 //! [robustness]
 //! delta_s = 1                  # ΔS, sub-segments
@@ -281,12 +283,54 @@ pub struct Thresholds {
     /// of `min_bend_radius_m` (m), kept for the cable's swing in the motion test, which checks
     /// `min_bend_radius_m` itself. 0 = the reference paper's test.
     pub static_bend_margin_m: f64,
+    /// The cable datasheet's flexing bend radius (m); `None` when it states none (flexing
+    /// pieces then keep the fixed one).
+    pub cable_flexing_bend_radius_m: Option<f64>,
+    /// Largest twist per length (deg/m) from the cable datasheet; `None`: not limited.
+    pub torsion_limit_deg_per_m: Option<f64>,
+    /// A piece flexes when somewhere along it the curvature changes by more than this over
+    /// the motion (1/m); it must then keep the flexing bend radius.
+    pub flexing_curvature_change_per_m: f64,
 }
+
+/// [`Thresholds::flexing_curvature_change_per_m`] when the setup does not set it (1/m): a
+/// point that goes from straight to a 1 m radius, or from 60 mm to 57 mm, flexes.
+pub const DEFAULT_FLEXING_CURVATURE_CHANGE_PER_M: f64 = 1.0;
 
 impl Thresholds {
     /// The bend radius a static equilibrium must keep (m): the limit plus the static margin.
     pub fn static_min_bend_radius_m(&self) -> f64 {
         self.min_bend_radius_m + self.static_bend_margin_m
+    }
+
+    /// The bend radius a flexing piece must keep (m): the datasheet's flexing radius, never
+    /// below the fixed one (a setup may raise that).
+    pub fn flexing_bend_radius_m(&self) -> f64 {
+        self.cable_flexing_bend_radius_m
+            .map_or(self.min_bend_radius_m, |r| r.max(self.min_bend_radius_m))
+    }
+
+    /// The bend radius a piece must keep (m), `flexing` or fixed, with the static margin
+    /// when `static_shape`.
+    pub fn bend_radius_for(&self, flexing: bool, static_shape: bool) -> f64 {
+        let radius = if flexing {
+            self.flexing_bend_radius_m()
+        } else {
+            self.min_bend_radius_m
+        };
+        radius
+            + if static_shape {
+                self.static_bend_margin_m
+            } else {
+                0.0
+            }
+    }
+
+    /// Twist per length (deg/m, magnitude) above the torsion limit, as a margin: limit − it
+    /// (infinite without a limit).
+    pub fn twist_margin_deg_per_m(&self, twist_deg_per_m: f64) -> f64 {
+        self.torsion_limit_deg_per_m
+            .map_or(f64::INFINITY, |limit| limit - twist_deg_per_m.abs())
     }
 }
 

@@ -71,6 +71,8 @@ pub(super) struct RawThresholds {
     pub clamp_zone_mm: Spanned<f64>,
     #[serde(default)]
     pub static_bend_margin_mm: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub flexing_curvature_change_per_m: Option<Spanned<f64>>,
 }
 
 /// `[robustness]`.

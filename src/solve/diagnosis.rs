@@ -508,6 +508,13 @@ fn relaxed_limit(violation: &Violation, length_mm: f64) -> String {
              again tells whether it passes the rest of the motion)",
             (value_mm * 10.0).floor() / 10.0
         ),
+        Constraint::FlexingBendRadius => format!(
+            "a flexing bend radius of {:.1} mm (min_bend_radius_flexing_mm in the cable file, \
+             where the cable's datasheet allows it): the closest path here ({length_mm:.0} mm) \
+             flexed to {value_mm:.2} mm against {limit_mm:.1} mm, and that removes this failure \
+             (`solve` again tells whether it passes the rest of the motion)",
+            (value_mm * 10.0).floor() / 10.0
+        ),
         _ if value_mm >= 0.0 => format!(
             "a clearance limit of {:.2} mm (contact_clearance_mm under [thresholds]), or its \
              clamps on a bracket (a larger clamp_height_mm): the closest path here \

@@ -81,7 +81,8 @@ impl Learned {
             return;
         }
         let swing = match violation.constraint {
-            Constraint::BendRadius => Swing {
+            // A flexing piece swings as any other: its swing is the same dynamics.
+            Constraint::BendRadius | Constraint::FlexingBendRadius => Swing {
                 bend_radius_m: Some(least.bend_radius_m - violation.value),
                 clearance_m: None,
             },
@@ -239,6 +240,9 @@ mod tests {
             min_bend_radius_source: crate::setup::BendRadiusSource::Setup,
             clamp_zone_m: 0.02,
             static_bend_margin_m: 0.0,
+            cable_flexing_bend_radius_m: None,
+            torsion_limit_deg_per_m: None,
+            flexing_curvature_change_per_m: 1.0,
         }
     }
 

@@ -71,7 +71,8 @@ impl ChainSweep for SweepAtRest<'_, '_, '_> {
             (FailureCause::Violation, Some(violation)) => match violation.constraint {
                 Constraint::Contact | Constraint::ContactForce => Rejection::Contact,
                 Constraint::Stretch => Rejection::Stretch,
-                Constraint::BendRadius => Rejection::Bend,
+                Constraint::BendRadius | Constraint::FlexingBendRadius => Rejection::Bend,
+                Constraint::Twist => Rejection::Twist,
                 Constraint::SelfContact => Rejection::SelfContact,
             },
             _ => Rejection::Diverged,

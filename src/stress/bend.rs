@@ -34,22 +34,14 @@ pub fn min_bend_radius(
     end_tangent: &Vector3<f64>,
     pitch_m: f64,
 ) -> BendRadius {
-    let chords = nodes.windows(2).map(|w| w[1] - w[0]);
-    let directions: Vec<Vector3<f64>> = std::iter::once(*start_tangent)
-        .chain(chords)
-        .chain(std::iter::once(*end_tangent))
-        .collect();
-    let last_joint = directions.len().saturating_sub(2);
-    let sharpest = directions
-        .windows(2)
-        .enumerate()
-        .map(|(node, d)| {
-            let arc = if node == 0 || node == last_joint {
-                0.5 * pitch_m
-            } else {
-                pitch_m
-            };
-            let angle = angle_between(&d[0], &d[1]);
+    if nodes.len() < 2 {
+        return BendRadius {
+            radius_m: f64::INFINITY,
+            node: 0,
+        };
+    }
+    let (node, radius_m) = joints(nodes, start_tangent, end_tangent, pitch_m)
+        .map(|(node, arc, angle)| {
             // Below this a joint is straight to rounding (a radius beyond 10⁷ pitches).
             let radius = if angle > STRAIGHT_RAD {
                 arc / angle
@@ -65,12 +57,113 @@ pub fn min_bend_radius(
                 best
             }
         });
-    let (node, radius_m) = if nodes.len() < 2 {
-        (0, f64::INFINITY)
-    } else {
-        sharpest
-    };
     BendRadius { radius_m, node }
+}
+
+/// Every joint of a shape: its node, the cable length it stands for (m) and its turning
+/// angle (rad), guide joints included (see the module documentation).
+fn joints(
+    nodes: &[Point3<f64>],
+    start_tangent: &Vector3<f64>,
+    end_tangent: &Vector3<f64>,
+    pitch_m: f64,
+) -> impl Iterator<Item = (usize, f64, f64)> {
+    let chords = nodes.windows(2).map(|w| w[1] - w[0]);
+    let directions: Vec<Vector3<f64>> = std::iter::once(*start_tangent)
+        .chain(chords)
+        .chain(std::iter::once(*end_tangent))
+        .collect();
+    let last_joint = directions.len().saturating_sub(2);
+    (0..directions.len().saturating_sub(1)).map(move |node| {
+        let arc = if node == 0 || node == last_joint {
+            0.5 * pitch_m
+        } else {
+            pitch_m
+        };
+        (
+            node,
+            arc,
+            angle_between(&directions[node], &directions[node + 1]),
+        )
+    })
+}
+
+/// The curvature at every joint (1/m): joint `k` at node `k`, the guide joints at 0 and `S`
+/// — the reciprocal of the bend radius [`min_bend_radius`] takes the least of, 0 where
+/// straight. Empty for fewer than two nodes.
+pub fn curvatures_per_m(
+    nodes: &[Point3<f64>],
+    start_tangent: &Vector3<f64>,
+    end_tangent: &Vector3<f64>,
+    pitch_m: f64,
+) -> Vec<f64> {
+    if nodes.len() < 2 {
+        return Vec::new();
+    }
+    joints(nodes, start_tangent, end_tangent, pitch_m)
+        .map(|(_, arc, angle)| {
+            if angle > STRAIGHT_RAD {
+                angle / arc
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
+/// How much the curvature at each joint of a piece changes over a motion: the least and
+/// largest curvature seen at every joint, and the tightest bend. A piece flexes when some
+/// joint's change exceeds a stated amount; it must then keep the flexing bend radius.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CurvatureRange {
+    low: Vec<f64>,
+    high: Vec<f64>,
+}
+
+impl CurvatureRange {
+    /// Takes in the curvatures of one more shape ([`curvatures_per_m`]); a shape with another
+    /// number of joints than the first is ignored (it is not the same piece).
+    pub fn take(&mut self, curvatures_per_m: &[f64]) {
+        if self.low.is_empty() {
+            self.low = curvatures_per_m.to_vec();
+            self.high = curvatures_per_m.to_vec();
+            return;
+        }
+        if curvatures_per_m.len() != self.low.len() {
+            return;
+        }
+        for ((low, high), &k) in self
+            .low
+            .iter_mut()
+            .zip(&mut self.high)
+            .zip(curvatures_per_m)
+        {
+            *low = low.min(k);
+            *high = high.max(k);
+        }
+    }
+
+    /// The largest change of curvature at one joint (1/m) and that joint (node index); 0
+    /// before two shapes.
+    pub fn largest_change(&self) -> (f64, usize) {
+        self.low
+            .iter()
+            .zip(&self.high)
+            .map(|(low, high)| high - low)
+            .enumerate()
+            .fold((0.0, 0), |best, (node, change)| {
+                if change > best.0 {
+                    (change, node)
+                } else {
+                    best
+                }
+            })
+    }
+
+    /// Whether the curvature changed by more than `change_per_m` somewhere.
+    pub fn flexes(&self, change_per_m: f64) -> bool {
+        self.largest_change().0 > change_per_m
+    }
 }
 
 /// Angle between two vectors in [0, π], accurate for small and near-π angles.
@@ -110,6 +203,24 @@ mod tests {
         );
         // l/θ approaches the circle radius as (l/R)² → 0.
         assert!((bend.radius_m - r).abs() / r < (l / r).powi(2) / 20.0);
+    }
+
+    /// A piece that keeps its shape does not flex, whatever its bend; one whose bend at one
+    /// joint goes from 1/0.2 to 1/0.1 changes by 5 1/m there.
+    #[test]
+    fn a_piece_flexes_where_its_curvature_changes() {
+        let mut still = CurvatureRange::default();
+        for _ in 0..3 {
+            still.take(&[0.0, 20.0, 5.0]);
+        }
+        assert_eq!(still.largest_change(), (0.0, 0));
+        assert!(!still.flexes(0.0));
+        let mut moving = CurvatureRange::default();
+        moving.take(&[0.0, 5.0, 1.0]);
+        moving.take(&[0.0, 10.0, 1.5]);
+        moving.take(&[0.0, 7.0, 1.0]);
+        assert_eq!(moving.largest_change(), (5.0, 1));
+        assert!(moving.flexes(4.9) && !moving.flexes(5.0));
     }
 
     #[test]

@@ -7,8 +7,9 @@ mod bend;
 pub mod contact;
 mod self_contact;
 mod stretch;
+mod twist;
 
-pub use bend::{BendRadius, min_bend_radius};
+pub use bend::{BendRadius, CurvatureRange, curvatures_per_m, min_bend_radius};
 pub use contact::{
     ClampZone, Clearance, ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
 };
@@ -16,3 +17,4 @@ pub use self_contact::{
     FirstSelfContact, SelfContact, self_contact, self_contact_gap_m, self_contact_within,
 };
 pub use stretch::stretch;
+pub use twist::twist_per_length_deg_per_m;

@@ -165,8 +165,14 @@ impl Metrics {
         };
         // The attachment test's own measure of a shape (its robot clearance is the setup's;
         // here the scene's, reported apart).
-        let shape =
-            ShapeMetrics::of_shape(cable, nodes, (&args.start, &args.end), None, f64::INFINITY);
+        let shape = ShapeMetrics::of_shape(
+            cable,
+            nodes,
+            (&args.start, &args.end),
+            None,
+            f64::INFINITY,
+            0.0,
+        );
         let self_contact = shape
             .self_clearance_m
             .is_finite()

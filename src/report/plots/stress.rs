@@ -93,7 +93,9 @@ fn panels(test: &MotionTestReport, thresholds: &Thresholds, names: &PlotNames) -
             // The cable touching itself is contact too: shown in the clearance panel.
             Constraint::Contact | Constraint::ContactForce | Constraint::SelfContact => 0,
             Constraint::Stretch => 1,
-            Constraint::BendRadius => 2,
+            Constraint::BendRadius | Constraint::FlexingBendRadius => 2,
+            // The twist panel follows the three limits when the engine measured twist.
+            Constraint::Twist => 3.min(panels.len() - 1),
         };
         panels[i].violation = Some((v.time_s, violation_label(v, names)));
     }

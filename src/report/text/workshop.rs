@@ -254,7 +254,12 @@ pub fn motion_verdict_words(limits: &Limits, m: &MotionVerdict, plan: &MountingP
     let rows = worst_rows(limits, test, Some(plan));
     let shown = rows
         .iter()
-        .filter(|r| matches!(r.what, "tightest bend radius" | "closest to the robot"))
+        .filter(|r| {
+            matches!(
+                r.what,
+                "tightest bend radius" | "tightest flexing bend" | "closest to the robot"
+            )
+        })
         .map(|r| format!("{} {} (margin {})", r.what, r.value, r.margin));
     format!("holds: {}", shown.collect::<Vec<_>>().join(", "))
 }
@@ -287,12 +292,16 @@ fn write_worst(
             None => writeln!(f, "  {:<21} {:>9}: {}", row.what, row.value, row.place)?,
         }
     }
+    let not_stated = &report.inputs.limits.not_stated;
+    if !not_stated.is_empty() {
+        writeln!(f, "  the cable file states {}", not_stated.join("; "))?;
+    }
     let loads = load_rows(test, Some(plan));
     if !loads.is_empty() {
         writeln!(
             f,
-            "\ntwist of each piece (from the cable as laid) and loads on each clamp, over \
-             {over}:"
+            "\ntwist of each piece (from the cable as laid), the bend radius it kept, and loads \
+             on each clamp, over {over}:"
         )?;
         let width = loads
             .iter()
@@ -340,25 +349,37 @@ pub struct LoadRow {
 /// The largest twist of every piece and the largest loads on every clamp over `test`, named
 /// as the fitter names them when `plan` is the tested path's.
 pub fn load_rows(test: &MotionTestReport, plan: Option<&MountingPlan>) -> Vec<LoadRow> {
-    let mut rows: Vec<LoadRow> = test
-        .twists
-        .iter()
-        .map(|t| {
-            let name = plan
-                .and_then(|p| p.place_on_cable(&t.segment_name, None))
-                .map(|words| words.trim_start_matches("on ").to_string())
-                .unwrap_or_else(|| format!("cable piece {}", t.segment_name));
-            let (twist, per_m) = (decimal(t.twist_deg, 0), decimal(t.twist_deg_per_m, 0));
-            LoadRow {
-                name,
-                words: format!(
-                    "largest twist {twist}° ({per_m}°/m) at t = {:.2} s",
-                    t.time_s
-                ),
-                short: format!("{twist}° ({per_m}°/m), t = {:.2} s", t.time_s),
-            }
-        })
-        .collect();
+    let mut rows: Vec<LoadRow> =
+        test.twists
+            .iter()
+            .map(|t| {
+                let name = plan
+                    .and_then(|p| p.place_on_cable(&t.segment_name, None))
+                    .map(|words| words.trim_start_matches("on ").to_string())
+                    .unwrap_or_else(|| format!("cable piece {}", t.segment_name));
+                let (twist, per_m) = (decimal(t.twist_deg, 0), decimal(t.twist_deg_per_m, 0));
+                // Which bend radius the piece kept: the flexing one where its shape changed.
+                let kept = test.pieces.iter().find(|p| p.segment == t.segment).map_or(
+                    String::new(),
+                    |p| {
+                        let radius = decimal(p.bend_radius_limit_m * 1e3, 0);
+                        if p.flexes {
+                            format!("; flexes: bend radius kept ≥ {radius} mm")
+                        } else {
+                            format!("; does not flex: bend radius kept ≥ {radius} mm")
+                        }
+                    },
+                );
+                LoadRow {
+                    name,
+                    words: format!(
+                        "largest twist {twist}° ({per_m}°/m) at t = {:.2} s{kept}",
+                        t.time_s
+                    ),
+                    short: format!("{twist}° ({per_m}°/m), t = {:.2} s", t.time_s),
+                }
+            })
+            .collect();
     rows.extend(test.clamp_loads.iter().map(|c| {
         let name = plan
             .and_then(|p| c.guides.iter().find_map(|g| p.clamp_of_guide(g)))
@@ -431,35 +452,70 @@ pub fn worst_rows(
     plan: Option<&MountingPlan>,
 ) -> Vec<WorstRow> {
     let t = &limits.thresholds;
-    [
+    let mut rows = vec![
         (
             Constraint::Contact,
-            &test.worst_clearance,
+            test.worst_clearance.clone(),
             t.contact_clearance_m,
         ),
-        (Constraint::SelfContact, &test.worst_self_clearance, 0.0),
         (
-            Constraint::BendRadius,
-            &test.worst_bend,
-            t.min_bend_radius_m,
+            Constraint::SelfContact,
+            test.worst_self_clearance.clone(),
+            0.0,
         ),
-        (Constraint::Stretch, &test.worst_stretch, t.stretch),
-    ]
-    .into_iter()
-    .filter_map(|(constraint, worst, limit)| match worst {
-        Some(w) => Some(worst_row_of(limits, plan, constraint, w, limit)),
-        // No approach to itself is an answer too: the cable never comes back toward itself.
-        None if constraint == Constraint::SelfContact && test.steps > 0 => Some(WorstRow {
-            what: "closest to itself",
-            value: "none".into(),
-            limit: "limit 0.0 mm".into(),
-            margin: "∞".into(),
-            when: None,
-            place: "no part of the cable comes back toward another".into(),
-        }),
-        None => None,
-    })
-    .collect()
+    ];
+    rows.extend(bend_rows(test, t));
+    rows.push((Constraint::Stretch, test.worst_stretch.clone(), t.stretch));
+    if test.worst_twist.is_some() {
+        let limit = t.torsion_limit_deg_per_m.unwrap_or(f64::INFINITY);
+        rows.push((Constraint::Twist, test.worst_twist.clone(), limit));
+    }
+    rows.into_iter()
+        .filter_map(|(constraint, worst, limit)| match worst {
+            Some(w) => Some(worst_row_of(limits, plan, constraint, &w, limit)),
+            // No approach to itself is an answer too: the cable never comes back toward itself.
+            None if constraint == Constraint::SelfContact && test.steps > 0 => Some(WorstRow {
+                what: "closest to itself",
+                value: "none".into(),
+                limit: "limit 0.0 mm".into(),
+                margin: "∞".into(),
+                when: None,
+                place: "no part of the cable comes back toward another".into(),
+            }),
+            None => None,
+        })
+        .collect()
+}
+
+/// The tightest bend of the pieces that keep the fixed radius and of those that flex (each
+/// against its own limit), or the whole cable's against the fixed radius when the engine
+/// kept no pieces.
+fn bend_rows(test: &MotionTestReport, t: &Thresholds) -> Vec<(Constraint, Option<Worst>, f64)> {
+    // Without a flexing radius larger than the fixed one, one limit holds every piece.
+    if test.pieces.is_empty() || t.flexing_bend_radius_m() <= t.min_bend_radius_m {
+        return vec![(
+            Constraint::BendRadius,
+            test.worst_bend.clone(),
+            t.min_bend_radius_m,
+        )];
+    }
+    let tightest = |flexing: bool| {
+        test.pieces
+            .iter()
+            .filter(|p| p.flexes == flexing)
+            .filter_map(|p| p.worst_bend.as_ref())
+            .min_by(|a, b| a.value.total_cmp(&b.value))
+            .cloned()
+    };
+    let mut rows = vec![(Constraint::BendRadius, tightest(false), t.min_bend_radius_m)];
+    if let Some(worst) = tightest(true) {
+        rows.push((
+            Constraint::FlexingBendRadius,
+            Some(worst),
+            t.flexing_bend_radius_m(),
+        ));
+    }
+    rows
 }
 
 /// One row: `w`, the worst of `constraint`, against `limit`.
@@ -495,6 +551,24 @@ fn worst_row_of(
             length(w.value),
             length(limit),
             length(w.value - limit),
+        ),
+        Constraint::FlexingBendRadius => (
+            "tightest flexing bend",
+            length(w.value),
+            length(limit),
+            length(w.value - limit),
+        ),
+        Constraint::Twist if limit.is_finite() => (
+            "most twisted",
+            format!("{} °/m", decimal(w.value, 0)),
+            format!("±{} °/m", decimal(limit, 0)),
+            format!("{} °/m", decimal(limit - w.value, 0)),
+        ),
+        Constraint::Twist => (
+            "most twisted",
+            format!("{} °/m", decimal(w.value, 0)),
+            "not stated by the cable file".to_string(),
+            "—".to_string(),
         ),
         Constraint::Stretch => (
             "most stretched",

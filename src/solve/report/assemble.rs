@@ -447,6 +447,7 @@ fn inputs(setup: &Setup, cell: &Cell, options: &SolveOptions) -> Inputs {
         connect: options.method,
         search: options.search,
         dictionary: None,
+        limits: LimitsUsed::of(setup),
     }
 }
 

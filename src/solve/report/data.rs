@@ -307,6 +307,38 @@ pub struct Inputs {
     /// The dictionary the intra-link sets came from (`None`: tested at their poses).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub dictionary: Option<DictionaryUse>,
+    /// The limits the answer was held to, and what the cable file left out.
+    pub limits: LimitsUsed,
+}
+
+/// The bend radii and the torsion limit an answer was held to, and which datasheet values
+/// the cable file does not state (each then said, not invented).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LimitsUsed {
+    /// The radius every piece keeps (fixed installation), mm.
+    pub min_bend_radius_fixed_mm: f64,
+    /// The radius a flexing piece keeps, mm (the fixed one when the file states none).
+    pub min_bend_radius_flexing_mm: f64,
+    /// A piece flexes when its curvature changes by more than this somewhere (1/m).
+    pub flexing_curvature_change_per_m: f64,
+    /// The largest twist per length (deg/m); `None`: the cable file states none.
+    pub torsion_limit_deg_per_m: Option<f64>,
+    /// What the cable file does not state, in words.
+    pub not_stated: Vec<&'static str>,
+}
+
+impl LimitsUsed {
+    /// The limits of `setup`.
+    pub fn of(setup: &crate::setup::Setup) -> LimitsUsed {
+        let t = &setup.thresholds;
+        LimitsUsed {
+            min_bend_radius_fixed_mm: t.min_bend_radius_m * 1e3,
+            min_bend_radius_flexing_mm: t.flexing_bend_radius_m() * 1e3,
+            flexing_curvature_change_per_m: t.flexing_curvature_change_per_m,
+            torsion_limit_deg_per_m: t.torsion_limit_deg_per_m,
+            not_stated: setup.cable.datasheet.missing(),
+        }
+    }
 }
 
 /// How a dictionary answered for the intra-link segments.
@@ -516,10 +548,11 @@ pub struct ClosestMiss {
 }
 
 impl ClosestMiss {
-    /// `bend radius` or `clearance`: the limit it missed, in words.
+    /// `bend radius`, `flexing bend radius` or `clearance`: the limit it missed, in words.
     pub fn limit_words(&self) -> &'static str {
         match self.limit {
             Constraint::BendRadius => "bend radius",
+            Constraint::FlexingBendRadius => "flexing bend radius",
             _ => "clearance",
         }
     }

@@ -28,11 +28,15 @@ struct TestJson<'a> {
     /// The closest approach of the cable to itself (centreline distance − diameter, mm);
     /// `None` when no part of it comes back toward another.
     min_self_clearance_mm: Option<f64>,
+    /// Largest twist per length of a piece (deg/m), relative to the cable as installed;
+    /// `None` where the engine does not model twist.
+    max_twist_deg_per_m: Option<f64>,
     worst_clearance: Option<&'a Worst>,
     worst_stretch: Option<&'a Worst>,
     worst_bend_radius: Option<&'a Worst>,
     worst_contact_force: Option<&'a Worst>,
     worst_self_clearance: Option<&'a Worst>,
+    worst_twist: Option<&'a Worst>,
     /// Per piece, its largest twist over the motion (deg and deg/m), relative to the cable
     /// as installed.
     twists: Option<&'a [PieceTwist]>,
@@ -91,11 +95,13 @@ impl<'a> TestJson<'a> {
                 .map(|w| w.value),
             min_bend_radius_mm: report.and_then(|r| mm(&r.worst_bend)),
             min_self_clearance_mm: report.and_then(|r| mm(&r.worst_self_clearance)),
+            max_twist_deg_per_m: report.and_then(|r| r.worst_twist.as_ref().map(|w| w.value)),
             worst_clearance: report.and_then(|r| r.worst_clearance.as_ref()),
             worst_stretch: report.and_then(|r| r.worst_stretch.as_ref()),
             worst_bend_radius: report.and_then(|r| r.worst_bend.as_ref()),
             worst_contact_force: report.and_then(|r| r.worst_contact_force.as_ref()),
             worst_self_clearance: report.and_then(|r| r.worst_self_clearance.as_ref()),
+            worst_twist: report.and_then(|r| r.worst_twist.as_ref()),
             twists: report.map(|r| r.twists.as_slice()),
             clamp_loads: report.map(|r| r.clamp_loads.as_slice()),
             simulated_s: report.map(|r| r.simulated_s),

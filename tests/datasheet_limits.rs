@@ -1,0 +1,233 @@
+//! The limits a cable datasheet states beyond one bend radius — the torsion limit and the
+//! flexing bend radius — against closed forms, on a one-joint robot written here: a spindle
+//! turning about the vertical axis under a fixed base.
+//!
+//! - A straight cable hanging along the spindle's axis, its lower end clamped to the spindle:
+//!   turning the spindle by θ turns the end clamp about the cable's own axis, so the cable
+//!   is twisted uniformly by θ over its length L (θ/L per metre), in the attachment test's
+//!   static check and in the motion test alike, and the torsion limit refuses it exactly
+//!   when θ/L exceeds it.
+//! - A loop whose two clamps are on the base does not move when the spindle turns: its
+//!   curvature changes nowhere, so it only has to keep the fixed-installation radius. A loop
+//!   from the base to an off-axis clamp on the spindle changes shape: it flexes, and must
+//!   keep the flexing radius, in the static sweep and in the motion test.
+
+use cable_dict::attachment::{ConnectMethod, Evaluator, MotionSweep, Rejection};
+use cable_dict::motion::Motion;
+use cable_dict::motion_test::{Constraint, MotionTestOptions, MotionTestReport, run};
+use cable_dict::path::{CablePath, Pv};
+use cable_dict::setup::Setup;
+use std::path::Path;
+
+/// One revolute joint about z: `base` (fixed) and `spindle`. No geometry: nothing to touch.
+const SPINDLE_URDF: &str = r#"<robot name="spindle">
+  <link name="base"/>
+  <link name="spindle"/>
+  <joint name="turn" type="revolute">
+    <parent link="base"/>
+    <child link="spindle"/>
+    <origin xyz="0 0 0" rpy="0 0 0"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-3.1" upper="3.1" effort="10" velocity="3"/>
+  </joint>
+</robot>
+"#;
+
+/// An 8 mm cable whose datasheet states both radii and a torsion limit (`{fixed}`,
+/// `{flexing}` mm, `{torsion}` deg/m).
+fn cable_text(fixed_mm: f64, flexing_mm: f64, torsion_deg_per_m: f64) -> String {
+    format!(
+        "name = \"test cable\"\n\
+         diameter_mm = 8.0\n\
+         mass_per_length_kg_m = 0.1\n\
+         bending_stiffness_n_m2 = 6.0e-3\n\
+         torsion_stiffness_n_m2 = 7.8e-3\n\
+         min_bend_radius_fixed_mm = {fixed_mm}\n\
+         min_bend_radius_flexing_mm = {flexing_mm}\n\
+         torsion_limit_deg_per_m = {torsion_deg_per_m}\n"
+    )
+}
+
+/// A setup on the spindle with two guides (one configuration each, `start` and `end`:
+/// `link`, position in mm, rpy in degrees) and one segment of `length` sub-segments, in
+/// `dir`, its cable stating the limits given.
+fn spindle_setup(
+    dir: &Path,
+    start: (&str, [f64; 3], [f64; 3]),
+    end: (&str, [f64; 3], [f64; 3]),
+    length: usize,
+    cable: &str,
+) -> Setup {
+    std::fs::write(dir.join("spindle.urdf"), SPINDLE_URDF).unwrap();
+    std::fs::write(dir.join("cable.toml"), cable).unwrap();
+    let guide = |name: &str, (link, xyz, rpy): (&str, [f64; 3], [f64; 3])| {
+        format!(
+            "[[guides]]\nname = \"{name}\"\nlink = \"{link}\"\nconfigurations = [\n  \
+             {{ name = \"only\", position_mm = {xyz:?}, rpy_deg = {rpy:?} }},\n]\n"
+        )
+    };
+    let text = format!(
+        "robot = \"spindle.urdf\"\ncable = \"cable.toml\"\ngravity_m_s2 = [0.0, 0.0, -9.81]\n\
+         max_guides_per_link = 2\ninstall_joints_deg = [0.0]\n\n{}\n{}\n{}\n\
+         [[segments]]\nfrom = \"G1\"\nto = \"G2\"\n\
+         lengths = {{ min = {length}, max = {length}, step = 1, allow_zero = false }}\n",
+        crate::common::limits("\"cable\""),
+        guide("G1", start),
+        guide("G2", end),
+    );
+    let path = dir.join("setup.toml");
+    std::fs::write(&path, text).unwrap();
+    Setup::from_file(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// A straight cable of 40 sub-segments (0.4 m) hanging from the base along the axis to the
+/// spindle, both clamps pointing down the cable.
+fn hanging_straight(dir: &Path, cable: &str) -> Setup {
+    let down = [180.0, 0.0, 0.0];
+    spindle_setup(
+        dir,
+        ("base", [0.0, 0.0, 400.0], down),
+        ("spindle", [0.0, 0.0, 0.0], down),
+        40,
+        cable,
+    )
+}
+
+/// The spindle turning from 0 to `to_deg` in `duration_s`, then held as long again.
+fn turning(setup: &Setup, to_deg: f64, duration_s: f64) -> Motion {
+    let to = to_deg.to_radians();
+    Motion::new(
+        &setup.robot,
+        vec![0.0, duration_s, 2.0 * duration_s],
+        vec![vec![0.0], vec![to], vec![to]],
+    )
+    .unwrap()
+}
+
+fn motion_test(setup: &Setup, length: usize, motion: &Motion) -> MotionTestReport {
+    let path = CablePath::through_every_guide(vec![length], vec![0, 0]);
+    run(setup, &path, motion, &MotionTestOptions::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn a_straight_cable_turned_by_an_angle_is_twisted_by_that_angle_over_its_length() {
+    let dir = tempfile::tempdir().unwrap();
+    let length_m = 0.4f64;
+    for turn_deg in [30.0f64, 90.0, -135.0] {
+        // Right-handed about the cable toward its end: the cable runs down the axis, so a
+        // turn of the spindle about +z twists it by −θ.
+        let per_m = -turn_deg / length_m;
+        // A limit 5 % either side of the closed form: refused below it, held above.
+        for (limit, refused) in [(0.95 * per_m.abs(), true), (1.05 * per_m.abs(), false)] {
+            let setup = hanging_straight(dir.path(), &cable_text(40.0, 80.0, limit));
+            let evaluator = Evaluator::new(&setup, ConnectMethod::Hermite).unwrap();
+            let links = setup
+                .robot
+                .link_poses(&[f64::to_radians(turn_deg)])
+                .unwrap();
+            let check = evaluator.check_at(0, &Pv::new(40, 0, 0), &links);
+            let metrics = check.metrics.expect("an equilibrium");
+            assert!(
+                (metrics.twist_deg_per_m - per_m).abs() < 1e-6 * per_m.abs(),
+                "turned {turn_deg}°: {} °/m, closed form {per_m}",
+                metrics.twist_deg_per_m
+            );
+            assert!(metrics.min_bend_radius_m > 1e3, "the cable stays straight");
+            let expected = refused.then_some(Rejection::Twist);
+            assert_eq!(check.rejection, expected, "{:?}", check.detail);
+        }
+    }
+}
+
+#[test]
+fn the_motion_test_follows_the_twist_of_a_turning_spindle_and_holds_it_to_the_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let per_m = 90.0 / 0.4;
+    for (limit, refused) in [(0.95 * per_m, true), (1.05 * per_m, false)] {
+        let setup = hanging_straight(dir.path(), &cable_text(40.0, 80.0, limit));
+        let report = motion_test(&setup, 40, &turning(&setup, 90.0, 1.0));
+        let worst = report.worst_twist.as_ref().expect("the twist is measured");
+        assert!(
+            (worst.value - per_m).abs() < 1e-3 * per_m,
+            "{} °/m against {per_m}",
+            worst.value
+        );
+        let twisted = report.first_violation.as_ref().map(|v| v.constraint);
+        assert_eq!(
+            twisted,
+            refused.then_some(Constraint::Twist),
+            "{}",
+            report.summary()
+        );
+        assert_eq!(report.passed, !refused);
+    }
+}
+
+/// The still loop (both clamps on the base) and the loop to the spindle's off-axis clamp:
+/// their tightest bend measured with loose limits, then the limits set around it.
+#[test]
+fn only_a_piece_that_flexes_keeps_the_flexing_radius() {
+    let dir = tempfile::tempdir().unwrap();
+    let down = [180.0, 0.0, 0.0];
+    let up = [0.0, 0.0, 0.0];
+    let still = |cable: &str| {
+        spindle_setup(
+            dir.path(),
+            ("base", [-60.0, 0.0, 300.0], down),
+            ("base", [60.0, 0.0, 300.0], up),
+            35,
+            cable,
+        )
+    };
+    let moving = |cable: &str| {
+        spindle_setup(
+            dir.path(),
+            ("base", [-60.0, 0.0, 300.0], down),
+            ("spindle", [60.0, 0.0, 300.0], up),
+            35,
+            cable,
+        )
+    };
+    let loose = cable_text(1.0, 1.0, 1e4);
+    for (setup_of, flexes) in [(&still as &dyn Fn(&str) -> Setup, false), (&moving, true)] {
+        let setup = setup_of(&loose);
+        let motion = turning(&setup, 60.0, 1.5);
+        let measured = motion_test(&setup, 35, &motion);
+        assert!(measured.passed, "{}", measured.summary());
+        let piece = &measured.pieces[0];
+        let radius_mm = piece.worst_bend.as_ref().expect("a bend").value * 1e3;
+        if flexes {
+            assert!(piece.flexes, "{piece:?}");
+        } else {
+            // Closed form: a piece that does not move keeps its shape exactly.
+            assert!(piece.largest_curvature_change_per_m < 1e-6, "{piece:?}");
+            assert!(!piece.flexes);
+        }
+        // Fixed radius below the tightest bend, flexing radius above it.
+        let (fixed, flexing) = (0.8 * radius_mm, 1.25 * radius_mm);
+        let setup = setup_of(&cable_text(fixed, flexing, 1e4));
+        let report = motion_test(&setup, 35, &motion);
+        let piece = &report.pieces[0];
+        let limit_mm = piece.bend_radius_limit_m * 1e3;
+        let violated = report.first_violation.as_ref().map(|v| v.constraint);
+        if flexes {
+            assert!((limit_mm - flexing).abs() < 1e-9, "{limit_mm}");
+            assert_eq!(violated, Some(Constraint::FlexingBendRadius));
+        } else {
+            assert!((limit_mm - fixed).abs() < 1e-9, "{limit_mm}");
+            assert!(report.passed, "{}", report.summary());
+        }
+        // The static sweep over the same motion says the same.
+        let evaluator = Evaluator::new(&setup, ConnectMethod::Hermite).unwrap();
+        let mut sweep = MotionSweep::new(&evaluator, &motion).unwrap();
+        let failure = sweep.check(0, &Pv::new(35, 0, 0));
+        match (flexes, failure) {
+            (true, Some(failure)) => {
+                assert_eq!(failure.rejection, Rejection::Bend);
+                assert!(failure.detail.contains("flexing"), "{}", failure.detail);
+            }
+            (false, None) => {}
+            (flexes, failure) => panic!("flexes {flexes}, sweep {failure:?}"),
+        }
+    }
+}
