@@ -231,3 +231,60 @@ fn only_a_piece_that_flexes_keeps_the_flexing_radius() {
         }
     }
 }
+
+/// The bundled pick-and-place setup with the makers' rule for its cable (fixed 5 × d, flexing
+/// 10 × d, ±360°/m; tests/data/datasheet): the bundled answer (one 48 mm radius for every
+/// piece) flexes below 80 mm, so the stricter limits refuse it; their own answer is no
+/// shorter, and its motion test keeps every limit where the rule puts it.
+#[test]
+fn the_makers_rule_refuses_the_bundled_answer_and_answers_within_it() {
+    use cable_dict::solve::{SolveOptions, Status, solve};
+    let root = crate::common::root();
+    let text = crate::common::bundled_setup_text();
+    let source = root.join("robots/viper_s850/pick_and_place.toml");
+    let bundled = Setup::from_toml_str(&text, &source).unwrap_or_else(|e| panic!("{e}"));
+    let rule_cable = root.join("tests/data/datasheet/smc_le_cp_3_maker_rule.toml");
+    let rule_text = text.replace(
+        &format!("cable = {:?}", root.join("cables/smc_le_cp_3.toml")),
+        &format!("cable = {rule_cable:?}"),
+    );
+    let rule = Setup::from_toml_str(&rule_text, &source).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(rule.thresholds.flexing_bend_radius_m(), 0.080);
+    let motion = Motion::from_csv_file(
+        &bundled.robot,
+        root.join("motions/viper_s850/pick_and_place.csv"),
+    )
+    .unwrap();
+    let options = SolveOptions::default();
+    let answer = |setup: &Setup| {
+        let report = solve(setup, &motion, &options).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(report.status, Status::Solved, "{}", report.explanation);
+        let shown = report.shown_candidate().expect("the answer");
+        (shown.path.clone(), shown.total_length_mm)
+    };
+    let (bundled_path, bundled_mm) = answer(&bundled);
+    let refused = run(&rule, &bundled_path, &motion, &MotionTestOptions::default()).unwrap();
+    let violation = refused.first_violation.as_ref().expect("refused");
+    assert_eq!(
+        violation.constraint,
+        Constraint::FlexingBendRadius,
+        "{violation}"
+    );
+    assert!(
+        violation.value > 0.040 && violation.value < 0.080,
+        "{violation}"
+    );
+
+    let (rule_path, rule_mm) = answer(&rule);
+    assert!(rule_mm >= bundled_mm, "{rule_mm} < {bundled_mm}");
+    let report = run(&rule, &rule_path, &motion, &MotionTestOptions::default()).unwrap();
+    assert!(report.passed, "{}", report.summary());
+    for piece in &report.pieces {
+        let limit = if piece.flexes { 0.080 } else { 0.040 };
+        assert_eq!(piece.bend_radius_limit_m, limit);
+        let bend = piece.worst_bend.as_ref().map_or(f64::INFINITY, |w| w.value);
+        assert!(bend >= limit, "{piece:?}");
+    }
+    let twist = report.worst_twist.as_ref().expect("twist measured");
+    assert!(twist.value <= 360.0, "{twist:?}");
+}
