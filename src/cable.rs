@@ -242,9 +242,10 @@ impl CableSpec {
 }
 
 /// The exponent `k` of a rated life extended to other amplitudes, `N = N_rated · (a /
-/// a_rated)^(−k)`, when the cable file's `[rated_life]` states none. See docs/physics.md,
-/// "Life": the value of flex-life tests of stranded copper conductors.
-pub const DEFAULT_LIFE_EXPONENT: f64 = 4.0;
+/// a_rated)^(−k)`, when the cable file's `[rated_life]` states none: 1/0.12, the elastic line
+/// of Manson's universal slopes, where cable ratings (10⁶–10⁷ cycles) lie
+/// ([`crate::life::curve`]; docs/physics.md, "Life").
+pub const DEFAULT_LIFE_EXPONENT: f64 = 1.0 / 0.12;
 
 /// What a cable datasheet states besides the fixed bend radius; each `None` when the file
 /// does not say (nothing is invented: the summary says what is missing).
@@ -311,6 +312,12 @@ impl Datasheet {
             }
         }
         text
+    }
+
+    /// Whether a life can be predicted: a rated life, or the conductors' offset for
+    /// copper's strain–life line ([`crate::life::curve::LifeCurve::of`]).
+    pub fn predicts_life(&self) -> bool {
+        self.rated_life.is_some() || self.conductor_offset_m.is_some()
     }
 
     /// What the datasheet leaves out that the checks would use, one phrase each (empty when

@@ -16,6 +16,8 @@
 //! - [`robot`]: URDF loading, forward kinematics and collision geometry of the arm.
 //! - [`cable`]: the physical specification of a cable (stiffness, mass, bend radius).
 //! - [`calibrate`]: a cable's bending and torsional stiffness from bench measurements.
+//! - [`life`]: how long the cable lasts: rainflow counting of each point's bending and
+//!   twisting, and its damage on the cable's life curve (Miner's rule).
 //! - [`geometry`]: the *connected geometry* of a segment — a cubic Hermite curve carrying the
 //!   discrete cable, with rotation-minimizing frames.
 //! - [`statics`]: the quasi-static equilibrium of a cable clamped at its guides.
@@ -79,6 +81,7 @@ mod fixtures;
 pub mod geometry;
 pub mod input;
 pub mod json;
+pub mod life;
 pub mod motion;
 pub mod motion_test;
 pub mod mounting;

@@ -30,6 +30,7 @@ mod elastica_reference;
 mod hostile_inputs;
 mod hostile_names;
 mod lazy_search;
+mod life;
 mod mesh_reference;
 mod motion;
 mod motion_consistency;

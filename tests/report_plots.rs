@@ -486,6 +486,7 @@ fn stress_report(points: usize) -> MotionTestReport {
         worst_self_clearance: None,
         pieces: Vec::new(),
         twists: Vec::new(),
+        damage: Vec::new(),
         clamp_loads: Vec::new(),
         max_joint_gap_m: 1e-4,
         series,

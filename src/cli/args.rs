@@ -13,6 +13,15 @@ pub fn number_list_arg(text: &str) -> Result<NumberList, String> {
 }
 
 /// Parses `a,b,c,…` into numbers, naming the bad item.
+/// A finite number ≥ 0 (a rate, a count per hour).
+pub fn non_negative(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        Ok(v) => Err(format!("{v} must be a finite number ≥ 0")),
+        Err(e) => Err(format!("`{text}` is not a number: {e}")),
+    }
+}
+
 pub fn number_list(text: &str) -> Result<Vec<f64>, String> {
     text.split(',')
         .enumerate()

@@ -1,6 +1,7 @@
 //! `cable-dict check`: an installed cable against motions, no search. Exit 0 when every
 //! motion holds, 1 when one fails, 2 on invalid input: a gate for robot programs.
 
+use super::args::non_negative;
 use super::output::{Failure, emit, print_json};
 use super::result_file::ResultFile;
 use cable_dict::motion::{Cell, JointRanges};
@@ -52,6 +53,11 @@ pub struct Args {
     /// Print the verdicts as JSON (names as in the result JSON's `motions`).
     #[arg(long)]
     json: bool,
+    /// How often each motion given runs per hour (a cell file's own `cycles_per_hour` comes
+    /// first): the predicted life is then also given in hours and years (with a rated life
+    /// or the conductors' offset in the cable file).
+    #[arg(long, value_name = "N", value_parser = non_negative)]
+    cycles_per_hour: Option<f64>,
 }
 
 /// Runs `check`: `Ok` when every motion holds; a failing motion is exit code 1.
@@ -63,7 +69,8 @@ pub fn run(args: Args) -> Result<(), Failure> {
     let given = (!args.motions.is_empty())
         .then(|| Cell::from_files(&setup.robot, &args.motions))
         .transpose()
-        .map_err(Failure::input)?;
+        .map_err(Failure::input)?
+        .map(|cell| cell.running(args.cycles_per_hour));
     let options = SolveOptions {
         engine: read.engine,
         ..SolveOptions::default()

@@ -1,7 +1,7 @@
 //! `cable-dict solve` and `cable-dict critical-poses`: a setup and a motion → the optimal
 //! cable path, or the poses each segment is tested at.
 
-use super::args::setup_and_motions;
+use super::args::{non_negative, setup_and_motions};
 use super::output::{Failure, emit, print_json};
 use super::provenance::open_verified;
 use cable_dict::atomic_file::write_atomically;
@@ -52,6 +52,12 @@ pub struct Args {
     /// apart.
     #[arg(long, value_name = "DEG", default_value_t = DEFAULT_GRID_STEP_DEG, requires = "ranges")]
     grid_step_deg: f64,
+    /// How often each motion given runs per hour (a cell file's own `cycles_per_hour` comes
+    /// first): the predicted life is then also given in hours and years (with a rated life
+    /// or the conductors' offset in the cable file).
+    #[arg(long, value_name = "N", value_parser = non_negative)]
+    cycles_per_hour: Option<f64>,
+
     /// Also write the box --ranges answered (the box asked, or the narrowed one, with the
     /// stress motions' time to full speed it needed) as a ranges file, for `check --ranges`
     /// (replaced atomically).
@@ -210,7 +216,8 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
     let given = (!motion_paths.is_empty())
         .then(|| Cell::from_files(&setup.robot, motion_paths))
         .transpose()
-        .map_err(Failure::input)?;
+        .map_err(Failure::input)?
+        .map(|cell| cell.running(args.cycles_per_hour));
     let failure = |e: SolveError| match e {
         SolveError::Options(_)
         | SolveError::Setup(_)

@@ -91,6 +91,15 @@ impl Cell {
         }
     }
 
+    /// The cell with `cycles_per_hour` for each motion that states none (unchanged for
+    /// `None`).
+    pub fn running(mut self, cycles_per_hour: Option<f64>) -> Cell {
+        for motion in &mut self.motions {
+            motion.cycles_per_hour = motion.cycles_per_hour.or(cycles_per_hour);
+        }
+        self
+    }
+
     /// A cell of one motion, named after its file (or `motion`).
     pub fn single(motion: Motion, file: Option<&Path>) -> Cell {
         Cell {

@@ -65,8 +65,8 @@ mod tracker;
 pub use error::MotionTestError;
 pub use options::{DEFAULT_SETTLE_TAIL_S, Engine, EngineKind, MotionTestOptions};
 pub use report::{
-    ClampLoadPeak, Constraint, Failure, FailureCause, MotionTestReport, PieceTwist, PieceWorst,
-    Place, SegmentNodes, SeriesPoint, ShapeFrame, Violation, Worst,
+    ClampLoadPeak, Constraint, Failure, FailureCause, MotionTestReport, PieceLifeDamage,
+    PieceTwist, PieceWorst, Place, SegmentNodes, SeriesPoint, ShapeFrame, Violation, Worst,
 };
 
 use crate::motion::Motion;

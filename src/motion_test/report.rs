@@ -43,6 +43,10 @@ pub struct MotionTestReport {
     /// Per simulated piece, its largest twist over the run (the implicit engine; empty for
     /// the rigid chain, which does not model twist as the statics do).
     pub twists: Vec<PieceTwist>,
+    /// Per simulated piece, the damage one cycle of the motion does to it (its bending per
+    /// joint, its twisting), counted over the run as the motion repeated; empty when the
+    /// cable has no life curve.
+    pub damage: Vec<PieceLifeDamage>,
     /// Per clamp of the simulated cable (guides joined by a 0 mm piece are one), the largest
     /// force and moment the cable puts on it, sampled every 20 ms of the motion (the
     /// implicit engine; empty for the rigid chain).
@@ -91,6 +95,17 @@ pub struct PieceWorst {
     pub largest_curvature_change_per_m: f64,
     /// The bend radius it had to keep (m): the flexing one when it flexes, else the fixed.
     pub bend_radius_limit_m: f64,
+}
+
+/// The damage one cycle of the motion does to one piece ([`crate::life::damage`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PieceLifeDamage {
+    /// Index into the setup's segments.
+    pub segment: usize,
+    /// The segment's name (`C3`).
+    pub segment_name: String,
+    /// Per joint bending and the twisting, Miner's sum per cycle.
+    pub damage: crate::life::damage::PieceDamage,
 }
 
 /// The largest twist of one piece of cable over the motion test.

@@ -13,7 +13,7 @@ use crate::pose::Pose;
 use crate::progress;
 use crate::setup::Setup;
 use crate::statics::{RodParameters, clamp_loads};
-use crate::stress::{curvatures_per_m, min_bend_radius, stretch};
+use crate::stress::{curvature_vectors_per_m, curvatures_per_m, min_bend_radius, stretch};
 use nalgebra::Vector3;
 
 /// How often (s of the motion) the loads on the clamps are taken.
@@ -153,6 +153,18 @@ impl Context<'_> {
             let natural = planned.sub_segments as f64 * pitch;
             let curvatures =
                 curvatures_per_m(&nodes, &axis(&guides[j]), &axis(&guides[j + 1]), pitch);
+            // The bending each conductor feels, for the cable's life (only when it has a
+            // life curve: 12 conductors per joint at every step).
+            let bending = match self.setup.cable.datasheet.predicts_life() {
+                true => curvature_vectors_per_m(
+                    &nodes,
+                    &guides[j].rotation.to_rotation_matrix(),
+                    &axis(&guides[j + 1]),
+                    state.twist_rad.unwrap_or(0.0),
+                    pitch,
+                ),
+                false => Vec::new(),
+            };
             let loads = state.twist_rad.filter(|_| with_loads).and_then(|twist| {
                 let (start, end) =
                     clamp_loads(&params, &guides[j], Some(&guides[j + 1]), &nodes, twist);
@@ -172,6 +184,7 @@ impl Context<'_> {
                 stretch: stretch(&nodes, natural),
                 bend: min_bend_radius(&nodes, &axis(&guides[j]), &axis(&guides[j + 1]), pitch),
                 curvatures_per_m: curvatures,
+                curvature_vectors_per_m: bending,
                 contact: state.contact,
                 max_joint_gap_m: state.max_joint_gap_m,
                 nodes,

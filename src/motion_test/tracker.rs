@@ -2,9 +2,11 @@
 
 use super::engine::ForceAt;
 use super::report::{
-    ClampLoadPeak, Constraint, Failure, FailureCause, MotionTestReport, PieceTwist, PieceWorst,
-    Place, SegmentNodes, SeriesPoint, ShapeFrame, Violation, Worst,
+    ClampLoadPeak, Constraint, Failure, FailureCause, MotionTestReport, PieceLifeDamage,
+    PieceTwist, PieceWorst, Place, SegmentNodes, SeriesPoint, ShapeFrame, Violation, Worst,
 };
+use crate::life::curve::LifeCurve;
+use crate::life::damage::PieceHistory;
 use crate::setup::{Setup, Thresholds};
 use crate::statics::ClampLoad;
 use crate::stress::{
@@ -26,6 +28,9 @@ pub(super) struct SegmentMeasure {
     pub bend: BendRadius,
     /// Curvature at every joint (1/m, [`crate::stress::curvatures_per_m`]).
     pub curvatures_per_m: Vec<f64>,
+    /// The curvature vector at every joint in the cross-section's frame
+    /// ([`crate::stress::curvature_vectors_per_m`]); empty when the cable has no life curve.
+    pub curvature_vectors_per_m: Vec<[f64; 2]>,
     /// Most loaded sub-segment outside the clamp zones in the simulation, if any touched.
     pub contact: Option<ForceAt>,
     /// Largest joint gap (m); 0 for a shape that was not simulated.
@@ -54,6 +59,9 @@ pub(super) struct Tracker<'a> {
     pieces: Vec<PieceWorst>,
     /// Per piece (in the order of `pieces`), how its curvature changed so far.
     flex: Vec<CurvatureRange>,
+    /// The cable's life curve, and per piece (in the order of `pieces`) its bending and
+    /// twisting histories counted so far; `None` without a life curve.
+    life: Option<(LifeCurve, Vec<Option<PieceHistory>>)>,
     twists: Vec<PieceTwist>,
     clamp_loads: Vec<ClampLoadPeak>,
     max_joint_gap_m: f64,
@@ -81,6 +89,7 @@ impl<'a> Tracker<'a> {
             first_violation: None,
             pieces: Vec::new(),
             flex: Vec::new(),
+            life: LifeCurve::of(&setup.cable.datasheet).map(|curve| (curve, Vec::new())),
             twists: Vec::new(),
             clamp_loads: Vec::new(),
             max_joint_gap_m: 0.0,
@@ -168,7 +177,20 @@ impl<'a> Tracker<'a> {
                 segment: Some(v.segment),
             })
         });
+        let damage = match self.life {
+            Some((curve, histories)) => (self.pieces.iter().zip(histories))
+                .filter_map(|(piece, history)| {
+                    Some(PieceLifeDamage {
+                        segment: piece.segment,
+                        segment_name: piece.segment_name.clone(),
+                        damage: history?.finish(&curve),
+                    })
+                })
+                .collect(),
+            None => Vec::new(),
+        };
         MotionTestReport {
+            damage,
             passed: failure.is_none(),
             failure,
             first_violation: self.first_violation,
@@ -205,6 +227,24 @@ impl<'a> Tracker<'a> {
         self.keep_stretch(time_s, segment, measure.stretch, thresholds);
         self.keep_bend(time_s, segment, measure);
         self.keep_flex(segment, &measure.curvatures_per_m, thresholds);
+        self.keep_history(measure);
+    }
+
+    /// Counts `measure`'s bending and twisting into its piece's history (with a life curve).
+    fn keep_history(&mut self, measure: &SegmentMeasure) {
+        let at = self.piece_index(measure.segment);
+        let pitch = self.setup.cable.sub_segment_pitch_m;
+        let length_m = measure.nodes.len().saturating_sub(1) as f64 * pitch;
+        let Some((curve, histories)) = &mut self.life else {
+            return;
+        };
+        let twist = measure
+            .twist_rad
+            .map(|t| twist_per_length_deg_per_m(t, length_m));
+        let joints = measure.curvature_vectors_per_m.len();
+        histories[at]
+            .get_or_insert_with(|| PieceHistory::new(joints))
+            .push(curve, &measure.curvature_vectors_per_m, twist);
     }
 
     /// How `segment`'s curvature changed, with its shape now: once it flexes (by more than
@@ -325,6 +365,9 @@ impl<'a> Tracker<'a> {
                 };
                 self.pieces.insert(at, piece);
                 self.flex.insert(at, CurvatureRange::default());
+                if let Some((_, histories)) = &mut self.life {
+                    histories.insert(at, None);
+                }
                 at
             }
         }
@@ -700,6 +743,7 @@ mod tests {
                 node: 0,
             },
             curvatures_per_m: Vec::new(),
+            curvature_vectors_per_m: Vec::new(),
             contact: None,
             max_joint_gap_m: 0.0,
             twist_rad: None,

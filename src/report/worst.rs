@@ -173,6 +173,7 @@ mod tests {
             worst_self_clearance: None,
             pieces: Vec::new(),
             twists: Vec::new(),
+            damage: Vec::new(),
             clamp_loads: Vec::new(),
             max_joint_gap_m: 0.0,
             series: Vec::new(),

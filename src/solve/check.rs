@@ -6,7 +6,8 @@ use super::box_check::{BoxCheck, MAX_BOX_CHECK_POSES, check_box};
 use super::options::{SolveError, SolveOptions};
 use super::ranges::STRESS_MOTION_RATE_HZ;
 use super::report::{
-    AllowedRanges, MotionVerdict, NamedPath, PieceBinding, binding, motion_verdicts, named_path,
+    AllowedRanges, MotionVerdict, NamedPath, PieceBinding, binding, life, motion_verdicts,
+    named_path,
 };
 use super::search::test_options;
 use crate::motion::{Cell, JointRanges};
@@ -29,6 +30,8 @@ pub struct Check {
     pub motions: Vec<MotionVerdict>,
     /// Per piece, the motion that comes closest to each limit (several motions only).
     pub binding: Vec<PieceBinding>,
+    /// The predicted life of the mounting over these motions (with a rated life).
+    pub life: Option<crate::life::estimate::CableLife>,
     /// The limits held to.
     pub thresholds: Thresholds,
     /// The cable model's sub-segment length (mm).
@@ -71,6 +74,7 @@ pub fn check_mounting(
         mounting: mounting_plan(setup, path),
         length_mm: path.total_sub_segments() as f64 * pitch_mm,
         binding: binding(setup, &motions),
+        life: life(setup, &motions),
         motions,
         thresholds: setup.thresholds,
         sub_segment_pitch_mm: pitch_mm,

@@ -7,7 +7,7 @@
 //! half the chord angle, `l_ss / 2R`. So a guide joint's radius is `(l_ss / 2) / θ`, and a
 //! polygon inscribed in a circle gets the circle's radius at every joint, guides included.
 
-use nalgebra::{Point3, Vector3};
+use nalgebra::{Point3, Rotation3, Vector3};
 
 /// Joint angles below this (rad) are rounding noise on a straight cable.
 const STRAIGHT_RAD: f64 = 1e-9;
@@ -109,6 +109,76 @@ pub fn curvatures_per_m(
             }
         })
         .collect()
+}
+
+/// The curvature vector at every joint in the cable's own cross-section frame (1/m, two
+/// components): the bending a conductor at angle φ around the axis feels is
+/// `κ₁ cos φ + κ₂ sin φ` times its distance from the axis (up to sign), so the history of
+/// these components is what bends each conductor back and forth — a cable bent one way and
+/// then the other reverses their sign, which the curvature's magnitude would not show.
+///
+/// The frame starts as the start clamp's (`start`, its +z the cable's direction) and is
+/// carried along the shape without turning about the cable (parallel transport), then turned
+/// by the piece's twist `twist_rad` in proportion to the length from the start clamp (the
+/// twist is uniform along a piece). Joints are those of [`curvatures_per_m`], which gives
+/// the vectors' lengths.
+pub fn curvature_vectors_per_m(
+    nodes: &[Point3<f64>],
+    start: &Rotation3<f64>,
+    end_tangent: &Vector3<f64>,
+    twist_rad: f64,
+    pitch_m: f64,
+) -> Vec<[f64; 2]> {
+    if nodes.len() < 2 {
+        return Vec::new();
+    }
+    let tangent = start * Vector3::z();
+    let mut across = start * Vector3::x();
+    let chords = nodes.windows(2).map(|w| (w[1] - w[0]).normalize());
+    let directions: Vec<Vector3<f64>> = std::iter::once(tangent)
+        .chain(chords)
+        .chain(std::iter::once(end_tangent.normalize()))
+        .collect();
+    let length_m = (nodes.len() - 1) as f64 * pitch_m;
+    let last_joint = directions.len() - 2;
+    let mut out = Vec::with_capacity(directions.len() - 1);
+    for (node, d) in directions.windows(2).enumerate() {
+        let (t, next) = (d[0], d[1]);
+        let arc = if node == 0 || node == last_joint {
+            0.5 * pitch_m
+        } else {
+            pitch_m
+        };
+        // The cross-section's frame at this joint: the carried one turned by the twist so far.
+        let turn = twist_rad * node as f64 * pitch_m / length_m;
+        let d1 = across * turn.cos() + t.cross(&across) * turn.sin();
+        let d2 = t.cross(&d1);
+        let axis = t.cross(&next);
+        let angle = angle_between(&t, &next);
+        let curvature = if angle > STRAIGHT_RAD && axis.norm() > 0.0 {
+            axis.normalize() * (angle / arc)
+        } else {
+            Vector3::zeros()
+        };
+        out.push([curvature.dot(&d1), curvature.dot(&d2)]);
+        across = transported(&across, &t, &next);
+    }
+    out
+}
+
+/// `v` (perpendicular to `from`) carried to be perpendicular to `to` by the least rotation
+/// taking `from` to `to` (unit vectors).
+fn transported(v: &Vector3<f64>, from: &Vector3<f64>, to: &Vector3<f64>) -> Vector3<f64> {
+    let axis = from.cross(to);
+    let (sin, cos) = (axis.norm(), from.dot(to));
+    let turned = if sin > 1e-12 {
+        let k = axis / sin;
+        v * cos + k.cross(v) * sin + k * (k.dot(v) * (1.0 - cos))
+    } else {
+        *v
+    };
+    // Rounding: keep it a unit vector across the new direction.
+    (turned - to * to.dot(&turned)).normalize()
 }
 
 /// How much the curvature at each joint of a piece changes over a motion: the least and
@@ -221,6 +291,39 @@ mod tests {
         moving.take(&[0.0, 7.0, 1.0]);
         assert_eq!(moving.largest_change(), (5.0, 1));
         assert!(moving.flexes(4.9) && !moving.flexes(5.0));
+    }
+
+    /// On a circular arc in a plane the curvature vector has the circle's curvature at every
+    /// joint and points across the plane: in a cross-section frame that does not twist, all
+    /// along the first axis; twisted by Ψ over the piece, it turns by Ψ·s/L.
+    #[test]
+    fn the_curvature_vector_turns_with_the_twist_and_keeps_its_length() {
+        let (r, l, n) = (0.06, 0.01, 12);
+        let nodes = circle_polyline(r, l, n);
+        let turn = 2.0 * (l / (2.0 * r)).asin();
+        // The start clamp along +x, its x axis along +y (toward the circle's centre).
+        let start = Rotation3::from_matrix_unchecked(nalgebra::Matrix3::from_columns(&[
+            Vector3::y(),
+            Vector3::z(),
+            Vector3::x(),
+        ]));
+        let end = Vector3::new((n as f64 * turn).cos(), (n as f64 * turn).sin(), 0.0);
+        let lengths = curvatures_per_m(&nodes, &Vector3::x(), &end, l);
+        for twist in [0.0, 1.0, -2.5] {
+            let vectors = curvature_vectors_per_m(&nodes, &start, &end, twist, l);
+            assert_eq!(vectors.len(), lengths.len());
+            for (k, ([a, b], length)) in vectors.iter().zip(&lengths).enumerate() {
+                assert!(((a * a + b * b).sqrt() - length).abs() < 1e-9, "joint {k}");
+                // The curvature points along +z (the plane's normal): the frame's second
+                // axis when untwisted (d2 = t × d1 = +z for d1 = +y across the tangent).
+                let phase = twist * k as f64 / n as f64;
+                let expected = [length * phase.sin(), length * phase.cos()];
+                assert!(
+                    (a - expected[0]).abs() < 1e-9 && (b - expected[1]).abs() < 1e-9,
+                    "twist {twist}, joint {k}: {a}, {b} against {expected:?}"
+                );
+            }
+        }
     }
 
     #[test]

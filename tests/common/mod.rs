@@ -1,6 +1,8 @@
 //! Helpers the test modules share: the package root, the binary runner, the bundled setup and
 //! the limits of the small setups written inline.
 
+pub mod spindle;
+
 use std::path::Path;
 use std::process::{Command, Output};
 

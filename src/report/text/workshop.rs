@@ -3,6 +3,7 @@
 //! the length tolerance, what the design leaves out and the worst values over the motion.
 //! No search vocabulary: that is `solve -v` ([`SolveReport`]'s `{:#}`) and the JSON.
 
+use crate::life::estimate::CableLife;
 use crate::motion_test::{Constraint, MotionTestReport, Worst};
 use crate::mounting::{self, MountingPlan, rows};
 use crate::setup::Thresholds;
@@ -296,6 +297,9 @@ fn write_worst(
     if !not_stated.is_empty() {
         writeln!(f, "  the cable file states {}", not_stated.join("; "))?;
     }
+    if let Some(life) = &report.life {
+        writeln!(f, "\n{}", life_words(life, Some(plan)))?;
+    }
     let loads = load_rows(test, Some(plan));
     if !loads.is_empty() {
         writeln!(
@@ -313,6 +317,68 @@ fn write_worst(
         }
     }
     Ok(())
+}
+
+/// The predicted life in words: rounds (and hours, years) to failure, where the cable fails
+/// first, in the fitter's names when `plan` is the path's, and the rated point behind it.
+pub fn life_words(life: &CableLife, plan: Option<&MountingPlan>) -> String {
+    let count = |n: f64| {
+        if !n.is_finite() {
+            "no end (nothing bends or twists back and forth)".to_string()
+        } else if n >= 1e6 {
+            format!("{} million", decimal(n / 1e6, 1))
+        } else {
+            decimal(n, 0)
+        }
+    };
+    let w = &life.weakest;
+    let place = plan
+        .and_then(|p| p.place_on_cable(&w.segment_name, Some(w.from_start_mm)))
+        .unwrap_or_else(|| {
+            format!(
+                "on cable piece {}, {} mm from its start",
+                w.segment_name,
+                decimal(w.from_start_mm, 0)
+            )
+        });
+    let time = match (life.hours_to_failure, life.years_to_failure) {
+        (Some(hours), Some(years)) if hours.is_finite() => format!(
+            "; {} hours at the stated cycles per hour, {} years around the clock",
+            count(hours),
+            decimal(years, 1)
+        ),
+        _ => String::new(),
+    };
+    let basis = match (life.rated_cycles, life.conductor_offset_mm) {
+        (Some(cycles), _) => {
+            let mut rated = vec![format!("{} cycles", count(cycles))];
+            if let Some(r) = life.rated_bend_radius_mm {
+                rated.push(format!("flexed to {} mm", decimal(r, 0)));
+            }
+            if let Some(t) = life.rated_torsion_deg_per_m {
+                rated.push(format!("twisted ±{}°/m", decimal(t, 0)));
+            }
+            let exponent = decimal(life.exponent, 1);
+            let default = if life.exponent_stated {
+                ""
+            } else {
+                ", the default"
+            };
+            format!(
+                "the datasheet's rating: {}; exponent {exponent}{default}",
+                rated.join(", ")
+            )
+        }
+        (None, offset) => format!(
+            "annealed copper's strain–life line, the copper straining {} mm from the axis: \
+             no rated life in the cable file",
+            decimal(offset.unwrap_or(f64::NAN), 2)
+        ),
+    };
+    format!(
+        "predicted life: {} cycles{time}; it fails first {place} ({basis})",
+        count(life.cycles_to_failure)
+    )
 }
 
 /// What the wordings of a motion test need besides the test: the limits it was held to and

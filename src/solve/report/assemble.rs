@@ -8,6 +8,8 @@ use super::margins::margins;
 use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, SegmentSets, TestPose};
 use crate::chain::ChainSearch;
 use crate::json::tidy;
+use crate::life::curve::LifeCurve;
+use crate::life::estimate::{CableLife, MotionDamage};
 use crate::motion::{Cell, Motion};
 use crate::motion_test::{MotionTestReport, PieceWorst, Worst};
 use crate::mounting::mounting_plan;
@@ -63,6 +65,7 @@ impl SolveReport {
         let shown_motion = shown.and_then(|k| tried[k].judged).unwrap_or(0);
         let motions = motion_verdicts(cell, runs);
         let binding = binding(setup, &motions);
+        let life = life(setup, &motions);
         // For a cell, the words speak of every one of its motions.
         let explanation = explanation(
             status,
@@ -96,6 +99,7 @@ impl SolveReport {
             motions,
             shown_motion,
             binding,
+            life,
             motion_test_requested: options.motion_test,
             motion_engine: options.engine,
             timings,
@@ -384,6 +388,34 @@ pub(in crate::solve) fn motion_verdicts(
             grid_poses: m.grid.as_ref().map(|_| m.motion.samples().len()),
         })
         .collect()
+}
+
+/// The predicted life of the path the motions were run with, from every motion's damage
+/// weighted by its cycles per hour; `None` without a life curve for the cable or when a
+/// motion was not simulated (an axis-range grid, a failed test before its end).
+pub(in crate::solve) fn life(setup: &Setup, motions: &[MotionVerdict]) -> Option<CableLife> {
+    let curve = LifeCurve::of(&setup.cable.datasheet)?;
+    let tables = (motions.iter())
+        .map(|m| {
+            let test = m
+                .motion_test
+                .as_ref()
+                .filter(|t| t.passed && !t.damage.is_empty())?;
+            let pieces = test.damage.iter();
+            Some(
+                pieces
+                    .map(|d| (d.segment, d.segment_name.as_str(), &d.damage))
+                    .collect(),
+            )
+        })
+        .collect::<Option<Vec<Vec<_>>>>()?;
+    let damages: Vec<MotionDamage<'_>> = (motions.iter().zip(&tables))
+        .map(|(m, pieces)| MotionDamage {
+            cycles_per_hour: m.cycles_per_hour,
+            pieces,
+        })
+        .collect();
+    CableLife::of(&curve, &damages, setup.cable.sub_segment_pitch_m * 1e3)
 }
 
 /// Per piece of the path the motions were run with, the motion with its smallest bend

@@ -414,6 +414,9 @@ pub struct SolveReport {
     /// For a cell of several motions, per piece of the path shown, the motion that comes
     /// closest to each limit (result JSON `binding`; empty for a single motion).
     pub binding: Vec<PieceBinding>,
+    /// The predicted life of the path shown (result JSON `life`); `None` without a rated
+    /// life in the cable file or a motion test of every motion.
+    pub life: Option<crate::life::estimate::CableLife>,
     /// The motion test was asked for.
     pub motion_test_requested: bool,
     /// What simulated the cable in the motion tests.

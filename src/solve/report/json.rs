@@ -125,6 +125,8 @@ struct ResultJson<'a> {
     motions: Vec<MotionJson<'a>>,
     #[serde(skip_serializing_if = "<[_]>::is_empty")]
     binding: &'a [PieceBinding],
+    /// The predicted life (with a rated life in the cable file).
+    life: Option<&'a crate::life::estimate::CableLife>,
     candidates: &'a [CandidateOutcome],
     static_sweep: &'a SweepSummary,
     margins: &'a [Margin],
@@ -157,6 +159,7 @@ impl Serialize for SolveReport {
             }),
             motions: self.motions.iter().map(MotionJson::new).collect(),
             binding: &self.binding,
+            life: self.life.as_ref(),
             candidates: &self.candidates,
             static_sweep: &self.static_sweep,
             margins: &self.margins,
@@ -183,6 +186,8 @@ struct CheckJson<'a> {
     motions: Vec<MotionJson<'a>>,
     #[serde(skip_serializing_if = "<[_]>::is_empty")]
     binding: &'a [PieceBinding],
+    /// The predicted life (with a rated life in the cable file).
+    life: Option<&'a crate::life::estimate::CableLife>,
     /// Over an axis-range box: every piece at a grid of its poses.
     #[serde(skip_serializing_if = "Option::is_none")]
     over_box: Option<&'a super::super::BoxCheck>,
@@ -201,6 +206,7 @@ impl Serialize for super::super::Check {
             mounting: &self.mounting,
             motions: self.motions.iter().map(MotionJson::new).collect(),
             binding: &self.binding,
+            life: self.life.as_ref(),
             over_box: self.over_box.as_ref(),
             allowed_ranges: self.allowed_ranges.as_ref(),
             wall_time_s: self.wall_time_s,

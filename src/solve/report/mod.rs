@@ -9,6 +9,6 @@ mod json;
 mod margins;
 
 pub(in crate::solve) use assemble::Stages;
-pub(in crate::solve) use assemble::{binding, motion_verdicts};
+pub(in crate::solve) use assemble::{binding, life, motion_verdicts};
 pub use assemble::{dropped_per_segment, guide_names, named_path, pose_summary};
 pub use data::*;
