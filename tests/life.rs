@@ -172,3 +172,85 @@ fn a_twisting_motion_does_the_damage_of_its_twist_cycles() {
     let ratio = damage_at(90.0) / damage_at(60.0);
     assert!((ratio / 1.5f64.powf(k) - 1.0).abs() < 4e-3, "{ratio}");
 }
+
+/// The bundled pick and place under the makers' rule with a rated life
+/// (tests/data/datasheet): `--min-life-cycles` answers a path that lasts what was asked,
+/// every shorter path tried having failed a limit or lived shorter, its life the one `check`
+/// predicts again from its own motion test; `--prefer life` answers, within the window, the
+/// longest-lived path it weighed, and lives at least as long as the shortest answer.
+#[test]
+fn a_life_goal_answers_a_path_that_lasts() {
+    use cable_dict::motion::{Cell, Motion};
+    use cable_dict::setup::Setup;
+    use cable_dict::solve::{LifeGoal, SolveOptions, Status, check_mounting, solve};
+    let root = crate::common::root();
+    let text = crate::common::bundled_setup_text().replace(
+        &format!("cable = {:?}", root.join("cables/smc_le_cp_3.toml")),
+        &format!(
+            "cable = {:?}",
+            root.join("tests/data/datasheet/smc_le_cp_3_maker_rule.toml")
+        ),
+    );
+    let source = root.join("robots/viper_s850/pick_and_place.toml");
+    let setup = Setup::from_toml_str(&text, &source).unwrap_or_else(|e| panic!("{e}"));
+    let motion = Motion::from_csv_file(
+        &setup.robot,
+        root.join("motions/viper_s850/pick_and_place.csv"),
+    )
+    .unwrap();
+    let run = |goal: Option<LifeGoal>| {
+        let options = SolveOptions {
+            life_goal: goal,
+            ..SolveOptions::default()
+        };
+        let report = solve(&setup, &motion, &options).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(report.status, Status::Solved, "{}", report.explanation);
+        report
+    };
+    let shortest = run(None);
+    let life =
+        |r: &cable_dict::solve::SolveReport| r.life.as_ref().expect("a life").cycles_to_failure;
+    let (shortest_mm, shortest_life) = (shortest.optimal_length_mm.unwrap(), life(&shortest));
+
+    let asked = 1.5 * shortest_life;
+    let long = run(Some(LifeGoal::AtLeast { cycles: asked }));
+    assert!(life(&long) >= asked, "{} < {asked}", life(&long));
+    assert!(long.optimal_length_mm.unwrap() > shortest_mm);
+    let answer = long.shown_candidate().expect("the answer");
+    for c in long.candidates.iter().take_while(|c| c.rank < answer.rank) {
+        assert_eq!(c.passed, Some(false), "{c:?}");
+        assert!(c.life_cycles.is_none_or(|l| l < asked), "{c:?}");
+    }
+    let check = check_mounting(
+        &setup,
+        &answer.path,
+        &Cell::single(motion.clone(), None),
+        &SolveOptions::default(),
+    )
+    .unwrap();
+    let again = check
+        .life
+        .as_ref()
+        .expect("check predicts it")
+        .cycles_to_failure;
+    assert!(
+        (again / life(&long) - 1.0).abs() < 1e-12,
+        "{again} against {}",
+        life(&long)
+    );
+
+    let within_mm = 100.0;
+    let preferred = run(Some(LifeGoal::Longest { within_mm }));
+    let weighed: Vec<f64> = preferred
+        .candidates
+        .iter()
+        .filter_map(|c| c.life_cycles)
+        .collect();
+    assert!(weighed.len() >= 2, "{weighed:?}");
+    assert!(
+        weighed.iter().all(|&l| l <= life(&preferred)),
+        "{weighed:?}"
+    );
+    assert!(life(&preferred) >= shortest_life);
+    assert!(preferred.optimal_length_mm.unwrap() <= shortest_mm + within_mm + 1e-9);
+}

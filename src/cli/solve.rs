@@ -11,7 +11,7 @@ use cable_dict::motion_test::EngineKind;
 use cable_dict::report::{ReportError, check_report_folder, write_report};
 use cable_dict::setup::Setup;
 use cable_dict::solve::{
-    DEFAULT_GRID_STEP_DEG, ReportShapes, SearchKind, Solution, SolveError, SolveOptions,
+    DEFAULT_GRID_STEP_DEG, LifeGoal, ReportShapes, SearchKind, Solution, SolveError, SolveOptions,
     SolveReport, allowed_box, allowed_ranges, guide_names, solve_cell, solve_ranges,
 };
 use std::fmt::Write as _;
@@ -121,6 +121,25 @@ pub struct Args {
     /// dictionary answers) or `first-pose` (the paper's rule: one pose, the motion's first).
     #[arg(long, value_enum, default_value_t = IntraLink::GravityDirections)]
     intra_link: IntraLink,
+    /// The shortest path that holds every limit and whose predicted life is at least N cycles
+    /// (of the motion; of a round of the cell's motions). Needs a [rated_life] or
+    /// conductor_offset_mm in the cable file.
+    #[arg(long, value_name = "N", value_parser = non_negative, conflicts_with = "prefer")]
+    min_life_cycles: Option<f64>,
+    /// `life`: among the paths that hold every limit and are at most --within-mm longer than
+    /// the shortest such path, the one with the longest predicted life.
+    #[arg(long, value_enum, requires = "within_mm")]
+    prefer: Option<Prefer>,
+    /// How much longer than the shortest path that holds every limit a path --prefer life
+    /// may be (mm).
+    #[arg(long, value_name = "MM", value_parser = non_negative, requires = "prefer")]
+    within_mm: Option<f64>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, clap::ValueEnum)]
+enum Prefer {
+    /// The longest predicted life within --within-mm of the shortest path.
+    Life,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, clap::ValueEnum)]
@@ -212,6 +231,11 @@ pub fn run(args: Args, verbose: bool) -> Result<(), Failure> {
             IntraLink::FirstPose => IntraLinkCriterion::FirstPose,
         },
         diagnose: true,
+        life_goal: match (args.min_life_cycles, args.prefer, args.within_mm) {
+            (Some(cycles), _, _) => Some(LifeGoal::AtLeast { cycles }),
+            (None, Some(Prefer::Life), Some(within_mm)) => Some(LifeGoal::Longest { within_mm }),
+            _ => None,
+        },
     };
     let given = (!motion_paths.is_empty())
         .then(|| Cell::from_files(&setup.robot, motion_paths))

@@ -27,6 +27,7 @@ mod chains;
 mod check;
 mod diagnosis;
 mod learn;
+mod life;
 mod options;
 mod ranges;
 mod report;
@@ -46,7 +47,7 @@ pub use check::{Check, check_mounting, check_ranges};
 pub use diagnosis::{
     DiagnosedPose, Diagnosis, NearestMiss, REJECTING_POSES, RejectingPose, SegmentDiagnosis,
 };
-pub use options::{SearchKind, SolveError, SolveOptions};
+pub use options::{LifeGoal, SearchKind, SolveError, SolveOptions};
 pub use ranges::{DEFAULT_GRID_STEP_DEG, STRESS_MOTION_RATE_HZ, range_cell, solve_ranges};
 use search::{MotionSearch, search_chains};
 pub use shapes::{

@@ -46,6 +46,26 @@ pub struct SolveOptions {
     /// Off: "unsolved" as soon as the search knows it, as the narrowing of axis ranges asks
     /// of each box it tries.
     pub diagnose: bool,
+    /// What the answer's predicted life must be ([`LifeGoal`]); `None`: the shortest path
+    /// that holds every limit, whatever its life.
+    pub life_goal: Option<LifeGoal>,
+}
+
+/// What a solve asks of the answer's predicted life (the cable file must give a life curve).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LifeGoal {
+    /// The shortest path that holds every limit and lasts at least this many cycles (of the
+    /// motion; of a round of the cell's motions).
+    AtLeast {
+        /// Cycles.
+        cycles: f64,
+    },
+    /// Of the paths that hold every limit and are at most this much longer than the shortest
+    /// such path, the one that lasts longest.
+    Longest {
+        /// mm.
+        within_mm: f64,
+    },
 }
 
 /// How the attachment test and the chain search work together.
@@ -74,6 +94,7 @@ impl Default for SolveOptions {
             intra_link: IntraLinkCriterion::GravityDirections,
             search: SearchKind::Lazy,
             diagnose: true,
+            life_goal: None,
         }
     }
 }
@@ -84,6 +105,20 @@ impl SolveOptions {
     pub fn setup_for(&self, setup: &Setup) -> Result<Setup, SolveError> {
         if self.k_best == 0 {
             return Err(SolveError::Options("--k-best must be at least 1".into()));
+        }
+        if self.life_goal.is_some() && !setup.cable.datasheet.predicts_life() {
+            return Err(SolveError::Options(format!(
+                "a life goal (--min-life-cycles, --prefer life) needs the cable's life curve: \
+                 a [rated_life] table or conductor_offset_mm in {}",
+                setup.cable_path.display()
+            )));
+        }
+        if self.life_goal.is_some() && !self.motion_test {
+            return Err(SolveError::Options(
+                "a life goal (--min-life-cycles, --prefer life) needs the motion test: the life \
+                 is predicted from it"
+                    .into(),
+            ));
         }
         match self.max_guides_per_link {
             Some(1) => Ok(setup.inter_link_only()?),

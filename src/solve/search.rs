@@ -4,10 +4,12 @@
 use super::certify::{Certification, Certified};
 use super::chains::Chains;
 use super::learn::{Learned, SetAside};
+use super::life::{GoalStep, Goals, path_life};
 use super::options::{SolveError, SolveOptions};
 use super::sweep::{CellSweep, ChainSweep, Dropped};
 use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, SweptLeast};
 use crate::dictionary::MotionLookup;
+use crate::life::estimate::CableLife;
 use crate::motion::Cell;
 use crate::motion_test::{self, MotionTestOptions, MotionTestReport, Violation};
 use crate::path::{CablePath, Pv};
@@ -47,12 +49,23 @@ pub(crate) struct Tried {
     pub runs: Vec<Option<MotionTestReport>>,
     /// The motion the chain is judged by: the one it failed, else the first.
     pub judged: Option<usize>,
+    /// Its predicted life (cycles), when it held every limit and a life goal asked for it.
+    pub life_cycles: Option<f64>,
+    /// Why a chain that held every limit is not the answer: the life goal (`None`: it is,
+    /// or it failed a limit).
+    pub short_lived: Option<String>,
 }
 
 impl Tried {
     /// The motion test the chain is judged by (`None`: not tested).
     pub fn report(&self) -> Option<&MotionTestReport> {
         self.runs.get(self.judged?)?.as_ref()
+    }
+
+    /// It held every limit and the life goal: `None` when not tested.
+    pub fn passed(&self) -> Option<bool> {
+        self.report()
+            .map(|r| r.passed && self.short_lived.is_none())
     }
 }
 
@@ -144,6 +157,8 @@ fn motion_tests(
             path,
             runs: Vec::new(),
             judged: None,
+            life_cycles: None,
+            short_lived: None,
         };
         outcome.tried.extend(path.map(untested));
         outcome.winner = (!outcome.tried.is_empty()).then_some(0);
@@ -177,7 +192,13 @@ fn motion_tests(
                 return Ok(Tested::of(runs, i, cell));
             }
         }
-        Ok(Tested::of(runs, first_simulated, cell))
+        let mut tested = Tested::of(runs, first_simulated, cell);
+        if options.life_goal.is_some() {
+            let runs = (cell.motions.iter().zip(&tested.runs))
+                .map(|(m, run)| (m.cycles_per_hour, run.as_ref()));
+            tested.life = path_life(setup, runs);
+        }
+        Ok(tested)
     };
     let sweep = sweep.as_mut().map(|s| s as &mut dyn ChainSweep);
     try_chains(setup, chains, options, sweep, &mut test, outcome)
@@ -209,6 +230,8 @@ pub(super) struct Tested {
     /// Per motion, its whole report (kept with the chain tried; empty for a test that
     /// keeps none).
     pub runs: Vec<Option<MotionTestReport>>,
+    /// Its predicted life, when it passed and a life goal asked for it.
+    pub life: Option<CableLife>,
 }
 
 impl Tested {
@@ -227,6 +250,7 @@ impl Tested {
                 None => reason,
             },
             runs,
+            life: None,
         }
     }
 }
@@ -242,8 +266,19 @@ pub(super) fn try_chains(
     test: &mut dyn FnMut(&CablePath) -> Result<Tested, SolveError>,
     mut outcome: MotionSearch,
 ) -> Result<MotionSearch, SolveError> {
+    let mut goals = Goals::default();
     while outcome.tried.len() < options.k_best {
-        let Some(path) = timed_shortest(&mut outcome, chains)? else {
+        let path = timed_shortest(&mut outcome, chains)?;
+        // Longest life: no chain longer than the shortest passing one plus the window.
+        let beyond = |p: &CablePath| {
+            let mm = p.total_sub_segments() as f64 * setup.cable.sub_segment_pitch_m * 1e3;
+            goals.beyond(mm)
+        };
+        if let Some(best) = goals.best.filter(|_| path.as_ref().is_none_or(beyond)) {
+            outcome.winner = Some(best);
+            return Ok(outcome);
+        }
+        let Some(path) = path else {
             if outcome.set_aside.is_empty() || outcome.set_aside_restored {
                 return Ok(
                     outcome.stopped("no chain is left of the robust pieces that did not fail it")
@@ -311,8 +346,14 @@ pub(super) fn try_chains(
             path.total_sub_segments() as f64 * setup.cable.sub_segment_pitch_m * 1e3,
             tested.reason
         );
-        let failed_segment = tested.segment;
+        let mut failed_segment = tested.segment;
         let passed = tested.passed;
+        let length_mm = path.total_sub_segments() as f64 * setup.cable.sub_segment_pitch_m * 1e3;
+        // A life goal judges a chain that held every limit by its predicted life.
+        let life_verdict = match (passed, options.life_goal, &tested.life) {
+            (true, Some(goal), life) => Some(goals.judge(goal, life.as_ref(), length_mm)),
+            _ => None,
+        };
         if let (Some(sweep), Some(violation)) = (sweep.as_deref(), &tested.violation) {
             let m = violation.segment;
             for (_, pv) in path.pieces().filter(|&(segment, _)| segment == m) {
@@ -325,8 +366,22 @@ pub(super) fn try_chains(
             path: path.clone(),
             judged: (!tested.runs.is_empty()).then_some(tested.motion),
             runs: tested.runs,
+            life_cycles: tested.life.as_ref().map(|l| l.cycles_to_failure),
+            short_lived: None,
         });
-        if passed {
+        let tried = outcome.tried.len() - 1;
+        let judged_by_life = life_verdict.is_some();
+        if let Some(verdict) = life_verdict {
+            match goals.after(verdict, tried, &mut outcome.tried) {
+                GoalStep::Answer(winner) => {
+                    outcome.winner = Some(winner);
+                    return Ok(outcome);
+                }
+                // Every chain with its weakest piece lives no longer: it goes.
+                GoalStep::GoOn(weakest) => failed_segment = weakest,
+            }
+        }
+        if passed && !judged_by_life {
             outcome.winner = Some(outcome.tried.len() - 1);
             if !outcome.set_aside.is_empty() && !outcome.set_aside_restored {
                 // Say how much shorter a path with the pieces set aside could be.
@@ -344,6 +399,10 @@ pub(super) fn try_chains(
         for (_, failed) in path.pieces().filter(|&(segment, _)| segment == m) {
             chains.drop_piece(m, &failed);
         }
+    }
+    if let Some(best) = goals.best {
+        outcome.winner = Some(best);
+        return Ok(outcome);
     }
     let budget = options.k_best;
     outcome.budget_spent = true;
@@ -474,6 +533,7 @@ mod tests {
                 motion: 0,
                 reason: String::new(),
                 runs: Vec::new(),
+                life: None,
             }
         }
     }

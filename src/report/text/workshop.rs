@@ -300,6 +300,9 @@ fn write_worst(
     if let Some(life) = &report.life {
         writeln!(f, "\n{}", life_words(life, Some(plan)))?;
     }
+    if let Some(trade) = life_trade_words(report) {
+        writeln!(f, "{trade}")?;
+    }
     let loads = load_rows(test, Some(plan));
     if !loads.is_empty() {
         writeln!(
@@ -379,6 +382,30 @@ pub fn life_words(life: &CableLife, plan: Option<&MountingPlan>) -> String {
         "predicted life: {} cycles{time}; it fails first {place} ({basis})",
         count(life.cycles_to_failure)
     )
+}
+
+/// The length and predicted life of every path a life goal weighed, in the order tried:
+/// `paths weighed by their life: 760 mm 105.2 million cycles, 780 mm 220.0 million cycles
+/// (the answer)`; `None` without a life goal.
+pub fn life_trade_words(report: &SolveReport) -> Option<String> {
+    let answer = report.optimal_length_mm;
+    let weighed: Vec<String> = (report.candidates.iter())
+        .filter_map(|c| {
+            let cycles = c.life_cycles?;
+            let words = if cycles >= 1e6 {
+                format!("{} million cycles", decimal(cycles / 1e6, 1))
+            } else {
+                format!("{} cycles", decimal(cycles, 0))
+            };
+            let chosen = c.passed == Some(true) && answer == Some(c.total_length_mm);
+            let mark = if chosen { " (the answer)" } else { "" };
+            Some(format!(
+                "{} mm {words}{mark}",
+                decimal(c.total_length_mm, 0)
+            ))
+        })
+        .collect();
+    (!weighed.is_empty()).then(|| format!("paths weighed by their life: {}", weighed.join(", ")))
 }
 
 /// What the wordings of a motion test need besides the test: the limits it was held to and

@@ -1,15 +1,15 @@
 //! The report assembled from the stages' results: names, counts and the explanation.
 
 use super::super::diagnosis::diagnose;
-use super::super::options::SolveOptions;
+use super::super::life::path_life;
+use super::super::options::{LifeGoal, SolveOptions};
 use super::super::search::{MotionSearch, Tried};
 use super::data::*;
 use super::margins::margins;
 use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses, SegmentSets, TestPose};
 use crate::chain::ChainSearch;
 use crate::json::tidy;
-use crate::life::curve::LifeCurve;
-use crate::life::estimate::{CableLife, MotionDamage};
+use crate::life::estimate::CableLife;
 use crate::motion::{Cell, Motion};
 use crate::motion_test::{MotionTestReport, PieceWorst, Worst};
 use crate::mounting::mounting_plan;
@@ -58,7 +58,7 @@ impl SolveReport {
             .and_then(|u| u.closest.as_ref())
             .map(|c| c.candidate);
         // The one that passed (the winner), else the closest miss, else the last tried.
-        let verdicts = tried.iter().map(|t| t.report().map(|r| r.passed));
+        let verdicts = tried.iter().map(Tried::passed);
         let shown = shown_index(verdicts, closest);
         let motion_test = shown.and_then(|k| tried[k].report().cloned());
         let runs = shown.map_or(&[][..], |k| tried[k].runs.as_slice());
@@ -67,15 +67,18 @@ impl SolveReport {
         let binding = binding(setup, &motions);
         let life = life(setup, &motions);
         // For a cell, the words speak of every one of its motions.
-        let explanation = explanation(
-            status,
-            sets,
-            &candidates,
-            &outcome.stop,
-            &static_sweep,
-            unsolved.as_ref(),
-            (setup, cell_words(cell)),
-        );
+        let explanation = match (status, options.life_goal) {
+            (Status::Solved, Some(goal)) => life_goal_words(goal, &candidates, cell_words(cell)),
+            _ => explanation(
+                status,
+                sets,
+                &candidates,
+                &outcome.stop,
+                &static_sweep,
+                unsolved.as_ref(),
+                (setup, cell_words(cell)),
+            ),
+        };
         SolveReport {
             status,
             explanation,
@@ -125,6 +128,27 @@ fn cell_words(cell: &Cell) -> &'static str {
     match cell.len() {
         1 => "the motion",
         _ => "every motion of the cell",
+    }
+}
+
+/// The answer's words under a life goal: what it is the shortest or longest-lived of.
+fn life_goal_words(goal: LifeGoal, candidates: &[CandidateOutcome], over: &str) -> String {
+    let weighed = candidates
+        .iter()
+        .filter(|c| c.life_cycles.is_some())
+        .count();
+    match goal {
+        LifeGoal::AtLeast { cycles } => format!(
+            "the shortest cable path that held every limit over {over} and is predicted to last \
+             at least {cycles:.0} cycles; {} shorter or equally long ones did not ({} of them \
+             for their life)",
+            candidates.len() - 1,
+            weighed - 1
+        ),
+        LifeGoal::Longest { within_mm } => format!(
+            "the longest-lived of the {weighed} cable paths that held every limit over {over} \
+             within {within_mm:.0} mm of the shortest such path"
+        ),
     }
 }
 
@@ -390,32 +414,14 @@ pub(in crate::solve) fn motion_verdicts(
         .collect()
 }
 
-/// The predicted life of the path the motions were run with, from every motion's damage
-/// weighted by its cycles per hour; `None` without a life curve for the cable or when a
-/// motion was not simulated (an axis-range grid, a failed test before its end).
+/// The predicted life of the path the motions were run with ([`path_life`]).
 pub(in crate::solve) fn life(setup: &Setup, motions: &[MotionVerdict]) -> Option<CableLife> {
-    let curve = LifeCurve::of(&setup.cable.datasheet)?;
-    let tables = (motions.iter())
-        .map(|m| {
-            let test = m
-                .motion_test
-                .as_ref()
-                .filter(|t| t.passed && !t.damage.is_empty())?;
-            let pieces = test.damage.iter();
-            Some(
-                pieces
-                    .map(|d| (d.segment, d.segment_name.as_str(), &d.damage))
-                    .collect(),
-            )
-        })
-        .collect::<Option<Vec<Vec<_>>>>()?;
-    let damages: Vec<MotionDamage<'_>> = (motions.iter().zip(&tables))
-        .map(|(m, pieces)| MotionDamage {
-            cycles_per_hour: m.cycles_per_hour,
-            pieces,
-        })
-        .collect();
-    CableLife::of(&curve, &damages, setup.cable.sub_segment_pitch_m * 1e3)
+    path_life(
+        setup,
+        motions
+            .iter()
+            .map(|m| (m.cycles_per_hour, m.motion_test.as_ref())),
+    )
 }
 
 /// Per piece of the path the motions were run with, the motion with its smallest bend
@@ -491,10 +497,13 @@ fn candidate_outcomes(tried: &[Tried], cell: &Cell, pitch_mm: f64) -> Vec<Candid
             rank: i + 1,
             total_length_mm: tried.path.total_sub_segments() as f64 * pitch_mm,
             path: tried.path.clone(),
-            passed: tried.report().map(|r| r.passed),
-            failure: (tried.report())
-                .and_then(|r| r.failure.as_ref())
-                .map(|f| f.reason.clone()),
+            passed: tried.passed(),
+            failure: tried.short_lived.clone().or_else(|| {
+                (tried.report())
+                    .and_then(|r| r.failure.as_ref())
+                    .map(|f| f.reason.clone())
+            }),
+            life_cycles: tried.life_cycles,
             motion: match (cell.len(), tried.report().map(|r| r.passed)) {
                 (2.., Some(false)) => tried.judged.map(|i| cell.motions[i].name.clone()),
                 _ => None,

@@ -208,8 +208,12 @@ pub struct CandidateOutcome {
     pub path: CablePath,
     /// Passed the motion test; `None` when not tested.
     pub passed: Option<bool>,
-    /// Why it failed.
+    /// Why it failed (a limit), or why it held every limit and is not the answer (a life
+    /// goal).
     pub failure: Option<String>,
+    /// Its predicted life in cycles, when a life goal asked for it and it held every limit.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub life_cycles: Option<f64>,
     /// For a cell: the motion it failed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub motion: Option<String>,
