@@ -2,7 +2,7 @@
 //! the motion test, the timings and the inputs with their hashes.
 
 use super::hashes::Hashed;
-use super::text::{motion_verdict_words, verdict_words, worst_rows};
+use super::text::{life_words, motion_verdict_words, verdict_words, worst_rows};
 use crate::escape::markdown as text;
 use crate::motion_test::MotionTestReport;
 use crate::mounting::{self, MountingPlan, rows};
@@ -392,6 +392,9 @@ fn motion_test_table(md: &mut String, report: &SolveReport, test: &MotionTestRep
                 format!("t = {:.2} s, cable piece {}", w.time_s, w.segment_name),
             ],
         );
+    }
+    if let Some(life) = &report.life {
+        let _ = writeln!(md, "\n{}.", text(&capitalized(&life_words(life, plan))));
     }
 }
 

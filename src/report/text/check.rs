@@ -1,6 +1,6 @@
 //! What `check` prints: the verdict of an installed cable over each motion.
 
-use super::workshop::{write_allowed_ranges, write_motions};
+use super::workshop::{life_words, write_allowed_ranges, write_motions};
 use crate::mounting::rows;
 use crate::solve::{BoxCheck, Check};
 use crate::text_table::decimal;
@@ -46,6 +46,9 @@ impl fmt::Display for Check {
             sub_segment_pitch_mm: self.sub_segment_pitch_mm,
         };
         write_motions(f, &limits, &self.motions, &self.binding, &self.mounting)?;
+        if let Some(life) = &self.life {
+            writeln!(f, "\n{}", life_words(life, Some(&self.mounting)))?;
+        }
         if let Some(over_box) = &self.over_box {
             write_box(f, over_box)?;
         }

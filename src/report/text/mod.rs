@@ -11,8 +11,8 @@ mod workshop;
 
 pub use catalogue::catalogue_listing;
 pub use workshop::{
-    Limits, LoadRow, WorstRow, load_rows, motion_verdict_words, verdict_words, worst_rows,
-    write_motions,
+    Limits, LoadRow, WorstRow, life_words, load_rows, motion_verdict_words, verdict_words,
+    worst_rows, write_motions,
 };
 
 use crate::solve::SolveReport;
