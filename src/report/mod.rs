@@ -311,6 +311,18 @@ fn write_plots(
             svg,
         )?;
     }
+    if let (Some(life), Some(test)) = (&report.life, &report.motion_test) {
+        let names = plot_names(setup, report, test);
+        let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+        let title = "Damage per cycle along the cable";
+        let svg = plots::life_svg(life, pitch_mm, title, &names).map_err(plot("life.svg"))?;
+        add(
+            folder,
+            "life.svg",
+            "damage one cycle of the motion does along the cable, and where it fails first",
+            svg,
+        )?;
+    }
     if !report.segments.is_empty() {
         let svg =
             plots::sets_svg(&report.segments, "Set sizes per segment").map_err(plot("sets.svg"))?;

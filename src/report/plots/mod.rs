@@ -1,15 +1,18 @@
 //! SVG plots of the report folder: the motion's joint angles with the test poses of the
 //! inter-link segments (`joints.svg`), the motion test's stress series against the limits
-//! (`stress.svg`), and the attachment test's set sizes per segment (`sets.svg`).
+//! (`stress.svg`), the attachment test's set sizes per segment (`sets.svg`), and the damage
+//! one cycle does along the cable (`life.svg`).
 //!
 //! Drawn with plotters' SVG backend and no font files: text stays SVG `<text>`, so the plots
 //! are small, searchable and the same bytes for the same input.
 
 mod joints;
+mod life;
 mod sets;
 mod stress;
 
 pub use joints::joints_svg;
+pub use life::life_svg;
 pub use sets::sets_svg;
 pub use stress::stress_svg;
 
