@@ -460,6 +460,7 @@ mod tests {
     use crate::attachment::{ConnectMethod, Evaluator, SegmentPoses};
     use crate::fixtures::{exhaustive_robust, narrow_pick_and_place};
     use crate::motion_test::{Constraint, Place};
+    use crate::solve::LifeGoal;
     use crate::solve::chains::{Decided, chain_search};
     use std::collections::BTreeMap;
 
@@ -588,6 +589,126 @@ mod tests {
             MotionSearch::new(),
         )
         .unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// A life per piece of world `seed` (1–10 million cycles); a chain lives as long as its
+    /// weakest piece.
+    fn synthetic_life(path: &CablePath, seed: usize) -> CableLife {
+        let lives: Vec<(usize, f64)> = path
+            .pieces()
+            .map(|(m, pv)| {
+                let key = [seed, m, pv.sub_segments, pv.start, pv.end, 13];
+                (m, 1e6 * (1.0 + 9.0 * unit(&key)))
+            })
+            .collect();
+        let (segment, cycles) = lives
+            .iter()
+            .copied()
+            .fold((0, f64::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
+        CableLife {
+            basis: "rated",
+            rated_cycles: None,
+            rated_bend_radius_mm: None,
+            rated_torsion_deg_per_m: None,
+            conductor_offset_mm: None,
+            exponent: 4.0,
+            exponent_stated: true,
+            cycles_to_failure: cycles,
+            hours_to_failure: None,
+            years_to_failure: None,
+            weakest: crate::life::estimate::Weakest {
+                segment,
+                segment_name: format!("C{}", segment + 1),
+                from_start_mm: 0.0,
+                damage_per_cycle: 1.0 / cycles,
+            },
+            pieces: Vec::new(),
+        }
+    }
+
+    /// Both life goals against every chain in non-decreasing length: the shortest chain that
+    /// passes and lives N is the one `--min-life-cycles` answers (by length); the longest-lived
+    /// of the passing chains within the window is `--prefer life`'s (by life), in twelve
+    /// synthetic worlds.
+    #[test]
+    fn life_goals_answer_what_every_chain_in_order_says() {
+        let (setup, motion) = narrow_pick_and_place();
+        let poses = SegmentPoses::new(&setup, &motion).unwrap_or_else(|e| panic!("{e}"));
+        let evaluator =
+            Evaluator::new(&setup, ConnectMethod::Hermite).unwrap_or_else(|e| panic!("{e}"));
+        let d2 = exhaustive_robust(&evaluator, &poses);
+        let limit_m = 48e-3;
+        let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+        let (mut longer, mut better) = (0, 0);
+        for seed in 0..12 {
+            let oracle = Synthetic::over(&d2, limit_m, seed);
+            let passing: Vec<(usize, f64)> = chain_search(&setup, &d2)
+                .unwrap_or_else(|e| panic!("{e}"))
+                .k_best()
+                .filter(|path| oracle.test(path).passed)
+                .map(|p| {
+                    (
+                        p.total_sub_segments(),
+                        synthetic_life(&p, seed).cycles_to_failure,
+                    )
+                })
+                .take(400)
+                .collect();
+            let (first_length, first_life) = passing[0];
+            let run = |goal: LifeGoal| {
+                let options = SolveOptions {
+                    k_best: 100_000,
+                    learn: false,
+                    life_goal: Some(goal),
+                    ..SolveOptions::default()
+                };
+                let mut chains = Decided::new(&setup, d2.clone());
+                let mut test = |path: &CablePath| {
+                    let mut tested = oracle.test(path);
+                    tested.life = tested.passed.then(|| synthetic_life(path, seed));
+                    Ok(tested)
+                };
+                let mut cable = Synthetic::over(&d2, limit_m, seed);
+                let outcome = try_chains(
+                    &setup,
+                    &mut chains,
+                    &options,
+                    Some(&mut cable as &mut dyn ChainSweep),
+                    &mut test,
+                    MotionSearch::new(),
+                )
+                .unwrap_or_else(|e| panic!("{e}"));
+                let winner = &outcome.tried[outcome.winner.expect("an answer")].path;
+                (
+                    winner.total_sub_segments(),
+                    synthetic_life(winner, seed).cycles_to_failure,
+                )
+            };
+            let asked = 1.2 * first_life;
+            let reference = passing.iter().find(|(_, life)| *life >= asked);
+            if let Some(&(length, _)) = reference {
+                let (got_length, got_life) = run(LifeGoal::AtLeast { cycles: asked });
+                assert_eq!(got_length, length, "seed {seed}");
+                assert!(got_life >= asked, "seed {seed}");
+                longer += usize::from(length > first_length);
+            }
+            let window = 4;
+            let best = passing
+                .iter()
+                .filter(|(length, _)| *length <= first_length + window)
+                .map(|&(_, life)| life)
+                .fold(0.0, f64::max);
+            let within_mm = window as f64 * pitch_mm;
+            let (got_length, got_life) = run(LifeGoal::Longest { within_mm });
+            assert_eq!(got_life, best, "seed {seed}");
+            assert!(got_length <= first_length + window, "seed {seed}");
+            better += usize::from(got_life > first_life);
+        }
+        // The goals were not met by the first passing chain in most worlds.
+        assert!(
+            longer >= 6 && better >= 6,
+            "{longer} longer, {better} longer-lived"
+        );
     }
 
     #[test]
