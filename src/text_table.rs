@@ -95,6 +95,18 @@ pub fn decimal(value: f64, digits: usize) -> String {
     }
 }
 
+/// A count in words: `105.2 million` from a million up, else whole (`350697`); `no end` for
+/// an infinite one.
+pub fn count_words(n: f64) -> String {
+    if !n.is_finite() {
+        "no end".to_string()
+    } else if n >= 1e6 {
+        format!("{} million", decimal(n / 1e6, 1))
+    } else {
+        decimal(n, 0)
+    }
+}
+
 /// `values` each to `digits` decimals ([`decimal`]), comma-separated: `-156.3, 48.2, 71.2`.
 pub fn decimals(values: &[f64], digits: usize) -> String {
     let texts: Vec<String> = values.iter().map(|&v| decimal(v, digits)).collect();

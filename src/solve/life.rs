@@ -7,6 +7,7 @@ use crate::life::curve::LifeCurve;
 use crate::life::estimate::{CableLife, MotionDamage};
 use crate::motion_test::MotionTestReport;
 use crate::setup::Setup;
+use crate::text_table::count_words;
 
 /// The life of a path from its motions' runs (`runs`: per motion its cycles per hour and its
 /// motion test); `None` without a life curve for the cable, or when a motion's test did not
@@ -93,8 +94,8 @@ impl Goals {
                 format!(
                     "held every limit, but its predicted life is {} cycles, below the {} asked \
                      (first at {}, {:.0} mm from its start)",
-                    cycles_words(cycles),
-                    cycles_words(asked),
+                    count_words(cycles),
+                    count_words(asked),
                     life.weakest.segment_name,
                     life.weakest.from_start_mm
                 ),
@@ -138,22 +139,13 @@ impl Goals {
                     tried[loser].short_lived = Some(format!(
                         "held every limit; its predicted life of {} cycles is not the longest \
                          within the window (rank {}: {} cycles)",
-                        cycles_words(own),
+                        count_words(own),
                         self.best.map_or(0, |b| b + 1),
-                        cycles_words(self.best_cycles)
+                        count_words(self.best_cycles)
                     ));
                 }
                 GoalStep::GoOn(weakest)
             }
         }
-    }
-}
-
-/// `2.4 million`, `350 000`.
-fn cycles_words(n: f64) -> String {
-    if n >= 1e6 {
-        format!("{:.1} million", n / 1e6)
-    } else {
-        format!("{n:.0}")
     }
 }

@@ -10,7 +10,7 @@ use crate::setup::Thresholds;
 use crate::solve::{
     AllowedAxis, AllowedRanges, BindingMotion, MotionVerdict, PieceBinding, RangeEnd, SolveReport,
 };
-use crate::text_table::decimal;
+use crate::text_table::{count_words, decimal};
 use std::fmt;
 
 /// Writes the summary of `report`.
@@ -325,15 +325,7 @@ fn write_worst(
 /// The predicted life in words: rounds (and hours, years) to failure, where the cable fails
 /// first, in the fitter's names when `plan` is the path's, and the rated point behind it.
 pub fn life_words(life: &CableLife, plan: Option<&MountingPlan>) -> String {
-    let count = |n: f64| {
-        if !n.is_finite() {
-            "no end (nothing bends or twists back and forth)".to_string()
-        } else if n >= 1e6 {
-            format!("{} million", decimal(n / 1e6, 1))
-        } else {
-            decimal(n, 0)
-        }
-    };
+    let count = count_words;
     let w = &life.weakest;
     let place = plan
         .and_then(|p| p.place_on_cable(&w.segment_name, Some(w.from_start_mm)))
@@ -392,11 +384,7 @@ pub fn life_trade_words(report: &SolveReport) -> Option<String> {
     let weighed: Vec<String> = (report.candidates.iter())
         .filter_map(|c| {
             let cycles = c.life_cycles?;
-            let words = if cycles >= 1e6 {
-                format!("{} million cycles", decimal(cycles / 1e6, 1))
-            } else {
-                format!("{} cycles", decimal(cycles, 0))
-            };
+            let words = format!("{} cycles", count_words(cycles));
             let chosen = c.passed == Some(true) && answer == Some(c.total_length_mm);
             let mark = if chosen { " (the answer)" } else { "" };
             Some(format!(
