@@ -115,7 +115,7 @@ impl Counter {
             return;
         }
         let direction = step.signum();
-        if direction == self.direction || self.direction == 0.0 && self.open.len() > 1 {
+        if direction == self.direction {
             // Still running the same way: the newest point moves on.
             *self.open.last_mut().expect("not empty") = value;
         } else {

@@ -371,14 +371,11 @@ impl fmt::Display for Violation {
                 ">",
                 format!("{:.4}", self.threshold),
             ),
-            Constraint::BendRadius => (
-                "bend radius",
-                format!("{:.2} mm", self.value * 1e3),
-                "<",
-                format!("{:.2} mm", self.threshold * 1e3),
-            ),
-            Constraint::FlexingBendRadius => (
-                "bend radius of a flexing piece",
+            Constraint::BendRadius | Constraint::FlexingBendRadius => (
+                match self.constraint {
+                    Constraint::BendRadius => "bend radius",
+                    _ => "bend radius of a flexing piece",
+                },
                 format!("{:.2} mm", self.value * 1e3),
                 "<",
                 format!("{:.2} mm", self.threshold * 1e3),

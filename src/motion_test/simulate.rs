@@ -13,7 +13,7 @@ use crate::pose::Pose;
 use crate::progress;
 use crate::setup::Setup;
 use crate::statics::{RodParameters, clamp_loads};
-use crate::stress::{curvature_vectors_per_m, curvatures_per_m, min_bend_radius, stretch};
+use crate::stress::{bend_profile, curvature_vectors_per_m, stretch};
 use nalgebra::Vector3;
 
 /// How often (s of the motion) the loads on the clamps are taken.
@@ -151,8 +151,8 @@ impl Context<'_> {
             let segment = planned.setup_index;
             let nodes = std::mem::take(&mut state.nodes);
             let natural = planned.sub_segments as f64 * pitch;
-            let curvatures =
-                curvatures_per_m(&nodes, &axis(&guides[j]), &axis(&guides[j + 1]), pitch);
+            let (bend, curvatures) =
+                bend_profile(&nodes, &axis(&guides[j]), &axis(&guides[j + 1]), pitch);
             // The bending each conductor feels, for the cable's life (only when it has a
             // life curve: 12 conductors per joint at every step).
             let bending = match self.setup.cable.datasheet.predicts_life() {
@@ -182,7 +182,7 @@ impl Context<'_> {
                     }
                 })?,
                 stretch: stretch(&nodes, natural),
-                bend: min_bend_radius(&nodes, &axis(&guides[j]), &axis(&guides[j + 1]), pitch),
+                bend,
                 curvatures_per_m: curvatures,
                 curvature_vectors_per_m: bending,
                 contact: state.contact,

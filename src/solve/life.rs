@@ -48,7 +48,6 @@ pub(super) struct Goals {
     /// The longest-lived chain so far (index among those tried), for [`LifeGoal::Longest`].
     pub best: Option<usize>,
     best_cycles: f64,
-    best_mm: f64,
     /// The longest chain [`LifeGoal::Longest`] considers (mm): the first passing one's
     /// length plus the window.
     limit_mm: Option<f64>,
@@ -116,7 +115,6 @@ impl Goals {
     /// Records `verdict` on chain `index` of `tried` (why one that held every limit is not
     /// the answer) and says what the search does next.
     pub fn after(&mut self, verdict: LifeVerdict, index: usize, tried: &mut [Tried]) -> GoalStep {
-        let length_mm = |t: &Tried| t.path.total_sub_segments();
         match verdict {
             LifeVerdict::Meets => GoalStep::Answer(index),
             LifeVerdict::Falls(why, weakest) => {
@@ -132,7 +130,6 @@ impl Goals {
                 };
                 if better {
                     self.best_cycles = cycles;
-                    self.best_mm = length_mm(&tried[index]) as f64;
                 }
                 if let Some(loser) = loser {
                     let own = tried[loser].life_cycles.unwrap_or(f64::NAN);

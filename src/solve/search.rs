@@ -591,6 +591,16 @@ mod tests {
         .unwrap_or_else(|e| panic!("{e}"))
     }
 
+    /// The narrow pick-and-place setup and its robust sets, decided exhaustively.
+    fn robust_sets() -> (Setup, Vec<Vec<Pv>>) {
+        let (setup, motion) = narrow_pick_and_place();
+        let poses = SegmentPoses::new(&setup, &motion).unwrap_or_else(|e| panic!("{e}"));
+        let evaluator =
+            Evaluator::new(&setup, ConnectMethod::Hermite).unwrap_or_else(|e| panic!("{e}"));
+        let d2 = exhaustive_robust(&evaluator, &poses);
+        (setup, d2)
+    }
+
     /// A life per piece of world `seed` (1–10 million cycles); a chain lives as long as its
     /// weakest piece.
     fn synthetic_life(path: &CablePath, seed: usize) -> CableLife {
@@ -632,11 +642,7 @@ mod tests {
     /// synthetic worlds.
     #[test]
     fn life_goals_answer_what_every_chain_in_order_says() {
-        let (setup, motion) = narrow_pick_and_place();
-        let poses = SegmentPoses::new(&setup, &motion).unwrap_or_else(|e| panic!("{e}"));
-        let evaluator =
-            Evaluator::new(&setup, ConnectMethod::Hermite).unwrap_or_else(|e| panic!("{e}"));
-        let d2 = exhaustive_robust(&evaluator, &poses);
+        let (setup, d2) = robust_sets();
         let limit_m = 48e-3;
         let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
         let (mut longer, mut better) = (0, 0);
@@ -713,11 +719,7 @@ mod tests {
 
     #[test]
     fn learning_never_rules_out_a_passing_chain_without_saying_so_and_spends_fewer_tests() {
-        let (setup, motion) = narrow_pick_and_place();
-        let poses = SegmentPoses::new(&setup, &motion).unwrap_or_else(|e| panic!("{e}"));
-        let evaluator =
-            Evaluator::new(&setup, ConnectMethod::Hermite).unwrap_or_else(|e| panic!("{e}"));
-        let d2 = exhaustive_robust(&evaluator, &poses);
+        let (setup, d2) = robust_sets();
         let limit_m = 48e-3;
         let (mut learned_tests, mut strict_tests) = (0, 0);
         for seed in 0..12 {

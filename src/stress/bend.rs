@@ -34,30 +34,41 @@ pub fn min_bend_radius(
     end_tangent: &Vector3<f64>,
     pitch_m: f64,
 ) -> BendRadius {
+    bend_profile(nodes, start_tangent, end_tangent, pitch_m).0
+}
+
+/// The tightest joint ([`min_bend_radius`]) and the curvature at every joint
+/// ([`curvatures_per_m`]), in one pass over the joints.
+pub fn bend_profile(
+    nodes: &[Point3<f64>],
+    start_tangent: &Vector3<f64>,
+    end_tangent: &Vector3<f64>,
+    pitch_m: f64,
+) -> (BendRadius, Vec<f64>) {
+    let mut tightest = BendRadius {
+        radius_m: f64::INFINITY,
+        node: 0,
+    };
     if nodes.len() < 2 {
-        return BendRadius {
-            radius_m: f64::INFINITY,
-            node: 0,
-        };
+        return (tightest, Vec::new());
     }
-    let (node, radius_m) = joints(nodes, start_tangent, end_tangent, pitch_m)
+    let curvatures = joints(nodes, start_tangent, end_tangent, pitch_m)
         .map(|(node, arc, angle)| {
             // Below this a joint is straight to rounding (a radius beyond 10⁷ pitches).
-            let radius = if angle > STRAIGHT_RAD {
-                arc / angle
-            } else {
-                f64::INFINITY
-            };
-            (node, radius)
-        })
-        .fold((0, f64::INFINITY), |best, (node, radius)| {
-            if radius < best.1 {
-                (node, radius)
-            } else {
-                best
+            if angle <= STRAIGHT_RAD {
+                return 0.0;
             }
-        });
-    BendRadius { radius_m, node }
+            let radius = arc / angle;
+            if radius < tightest.radius_m {
+                tightest = BendRadius {
+                    radius_m: radius,
+                    node,
+                };
+            }
+            angle / arc
+        })
+        .collect();
+    (tightest, curvatures)
 }
 
 /// Every joint of a shape: its node, the cable length it stands for (m) and its turning
@@ -97,18 +108,7 @@ pub fn curvatures_per_m(
     end_tangent: &Vector3<f64>,
     pitch_m: f64,
 ) -> Vec<f64> {
-    if nodes.len() < 2 {
-        return Vec::new();
-    }
-    joints(nodes, start_tangent, end_tangent, pitch_m)
-        .map(|(_, arc, angle)| {
-            if angle > STRAIGHT_RAD {
-                angle / arc
-            } else {
-                0.0
-            }
-        })
-        .collect()
+    bend_profile(nodes, start_tangent, end_tangent, pitch_m).1
 }
 
 /// The curvature vector at every joint in the cable's own cross-section frame (1/m, two

@@ -10,7 +10,8 @@ mod stretch;
 mod twist;
 
 pub use bend::{
-    BendRadius, CurvatureRange, curvature_vectors_per_m, curvatures_per_m, min_bend_radius,
+    BendRadius, CurvatureRange, bend_profile, curvature_vectors_per_m, curvatures_per_m,
+    min_bend_radius,
 };
 pub use contact::{
     ClampZone, Clearance, ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,

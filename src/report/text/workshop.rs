@@ -627,14 +627,11 @@ fn worst_row_of(
             length(limit),
             length(w.value - limit),
         ),
-        Constraint::BendRadius => (
-            "tightest bend radius",
-            length(w.value),
-            length(limit),
-            length(w.value - limit),
-        ),
-        Constraint::FlexingBendRadius => (
-            "tightest flexing bend",
+        Constraint::BendRadius | Constraint::FlexingBendRadius => (
+            match constraint {
+                Constraint::BendRadius => "tightest bend radius",
+                _ => "tightest flexing bend",
+            },
             length(w.value),
             length(limit),
             length(w.value - limit),
