@@ -10,10 +10,11 @@
 //! - A loop whose two clamps are on the base does not move when the spindle turns: its
 //!   curvature changes nowhere, so it only has to keep the fixed-installation radius. A loop
 //!   from the base to an off-axis clamp on the spindle changes shape: it flexes, and must
-//!   keep the flexing radius, in the static sweep and in the motion test.
+//!   keep the flexing radius, in the attachment test over the motion's test poses, in the
+//!   static sweep and in the motion test.
 
 use crate::common::spindle::{cable_text, hanging_straight, motion_test, spindle_setup, turning};
-use cable_dict::attachment::{ConnectMethod, Evaluator, MotionSweep, Rejection};
+use cable_dict::attachment::{ConnectMethod, Evaluator, MotionSweep, Rejection, SegmentPoses};
 use cable_dict::motion::Motion;
 use cable_dict::motion_test::{Constraint, MotionTestOptions, run};
 use cable_dict::path::Pv;
@@ -139,26 +140,39 @@ fn only_a_piece_that_flexes_keeps_the_flexing_radius() {
             (false, None) => {}
             (flexes, failure) => panic!("flexes {flexes}, sweep {failure:?}"),
         }
+        // And so does the attachment test over the motion's test poses: refused for
+        // flexing (a bend above the fixed radius) where it moves, held where it does not.
+        let poses = SegmentPoses::new(&setup, &motion).unwrap();
+        let miss = evaluator.first_rejections(0, (0, 0), &[35], &poses.poses[0])[0];
+        match (flexes, miss) {
+            (true, Some(miss)) => {
+                assert_eq!(miss.rejection, Rejection::Bend);
+                assert!(
+                    miss.value * 1e3 > fixed && miss.value * 1e3 < flexing,
+                    "{miss:?}"
+                );
+            }
+            (false, None) => {}
+            (flexes, miss) => panic!("flexes {flexes}, attachment test {miss:?}"),
+        }
     }
 }
 
 /// The bundled pick-and-place setup with the makers' rule for its cable (fixed 5 × d, flexing
-/// 10 × d, ±360°/m; tests/data/datasheet): the bundled answer (one 48 mm radius for every
-/// piece) flexes below 80 mm, so the stricter limits refuse it; their own answer is no
-/// shorter, and its motion test keeps every limit where the rule puts it.
+/// 10 × d, ±360°/m), both with ±10 mm length errors ([`crate::common::ten_mm_setup_text`]):
+/// the answer with one 48 mm radius for every piece flexes below 80 mm, so the stricter limits
+/// refuse it; their own answer is no shorter, and its motion test keeps every limit where the
+/// rule puts it.
 #[test]
 fn the_makers_rule_refuses_the_bundled_answer_and_answers_within_it() {
     use cable_dict::solve::{SolveOptions, Status, solve};
     let root = crate::common::root();
-    let text = crate::common::bundled_setup_text();
     let source = root.join("robots/viper_s850/pick_and_place.toml");
-    let bundled = Setup::from_toml_str(&text, &source).unwrap_or_else(|e| panic!("{e}"));
-    let rule_cable = root.join("tests/data/datasheet/smc_le_cp_3_maker_rule.toml");
-    let rule_text = text.replace(
-        &format!("cable = {:?}", root.join("cables/smc_le_cp_3.toml")),
-        &format!("cable = {rule_cable:?}"),
-    );
-    let rule = Setup::from_toml_str(&rule_text, &source).unwrap_or_else(|e| panic!("{e}"));
+    let setup = |rule: bool| {
+        let text = crate::common::ten_mm_setup_text(rule);
+        Setup::from_toml_str(&text, &source).unwrap_or_else(|e| panic!("{e}"))
+    };
+    let (bundled, rule) = (setup(false), setup(true));
     assert_eq!(rule.thresholds.flexing_bend_radius_m(), 0.080);
     let motion = Motion::from_csv_file(
         &bundled.robot,

@@ -79,3 +79,16 @@ fn both_searches_find_the_same_path_on_a_second_robot() {
         .motion;
     same_answer(&ur5, &motion, "UR5");
 }
+
+/// The makers' rule for the cable (a flexing radius twice the fixed one,
+/// [`crate::common::ten_mm_setup_text`]): the attachment test holds inter-link pieces that
+/// flex between its poses to the flexing radius, a verdict over all of a piece's poses; both
+/// searches still find the same path after the same failed motion tests.
+#[test]
+fn both_searches_find_the_same_path_under_a_flexing_radius() {
+    let source = root("robots/viper_s850/pick_and_place.toml");
+    let text = crate::common::ten_mm_setup_text(true);
+    let rule = Setup::from_toml_str(&text, &source).unwrap_or_else(|e| panic!("{e}"));
+    let csv = "motions/viper_s850/pick_and_place.csv";
+    same_answer(&rule, &motion(&rule, csv), "pick and place, makers' rule");
+}

@@ -173,8 +173,8 @@ fn a_twisting_motion_does_the_damage_of_its_twist_cycles() {
     assert!((ratio / 1.5f64.powf(k) - 1.0).abs() < 4e-3, "{ratio}");
 }
 
-/// The bundled pick and place under the makers' rule with a rated life
-/// (tests/data/datasheet): `--min-life-cycles` answers a path that lasts what was asked,
+/// The bundled pick and place under the makers' rule with a rated life and ±10 mm length
+/// errors ([`crate::common::ten_mm_setup_text`]): `--min-life-cycles` answers a path that lasts what was asked,
 /// every shorter path tried having failed a limit or lived shorter, its life the one `check`
 /// predicts again from its own motion test; `--prefer life` answers, within the window, the
 /// longest-lived path it weighed, and lives at least as long as the shortest answer.
@@ -184,13 +184,7 @@ fn a_life_goal_answers_a_path_that_lasts() {
     use cable_dict::setup::Setup;
     use cable_dict::solve::{LifeGoal, SolveOptions, Status, check_mounting, solve};
     let root = crate::common::root();
-    let text = crate::common::bundled_setup_text().replace(
-        &format!("cable = {:?}", root.join("cables/smc_le_cp_3.toml")),
-        &format!(
-            "cable = {:?}",
-            root.join("tests/data/datasheet/smc_le_cp_3_maker_rule.toml")
-        ),
-    );
+    let text = crate::common::ten_mm_setup_text(true);
     let source = root.join("robots/viper_s850/pick_and_place.toml");
     let setup = Setup::from_toml_str(&text, &source).unwrap_or_else(|e| panic!("{e}"));
     let motion = Motion::from_csv_file(

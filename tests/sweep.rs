@@ -130,7 +130,7 @@ fn a_sweep_stopped_below_a_value_knows_the_least_so_far_and_is_swept_whole_when_
         // A stop a little above the whole sweep's least bend radius: reached at some pose.
         let stop = SweptLeast {
             bend_radius_m: least.bend_radius_m + 1e-4,
-            clearance_m: None,
+            ..SweptLeast::NONE
         };
         let mut early = MotionSweep::new(&evaluator, &motion).unwrap();
         let found = early.check_until(&[(m, pv, Some(stop))]).pop().flatten();

@@ -16,7 +16,8 @@ impl Evaluator<'_> {
     /// Solves the `wanted` lengths (ascending, > 0) between the `declared` clamp poses (the
     /// end clamp turned by `turns`) in `scene`, in the [`continuation_chains`] that cover
     /// them, each chain by continuation from the connected geometry at its first length, and
-    /// hands every length solved (wanted or not), its clamp poses and its check to `visit`.
+    /// hands every length solved (wanted or not), its clamp poses, its check and its
+    /// equilibrium (`None` when there is none) to `visit`.
     pub(super) fn continue_lengths(
         &self,
         solver: &mut StaticSolver,
@@ -24,7 +25,7 @@ impl Evaluator<'_> {
         (declared, turns): (&(Pose, Pose), &ClampTurns),
         scene: &Scene<'_>,
         wanted: impl Iterator<Item = usize>,
-        mut visit: impl FnMut(usize, &(Pose, Pose), &Check),
+        mut visit: impl FnMut(usize, &(Pose, Pose), &Check, Option<&Solved>),
     ) {
         let pitch = self.setup.cable.sub_segment_pitch_m;
         let chains = match self.method {
@@ -42,15 +43,16 @@ impl Evaluator<'_> {
             let mut earlier: Vec<Solved> = Vec::with_capacity(3);
             for length in chain {
                 let guides = (declared.0, declared.1 * turns.at(self.setup, m, length));
-                let check = self.next_length(solver, &mut earlier, m, &guides, length, scene);
-                visit(length, &guides, &check);
+                let (check, solved) =
+                    self.next_length(solver, &mut earlier, m, &guides, length, scene);
+                visit(length, &guides, &check, earlier.first().filter(|_| solved));
             }
         }
     }
 
     /// Checks the next length of a continuation over lengths at one pose: solved from
-    /// `earlier` (the last solutions, the nearest first), which it then joins; from the
-    /// connected geometry when that fails.
+    /// `earlier` (the last solutions, the nearest first), which it then joins (`true`: it
+    /// is `earlier`'s first); from the connected geometry when that fails.
     pub(super) fn next_length(
         &self,
         solver: &mut StaticSolver,
@@ -59,7 +61,7 @@ impl Evaluator<'_> {
         guides: &(Pose, Pose),
         length: usize,
         scene: &Scene<'_>,
-    ) -> Check {
+    ) -> (Check, bool) {
         let mut solved = self.solve_warm(solver, m, guides, length, scene, Warm::Length(earlier));
         // A start shape carried over from other lengths can lead Newton astray where the
         // connected geometry would not: a failed warm solve is retried from it.
@@ -75,9 +77,9 @@ impl Evaluator<'_> {
                 let check = self.judge(m, guides, &solved, scene);
                 earlier.insert(0, solved);
                 earlier.truncate(EXTRAPOLATION_POINTS);
-                check
+                (check, true)
             }
-            Err(check) => check,
+            Err(check) => (check, false),
         }
     }
 

@@ -5,7 +5,7 @@ use super::poses::TestPose;
 use super::verdict::{Check, Metrics, Miss, Rejection, verdict};
 use crate::path::Pv;
 use crate::pose::Pose;
-use crate::setup::Setup;
+use crate::setup::{Setup, Thresholds};
 use crate::statics::{RodParameters, SolverOptions, StaticSolver};
 use crate::stress::contact::{
     ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
@@ -14,6 +14,7 @@ use crate::stress::{CurvatureRange, curvatures_per_m};
 use nalgebra::{Point3, Vector3};
 use serde::Serialize;
 use std::borrow::Borrow;
+use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// How the start shape of a segment is obtained, and which solver finds its equilibrium.
@@ -151,7 +152,7 @@ impl<'a> Evaluator<'a> {
             (&declared, &turns),
             &scene,
             lengths.iter().copied(),
-            |length, _, check| {
+            |length, _, check, _| {
                 if let Ok(i) = lengths.binary_search(&length) {
                     metrics[i] = match (check.metrics, check.rejection) {
                         (Some(metrics), _) => Ok(metrics),
@@ -242,6 +243,12 @@ impl<'a> Evaluator<'a> {
         let mut solver = StaticSolver::default();
         let open = |verdicts: &[Option<Miss>], i: usize| wanted[i] && verdicts[i].is_none();
         let turns = ClampTurns::new(self.setup, m, (start, end), lengths);
+        // Per length, per motion: how its shapes flex (only where a flexing radius applies).
+        type AtPose = (usize, (Pose, Pose));
+        let mut flexing: Vec<BTreeMap<usize, FlexWatch<AtPose>>> = match self.watches_flexing(m) {
+            true => vec![BTreeMap::new(); lengths.len()],
+            false => Vec::new(),
+        };
         for (p, pose) in poses.iter().enumerate() {
             let open_lengths: Vec<usize> = (0..lengths.len())
                 .filter(|&i| open(&verdicts, i))
@@ -250,23 +257,50 @@ impl<'a> Evaluator<'a> {
             if open_lengths.is_empty() {
                 break;
             }
-            let (scene, declared) = self.at_pose(m, (start, end), pose.borrow());
+            let pose = pose.borrow();
+            let (scene, declared) = self.at_pose(m, (start, end), pose);
             self.continue_lengths(
                 &mut solver,
                 m,
                 (&declared, &turns),
                 &scene,
                 open_lengths.into_iter(),
-                |length, guides, check| {
+                |length, guides, check, solved| {
                     if let Ok(i) = lengths.binary_search(&length)
                         && open(&verdicts, i)
                     {
                         verdicts[i] = Miss::of(check, self.setup, p, guides, length);
+                        if let (None, Some(watches), Some(solved)) =
+                            (verdicts[i], flexing.get_mut(i), solved)
+                        {
+                            let watch = watches.entry(pose.motion).or_default();
+                            watch.take(self.setup, solved, guides, check, || (p, *guides));
+                        }
                     }
                 },
             );
         }
+        // A piece that held at every pose and flexes between two poses of a motion keeps the
+        // flexing radius at its tightest one (as the static sweep holds it).
+        for (i, watches) in flexing.into_iter().enumerate() {
+            if !open(&verdicts, i) {
+                continue;
+            }
+            let failure = (watches.into_values()).find_map(|w| self.flexing_failure(w));
+            if let Some(((p, guides), check)) = failure {
+                verdicts[i] = Miss::of(&check, self.setup, p, &guides, lengths[i]);
+            }
+        }
         verdicts
+    }
+
+    /// Whether the attachment test holds segment `m`'s pieces to the flexing bend radius
+    /// over its test poses: an inter-link segment (its clamps move apart and together over a
+    /// motion) of a cable with a flexing radius above the fixed one. An intra-link piece is
+    /// tested as a dictionary stores it, one pose at a time; the static sweep holds it.
+    pub fn watches_flexing(&self, m: usize) -> bool {
+        let limits = &self.setup.thresholds;
+        !self.setup.is_intra_link(m) && limits.flexing_bend_radius_m() > limits.min_bend_radius_m
     }
 
     /// The first pose of `poses` (in their order) where PV `pv` of segment `m` violates a
@@ -288,10 +322,7 @@ impl<'a> Evaluator<'a> {
     ) -> Swept<'p> {
         let mut swept = Swept {
             failure: None,
-            least: SweptLeast {
-                bend_radius_m: f64::INFINITY,
-                clearance_m: None,
-            },
+            least: SweptLeast::NONE,
             stopped_below: false,
         };
         if pv.sub_segments == 0 {
@@ -303,10 +334,7 @@ impl<'a> Evaluator<'a> {
         let turn = self
             .setup
             .end_clamp_turn(m, pv.sub_segments, (pv.start, pv.end));
-        let mut flex = CurvatureRange::default();
-        let mut tightest: Option<(&TestPose, Check)> = None;
-        let pitch = self.setup.cable.sub_segment_pitch_m;
-        let axis = |pose: &Pose| pose.rotation * Vector3::z();
+        let mut flexing: FlexWatch<&TestPose> = FlexWatch::default();
         for pose in poses {
             let (scene, declared) = self.at_pose(m, (pv.start, pv.end), pose);
             let guides = (declared.0, declared.1 * turn);
@@ -315,12 +343,7 @@ impl<'a> Evaluator<'a> {
                 match self.solve_warm(&mut solver, m, &guides, pv.sub_segments, &scene, warm) {
                     Ok(solved) => {
                         let check = self.judge(m, &guides, &solved, &scene);
-                        flex.take(&curvatures_per_m(
-                            &solved.nodes,
-                            &axis(&guides.0),
-                            &axis(&guides.1),
-                            pitch,
-                        ));
+                        flexing.take(self.setup, &solved, &guides, &check, || pose);
                         earlier.insert(0, (solved, guides));
                         earlier.truncate(2);
                         check
@@ -331,13 +354,6 @@ impl<'a> Evaluator<'a> {
                     }
                 };
             if let Some(metrics) = &check.metrics {
-                let radius = |c: &Check| c.metrics.map_or(f64::INFINITY, |m| m.min_bend_radius_m);
-                if tightest
-                    .as_ref()
-                    .is_none_or(|(_, t)| metrics.min_bend_radius_m < radius(t))
-                {
-                    tightest = Some((pose, check.clone()));
-                }
                 swept.least.take(metrics);
             }
             if !check.passed() {
@@ -349,22 +365,22 @@ impl<'a> Evaluator<'a> {
                 return swept;
             }
         }
-        swept.failure = tightest.and_then(|(pose, check)| {
-            let flexing = self.flexing_failure(&flex, check)?;
-            Some((pose, flexing))
-        });
+        swept.least.flexes = flexing.flexes(&self.setup.thresholds);
+        swept.failure = self.flexing_failure(flexing);
         swept
     }
 
-    /// The failure of a piece that flexes over a sweep (`flex`) with its tightest static
-    /// shape `tightest` below the flexing bend radius; `None` when it does not flex or keeps
-    /// that radius.
-    fn flexing_failure(&self, flex: &CurvatureRange, tightest: Check) -> Option<Check> {
+    /// The failure of a piece that flexes over one motion's poses (`watch`) with its tightest
+    /// static shape below the flexing bend radius, where that shape was; `None` when it does
+    /// not flex or keeps that radius.
+    fn flexing_failure<At>(&self, watch: FlexWatch<At>) -> Option<(At, Check)> {
         let limits = &self.setup.thresholds;
-        let (change, node) = flex.largest_change();
+        let (change, node) = watch.range.largest_change();
+        let flexes = watch.flexes(limits);
+        let (at, tightest) = watch.tightest?;
         let metrics = tightest.metrics?;
         let limit = limits.bend_radius_for(true, true);
-        if change <= limits.flexing_curvature_change_per_m || metrics.min_bend_radius_m >= limit {
+        if !flexes || metrics.min_bend_radius_m >= limit {
             return None;
         }
         let detail = format!(
@@ -375,7 +391,7 @@ impl<'a> Evaluator<'a> {
             limit * 1e3,
             super::verdict::static_margin_note(limits)
         );
-        Some(Check::fail(Rejection::Bend, detail, Some(metrics)))
+        Some((at, Check::fail(Rejection::Bend, detail, Some(metrics))))
     }
 
     /// The distance between the clamps of configurations `pair` of segment `m` at `pose`
@@ -474,6 +490,54 @@ impl<'a> Evaluator<'a> {
             solved.twist_rad,
         );
         verdict(setup, metrics)
+    }
+}
+
+/// A piece's static shapes over the poses of one motion as far as flexing goes: how the
+/// curvature at each joint ranged, and its tightest shape with where it was (`At`).
+#[derive(Debug, Clone)]
+struct FlexWatch<At> {
+    range: CurvatureRange,
+    tightest: Option<(At, Check)>,
+}
+
+impl<At> Default for FlexWatch<At> {
+    fn default() -> Self {
+        FlexWatch {
+            range: CurvatureRange::default(),
+            tightest: None,
+        }
+    }
+}
+
+impl<At> FlexWatch<At> {
+    /// Takes in one more equilibrium `solved` between `guides`, judged `check`; `at` says
+    /// where it is, kept when it is the tightest so far.
+    fn take(
+        &mut self,
+        setup: &Setup,
+        solved: &Solved,
+        guides: &(Pose, Pose),
+        check: &Check,
+        at: impl FnOnce() -> At,
+    ) {
+        let axis = |pose: &Pose| pose.rotation * Vector3::z();
+        let pitch = setup.cable.sub_segment_pitch_m;
+        let curvatures = curvatures_per_m(&solved.nodes, &axis(&guides.0), &axis(&guides.1), pitch);
+        self.range.take(&curvatures);
+        let radius = |c: &Check| c.metrics.map_or(f64::INFINITY, |m| m.min_bend_radius_m);
+        if self
+            .tightest
+            .as_ref()
+            .is_none_or(|(_, t)| radius(check) < radius(t))
+        {
+            self.tightest = Some((at(), check.clone()));
+        }
+    }
+
+    /// Whether the curvature changed somewhere by more than `limits`' flexing amount.
+    fn flexes(&self, limits: &Thresholds) -> bool {
+        self.range.largest_change().0 > limits.flexing_curvature_change_per_m
     }
 }
 
@@ -577,9 +641,19 @@ pub struct SweptLeast {
     pub bend_radius_m: f64,
     /// Lowest clearance to the robot (m); `None` when nothing was checked.
     pub clearance_m: Option<f64>,
+    /// The piece flexed over the poses (its curvature changed somewhere by more than the
+    /// setup's flexing amount): the flexing bend radius is its limit.
+    pub flexes: bool,
 }
 
 impl SweptLeast {
+    /// Nothing met yet: what a sweep starts from.
+    pub const NONE: SweptLeast = SweptLeast {
+        bend_radius_m: f64::INFINITY,
+        clearance_m: None,
+        flexes: false,
+    };
+
     /// Whether a value is below `other`'s: the bend radius, or the clearance when both have
     /// one.
     pub fn below(&self, other: &SweptLeast) -> bool {
@@ -598,9 +672,11 @@ impl SweptLeast {
         }
     }
 
-    /// The least of both: over the poses of two sweeps (the motions of a cell).
+    /// The least of both: over the poses of two sweeps (the motions of a cell; flexing in
+    /// either).
     pub fn least_with(self, other: SweptLeast) -> SweptLeast {
         SweptLeast {
+            flexes: self.flexes || other.flexes,
             bend_radius_m: self.bend_radius_m.min(other.bend_radius_m),
             clearance_m: match (self.clearance_m, other.clearance_m) {
                 (Some(a), Some(b)) => Some(a.min(b)),

@@ -201,9 +201,16 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
     /// The same test, knowing what earlier solves of the setup learnt ([`VerdictMemory`]):
     /// a piece that held at their poses is tested only at the poses new to it, one that failed
     /// at a pose these have fails without a test. The segments a dictionary answers ignore
-    /// it.
+    /// it, and so do those held to the flexing radius over their poses
+    /// ([`Evaluator::watches_flexing`]): whether a piece flexes depends on every pose of the
+    /// list, not on one at a time.
     pub fn remembering(mut self, memory: &'r VerdictMemory) -> LazyAttachment<'r, 'a> {
         self.recall = memory.recall(self.poses);
+        for (m, recall) in self.recall.iter_mut().enumerate() {
+            if self.evaluator.watches_flexing(m) {
+                *recall = None;
+            }
+        }
         self
     }
 

@@ -192,7 +192,12 @@ impl Miss {
             }
             (Rejection::Stretch, Some(m)) => measured(excess(m.stretch), m.stretch, f64::NAN),
             (Rejection::Bend, Some(m)) => {
-                let limit = limits.static_min_bend_radius_m();
+                // A bend refused above the fixed radius was refused for flexing.
+                let fixed = limits.static_min_bend_radius_m();
+                let limit = match m.min_bend_radius_m >= fixed {
+                    true => limits.bend_radius_for(true, true),
+                    false => fixed,
+                };
                 let at = m.min_bend_node as f64 * pitch;
                 measured(
                     (limit - m.min_bend_radius_m) / limit,

@@ -512,7 +512,10 @@ fn relaxed_limit(violation: &Violation, length_mm: f64) -> String {
             "a flexing bend radius of {:.1} mm (min_bend_radius_flexing_mm in the cable file, \
              where the cable's datasheet allows it): the closest path here ({length_mm:.0} mm) \
              flexed to {value_mm:.2} mm against {limit_mm:.1} mm, and that removes this failure \
-             (`solve` again tells whether it passes the rest of the motion)",
+             (`solve` again tells whether it passes the rest of the motion); or, where that \
+             piece hardly moves, a larger flexing_curvature_change_per_m under [thresholds] \
+             (the change of curvature from which a piece counts as flexing; its largest change \
+             is in the JSON's motions[].pieces[])",
             (value_mm * 10.0).floor() / 10.0
         ),
         _ if value_mm >= 0.0 => format!(

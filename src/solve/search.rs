@@ -552,7 +552,7 @@ mod tests {
         fn least(&self, m: usize, pv: &Pv) -> Option<SweptLeast> {
             Some(SweptLeast {
                 bend_radius_m: self.least_m[&(m, *pv)],
-                clearance_m: None,
+                ..SweptLeast::NONE
             })
         }
 

@@ -31,6 +31,30 @@ pub fn bundled_setup_text() -> String {
         )
 }
 
+/// The bundled pick-and-place setup ([`bundled_setup_text`]) with length errors of ±10 mm
+/// (robustness R = 1 instead of 2), and with the makers' rule for its cable when `rule`
+/// (tests/data/datasheet: fixed 5 × d, flexing 10 × d, ±360°/m, a rated life). Under the
+/// rule with the bundled ±20 mm every chain has a piece whose 20 mm longer or shorter
+/// neighbour flexes below 80 mm, and the motion has no path.
+pub fn ten_mm_setup_text(rule: bool) -> String {
+    let root = root();
+    let text = bundled_setup_text().replacen("range = 2 ", "range = 1 ", 1);
+    assert!(
+        text.contains("range = 1 "),
+        "the bundled setup's robustness range"
+    );
+    match rule {
+        false => text,
+        true => text.replace(
+            &format!("cable = {:?}", root.join("cables/smc_le_cp_3.toml")),
+            &format!(
+                "cable = {:?}",
+                root.join("tests/data/datasheet/smc_le_cp_3_maker_rule.toml")
+            ),
+        ),
+    }
+}
+
 /// The package root, where the bundled files' relative paths start.
 pub fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
