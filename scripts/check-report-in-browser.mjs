@@ -175,7 +175,32 @@ async function checkView(page, blank, problems) {
   }
   moved += await checkWorstButton(page, viewer, problems);
   moved += await checkMotionPicker(page, viewer, problems);
+  moved += await checkColouring(page, viewer, problems);
   return `3D view: loaded, ${(100 * share).toFixed(1)} % drawn, ${labels} clamp labels, ${moved}`;
+}
+
+// The colouring by damage per cycle, when the scene offers it (a cable with a predicted life):
+// the list is shown, picking it changes the picture and shows its legend, and the margins come
+// back.
+async function checkColouring(page, viewer, problems) {
+  const offered = await page.evaluate(() => !document.getElementById("view-colour").hidden);
+  if (!offered) return ", one colouring";
+  const before = await viewer.screenshot();
+  await page.selectOption("#view-colour", { index: 1 });
+  await page.waitForTimeout(800);
+  const state = await page.evaluate(() => ({
+    variant: document.getElementById("view").variantName,
+    legend: !document.getElementById("view-damage-legend").hidden,
+  }));
+  if (state.variant !== "damage per cycle") problems.push(`3D view: the damage colouring shows variant '${state.variant}'`);
+  if (!state.legend) problems.push("3D view: the damage colouring shows no legend");
+  const damage = await viewer.screenshot();
+  if (damage.equals(before)) problems.push("3D view: colouring by damage did not change the picture");
+  await page.selectOption("#view-colour", { index: 0 });
+  await page.waitForTimeout(800);
+  const back = await page.evaluate(() => document.getElementById("view").variantName);
+  if (back !== "margins") problems.push(`3D view: back to margins shows variant '${back}'`);
+  return ", coloured by damage and back";
 }
 
 // The worst-moment button: the time goes there, the camera turns to the spot (its target moves

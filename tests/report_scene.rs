@@ -8,8 +8,8 @@
 
 use cable_dict::pose::pose_from_mm_deg;
 use cable_dict::report::scene::{
-    CableLine, CableTint, GuideMark, INSTALLATION_ANIMATION, PoseScene, SceneAnimation, SceneError,
-    SceneSpec, Snapshot, to_glb,
+    COLOUR_VARIANTS, CableLine, CableTint, GuideMark, INSTALLATION_ANIMATION, PoseScene,
+    SceneAnimation, SceneError, SceneSpec, Snapshot, to_glb,
 };
 use cable_dict::robot::Robot;
 use gltf::animation::Property;
@@ -123,6 +123,7 @@ fn spec(robot: &Robot) -> SceneSpec<'_> {
             },
         ],
         tints: Vec::new(),
+        damage: Vec::new(),
         installation: None,
     }
 }
@@ -736,6 +737,7 @@ fn spheres_capsules_and_stl_meshes_are_drawn_to_size() {
         other_motions: Vec::new(),
         snapshots: Vec::new(),
         tints: Vec::new(),
+        damage: Vec::new(),
         installation: None,
     };
     let (doc, blob) = import(&glb_kept(&spec, "CABLE_DICT_SHAPES_OUT"));
@@ -826,5 +828,114 @@ fn tinted_cable_lines_wear_their_margin_colour() {
                 .any(|p| p.material().index() == material.index())
         });
         assert!(used, "{:?} is unused", material.name());
+    }
+}
+
+/// Damage per cycle along C1 (C2 has none): the scene offers two colourings as glTF material
+/// variants, and in the second every sub-segment of C1 wears the colour of the worse of its
+/// two nodes' decade below the cable's worst (≥ 1/10, 1/100, 1/1000 of it, or less), every
+/// node its own, while the first keeps the margin colour; C2 keeps its one material. Without
+/// damage no variant is declared; damage that does not fit the line is refused.
+#[test]
+fn damage_per_cycle_colours_the_cable_in_a_second_variant() {
+    let robot = robot();
+    let mut spec = spec(&robot);
+    spec.tints = vec![("C1".into(), CableTint::Tight)];
+    // 3e-6 at node 0, falling by a factor 2 per node: decades at nodes 4, 7, 10 (3e-6 / 2^k).
+    let damage: Vec<f64> = (0..NODES[0]).map(|k| 3e-6 / 2f64.powi(k as i32)).collect();
+    spec.damage = vec![("C1".into(), damage.clone())];
+    let (doc, _) = import(&glb(&spec));
+    let names: Vec<String> = (doc.variants().expect("variants"))
+        .map(|v| v.name().to_owned())
+        .collect();
+    assert_eq!(names, COLOUR_VARIANTS);
+    // The level's material by hand: decades below the worst (3e-6).
+    let expected = |d: f64| match d / 3e-6 {
+        r if r >= 0.1 => "cable, worst damage",
+        r if r >= 0.01 => "cable, raised damage",
+        r if r >= 0.001 => "cable, low damage",
+        _ => "cable, slight damage",
+    };
+    let mut seen = std::collections::BTreeSet::new();
+    for node in doc.nodes() {
+        let name = node.name().unwrap_or_default().to_owned();
+        let Some(mesh) = node.mesh() else { continue };
+        let words: Vec<&str> = name.split_whitespace().collect();
+        let (line, kind, k) = match words[..] {
+            [line @ ("C1" | "C2"), kind @ ("sub-segment" | "node"), k] => {
+                (line, kind, k.parse::<usize>().expect("an index"))
+            }
+            _ => continue,
+        };
+        let primitive = mesh.primitives().next().expect("a primitive");
+        let default = primitive.material().name().unwrap_or_default().to_owned();
+        let mappings: Vec<(Vec<u32>, String)> = (primitive.mappings())
+            .map(|m| {
+                (
+                    m.variants().to_vec(),
+                    m.material().name().unwrap_or_default().into(),
+                )
+            })
+            .collect();
+        if line == "C2" {
+            assert_eq!(default, "cable", "{name}");
+            assert!(mappings.is_empty(), "{name}: {mappings:?}");
+            continue;
+        }
+        let worst = match kind {
+            "node" => damage[k],
+            _ => damage[k].max(damage[k + 1]),
+        };
+        assert_eq!(default, "cable, tight margin", "{name}");
+        let want = vec![
+            (vec![0], "cable, tight margin".to_owned()),
+            (vec![1], expected(worst).to_owned()),
+        ];
+        assert_eq!(mappings, want, "{name}");
+        seen.insert(expected(worst));
+    }
+    assert_eq!(seen.len(), 4, "every level drawn: {seen:?}");
+    // Every material is some primitive's, by default or in a variant.
+    for material in doc.materials() {
+        let used = doc
+            .meshes()
+            .flat_map(|m| m.primitives().collect::<Vec<_>>())
+            .any(|p| {
+                p.material().index() == material.index()
+                    || p.mappings()
+                        .any(|m| m.material().index() == material.index())
+            });
+        assert!(used, "{:?} is unused", material.name());
+    }
+
+    spec.damage.clear();
+    let (plain, _) = import(&glb(&spec));
+    assert!(plain.variants().is_none());
+
+    for (damage, says) in [
+        (vec![("C3".to_owned(), vec![0.0; 4])], "no such line"),
+        (
+            vec![("C1".to_owned(), vec![0.0; NODES[0] - 1])],
+            "19 values for 20 nodes",
+        ),
+        (
+            vec![(
+                "C1".to_owned(),
+                [vec![f64::NAN], vec![0.0; NODES[0] - 1]].concat(),
+            )],
+            "node 0",
+        ),
+        (
+            vec![(
+                "C1".to_owned(),
+                [vec![-1.0], vec![0.0; NODES[0] - 1]].concat(),
+            )],
+            "node 0",
+        ),
+    ] {
+        spec.damage = damage;
+        let error = to_glb(&spec).expect_err("refused");
+        assert!(matches!(error, SceneError::Damage { .. }), "{error:?}");
+        assert!(error.to_string().contains(says), "{error}");
     }
 }

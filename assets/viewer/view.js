@@ -163,7 +163,18 @@
     await seek(0);
   });
 
+  // A scene with the cable's damage per cycle offers it as a second colouring (a glTF
+  // material variant); the first, by margins, is the default.
+  const colour = document.getElementById("view-colour");
+  const damageLegend = document.getElementById("view-damage-legend");
+  colour.addEventListener("change", () => {
+    viewer.variantName = colour.value;
+    damageLegend.hidden = colour.selectedIndex === 0;
+  });
+
   viewer.addEventListener("load", async () => {
+    const variants = viewer.availableVariants || [];
+    colour.hidden = !Array.from(colour.options).every((o) => variants.includes(o.value));
     if (clip.animation) await seek(0);
     document.body.dataset.viewLoaded = "true";
   });

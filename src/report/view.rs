@@ -9,7 +9,8 @@
 
 use super::error::ReportError;
 use super::scene::{
-    CableTint, GuideMark, INSTALLATION_ANIMATION, SceneAnimation, SceneSpec, to_glb,
+    COLOUR_VARIANTS, CableTint, DamageLevel, GuideMark, INSTALLATION_ANIMATION, SceneAnimation,
+    SceneSpec, to_glb,
 };
 use super::views::{TIGHT_SHARE, other_motion_animation};
 use super::worst::{limit_words, smallest_margin};
@@ -296,13 +297,14 @@ fn outside_orbit(spot: [f64; 3]) -> [f64; 3] {
 /// The view's markup for the page: the component, its controls, the colours' legend and the
 /// scripts.
 pub fn view_html() -> String {
-    let swatch = |tint: CableTint| {
+    let swatch_of = |css: String, legend: &str| {
         format!(
-            "<span class=\"swatch\" style=\"background:{}\"></span>{}",
-            tint.css(),
-            escape(tint.legend())
+            "<span class=\"swatch\" style=\"background:{css}\"></span>{}",
+            escape(legend)
         )
     };
+    let swatch = |tint: CableTint| swatch_of(tint.css(), tint.legend());
+    let damage_swatch = |level: DamageLevel| swatch_of(level.css(), level.legend());
     format!(
         "<section id=\"view-section\">\n<h2>3D view</h2>\n\
 <p>Drag to turn, scroll to zoom. The robot's collision shapes, the cable and its numbered clamps \
@@ -315,9 +317,13 @@ the buttons picks the motion played.</p>\n\
 <p class=\"view-legend\">{} (closer to the robot or to itself than one cable diameter, or within \
 {:.0} % of the bend-radius or stretch limit) {} {} <span class=\"swatch ring\"></span>the worst \
 spot</p>\n\
+<p class=\"view-legend\" id=\"view-damage-legend\" hidden>Damage per cycle (the predicted life's \
+Miner sum per round, along the cable): {} {} {} {}</p>\n\
 <model-viewer id=\"view\" camera-controls camera-orbit=\"-40deg 70deg auto\" animation-crossfade-duration=\"0\" loading=\"eager\" interaction-prompt=\"none\" shadow-intensity=\"0\" \
 exposure=\"0.6\" alt=\"the robot and the cable in 3D\"></model-viewer>\n\
 <div class=\"view-controls\"><select id=\"view-motion\" aria-label=\"motion\" hidden></select>\
+<select id=\"view-colour\" aria-label=\"colour the cable by\" hidden><option value=\"{}\">colour: margins</option>\
+<option value=\"{}\">colour: damage per cycle</option></select>\
 <button id=\"view-install\" type=\"button\">Installation pose</button>\
 <button id=\"view-play\" type=\"button\">Play</button>\
 <span class=\"view-track\"><input id=\"view-time\" type=\"range\" min=\"0\" max=\"0\" value=\"0\" \
@@ -330,6 +336,12 @@ aria-label=\"time\"><span id=\"view-worst-tick\"></span></span>\
         100.0 * TIGHT_SHARE,
         swatch(CableTint::Ample),
         swatch(CableTint::Exceeded),
+        damage_swatch(DamageLevel::Worst),
+        damage_swatch(DamageLevel::Raised),
+        damage_swatch(DamageLevel::Low),
+        damage_swatch(DamageLevel::Slight),
+        COLOUR_VARIANTS[0],
+        COLOUR_VARIANTS[1],
     )
 }
 

@@ -70,6 +70,7 @@ fn still_scene<'a>(setup: &'a Setup, path: Option<&CablePath>, main: PoseScene) 
         other_motions: Vec::new(),
         snapshots: Vec::new(),
         tints: Vec::new(),
+        damage: Vec::new(),
         installation: None,
     }
 }
@@ -104,6 +105,7 @@ pub fn solve_scene<'a>(
     };
     let mut spec = still_scene(setup, path, main);
     spec.tints = margin_tints(setup, report);
+    spec.damage = damage_along(report, &spec.main);
     if let Some(test) = &report.motion_test {
         spec.animation = motion_test_animation(setup, motion, test)?;
     }
@@ -165,6 +167,21 @@ fn same_lines(a: &PoseScene, b: &PoseScene) -> bool {
         lines.map(|l| (l.name.clone(), l.nodes_m.len())).collect()
     };
     shape(a) == shape(b)
+}
+
+/// The damage per cycle at every node of each main cable line whose piece has a predicted
+/// life: what the view's second colouring paints.
+fn damage_along(report: &SolveReport, main: &PoseScene) -> Vec<(String, Vec<f64>)> {
+    let Some(life) = &report.life else {
+        return Vec::new();
+    };
+    let drawn = |name: &str, nodes: usize| {
+        (main.cable.iter()).any(|line| line.name == name && line.nodes_m.len() == nodes)
+    };
+    (life.pieces.iter())
+        .filter(|piece| drawn(&piece.segment_name, piece.damage_per_cycle.len()))
+        .map(|piece| (piece.segment_name.clone(), piece.damage_per_cycle.clone()))
+        .collect()
 }
 
 /// Share of a limit's allowance (bend radius, stretch beyond 1) within which a piece is

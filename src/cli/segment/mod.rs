@@ -221,6 +221,7 @@ fn write_scene(
         other_motions: Vec::new(),
         snapshots: Vec::new(),
         tints: Vec::new(),
+        damage: Vec::new(),
         installation: None,
     };
     super::output::write_glb(file, &spec)

@@ -27,6 +27,9 @@ pub(super) fn check_spec(spec: &SceneSpec<'_>) -> Result<(), SceneError> {
             &guide.pose_in_link,
         )?;
     }
+    for (line, damage) in &spec.damage {
+        check_damage(spec, line, damage)?;
+    }
     for animation in spec.animations() {
         check_animation(&animation, spec)?;
     }
@@ -38,6 +41,31 @@ pub(super) fn check_spec(spec: &SceneSpec<'_>) -> Result<(), SceneError> {
         }
     }
     Ok(())
+}
+
+/// One value per node of a main cable line, each finite and ≥ 0.
+fn check_damage(spec: &SceneSpec<'_>, line: &str, damage: &[f64]) -> Result<(), SceneError> {
+    let refuse = |why: String| SceneError::Damage {
+        line: line.to_owned(),
+        why,
+    };
+    let Some(main) = spec.main.cable.iter().find(|l| l.name == line) else {
+        return Err(refuse("the main scene has no such line".into()));
+    };
+    if damage.len() != main.nodes_m.len() {
+        return Err(refuse(format!(
+            "{} values for {} nodes",
+            damage.len(),
+            main.nodes_m.len()
+        )));
+    }
+    match damage.iter().position(|d| !(finite32(*d) && *d >= 0.0)) {
+        Some(k) => Err(refuse(format!(
+            "node {k}: {} is not a finite value ≥ 0",
+            damage[k]
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// True when `value` is finite also as an `f32`.

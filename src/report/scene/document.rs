@@ -11,6 +11,10 @@ use super::mesh::TriangleMesh;
 use gltf_json::accessor::{ComponentType, GenericComponentType, Type};
 use gltf_json::animation::{Channel, Sampler};
 use gltf_json::buffer::{Target, View};
+use gltf_json::extensions;
+use gltf_json::extensions::mesh::Mapping;
+use gltf_json::extensions::root::KhrMaterialsVariants;
+use gltf_json::extensions::scene::khr_materials_variants;
 use gltf_json::material::{PbrBaseColorFactor, PbrMetallicRoughness, StrengthFactor};
 use gltf_json::mesh::{Mode, Primitive, Semantic};
 use gltf_json::validation::{Checked, USize64};
@@ -155,6 +159,35 @@ impl Builder {
         mesh: &TriangleMesh,
         material: Index<Material>,
     ) -> Result<Index<Mesh>, SceneError> {
+        self.mesh_in_variants(name, mesh, material, &[])
+    }
+
+    /// Declares the material variants `names` (glTF's `KHR_materials_variants`), numbered
+    /// in their order.
+    pub fn variants(&mut self, names: &[&str]) {
+        let variants = names
+            .iter()
+            .map(|name| khr_materials_variants::Variant {
+                name: (*name).to_owned(),
+            })
+            .collect();
+        let extensions = self.root.extensions.get_or_insert_with(Default::default);
+        extensions.khr_materials_variants = Some(KhrMaterialsVariants { variants });
+        let used = "KHR_materials_variants".to_owned();
+        if !self.root.extensions_used.contains(&used) {
+            self.root.extensions_used.push(used);
+        }
+    }
+
+    /// [`Builder::mesh`] with the material of each variant given (`(material, variant)`,
+    /// variants as numbered by [`Builder::variants`]); `material` where none is given.
+    pub fn mesh_in_variants(
+        &mut self,
+        name: &str,
+        mesh: &TriangleMesh,
+        material: Index<Material>,
+        variants: &[(Index<Material>, u32)],
+    ) -> Result<Index<Mesh>, SceneError> {
         let positions = to_f32(mesh.positions.iter().flat_map(|p| p.iter()).copied(), name)?;
         let normals = to_f32(
             mesh.normals.iter().flat_map(|n| {
@@ -170,9 +203,17 @@ impl Builder {
         let normal_accessor = self.floats(&normals, Type::Vec3, false, array);
         attributes.insert(Checked::Valid(Semantic::Normals), normal_accessor);
         let indices = self.indices(&mesh.indices, mesh.positions.len());
+        let mappings: Vec<Mapping> = (variants.iter())
+            .map(|(material, variant)| Mapping {
+                material: material.value() as u32,
+                variants: vec![*variant],
+            })
+            .collect();
         let primitive = Primitive {
             attributes,
-            extensions: None,
+            extensions: (!mappings.is_empty()).then_some(extensions::mesh::Primitive {
+                khr_materials_variants: Some(extensions::mesh::KhrMaterialsVariants { mappings }),
+            }),
             extras: Default::default(),
             indices: Some(indices),
             material: Some(material),

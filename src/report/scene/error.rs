@@ -37,6 +37,15 @@ pub enum SceneError {
         /// The offending value.
         what: String,
     },
+    /// Damage per cycle given for a cable line the main scene does not have, not one value
+    /// per node of it, or a value that is negative or not finite.
+    #[error("damage per cycle of cable line '{line}': {why}")]
+    Damage {
+        /// The cable line's name.
+        line: String,
+        /// What is wrong.
+        why: String,
+    },
     /// A guide refers to a link the robot does not have.
     #[error("guide '{guide}' is on link {link}, but the robot has {links} links")]
     GuideLink {

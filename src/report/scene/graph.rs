@@ -4,7 +4,7 @@
 use super::document::Builder;
 use super::mesh::{TriangleMesh, cable_joint_sphere, collar, shape_mesh, unit_cable_cylinder};
 use super::tube::swept_tube;
-use super::{CableTint, SceneError, SceneSpec, Snapshot};
+use super::{COLOUR_VARIANTS, CableTint, DamageLevel, SceneError, SceneSpec, Snapshot};
 use crate::pose::Pose;
 use crate::robot::Shape;
 use gltf_json::scene::UnitQuaternion as GltfQuaternion;
@@ -25,6 +25,8 @@ pub(super) enum Paint {
     Cable(CableTint),
     /// Blue.
     Guide,
+    /// The cable by its damage per cycle (the second colour variant).
+    Damage(DamageLevel),
 }
 
 impl Paint {
@@ -43,6 +45,16 @@ impl Paint {
                 (name, [r, g, b, 1.0], 0.5)
             }
             Paint::Guide => ("guide", [0.1, 0.3, 0.9, 1.0], 0.5),
+            Paint::Damage(level) => {
+                let name = match level {
+                    DamageLevel::Slight => "cable, slight damage",
+                    DamageLevel::Low => "cable, low damage",
+                    DamageLevel::Raised => "cable, raised damage",
+                    DamageLevel::Worst => "cable, worst damage",
+                };
+                let [r, g, b] = level.linear_rgb();
+                (name, [r, g, b, 1.0], 0.5)
+            }
         }
     }
 
@@ -52,6 +64,7 @@ impl Paint {
             Paint::Robot => 0,
             Paint::Guide => 1,
             Paint::Cable(tint) => 2 + tint as usize,
+            Paint::Damage(level) => 2 + CableTint::ALL.len() + level as usize,
         }
     }
 }
@@ -59,7 +72,7 @@ impl Paint {
 /// The scene's materials, each made when first used (so none is left unused).
 #[derive(Default)]
 pub(super) struct Materials {
-    made: [Option<Index<Material>>; 2 + CableTint::ALL.len()],
+    made: [Option<Index<Material>>; 2 + CableTint::ALL.len() + DamageLevel::ALL.len()],
 }
 
 impl Materials {
@@ -79,10 +92,37 @@ pub(super) struct SharedMeshes {
     /// Per link, per collider.
     colliders: Vec<Vec<Index<Mesh>>>,
     guide: Option<Index<Mesh>>,
-    /// Per tint (indexed like [`CableTint::ALL`]) used by a main cable line: the unit
-    /// cylinder of a sub-segment and the sphere of a node.
-    segment: [Option<Index<Mesh>>; 4],
-    joint: [Option<Index<Mesh>>; 4],
+    /// Per tint (indexed like [`CableTint::ALL`]) and damage level (indexed like
+    /// [`DamageLevel::ALL`], then one for a line without damage) used by a main cable line:
+    /// the unit cylinder of a sub-segment and the sphere of a node.
+    segment: PerColour,
+    joint: PerColour,
+}
+
+/// A mesh per tint and damage level ([`SharedMeshes`]).
+type PerColour = [[Option<Index<Mesh>>; DamageLevel::ALL.len() + 1]; CableTint::ALL.len()];
+
+/// The damage column of [`PerColour`] for `level` (`None`: no damage given).
+fn damage_slot(level: Option<DamageLevel>) -> usize {
+    level.map_or(DamageLevel::ALL.len(), |l| l as usize)
+}
+
+/// The damage levels of a main cable line's sub-segments (the worse of its two nodes) and
+/// nodes; `None` each where the spec gives it no damage.
+pub(super) fn line_levels(
+    spec: &SceneSpec<'_>,
+    line: &str,
+    nodes: usize,
+) -> (Vec<Option<DamageLevel>>, Vec<Option<DamageLevel>>) {
+    let worst = spec.worst_damage();
+    let at_nodes: Vec<Option<DamageLevel>> = match spec.damage_of(line) {
+        Some(damage) => (damage.iter())
+            .map(|&d| Some(DamageLevel::of(d, worst)))
+            .collect(),
+        None => vec![None; nodes],
+    };
+    let at_segments = at_nodes.windows(2).map(|w| w[0].max(w[1])).collect();
+    (at_segments, at_nodes)
 }
 
 impl SharedMeshes {
@@ -113,37 +153,53 @@ impl SharedMeshes {
         let mut shared = SharedMeshes {
             colliders,
             guide: None,
-            segment: [None; 4],
-            joint: [None; 4],
+            segment: Default::default(),
+            joint: Default::default(),
         };
         if !spec.guides.is_empty() {
             let collar = collar(r, GUIDE_OUTER_RADII * r, GUIDE_LENGTH_M);
             let mesh = painted_mesh(builder, materials, "guide marker", &collar, Paint::Guide)?;
             shared.guide = Some(mesh);
         }
-        for tint in CableTint::ALL {
-            if !spec
-                .main
-                .cable
-                .iter()
-                .any(|line| spec.tint_of(&line.name) == tint)
-            {
-                continue;
-            }
+        if !spec.damage.is_empty() {
+            builder.variants(&COLOUR_VARIANTS);
+        }
+        // The colours the main cable uses, each made once, in a fixed order.
+        let mut used = std::collections::BTreeSet::new();
+        for line in &spec.main.cable {
+            let tint = spec.tint_of(&line.name);
+            let (segments, nodes) = line_levels(spec, &line.name, line.nodes_m.len());
+            used.extend(segments.into_iter().map(|level| (tint, level, false)));
+            used.extend(nodes.into_iter().map(|level| (tint, level, true)));
+        }
+        for (tint, level, joint) in used {
             // The plain meshes keep the names they had before tints existed.
-            let suffix = match tint {
+            let mut suffix = match tint {
                 CableTint::Plain => String::new(),
                 _ => format!(", {}", Paint::Cable(tint).material().0),
             };
             let paint = Paint::Cable(tint);
-            let cylinder = unit_cable_cylinder(r);
-            let name = format!("cable sub-segment (unit length){suffix}");
-            shared.segment[tint as usize] =
-                Some(painted_mesh(builder, materials, &name, &cylinder, paint)?);
-            let sphere = cable_joint_sphere(r);
-            let name = format!("cable node{suffix}");
-            shared.joint[tint as usize] =
-                Some(painted_mesh(builder, materials, &name, &sphere, paint)?);
+            let mut variants = Vec::new();
+            if let Some(level) = level {
+                let damage = Paint::Damage(level);
+                suffix += &format!(" | {}", damage.material().0);
+                variants.push((materials.get(builder, paint), 0));
+                variants.push((materials.get(builder, damage), 1));
+            }
+            let (name, mesh) = match joint {
+                false => (
+                    format!("cable sub-segment (unit length){suffix}"),
+                    unit_cable_cylinder(r),
+                ),
+                true => (format!("cable node{suffix}"), cable_joint_sphere(r)),
+            };
+            let material = materials.get(builder, paint);
+            let made = builder.mesh_in_variants(&name, &mesh, material, &variants)?;
+            let slots = match joint {
+                false => &mut shared.segment,
+                true => &mut shared.joint,
+            };
+            slots[tint as usize][damage_slot(level)] = Some(made);
         }
         Ok(shared)
     }
@@ -313,9 +369,11 @@ pub(super) fn main_cable(
         let line_node = builder.node(line.name.clone(), Node::default());
         builder.add_child(parent, line_node);
         let nodes = &line.nodes_m;
+        let (segment_levels, node_levels) = line_levels(spec, &line.name, nodes.len());
         let mut segments = Vec::with_capacity(nodes.len().saturating_sub(1));
         for (k, pair) in nodes.windows(2).enumerate() {
-            let node = Trs::segment(&pair[0], &pair[1]).node(meshes.segment[tint]);
+            let mesh = meshes.segment[tint][damage_slot(segment_levels[k])];
+            let node = Trs::segment(&pair[0], &pair[1]).node(mesh);
             let segment = builder.node(format!("{} sub-segment {k}", line.name), node);
             builder.add_child(line_node, segment);
             segments.push(segment);
@@ -324,7 +382,7 @@ pub(super) fn main_cable(
         for (k, point) in nodes.iter().enumerate() {
             let joint = builder.node(
                 format!("{} node {k}", line.name),
-                Trs::at(point).node(meshes.joint[tint]),
+                Trs::at(point).node(meshes.joint[tint][damage_slot(node_levels[k])]),
             );
             builder.add_child(line_node, joint);
             joints.push(joint);

@@ -112,6 +112,94 @@ pub struct SceneSpec<'a> {
     /// The colour of each cable line by its margin, by line name; lines not named here are
     /// drawn in the plain cable colour.
     pub tints: Vec<(String, CableTint)>,
+    /// Damage per cycle at every node of a main cable line (Miner's sum per round, ≥ 0), by
+    /// line name. When given, the main cable can also be coloured by it: the scene offers
+    /// the material variants [`COLOUR_VARIANTS`] (glTF's `KHR_materials_variants`), each
+    /// sub-segment and node painted by its [`DamageLevel`] in the second. Empty: margins only.
+    pub damage: Vec<(String, Vec<f64>)>,
+}
+
+/// The two colourings of the main cable a scene with [`SceneSpec::damage`] offers, as glTF
+/// material variants: by margin ([`CableTint`], the default) and by damage per cycle
+/// ([`DamageLevel`]).
+pub const COLOUR_VARIANTS: [&str; 2] = ["margins", "damage per cycle"];
+
+/// How much damage a part of the cable takes per cycle, in decades below the most damaged
+/// point of the cable: where it will break first stands out, and so do the places that take
+/// a tenth or a hundredth of that.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum DamageLevel {
+    /// Less than a thousandth of the worst (or none).
+    Slight,
+    /// A thousandth to a hundredth of the worst.
+    Low,
+    /// A hundredth to a tenth of the worst.
+    Raised,
+    /// Within a factor of ten of the worst: where the cable breaks first.
+    Worst,
+}
+
+impl DamageLevel {
+    /// Every level, in the order of the materials.
+    pub const ALL: [DamageLevel; 4] = [
+        DamageLevel::Slight,
+        DamageLevel::Low,
+        DamageLevel::Raised,
+        DamageLevel::Worst,
+    ];
+
+    /// The level of damage `damage` on a cable whose most damaged point takes `worst` (both
+    /// per cycle): decades below `worst`; [`DamageLevel::Slight`] when `worst` is not > 0.
+    pub fn of(damage: f64, worst: f64) -> DamageLevel {
+        if !(worst > 0.0 && damage > 0.0) {
+            return DamageLevel::Slight;
+        }
+        match damage / worst {
+            r if r >= 0.1 => DamageLevel::Worst,
+            r if r >= 0.01 => DamageLevel::Raised,
+            r if r >= 0.001 => DamageLevel::Low,
+            _ => DamageLevel::Slight,
+        }
+    }
+
+    /// Its colour as the scene's material gives it (linear RGB, 0–1): pale blue to dark red.
+    pub fn linear_rgb(self) -> [f32; 3] {
+        match self {
+            DamageLevel::Slight => [0.45, 0.65, 0.85],
+            DamageLevel::Low => [0.95, 0.85, 0.45],
+            DamageLevel::Raised => [0.95, 0.35, 0.05],
+            DamageLevel::Worst => [0.45, 0.0, 0.2],
+        }
+    }
+
+    /// The same colour for a page (`#rrggbb`, sRGB).
+    pub fn css(self) -> String {
+        css_of(self.linear_rgb())
+    }
+
+    /// What the colour says, for a legend.
+    pub fn legend(self) -> &'static str {
+        match self {
+            DamageLevel::Slight => "under 1/1000 of the worst damage per cycle",
+            DamageLevel::Low => "1/1000 to 1/100 of it",
+            DamageLevel::Raised => "1/100 to 1/10 of it",
+            DamageLevel::Worst => "within a factor of 10 of the worst: where it breaks first",
+        }
+    }
+}
+
+/// A linear RGB colour as `#rrggbb` (sRGB).
+fn css_of([r, g, b]: [f32; 3]) -> String {
+    let srgb = |c: f32| {
+        let c = f64::from(c.clamp(0.0, 1.0));
+        let v = if c <= 0.003_130_8 {
+            12.92 * c
+        } else {
+            1.055 * c.powf(1.0 / 2.4) - 0.055
+        };
+        (v * 255.0).round() as u8
+    };
+    format!("#{:02x}{:02x}{:02x}", srgb(r), srgb(g), srgb(b))
 }
 
 impl SceneSpec<'_> {
@@ -121,6 +209,20 @@ impl SceneSpec<'_> {
             .iter()
             .find(|(line, _)| line == name)
             .map_or(CableTint::Plain, |(_, tint)| *tint)
+    }
+
+    /// The damage per cycle at the nodes of main cable line `name`, if given.
+    pub fn damage_of(&self, name: &str) -> Option<&[f64]> {
+        (self.damage.iter())
+            .find(|(line, _)| line == name)
+            .map(|(_, damage)| damage.as_slice())
+    }
+
+    /// The most damage per cycle at any node of the main cable (0 when none is given).
+    pub fn worst_damage(&self) -> f64 {
+        (self.damage.iter())
+            .flat_map(|(_, d)| d.iter().copied())
+            .fold(0.0, f64::max)
     }
 }
 
@@ -159,17 +261,7 @@ impl CableTint {
 
     /// The same colour for a page or a picture (`#rrggbb`, sRGB): what the 3D view shows.
     pub fn css(self) -> String {
-        let srgb = |c: f32| {
-            let c = f64::from(c.clamp(0.0, 1.0));
-            let v = if c <= 0.003_130_8 {
-                12.92 * c
-            } else {
-                1.055 * c.powf(1.0 / 2.4) - 0.055
-            };
-            (v * 255.0).round() as u8
-        };
-        let [r, g, b] = self.linear_rgb();
-        format!("#{:02x}{:02x}{:02x}", srgb(r), srgb(g), srgb(b))
+        css_of(self.linear_rgb())
     }
 
     /// The colour's name, for a legend in words.
