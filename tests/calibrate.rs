@@ -10,7 +10,7 @@ use crate::reference;
 use cable_dict::cable::CableSpec;
 use cable_dict::calibrate::{CantileverTest, TipMeasurement, torsion_stiffness};
 use cable_dict::pose::pose_from_xyz_rpy;
-use cable_dict::statics::{FarEnd, RodParameters, SolverOptions, solve_segment};
+use cable_dict::statics::{FarEnd, Holds, RodParameters, SolverOptions, solve_segment};
 use common::run;
 use nalgebra::{Point3, Vector3};
 use std::f64::consts::FRAC_PI_2;
@@ -82,6 +82,7 @@ fn the_calibrated_cable_droops_as_measured_in_the_discrete_model() {
         axial_stiffness_n: 1e6,
         mass_per_length_kg_m: RHO,
         gravity_m_s2: Vector3::new(0.0, 0.0, -G),
+        holds: Holds::RIGID,
     };
     let clamp = pose_from_xyz_rpy([0.0; 3], [0.0, FRAC_PI_2, 0.0]);
     let straight: Vec<Point3<f64>> = (0..=30)

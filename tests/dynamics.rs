@@ -7,7 +7,7 @@ use crate::reference;
 
 use cable_dict::dynamics::{IntegratorSettings, SegmentDynamics};
 use cable_dict::pose::{Pose, pose_from_xyz_rpy};
-use cable_dict::statics::{FarEnd, RodParameters, SolverOptions, solve_segment};
+use cable_dict::statics::{FarEnd, Holds, RodParameters, SolverOptions, solve_segment};
 use nalgebra::{Point3, Vector3};
 use reference::vibration;
 use std::f64::consts::FRAC_PI_2;
@@ -23,6 +23,7 @@ fn rod(ei: f64, gravity: f64) -> RodParameters {
         axial_stiffness_n: 1e6,
         mass_per_length_kg_m: RHO,
         gravity_m_s2: Vector3::new(0.0, 0.0, -gravity),
+        holds: Holds::RIGID,
     }
 }
 

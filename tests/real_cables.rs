@@ -12,7 +12,7 @@
 use cable_dict::geometry::{connect, sag_direction};
 use cable_dict::pose::Pose;
 use cable_dict::statics::turns::solve_turned;
-use cable_dict::statics::{RodParameters, SolverOptions, StaticSolver};
+use cable_dict::statics::{Holds, RodParameters, SolverOptions, StaticSolver};
 use cable_dict::stress::FirstSelfContact;
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use std::f64::consts::TAU;
@@ -103,6 +103,7 @@ fn read_case(file: &Path) -> Case {
         axial_stiffness_n: AXIAL_N,
         mass_per_length_kg_m: number(&value, &["wire_params", "mass_kg_per_m"]),
         gravity_m_s2: Vector3::new(gravity[0], gravity[1], gravity[2]),
+        holds: Holds::RIGID,
     };
     // The fixed clamp turned by φ about the tangent adds −φ to the twist from start to end:
     // the same as turning the end clamp by −φ about its tangent.
@@ -419,6 +420,7 @@ fn the_ring_photos() {
                         axial_stiffness_n: AXIAL_N,
                         mass_per_length_kg_m: mass,
                         gravity_m_s2: Vector3::new(0.0, 0.0, -9.81),
+                        holds: Holds::RIGID,
                     };
                     let solved = StaticSolver::default().solve(
                         &params,

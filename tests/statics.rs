@@ -9,8 +9,8 @@ use crate::reference;
 use cable_dict::geometry::connect;
 use cable_dict::pose::{Pose, pose_from_xyz_rpy};
 use cable_dict::statics::{
-    Equilibrium, FarEnd, RodParameters, SolverOptions, StaticsError, clamp_loads, potential_energy,
-    solve_segment,
+    Equilibrium, FarEnd, Hold, Holds, RodParameters, SolverOptions, StaticsError, clamp_loads,
+    potential_energy, solve_segment,
 };
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -27,6 +27,7 @@ fn cable(gravity_m_s2: f64) -> RodParameters {
         axial_stiffness_n: 1e4,
         mass_per_length_kg_m: RHO,
         gravity_m_s2: Vector3::new(0.0, 0.0, -gravity_m_s2),
+        holds: Holds::RIGID,
     }
 }
 
@@ -473,6 +474,7 @@ fn elastica_deviation(length: f64, theta0: f64, end: [f64; 3], sub_segments: usi
         axial_stiffness_n: 1e6,
         mass_per_length_kg_m: RHO,
         gravity_m_s2: Vector3::new(0.0, 0.0, -9.81),
+        holds: Holds::RIGID,
     };
     let continuous = reference::elastica::solve_clamped(length, EI, RHO * 9.81, theta0, end)
         .unwrap_or_else(|e| panic!("reference: {e}"));
@@ -686,5 +688,159 @@ fn a_straight_cable_turned_at_one_end_twists_by_the_angle_and_loads_both_clamps(
         for force in [at_start.force_n, at_end.force_n] {
             assert!(Vector3::from(force).norm() < 1e-6, "{force:?}");
         }
+    }
+}
+
+/// The beam of [`clamped_clamped_beam_matches_linear_theory_in_the_small_deflection_limit`]
+/// (clamped sag 1e-5 m; pinned, five times that: the membrane effect stays below 3e-3) with
+/// the clamps' holds `holds`.
+fn beam_sag(holds: Holds) -> (f64, Equilibrium) {
+    let sub_segments = 50;
+    let length = sub_segments as f64 * PITCH;
+    let w = 1e-5 * 384.0 * EI / length.powi(4);
+    let params = RodParameters {
+        holds,
+        ..cable(w / RHO)
+    };
+    let start = planar_guide(0.0, 0.0, 0.0, 0.0);
+    let end = planar_guide(length, 0.0, 0.0, 0.0);
+    let nodes = straight_nodes(
+        Point3::origin(),
+        Point3::new(length, 0.0, 0.0),
+        sub_segments,
+    );
+    let solution = solve(&params, &start, &FarEnd::Clamped(end), &nodes, 1e-10);
+    (w, solution)
+}
+
+fn midspan_sag(solution: &Equilibrium) -> f64 {
+    -solution.nodes[solution.nodes.len() / 2].z
+}
+
+/// Clamps that hold the direction give the clamped–clamped beam's sag `wL⁴/384EI`; pins
+/// (swivels free in every direction) give the simply supported beam's, five times as much,
+/// and take no moment; swivels whose cone is half the pinned end slope `wL³/24EI` hold the
+/// cable at the cone's edge: the clamped sag plus `αL/4` of end slopes `±α`.
+#[test]
+fn a_swivel_carries_no_moment_within_its_cone_and_holds_the_cable_at_its_edge() {
+    let length = 50.0 * PITCH;
+    let swivels = |cone_rad: f64| Holds {
+        start: Hold::Swivel { cone_rad },
+        end: Hold::Swivel { cone_rad },
+    };
+    let (w, clamped) = beam_sag(Holds::RIGID);
+    let (_, pinned) = beam_sag(swivels(PI));
+    let clamped_closed_form = w * length.powi(4) / (384.0 * EI);
+    let pinned_closed_form = 5.0 * clamped_closed_form;
+    for (solution, closed_form, what) in [
+        (&clamped, clamped_closed_form, "clamped"),
+        (&pinned, pinned_closed_form, "pinned"),
+    ] {
+        let error = (midspan_sag(solution) - closed_form).abs() / closed_form;
+        println!(
+            "{what}: sag {:.4e} m vs {closed_form:.4e} m ({error:.1e})",
+            midspan_sag(solution)
+        );
+        assert!(error < 0.02, "{what}: {error}");
+    }
+    // The pins take force only: their moment is a rounding error of the clamps' moment.
+    let moments = |holds: Holds, solution: &Equilibrium| {
+        let params = RodParameters {
+            holds,
+            ..cable(w / RHO)
+        };
+        let start = planar_guide(0.0, 0.0, 0.0, 0.0);
+        let end = planar_guide(length, 0.0, 0.0, 0.0);
+        let (a, b) = clamp_loads(&params, &start, Some(&end), &solution.nodes, 0.0);
+        let b = b.expect("a clamped end");
+        let norm = |m: [f64; 3]| Vector3::from(m).norm();
+        (norm(a.moment_n_m), norm(b.moment_n_m))
+    };
+    let (clamp_start, clamp_end) = moments(Holds::RIGID, &clamped);
+    let (pin_start, pin_end) = moments(swivels(PI), &pinned);
+    // Closed form for the clamped ends: wL²/12.
+    let wl2 = w * length * length / 12.0;
+    assert!(
+        (clamp_start - wl2).abs() < 0.03 * wl2,
+        "{clamp_start} vs {wl2}"
+    );
+    assert!((clamp_end - wl2).abs() < 0.03 * wl2, "{clamp_end} vs {wl2}");
+    assert!(
+        pin_start < 1e-3 * wl2 && pin_end < 1e-3 * wl2,
+        "{pin_start} {pin_end}"
+    );
+
+    // A cone half the pinned end slope: the sag of clamps turned to its edge.
+    let end_slope = w * length.powi(3) / (24.0 * EI);
+    let cone = 0.5 * end_slope;
+    let (_, coned) = beam_sag(swivels(cone));
+    let closed_form = clamped_closed_form + cone * length / 4.0;
+    let error = (midspan_sag(&coned) - closed_form).abs() / closed_form;
+    println!(
+        "cone {cone:.3e} rad: sag {:.4e} m vs {closed_form:.4e} m ({error:.1e})",
+        midspan_sag(&coned)
+    );
+    assert!(error < 0.03, "{error}");
+}
+
+/// A straight cable whose end clamp is turned by a quarter turn about the cable: held by
+/// rigid clamps it is twisted by the quarter turn and both clamps take the torque
+/// `GJ (π/2) / L`; with a rotating clamp at either end it untwists entirely — no twist, no
+/// twist energy, no torque.
+#[test]
+fn a_rotating_clamp_lets_a_twisted_cable_relax_fully() {
+    let sub_segments = 30;
+    let length = sub_segments as f64 * PITCH;
+    let start = planar_guide(0.0, 0.0, 0.0, 0.0);
+    let end = planar_guide(length, 0.0, 0.0, FRAC_PI_2);
+    let nodes = straight_nodes(
+        Point3::origin(),
+        Point3::new(length, 0.0, 0.0),
+        sub_segments,
+    );
+    let torque = |holds: Holds| {
+        let params = RodParameters {
+            holds,
+            ..cable(0.0)
+        };
+        let solution = solve(&params, &start, &FarEnd::Clamped(end), &nodes, 1e-10);
+        let (a, b) = clamp_loads(
+            &params,
+            &start,
+            Some(&end),
+            &solution.nodes,
+            solution.twist_rad,
+        );
+        let about_axis = |m: [f64; 3]| m[0].abs();
+        let b = b.expect("a clamped end");
+        (solution, about_axis(a.moment_n_m), about_axis(b.moment_n_m))
+    };
+    let closed_form = 1.5 * PITCH * FRAC_PI_2 / length;
+    let (rigid, a, b) = torque(Holds::RIGID);
+    assert!(
+        (rigid.twist_rad - FRAC_PI_2).abs() < 1e-9,
+        "{}",
+        rigid.twist_rad
+    );
+    for m in [a, b] {
+        assert!(
+            (m - closed_form).abs() < 1e-4 * closed_form,
+            "{m} vs {closed_form}"
+        );
+    }
+    for holds in [
+        Holds {
+            start: Hold::Rotating,
+            end: Hold::Rigid,
+        },
+        Holds {
+            start: Hold::Rigid,
+            end: Hold::Rotating,
+        },
+    ] {
+        let (free, a, b) = torque(holds);
+        assert_eq!(free.twist_rad, 0.0);
+        assert_eq!(free.energy.twist_j, 0.0);
+        assert!(a < 1e-9 * closed_form && b < 1e-9 * closed_form, "{a} {b}");
     }
 }

@@ -82,6 +82,49 @@ pub(crate) fn bending(
     let value = 2.0 * stiffness * (1.0 - u) / chi;
     let slope = -4.0 * stiffness / (chi * chi);
     let curvature = 8.0 * stiffness / (chi * chi * chi);
+    of_cosine(a, b, (value, slope, curvature), with_hessian)
+}
+
+/// The bending energy of a joint whose first side, a guide's axis, may turn freely within a
+/// cone of half-angle `cone_rad` about it (a swivel clamp): none while the turning angle
+/// `φ` is within the cone, else the energy of the part beyond it, `2c (1 − w)/(1 + w)` with
+/// `w = cos(φ − cone)` — the guide held at the cone's edge. Continuous with its gradient at
+/// the edge; `cone_rad ≥ π` is a pin (never any energy).
+pub(crate) fn cone_bending(
+    a: &Edge,
+    b: &Edge,
+    stiffness: f64,
+    cone_rad: f64,
+    with_hessian: bool,
+) -> EdgePairDerivatives {
+    let u = a.unit.dot(&b.unit).clamp(-1.0, 1.0);
+    let (sine, cosine) = cone_rad.min(std::f64::consts::PI).sin_cos();
+    let r2 = 1.0 - u * u;
+    if u >= cosine || r2 <= 0.0 {
+        return of_cosine(a, b, (0.0, 0.0, 0.0), with_hessian);
+    }
+    let r = r2.sqrt();
+    let w = u * cosine + r * sine;
+    let dw = cosine - u * sine / r;
+    let d2w = -sine / (r2 * r);
+    let chi = 1.0 + w;
+    let (t, dt, d2t) = ((1.0 - w) / chi, -2.0 / (chi * chi), 4.0 / (chi * chi * chi));
+    let c = 2.0 * stiffness;
+    let value = c * t;
+    let slope = c * dt * dw;
+    let curvature = c * (d2t * dw * dw + dt * d2w);
+    of_cosine(a, b, (value, slope, curvature), with_hessian)
+}
+
+/// The derivatives with respect to the edge vectors of an energy `E(u)` of the cosine `u`
+/// of the joint's turning angle, given `(E, dE/du, d²E/du²)` at `u`.
+fn of_cosine(
+    a: &Edge,
+    b: &Edge,
+    (value, slope, curvature): (f64, f64, f64),
+    with_hessian: bool,
+) -> EdgePairDerivatives {
+    let u = a.unit.dot(&b.unit);
     let du_da = (b.unit - u * a.unit) / a.length;
     let du_db = (a.unit - u * b.unit) / b.length;
     if !with_hessian {
@@ -249,5 +292,53 @@ mod tests {
     #[test]
     fn reference_twist_hessian_is_the_derivative_of_its_gradient() {
         assert_hessian_is_the_gradient_derivative(reference_twist_with_hessian);
+    }
+
+    /// Half the test edges' turning angle: the cone a swivel test leaves the joint beyond.
+    fn half_angle() -> f64 {
+        let (a, b) = edges();
+        0.5 * a.angle(&b)
+    }
+
+    fn cone_bending_beyond_half(a: &Edge, b: &Edge) -> EdgePairDerivatives {
+        cone_bending(a, b, 0.3, half_angle(), true)
+    }
+
+    #[test]
+    fn a_swivel_bends_only_beyond_its_cone_as_a_clamp_at_the_cone_edge_would() {
+        let (a, b) = edges();
+        let (ea, eb) = (Edge::new(a), Edge::new(b));
+        let phi = a.angle(&b);
+        // Beyond the cone: the energy of the turning angle past the cone's edge (closed form).
+        let beyond = cone_bending(&ea, &eb, 0.3, 0.5 * phi, true);
+        let expected = 0.5 * 0.3 * (2.0 * (0.25 * phi).tan()).powi(2);
+        assert!(
+            (beyond.value - expected).abs() < 1e-15 * expected.max(1.0),
+            "{}",
+            beyond.value
+        );
+        // Within the cone, and for a pin: nothing, no force.
+        for cone in [1.01 * phi, std::f64::consts::PI] {
+            let within = cone_bending(&ea, &eb, 0.3, cone, true);
+            assert_eq!(
+                (within.value, within.grad_a.norm(), within.grad_b.norm()),
+                (0.0, 0.0, 0.0)
+            );
+        }
+        // A zero cone is the rigid clamp.
+        let rigid = cone_bending(&ea, &eb, 0.3, 0.0, true);
+        let clamp = bending(&ea, &eb, 0.3, true);
+        assert!((rigid.value - clamp.value).abs() < 1e-12 * clamp.value);
+        assert!((rigid.grad_b - clamp.grad_b).norm() < 1e-9 * clamp.grad_b.norm());
+        // Derivatives against finite differences.
+        let energy = |a: &Vector3<f64>, b: &Vector3<f64>| {
+            cone_bending(&Edge::new(*a), &Edge::new(*b), 0.3, half_angle(), false).value
+        };
+        let g = numeric_gradient(energy);
+        for k in 0..3 {
+            assert!((beyond.grad_a[k] - g[k]).abs() < 1e-6 * beyond.grad_a.norm());
+            assert!((beyond.grad_b[k] - g[k + 3]).abs() < 1e-6 * beyond.grad_b.norm());
+        }
+        assert_hessian_is_the_gradient_derivative(cone_bending_beyond_half);
     }
 }

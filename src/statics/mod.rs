@@ -25,7 +25,7 @@ pub(crate) mod rod;
 pub mod turns;
 
 pub use loads::{ClampLoad, clamp_loads};
-pub use rod::{EnergyTerms, RodParameters};
+pub use rod::{EnergyTerms, Hold, Holds, RodParameters};
 
 use nalgebra::{Point3, Rotation3, Vector3};
 

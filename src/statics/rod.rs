@@ -30,7 +30,7 @@
 use nalgebra::{Matrix3, Point3, Rotation3, Unit, Vector3};
 
 use super::banded::SymmetricBand;
-use super::joint::{Edge, EdgePairDerivatives, bending, reference_twist};
+use super::joint::{Edge, EdgePairDerivatives, bending, cone_bending, reference_twist};
 use super::retract::{Retraction, restore_lengths};
 use crate::cable::CableSpec;
 use crate::pose::Pose;
@@ -50,6 +50,56 @@ pub struct RodParameters {
     pub mass_per_length_kg_m: f64,
     /// Gravitational acceleration (m/s²), e.g. `(0, 0, −9.81)` with z up.
     pub gravity_m_s2: Vector3<f64>,
+    /// How the clamps at the piece's ends hold it ([`Holds::RIGID`]: the paper's clamps).
+    pub holds: Holds,
+}
+
+/// How a clamp holds the end of a piece.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Hold {
+    /// Position, direction and the turn about the cable's axis held: the clamp takes force,
+    /// bending moment and torque.
+    Rigid,
+    /// Position and direction held; the cable turns freely about its own axis (a rotating
+    /// clamp: no torque, so the piece's twist relaxes).
+    Rotating,
+    /// Position held; the direction turns freely within a cone of half-angle `cone_rad`
+    /// about the clamp's +z, and is held at the cone's edge beyond it; the cable turns
+    /// freely about its axis (a ball joint: no moment at all within the cone). `cone_rad ≥ π`
+    /// is a pin.
+    Swivel {
+        /// Half-angle of the cone (rad).
+        cone_rad: f64,
+    },
+}
+
+impl Hold {
+    /// Whether the cable may turn about its own axis at this clamp.
+    pub fn frees_twist(self) -> bool {
+        !matches!(self, Hold::Rigid)
+    }
+}
+
+/// How the clamps at both ends of a piece hold it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Holds {
+    /// The start clamp.
+    pub start: Hold,
+    /// The end clamp (ignored for a free end).
+    pub end: Hold,
+}
+
+impl Holds {
+    /// Both ends rigid.
+    pub const RIGID: Holds = Holds {
+        start: Hold::Rigid,
+        end: Hold::Rigid,
+    };
+
+    /// Whether the piece's twist relaxes: one of its clamps lets the cable turn.
+    pub fn free_twist(&self) -> bool {
+        self.start.frees_twist() || self.end.frees_twist()
+    }
 }
 
 impl RodParameters {
@@ -62,15 +112,17 @@ impl RodParameters {
             axial_stiffness_n: cable.axial_stiffness_n,
             mass_per_length_kg_m: cable.mass_per_length_kg_m,
             gravity_m_s2,
+            holds: Holds::RIGID,
         }
     }
 }
 
-/// One side of a joint: a cable edge (by index) or a guide axis (fixed unit vector).
+/// One side of a joint: a cable edge (by index) or a guide axis (fixed unit vector) and how
+/// that guide holds the cable.
 #[derive(Debug, Clone, Copy)]
 enum Side {
     Cable(usize),
-    Guide(Vector3<f64>),
+    Guide(Vector3<f64>, Hold),
 }
 
 /// A segment's boundary conditions and parameters; evaluates energies of node sets.
@@ -183,9 +235,10 @@ impl Rod {
         self.sub_segments - usize::from(self.end.is_some())
     }
 
-    /// Twist stiffness of the whole segment `kt / S` (N·m/rad); 0 for a free end.
+    /// Twist stiffness of the whole segment `kt / S` (N·m/rad); 0 for a free end or a clamp
+    /// that lets the cable turn.
     pub(crate) fn twist_stiffness(&self) -> f64 {
-        if self.end.is_some() {
+        if self.end.is_some() && !self.params.holds.free_twist() {
             self.params.torsion_stiffness_n_m2 / self.params.pitch_m / self.sub_segments as f64
         } else {
             0.0
@@ -317,6 +370,7 @@ impl Rod {
             if self.end.is_some() { coordinates } else { 0 },
         );
         let twist = match &self.end {
+            Some(_) if self.params.holds.free_twist() => 0.0,
             Some(end) => unwrap_near(self.transported_twist(edges, end), twist_reference),
             None => 0.0,
         };
@@ -378,7 +432,8 @@ impl Rod {
             };
             let (a, b) = (side_edge(incoming, edges), side_edge(outgoing, edges));
             let with_hessian = assembly.hessian.is_some();
-            let mut derivatives = bending(&a, &b, stiffness, with_hessian);
+            let mut derivatives =
+                joint_bending((incoming, outgoing), (&a, &b), stiffness, with_hessian);
             energy += derivatives.value;
             if self.end.is_some() {
                 let twist_derivatives = reference_twist(&a, &b, with_hessian);
@@ -460,9 +515,11 @@ impl Rod {
                 continue;
             };
             let (a, b) = (side_edge(incoming, &edges), side_edge(outgoing, &edges));
-            energy += bending(&a, &b, stiffness, false).value;
+            energy += joint_bending((incoming, outgoing), (&a, &b), stiffness, false).value;
         }
-        if let Some(end) = &self.end {
+        if let Some(end) = &self.end
+            && !self.params.holds.free_twist()
+        {
             let twist = unwrap_near(self.transported_twist(&edges, end), twist_reference);
             energy += 0.5 * self.twist_stiffness() * twist * twist;
         }
@@ -474,16 +531,17 @@ impl Rod {
     /// guide's axis), with twice the stiffness at a guide; a free end has no joint at node S.
     fn joint(&self, joint: usize, count: usize) -> Option<(Side, Side, f64)> {
         let kb = self.params.bending_stiffness_n_m2 / self.params.pitch_m;
+        let holds = self.params.holds;
         let incoming = match joint {
-            0 => Side::Guide(self.start_axis()),
+            0 => Side::Guide(self.start_axis(), holds.start),
             j => Side::Cable(j - 1),
         };
         let outgoing = match (joint < count, &self.end) {
             (true, _) => Side::Cable(joint),
-            (false, Some(end)) => Side::Guide(end.rotation * Vector3::z()),
+            (false, Some(end)) => Side::Guide(end.rotation * Vector3::z(), holds.end),
             (false, None) => return None,
         };
-        let at_guide = matches!(incoming, Side::Guide(_)) || matches!(outgoing, Side::Guide(_));
+        let at_guide = matches!(incoming, Side::Guide(..)) || matches!(outgoing, Side::Guide(..));
         Some((incoming, outgoing, if at_guide { 2.0 * kb } else { kb }))
     }
 
@@ -547,10 +605,27 @@ impl Rod {
 fn side_edge(side: Side, edges: &[Edge]) -> Edge {
     match side {
         Side::Cable(i) => edges[i],
-        Side::Guide(axis) => Edge {
+        Side::Guide(axis, _) => Edge {
             unit: axis,
             length: 1.0,
         },
+    }
+}
+
+/// The bending of a joint between `sides` with edges `edges`: a swivel clamp's joint bends
+/// only beyond its cone ([`cone_bending`]), every other the cable's way ([`bending`]).
+fn joint_bending(
+    sides: (Side, Side),
+    (a, b): (&Edge, &Edge),
+    stiffness: f64,
+    with_hessian: bool,
+) -> EdgePairDerivatives {
+    match sides {
+        (Side::Guide(_, Hold::Swivel { cone_rad }), _)
+        | (_, Side::Guide(_, Hold::Swivel { cone_rad })) => {
+            cone_bending(a, b, stiffness, cone_rad, with_hessian)
+        }
+        _ => bending(a, b, stiffness, with_hessian),
     }
 }
 
@@ -654,9 +729,9 @@ impl Assembly<'_> {
                 self.add_hessian_block(p + 2, p + 1, &(0.5 * (h21 + h12.transpose())));
                 self.add_hessian_block(p + 2, p + 2, &symmetric(&bb));
             }
-            (Side::Cable(i), Side::Guide(_)) => self.add_edge_terms(i, &d.grad_a, &d.hess_aa),
-            (Side::Guide(_), Side::Cable(i)) => self.add_edge_terms(i, &d.grad_b, &d.hess_bb),
-            (Side::Guide(_), Side::Guide(_)) => {}
+            (Side::Cable(i), Side::Guide(..)) => self.add_edge_terms(i, &d.grad_a, &d.hess_aa),
+            (Side::Guide(..), Side::Cable(i)) => self.add_edge_terms(i, &d.grad_b, &d.hess_bb),
+            (Side::Guide(..), Side::Guide(..)) => {}
         }
     }
 

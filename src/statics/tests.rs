@@ -13,11 +13,36 @@ fn params() -> RodParameters {
         axial_stiffness_n: 1e3,
         mass_per_length_kg_m: 0.26,
         gravity_m_s2: Vector3::new(0.0, 0.0, -9.81),
+        holds: Holds::RIGID,
     }
 }
 
+/// The clamp holds the derivative checks run with: rigid, a swivel at either end (cones
+/// narrower than the configuration's end angles, so that both bend beyond them), a rotating
+/// clamp.
+const HOLDS: [Holds; 4] = [
+    Holds::RIGID,
+    Holds {
+        start: Hold::Swivel { cone_rad: 0.2 },
+        end: Hold::Rigid,
+    },
+    Holds {
+        start: Hold::Rigid,
+        end: Hold::Swivel { cone_rad: 0.1 },
+    },
+    Holds {
+        start: Hold::Rotating,
+        end: Hold::Rigid,
+    },
+];
+
 /// A bent, twisted, slightly stretched 3D configuration of 8 sub-segments.
 fn twisted_rod(end_free: bool) -> (Rod, Vec<f64>) {
+    twisted_rod_held(end_free, Holds::RIGID)
+}
+
+/// [`twisted_rod`] with the clamps' holds `holds`.
+fn twisted_rod_held(end_free: bool, holds: Holds) -> (Rod, Vec<f64>) {
     let start = pose_from_xyz_rpy([0.0; 3], [0.0, 1.2, 0.3]);
     let end = pose_from_xyz_rpy([0.05, 0.03, -0.02], [0.9, 2.0, -0.4]);
     let nodes: Vec<Point3<f64>> = (0..=8)
@@ -30,7 +55,12 @@ fn twisted_rod(end_free: bool) -> (Rod, Vec<f64>) {
             )
         })
         .collect();
-    let rod = Rod::new(params(), start, (!end_free).then_some(end), 8);
+    let rod = Rod::new(
+        RodParameters { holds, ..params() },
+        start,
+        (!end_free).then_some(end),
+        8,
+    );
     let x = rod.free_coordinates(&nodes);
     (rod, x)
 }
@@ -39,10 +69,41 @@ fn energy(rod: &Rod, x: &[f64], reference: f64) -> f64 {
     rod.evaluate(x, reference, None).energy
 }
 
+/// The swivels of [`HOLDS`] bend beyond their cones in the test configuration: each bends it
+/// more than a pin (a cone of π) would.
+#[test]
+fn the_test_swivels_bend_beyond_their_cones() {
+    let pin = Hold::Swivel {
+        cone_rad: std::f64::consts::PI,
+    };
+    let bending = |holds: Holds| {
+        let (rod, x) = twisted_rod_held(false, holds);
+        rod.evaluate(&x, 0.0, None).terms.bending_j
+    };
+    for holds in &HOLDS[1..3] {
+        let pinned = Holds {
+            start: if holds.start == Hold::Rigid {
+                Hold::Rigid
+            } else {
+                pin
+            },
+            end: if holds.end == Hold::Rigid {
+                Hold::Rigid
+            } else {
+                pin
+            },
+        };
+        assert!(bending(*holds) > bending(pinned) + 1e-9, "{holds:?}");
+    }
+}
+
 #[test]
 fn gradient_matches_finite_differences_of_the_energy() {
-    for free in [false, true] {
-        let (rod, x) = twisted_rod(free);
+    for (free, holds) in [false, true]
+        .into_iter()
+        .flat_map(|f| HOLDS.map(|h| (f, h)))
+    {
+        let (rod, x) = twisted_rod_held(free, holds);
         let at = rod.evaluate(&x, 0.0, None);
         let h = 1e-7;
         for i in 0..x.len() {
@@ -54,7 +115,7 @@ fn gradient_matches_finite_differences_of_the_energy() {
             let scale = super::newton::max_abs(&at.gradient);
             assert!(
                 (at.gradient[i] - numeric).abs() < 1e-6 * scale,
-                "free end {free}, coordinate {i}: {} vs {numeric}",
+                "free end {free}, {holds:?}, coordinate {i}: {} vs {numeric}",
                 at.gradient[i]
             );
         }
@@ -83,8 +144,11 @@ fn twist_gradient_matches_finite_differences_of_the_transported_twist() {
 
 #[test]
 fn hessian_matches_finite_differences_of_the_gradient() {
-    for free in [false, true] {
-        let (rod, x) = twisted_rod(free);
+    for (free, holds) in [false, true]
+        .into_iter()
+        .flat_map(|f| HOLDS.map(|h| (f, h)))
+    {
+        let (rod, x) = twisted_rod_held(free, holds);
         let n = x.len();
         let mut band = SymmetricBand::zeros(n);
         let at = rod.evaluate(&x, 0.0, Some(&mut band));
@@ -114,7 +178,7 @@ fn hessian_matches_finite_differences_of_the_gradient() {
         }
         assert!(
             worst < 1e-5 * scale,
-            "free end {free}: {worst:e} of {scale:e}"
+            "free end {free}, {holds:?}: {worst:e} of {scale:e}"
         );
     }
 }

@@ -123,6 +123,7 @@ fn turned_clamp(end: &Pose, angle: f64, extra_rad: f64) -> FarEnd {
 mod tests {
     use super::*;
     use crate::pose::pose_from_xyz_rpy;
+    use crate::statics::Holds;
     use std::f64::consts::{FRAC_PI_2, TAU};
 
     fn params(gravity_m_s2: f64, torsion_over_bending: f64) -> RodParameters {
@@ -134,6 +135,7 @@ mod tests {
             axial_stiffness_n: 1e3,
             mass_per_length_kg_m: 0.1,
             gravity_m_s2: Vector3::new(0.0, 0.0, -gravity_m_s2),
+            holds: Holds::RIGID,
         }
     }
 
