@@ -27,6 +27,7 @@ mod dictionary;
 mod dictionary_files;
 mod dynamics;
 mod elastica_reference;
+mod guide_kinds;
 mod hostile_inputs;
 mod hostile_names;
 mod lazy_search;

@@ -8,7 +8,7 @@ use super::evaluate::{ClampTurns, ConnectMethod, Evaluator, Scene, Solved, Warm}
 use super::verdict::{Check, Rejection, connect_failure};
 use crate::geometry::{connect, reaches, sag_direction};
 use crate::pose::Pose;
-use crate::statics::{FarEnd, RodParameters, StaticSolver, continuation};
+use crate::statics::{FarEnd, Holds, RodParameters, StaticSolver, continuation};
 use nalgebra::Point3;
 use std::ops::Range;
 
@@ -21,7 +21,7 @@ impl Evaluator<'_> {
     pub(super) fn continue_lengths(
         &self,
         solver: &mut StaticSolver,
-        m: usize,
+        (m, holds): (usize, Holds),
         (declared, turns): (&(Pose, Pose), &ClampTurns),
         scene: &Scene<'_>,
         wanted: impl Iterator<Item = usize>,
@@ -44,7 +44,7 @@ impl Evaluator<'_> {
             for length in chain {
                 let guides = (declared.0, declared.1 * turns.at(self.setup, m, length));
                 let (check, solved) =
-                    self.next_length(solver, &mut earlier, m, &guides, length, scene);
+                    self.next_length(solver, &mut earlier, (m, holds), &guides, length, scene);
                 visit(length, &guides, &check, earlier.first().filter(|_| solved));
             }
         }
@@ -57,12 +57,14 @@ impl Evaluator<'_> {
         &self,
         solver: &mut StaticSolver,
         earlier: &mut Vec<Solved>,
-        m: usize,
+        (m, holds): (usize, Holds),
         guides: &(Pose, Pose),
         length: usize,
         scene: &Scene<'_>,
     ) -> (Check, bool) {
-        let mut solved = self.solve_warm(solver, m, guides, length, scene, Warm::Length(earlier));
+        let piece = (m, holds);
+        let mut solved =
+            self.solve_warm(solver, piece, guides, length, scene, Warm::Length(earlier));
         // A start shape carried over from other lengths can lead Newton astray where the
         // connected geometry would not: a failed warm solve is retried from it.
         let diverged = |r: &Result<Solved, Check>| {
@@ -70,7 +72,7 @@ impl Evaluator<'_> {
                 .is_err_and(|c| c.rejection == Some(Rejection::Diverged))
         };
         if diverged(&solved) && !earlier.is_empty() {
-            solved = self.solve_warm(solver, m, guides, length, scene, Warm::Length(&[]));
+            solved = self.solve_warm(solver, piece, guides, length, scene, Warm::Length(&[]));
         }
         match solved {
             Ok(solved) => {
@@ -83,13 +85,14 @@ impl Evaluator<'_> {
         }
     }
 
-    /// The equilibrium between `guides` with `sub_segments`, started from a neighbouring
-    /// solution when `warm` has one (else from the connected geometry); the linear method
-    /// always relaxes from scratch.
+    /// The equilibrium of a piece of segment `m` held by its clamps as `holds` between
+    /// `guides` with `sub_segments`, started from a neighbouring solution when `warm` has one
+    /// (else from the connected geometry); the linear method always relaxes from scratch
+    /// between rigid clamps (the paper's model, for comparison).
     pub(super) fn solve_warm(
         &self,
         solver: &mut StaticSolver,
-        m: usize,
+        (m, holds): (usize, Holds),
         guides: &(Pose, Pose),
         sub_segments: usize,
         scene: &Scene<'_>,
@@ -166,6 +169,7 @@ impl Evaluator<'_> {
         };
         let rod = RodParameters {
             gravity_m_s2: scene.gravity_m_s2,
+            holds,
             ..self.rod
         };
         self.count_static_solve(m);

@@ -6,7 +6,7 @@ use super::verdict::{Check, Metrics, Miss, Rejection, verdict};
 use crate::path::Pv;
 use crate::pose::Pose;
 use crate::setup::{Setup, Thresholds};
-use crate::statics::{RodParameters, SolverOptions, StaticSolver};
+use crate::statics::{Holds, RodParameters, SolverOptions, StaticSolver};
 use crate::stress::contact::{
     ContactError, GuideEnd, Obstacles, min_clearance, min_clearance_to_links,
 };
@@ -148,7 +148,7 @@ impl<'a> Evaluator<'a> {
         let mut metrics = vec![Err(Rejection::Diverged); lengths.len()];
         self.continue_lengths(
             &mut solver,
-            m,
+            (m, self.holds(m, (start, end))),
             (&declared, &turns),
             &scene,
             lengths.iter().copied(),
@@ -179,7 +179,7 @@ impl<'a> Evaluator<'a> {
         let (start, end) =
             self.setup
                 .clamp_poses(link_poses, m, pv.sub_segments, (pv.start, pv.end));
-        self.equilibrium(m, &start, &end, pv.sub_segments, self.rod.gravity_m_s2)
+        self.equilibrium(m, pv, &(start, end), self.rod.gravity_m_s2)
             .map(|solved| solved.nodes)
             .map_err(|check| check.detail.unwrap_or_else(|| "no equilibrium".into()))
     }
@@ -191,7 +191,7 @@ impl<'a> Evaluator<'a> {
         let (start, end) =
             self.setup
                 .clamp_poses(scene.link_poses, m, pv.sub_segments, (pv.start, pv.end));
-        match self.equilibrium(m, &start, &end, pv.sub_segments, scene.gravity_m_s2) {
+        match self.equilibrium(m, pv, &(start, end), scene.gravity_m_s2) {
             Ok(solved) => self.judge(m, &(start, end), &solved, scene),
             Err(check) => check,
         }
@@ -261,7 +261,7 @@ impl<'a> Evaluator<'a> {
             let (scene, declared) = self.at_pose(m, (start, end), pose);
             self.continue_lengths(
                 &mut solver,
-                m,
+                (m, self.holds(m, (start, end))),
                 (&declared, &turns),
                 &scene,
                 open_lengths.into_iter(),
@@ -292,6 +292,11 @@ impl<'a> Evaluator<'a> {
             }
         }
         verdicts
+    }
+
+    /// How the clamps of segment `m`'s piece between configurations `pair` hold it.
+    pub(super) fn holds(&self, m: usize, pair: (usize, usize)) -> Holds {
+        Holds::of(self.setup.piece_kinds(m, pair))
     }
 
     /// Whether the attachment test holds segment `m`'s pieces to the flexing bend radius
@@ -335,12 +340,13 @@ impl<'a> Evaluator<'a> {
             .setup
             .end_clamp_turn(m, pv.sub_segments, (pv.start, pv.end));
         let mut flexing: FlexWatch<&TestPose> = FlexWatch::default();
+        let piece = (m, self.holds(m, (pv.start, pv.end)));
         for pose in poses {
             let (scene, declared) = self.at_pose(m, (pv.start, pv.end), pose);
             let guides = (declared.0, declared.1 * turn);
             let warm = Warm::Poses(&earlier);
             let check =
-                match self.solve_warm(&mut solver, m, &guides, pv.sub_segments, &scene, warm) {
+                match self.solve_warm(&mut solver, piece, &guides, pv.sub_segments, &scene, warm) {
                     Ok(solved) => {
                         let check = self.judge(m, &guides, &solved, &scene);
                         flexing.take(self.setup, &solved, &guides, &check, || pose);
@@ -419,13 +425,13 @@ impl<'a> Evaluator<'a> {
         (scene, guides)
     }
 
-    /// The equilibrium between two guide poses, or the failed check.
+    /// The equilibrium of PV `pv` of segment `m` between its clamp poses `guides`, or the
+    /// failed check.
     fn equilibrium(
         &self,
         m: usize,
-        start: &Pose,
-        end: &Pose,
-        sub_segments: usize,
+        pv: &Pv,
+        guides: &(Pose, Pose),
         gravity_m_s2: Vector3<f64>,
     ) -> Result<Solved, Check> {
         let scene = Scene {
@@ -436,9 +442,9 @@ impl<'a> Evaluator<'a> {
         let mut solver = StaticSolver::default();
         self.solve_warm(
             &mut solver,
-            m,
-            &(*start, *end),
-            sub_segments,
+            (m, self.holds(m, (pv.start, pv.end))),
+            guides,
+            pv.sub_segments,
             &scene,
             Warm::Length(&[]),
         )

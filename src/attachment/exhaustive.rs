@@ -33,7 +33,8 @@ pub fn attachment_test_with(
     let mut sets: Vec<Option<SegmentSets>> = vec![None; count];
     for m in (0..count).filter(|&m| setup.is_intra_link(m)) {
         let candidates = admissible_pvs(setup, m);
-        sets[m] = Some(match intra_link {
+        // A dictionary answers for rigid clamps only.
+        sets[m] = Some(match intra_link.filter(|_| setup.segment_is_rigid(m)) {
             Some(lookup) => {
                 let counts = LookupCounts::default();
                 let mut tested = test_segment(setup, m, candidates, |guides, lengths| {

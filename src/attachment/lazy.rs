@@ -181,8 +181,11 @@ impl<'r, 'a> LazyAttachment<'r, 'a> {
                     robust: BTreeSet::new(),
                     dropped: BTreeSet::new(),
                     busy_s: 0.0,
-                    lookup_counts: (intra_link.is_some() && setup.is_intra_link(m))
-                        .then(LookupCounts::default),
+                    // A dictionary answers for rigid clamps only.
+                    lookup_counts: (intra_link.is_some()
+                        && setup.is_intra_link(m)
+                        && setup.segment_is_rigid(m))
+                    .then(LookupCounts::default),
                     order: PoseOrder::new(poses.poses[m].len()),
                 }
             })

@@ -4,7 +4,7 @@
 //! robot and cable, any subset of places, any guide count — can use it.
 
 use crate::pose::Pose;
-use crate::setup::{Guide, GuideConfiguration, PoseIndex, Setup};
+use crate::setup::{Guide, GuideConfiguration, GuideKind, PoseIndex, Setup};
 use std::collections::BTreeSet;
 
 /// The clamp places of one link, as a setup the attachment test can solve.
@@ -59,9 +59,11 @@ fn clamps_on(setup: &Setup, body: usize) -> Vec<GuideConfiguration> {
             } else {
                 format!("{}/{}", guide.name, configuration.name)
             };
+            // A dictionary answers for rigid clamps: a place, whatever part sits there.
             clamps.push(GuideConfiguration {
                 name,
                 pose,
+                kind: GuideKind::Rigid,
                 ..configuration.clone()
             });
         }
@@ -85,6 +87,7 @@ fn as_setup(
         fixed: false,
         optional: false,
         configurations: clamps.clone(),
+        kinds: vec![GuideKind::Rigid],
         generated: None,
     };
     let mut catalogue = setup.clone();

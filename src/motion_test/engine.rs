@@ -4,6 +4,7 @@
 
 use super::MotionTestError;
 use super::options::Engine;
+use super::plan::Plan;
 use super::report::{Failure, FailureCause};
 use crate::dynamics::{IntegratorSettings, SegmentDynamics};
 use crate::pose::Pose;
@@ -69,7 +70,7 @@ impl Cable {
     #[cfg_attr(not(feature = "rigid-chain"), allow(unused_variables))]
     pub fn start(
         engine: &Engine,
-        setup: &Setup,
+        (setup, plan): (&Setup, &Plan),
         zones: &[Vec<ClampZone>],
         guides: &[Pose],
         links: &[Pose],
@@ -84,7 +85,11 @@ impl Cable {
             Engine::Implicit(settings) => {
                 let params = RodParameters::new(&setup.cable, setup.gravity_m_s2);
                 let mut segments = Vec::with_capacity(shapes.len());
-                for (j, shape) in shapes.iter().enumerate() {
+                for (j, (shape, planned)) in shapes.iter().zip(&plan.segments).enumerate() {
+                    let params = RodParameters {
+                        holds: planned.holds,
+                        ..params
+                    };
                     match SegmentDynamics::at_rest(
                         &params,
                         guides[j],
@@ -109,6 +114,19 @@ impl Cable {
             }),
             #[cfg(feature = "rigid-chain")]
             Engine::RigidChain(settings) => {
+                if let Some(planned) = plan
+                    .segments
+                    .iter()
+                    .find(|s| s.holds != crate::statics::Holds::RIGID)
+                {
+                    return Err(MotionTestError::Options {
+                        what: format!(
+                            "the rigid-chain engine holds the cable in rigid clamps only, and \
+                             {} ends in a rotating or swivel clamp: use the implicit engine",
+                            setup.segment_name(planned.setup_index)
+                        ),
+                    });
+                }
                 let world = match rigid_world(setup, settings, guides, shapes, zones) {
                     Ok(world) => world,
                     Err(e) => return Ok(Err(refused(e.to_string()))),

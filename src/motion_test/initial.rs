@@ -75,6 +75,10 @@ pub(super) fn equilibria(
                 )));
             }
         };
+        let params = RodParameters {
+            holds: planned.holds,
+            ..params
+        };
         let solved = solver.solve(
             &params,
             start,

@@ -7,6 +7,7 @@ use crate::motion::Motion;
 use crate::path::CablePath;
 use crate::pose::Pose;
 use crate::setup::{Setup, turn_about_axis};
+use crate::statics::Holds;
 use crate::stress::{ClampZone, GuideEnd};
 
 /// One simulated segment: a segment of the setup (declared, or a span over optional guides)
@@ -21,6 +22,8 @@ pub(super) struct PlannedSegment {
     pub start: (usize, usize),
     /// End guide: (index into the setup's guides, configuration).
     pub end: (usize, usize),
+    /// How its clamps hold it.
+    pub holds: Holds,
 }
 
 /// The simulated cable: its segments in order, consecutive ones sharing a clamp.
@@ -46,6 +49,7 @@ impl Plan {
                 sub_segments: pv.sub_segments,
                 start: (a, pv.start),
                 end: (b, pv.end),
+                holds: Holds::of(setup.piece_kinds(m, (pv.start, pv.end))),
             });
         }
         if segments.is_empty() {

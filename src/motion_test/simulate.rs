@@ -67,7 +67,7 @@ impl Context<'_> {
             .collect();
         let start = Cable::start(
             &self.options.engine,
-            self.setup,
+            (self.setup, &self.plan),
             self.clearance.zones(),
             &guides,
             &links,
@@ -166,6 +166,10 @@ impl Context<'_> {
                 false => Vec::new(),
             };
             let loads = state.twist_rad.filter(|_| with_loads).and_then(|twist| {
+                let params = RodParameters {
+                    holds: planned.holds,
+                    ..params
+                };
                 let (start, end) =
                     clamp_loads(&params, &guides[j], Some(&guides[j + 1]), &nodes, twist);
                 Some((start, end?))

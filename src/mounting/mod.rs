@@ -16,7 +16,7 @@ pub mod rows;
 use crate::path::CablePath;
 use crate::pose::Pose;
 use crate::robot::{JointKind, Robot};
-use crate::setup::{ConfigurationOrigin, Setup};
+use crate::setup::{ConfigurationOrigin, GuideKind, Setup};
 use crate::stress::contact::{Obstacles, min_clearance};
 use crate::text_table::decimal;
 pub use measured::{Matched, MeasuredError, MeasuredMounting};
@@ -110,6 +110,11 @@ pub struct PhysicalClamp {
     /// For a fitting with no collision surface within [`FREE_SPACE_MM`] of its cable axis at
     /// the installation pose: the distance to the nearest (mm). Nothing holds it there.
     pub free_space_mm: Option<f64>,
+    /// The part: `rigid`, `rotating` (the cable turns in it) or `swivel` (its direction
+    /// turns within `cone_deg`).
+    pub kind: &'static str,
+    /// A swivel's cone: the half-angle its direction may turn within (deg).
+    pub cone_deg: Option<f64>,
 }
 
 impl PhysicalClamp {
@@ -154,6 +159,31 @@ impl PhysicalClamp {
             (Role::Middle, true) => Some("a fitting, not a clamp to mount"),
             (Role::Middle, false) => None,
         }
+    }
+
+    /// What the part lets the cable do, for a part that is not a rigid clamp: `a rotating
+    /// clamp: the cable turns freely about its axis in it`.
+    pub fn part_note(&self) -> Option<String> {
+        match (self.kind, self.cone_deg) {
+            ("rotating", _) => {
+                Some("a rotating clamp: the cable turns freely about its axis in it".into())
+            }
+            ("swivel", Some(cone)) => Some(format!(
+                "a swivel clamp: the cable turns freely in it, its direction within {} deg of \
+                 the placement's",
+                decimal(cone, 0)
+            )),
+            _ => None,
+        }
+    }
+
+    /// Every note on this clamp ([`PhysicalClamp::role_note`], [`PhysicalClamp::part_note`]),
+    /// joined.
+    pub fn notes(&self) -> Option<String> {
+        let notes: Vec<String> = (self.role_note().map(str::to_owned).into_iter())
+            .chain(self.part_note())
+            .collect();
+        (!notes.is_empty()).then(|| notes.join("; "))
     }
 
     /// `the gripper connector (G4) hangs in free space, 58 mm from the nearest collision
@@ -467,6 +497,11 @@ fn physical_clamp(
         surface_to_cable_axis_mm: surface_to_cable_axis_mm(setup, g, c),
         mark_mm,
         free_space_mm,
+        kind: configuration.kind.word(),
+        cone_deg: match configuration.kind {
+            GuideKind::Swivel { cone_rad } => Some(cone_rad.to_degrees()),
+            _ => None,
+        },
     }
 }
 

@@ -16,8 +16,8 @@ pub struct ClampRow {
     pub link: String,
     /// The mark, mm from the cable's end at the tool: `620`.
     pub mark_mm: String,
-    /// What the design's ends mean here, if anything.
-    pub note: Option<&'static str>,
+    /// What the design's ends mean here and what the part lets the cable do, if anything.
+    pub note: Option<String>,
     /// Where along the link: `173 mm along the joint_4 axis from the seam with link_3 …`.
     pub along: String,
     /// Off the line and around it: `the cable's axis 72 mm from the joint_4 axis, at …`.
@@ -83,7 +83,7 @@ fn clamp_row(clamp: &PhysicalClamp) -> ClampRow {
         short_name: clamp.short_name(),
         link: clamp.link.clone(),
         mark_mm: decimal(clamp.mark_mm, 0),
-        note: clamp.role_note(),
+        note: clamp.notes(),
         along,
         around,
         cable,

@@ -257,6 +257,7 @@ fn clamp_table(html: &mut String, plan: &MountingPlan, loads: &[LoadRow]) {
     for row in rows::clamp_rows(plan) {
         let note = row
             .note
+            .as_deref()
             .map(|n| format!("<br><span class=\"note\">{}</span>", escape(n)))
             .unwrap_or_default();
         let load = loads

@@ -49,6 +49,7 @@ fn copy(guides: &mut [Guide], from: usize, to: usize, only_from_fixed: bool) {
                 guide: root_guide,
                 configuration: root_configuration,
             },
+            kind: original.kind,
         });
     }
     guides[to].configurations.extend(copies);

@@ -3,7 +3,7 @@
 use super::error::Source;
 use super::raw::{RawConfiguration, RawGuide};
 use super::sites::{GeneratorEstimate, SiteContext, check_generated_total};
-use super::{ConfigurationOrigin, Guide, GuideConfiguration, SetupError};
+use super::{ConfigurationOrigin, Guide, GuideConfiguration, GuideKind, SetupError};
 use crate::pose::{Pose, pose_from_mm_deg};
 use crate::robot::Robot;
 use crate::sites::MIN_SPACING_M;
@@ -44,6 +44,7 @@ pub(super) fn build(
     }
     check_order(src, robot, raw, &guides)?;
     check_optional_ends(src, raw, &guides)?;
+    check_kinds_at_ends(src, raw, &guides)?;
     check_per_link(src, robot, raw, &guides, max_per_link)?;
     Ok(guides)
 }
@@ -100,8 +101,139 @@ fn guide(
         fixed,
         optional: raw.optional.as_ref().is_some_and(|o| *o.get_ref()),
         configurations,
+        kinds: kinds(src, g, raw)?,
         generated,
     })
+}
+
+/// The kinds of clamp `raw` may be, simplest first: `kind` (a word or a list of them) with
+/// the swivel's `cone_deg`.
+fn kinds(src: Source, g: usize, raw: &RawGuide) -> Result<Vec<GuideKind>, SetupError> {
+    let key = format!("guides[{g}].kind");
+    let cone_key = format!("guides[{g}].cone_deg");
+    let Some(kind) = &raw.kind else {
+        if let Some(cone) = &raw.cone_deg {
+            return Err(src.error(
+                cone.span(),
+                cone_key,
+                "cone_deg is a swivel's: add kind = \"swivel\"",
+            ));
+        }
+        return Ok(vec![GuideKind::Rigid]);
+    };
+    let words: Vec<&toml::Value> = match kind.get_ref() {
+        toml::Value::Array(list) => list.iter().collect(),
+        one => vec![one],
+    };
+    if words.is_empty() {
+        return Err(src.error(kind.span(), key, "an empty list: name at least one kind"));
+    }
+    let swivel = || -> Result<GuideKind, SetupError> {
+        let Some(cone) = &raw.cone_deg else {
+            return Err(src.error(
+                kind.span(),
+                key.clone(),
+                "a swivel needs cone_deg: the half-angle of the cone its direction may turn \
+                 within (deg)",
+            ));
+        };
+        let deg = *cone.get_ref();
+        if !(deg.is_finite() && deg > 0.0 && deg <= 180.0) {
+            return Err(src.error(
+                cone.span(),
+                cone_key.clone(),
+                format!("{deg} deg: a cone's half-angle is in (0, 180] deg"),
+            ));
+        }
+        Ok(GuideKind::Swivel {
+            cone_rad: deg.to_radians(),
+        })
+    };
+    let mut kinds: Vec<GuideKind> = Vec::new();
+    for word in words {
+        let refuse = |problem: String| src.error(kind.span(), key.clone(), problem);
+        let kind = match word.as_str() {
+            Some("rigid") => GuideKind::Rigid,
+            Some("rotating") => GuideKind::Rotating,
+            Some("swivel") => swivel()?,
+            Some(part @ ("sliding" | "retraction")) => {
+                return Err(refuse(format!(
+                    "\"{part}\": the cable's length through a {part} guide is not solved in \
+                     this version (only rigid, rotating and swivel clamps are)"
+                )));
+            }
+            _ => {
+                return Err(refuse(format!(
+                    "{word}: a kind is \"rigid\", \"rotating\" or \"swivel\" (or a list of \
+                     them the search may choose from)"
+                )));
+            }
+        };
+        if kinds.iter().any(|k| k.word() == kind.word()) {
+            return Err(refuse(format!("\"{}\" is named twice", kind.word())));
+        }
+        kinds.push(kind);
+    }
+    if let (Some(cone), false) = (
+        &raw.cone_deg,
+        kinds.iter().any(|k| matches!(k, GuideKind::Swivel { .. })),
+    ) {
+        return Err(src.error(
+            cone.span(),
+            cone_key,
+            "cone_deg is a swivel's, and this guide offers no swivel",
+        ));
+    }
+    kinds.sort_by_key(GuideKind::rank);
+    Ok(kinds)
+}
+
+/// For now only the first and the last guide may be other than rigid: a rotating or swivel
+/// clamp between two pieces lets one piece's twist and moment pass into the other, and the
+/// pieces are solved one by one.
+fn check_kinds_at_ends(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result<(), SetupError> {
+    let last = guides.len() - 1;
+    for (g, guide) in guides.iter().enumerate() {
+        if g == 0 || g == last || guide.kinds == [GuideKind::Rigid] {
+            continue;
+        }
+        let span = (raw.get_ref()[g].get_ref().kind.as_ref()).map_or(raw.span(), |k| k.span());
+        return Err(src.error(
+            span,
+            format!("guides[{g}].kind"),
+            format!(
+                "{} is between two pieces of cable: only the first and the last guide may be \
+                 rotating or swivel clamps in this version (one between two pieces couples \
+                 their twist and bending, which the solver does not model yet)",
+                guide.name
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Gives each guide one configuration per pose and kind it offers, the kinds in the order
+/// of [`Guide::kinds`] (the simplest first, so that of equally short paths the search keeps
+/// the simplest part): run after every pose is known (coincident copies included).
+pub(super) fn expand_kinds(guides: &mut [Guide]) {
+    for guide in guides.iter_mut() {
+        if guide.kinds == [GuideKind::Rigid] {
+            continue;
+        }
+        let poses = std::mem::take(&mut guide.configurations);
+        for kind in &guide.kinds {
+            guide
+                .configurations
+                .extend(poses.iter().map(|c| GuideConfiguration {
+                    name: match kind {
+                        GuideKind::Rigid => c.name.clone(),
+                        other => format!("{} ({})", c.name, other.word()),
+                    },
+                    kind: *kind,
+                    ..c.clone()
+                }));
+        }
+    }
 }
 
 /// The index of the link `name` names, refused at `key` with the robot's links when it has
@@ -221,6 +353,7 @@ fn configuration(
         origin: ConfigurationOrigin::Declared {
             line: src.line_of(entry.span().start),
         },
+        kind: GuideKind::Rigid,
     })
 }
 

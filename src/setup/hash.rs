@@ -63,6 +63,19 @@ pub(super) fn canonical_bytes(setup: &Setup) -> Vec<u8> {
         out.str("optional");
         setup.guides.iter().for_each(|g| out.bool(g.optional));
     }
+    // And the kinds of clamp, when one is not rigid.
+    let rigid = |c: &super::GuideConfiguration| c.kind == super::GuideKind::Rigid;
+    if (setup.guides.iter()).any(|g| !g.configurations.iter().all(rigid)) {
+        out.str("kinds");
+        for guide in &setup.guides {
+            for kind in guide.configurations.iter().map(|c| c.kind) {
+                out.str(kind.word());
+                if let super::GuideKind::Swivel { cone_rad } = kind {
+                    out.floats(&[cone_rad]);
+                }
+            }
+        }
+    }
     out.0
 }
 

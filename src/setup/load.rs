@@ -58,6 +58,7 @@ pub(super) fn from_str(
     let mut segments = segments::build(src, &guides, &raw.segments, robustness.delta_s)?;
     guides::warn_buried_clamps(src, &robot, &guides, &sites);
     coincide::add_copies(&mut guides, &segments);
+    guides::expand_kinds(&mut guides);
     let declared_segments = segments.len();
     segments.extend(segments::spans(
         src,

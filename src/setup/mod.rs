@@ -184,9 +184,49 @@ pub struct Guide {
     pub optional: bool,
     /// Candidate configurations: the declared ones first, then coincident copies.
     pub configurations: Vec<GuideConfiguration>,
+    /// The kinds of clamp it may be, simplest first (`[Rigid]` unless the file says
+    /// otherwise); its configurations hold one copy of each pose per kind, in this order.
+    pub kinds: Vec<GuideKind>,
     /// For a guide with a site generator, its sites (with their surface points and normals)
     /// in the order `ConfigurationOrigin::Generated { site }` indexes; `None` otherwise.
     pub generated: Option<crate::sites::GeneratedSites>,
+}
+
+/// How a guide holds the cable (docs/setup-format.md, "Guide kinds").
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum GuideKind {
+    /// Position, direction and the turn about the cable's axis held: the paper's clamp.
+    #[default]
+    Rigid,
+    /// Position and direction held; the cable turns freely about its own axis (no torque):
+    /// twist relief.
+    Rotating,
+    /// Position held; the cable's direction turns freely within a cone about the guide's +z,
+    /// and about its own axis (a ball joint: no moment).
+    Swivel {
+        /// The cone's half-angle (rad), in (0, π].
+        cone_rad: f64,
+    },
+}
+
+impl GuideKind {
+    /// The word the setup file and the answer use.
+    pub fn word(&self) -> &'static str {
+        match self {
+            GuideKind::Rigid => "rigid",
+            GuideKind::Rotating => "rotating",
+            GuideKind::Swivel { .. } => "swivel",
+        }
+    }
+
+    /// How simple the part is: the search prefers the simplest of equally good ones.
+    pub fn rank(&self) -> usize {
+        match self {
+            GuideKind::Rigid => 0,
+            GuideKind::Rotating => 1,
+            GuideKind::Swivel { .. } => 2,
+        }
+    }
 }
 
 /// One candidate pose of a guide.
@@ -203,6 +243,9 @@ pub struct GuideConfiguration {
     pub rpy_deg: [f64; 3],
     /// Where the configuration comes from.
     pub origin: ConfigurationOrigin,
+    /// How the clamp in this configuration holds the cable (a guide that offers several
+    /// kinds has one configuration per kind and pose).
+    pub kind: GuideKind,
 }
 
 /// Where a guide configuration comes from.
@@ -405,6 +448,25 @@ impl Setup {
         (0..self.segment_count())
             .map(|m| self.segment_guides(m))
             .collect()
+    }
+
+    /// The kinds of the clamps at the ends of segment `m`'s piece between configurations
+    /// `(start, end)` of its guides.
+    pub fn piece_kinds(&self, m: usize, (start, end): (usize, usize)) -> (GuideKind, GuideKind) {
+        let (a, b) = self.segment_guides(m);
+        (
+            self.guides[a].configurations[start].kind,
+            self.guides[b].configurations[end].kind,
+        )
+    }
+
+    /// Whether every clamp segment `m`'s pieces can end in is rigid (what a dictionary
+    /// answers for).
+    pub fn segment_is_rigid(&self, m: usize) -> bool {
+        let (a, b) = self.segment_guides(m);
+        [a, b]
+            .iter()
+            .all(|&g| (self.guides[g].configurations.iter()).all(|c| c.kind == GuideKind::Rigid))
     }
 
     /// Indices into [`Setup::guides`] of segment `m`'s start and end guides: `(m, m + 1)`

@@ -94,6 +94,13 @@ pub(super) struct RawGuide {
     pub sites: Option<Spanned<RawSites>>,
     /// The search may leave this clamp out.
     pub optional: Option<Spanned<bool>>,
+    /// How it holds the cable: `"rigid"` (when absent), `"rotating"`, `"swivel"`, or a list
+    /// of those the search may choose from; checked in `guides.rs`.
+    #[serde(default)]
+    pub kind: Option<Spanned<toml::Value>>,
+    /// A swivel's cone: the half-angle its direction may turn within (deg).
+    #[serde(default)]
+    pub cone_deg: Option<Spanned<f64>>,
 }
 
 /// `sites = { spacing_mm, clamp_height_mm, directions_deg, region, reference_axis }`: a site

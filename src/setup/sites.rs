@@ -177,6 +177,7 @@ fn configuration(site: &Site, k: usize, angle: f64, line: usize) -> GuideConfigu
         position_mm,
         rpy_deg: [r, p, y].map(f64::to_degrees),
         origin: ConfigurationOrigin::Generated { line, site: k },
+        kind: super::GuideKind::Rigid,
     }
 }
 

@@ -34,6 +34,7 @@ use super::joint::{Edge, EdgePairDerivatives, bending, cone_bending, reference_t
 use super::retract::{Retraction, restore_lengths};
 use crate::cable::CableSpec;
 use crate::pose::Pose;
+use crate::setup::GuideKind;
 
 /// Material and load parameters of the discrete cable model (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -74,6 +75,15 @@ pub enum Hold {
 }
 
 impl Hold {
+    /// How a clamp of `kind` holds the cable.
+    pub fn of(kind: GuideKind) -> Hold {
+        match kind {
+            GuideKind::Rigid => Hold::Rigid,
+            GuideKind::Rotating => Hold::Rotating,
+            GuideKind::Swivel { cone_rad } => Hold::Swivel { cone_rad },
+        }
+    }
+
     /// Whether the cable may turn about its own axis at this clamp.
     pub fn frees_twist(self) -> bool {
         !matches!(self, Hold::Rigid)
@@ -95,6 +105,14 @@ impl Holds {
         start: Hold::Rigid,
         end: Hold::Rigid,
     };
+
+    /// How clamps of kinds `start` and `end` hold a piece between them.
+    pub fn of((start, end): (GuideKind, GuideKind)) -> Holds {
+        Holds {
+            start: Hold::of(start),
+            end: Hold::of(end),
+        }
+    }
 
     /// Whether the piece's twist relaxes: one of its clamps lets the cable turn.
     pub fn free_twist(&self) -> bool {

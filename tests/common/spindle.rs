@@ -47,6 +47,20 @@ pub fn spindle_setup(
     length: usize,
     cable: &str,
 ) -> Setup {
+    let path = spindle_setup_file(dir, start, end, length, cable, "");
+    Setup::from_file(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The file [`spindle_setup`] writes, with `end_keys` (lines) added to the end guide's
+/// table, e.g. `kind = "rotating"`; its path.
+pub fn spindle_setup_file(
+    dir: &Path,
+    start: (&str, [f64; 3], [f64; 3]),
+    end: (&str, [f64; 3], [f64; 3]),
+    length: usize,
+    cable: &str,
+    end_keys: &str,
+) -> std::path::PathBuf {
     std::fs::write(dir.join("spindle.urdf"), SPINDLE_URDF).unwrap();
     std::fs::write(dir.join("cable.toml"), cable).unwrap();
     let guide = |name: &str, (link, xyz, rpy): (&str, [f64; 3], [f64; 3])| {
@@ -62,11 +76,11 @@ pub fn spindle_setup(
          lengths = {{ min = {length}, max = {length}, step = 1, allow_zero = false }}\n",
         crate::common::limits("\"cable\""),
         guide("G1", start),
-        guide("G2", end),
+        guide("G2", end) + end_keys,
     );
     let path = dir.join("setup.toml");
     std::fs::write(&path, text).unwrap();
-    Setup::from_file(&path).unwrap_or_else(|e| panic!("{e}"))
+    path
 }
 
 /// A straight cable of 40 sub-segments (0.4 m) hanging from the base along the axis to the

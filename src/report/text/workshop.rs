@@ -131,7 +131,11 @@ fn write_clamps(f: &mut fmt::Formatter<'_>, plan: &MountingPlan) -> fmt::Result 
         .max()
         .unwrap_or(0);
     for row in clamp_rows {
-        let note = row.note.map(|n| format!("  ({n})")).unwrap_or_default();
+        let note = row
+            .note
+            .as_deref()
+            .map(|n| format!("  ({n})"))
+            .unwrap_or_default();
         writeln!(
             f,
             "  {:<width$}  on {:<link_width$}  mark {:>5} mm{note}",

@@ -1,0 +1,170 @@
+//! Clamps that are not rigid (setup key `kind`): the rotating clamp and the swivel at the
+//! cable's end, on the one-joint spindle of `tests/common/spindle.rs`, against closed forms,
+//! and the search's choice among the kinds a guide offers.
+//!
+//! A straight cable hangs 0.4 m along the spindle's axis from a clamp on the base to one on
+//! the spindle. Turning the spindle by θ twists it by θ/L when both clamps are rigid; a
+//! rotating clamp on the spindle lets it turn about its own axis, so it does not twist at all
+//! — in the attachment test, the static sweep and the motion test alike.
+
+use crate::common::spindle::{cable_text, motion_test, spindle_setup_file, turning};
+use cable_dict::attachment::{ConnectMethod, Evaluator, MotionSweep};
+use cable_dict::path::Pv;
+use cable_dict::setup::{GuideKind, Setup};
+use cable_dict::solve::{SolveOptions, Status, solve};
+use std::path::Path;
+
+/// The straight hanging cable with `end_keys` in the spindle clamp's table and a torsion
+/// limit of `limit` deg/m.
+fn hanging(dir: &Path, end_keys: &str, limit: f64) -> Setup {
+    let down = [180.0, 0.0, 0.0];
+    let path = spindle_setup_file(
+        dir,
+        ("base", [0.0, 0.0, 400.0], down),
+        ("spindle", [0.0, 0.0, 0.0], down),
+        40,
+        // One bend radius, loose: only the twist decides here.
+        &cable_text(20.0, 20.0, limit),
+        end_keys,
+    );
+    Setup::from_file(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Turned by 90°, a rigid clamp twists the cable by 225 °/m (refused by a 200 °/m limit);
+/// a rotating one leaves it untwisted and within the limit, in every stage.
+#[test]
+fn a_rotating_clamp_at_the_cable_end_takes_no_twist_in_any_stage() {
+    let dir = tempfile::tempdir().unwrap();
+    let motion = |setup: &Setup| turning(setup, 90.0, 1.0);
+    for (keys, twisted) in [("", true), ("kind = \"rotating\"\n", false)] {
+        let setup = hanging(dir.path(), keys, 200.0);
+        assert_eq!(
+            setup.guides[1].configurations[0].kind,
+            if twisted {
+                GuideKind::Rigid
+            } else {
+                GuideKind::Rotating
+            }
+        );
+        let evaluator = Evaluator::new(&setup, ConnectMethod::Hermite).unwrap();
+        let links = setup.robot.link_poses(&[90f64.to_radians()]).unwrap();
+        let check = evaluator.check_at(0, &Pv::new(40, 0, 0), &links);
+        let twist = check.metrics.expect("an equilibrium").twist_deg_per_m;
+        let closed_form = if twisted { 225.0 } else { 0.0 };
+        assert!(
+            (twist.abs() - closed_form).abs() < 1e-6 * 225.0,
+            "{keys}: {twist}"
+        );
+        assert_eq!(check.passed(), !twisted, "{keys}: {:?}", check.detail);
+
+        let motion = motion(&setup);
+        let mut sweep = MotionSweep::new(&evaluator, &motion).unwrap();
+        assert_eq!(
+            sweep.check(0, &Pv::new(40, 0, 0)).is_some(),
+            twisted,
+            "{keys}"
+        );
+        let report = motion_test(&setup, 40, &motion);
+        let worst = report.worst_twist.as_ref().map_or(0.0, |w| w.value);
+        assert!(
+            (worst - closed_form).abs() < 1e-3 * 225.0,
+            "{keys}: {worst}"
+        );
+        assert_eq!(report.passed, !twisted, "{keys}: {}", report.summary());
+    }
+}
+
+/// A clamp that may be rigid or rotating (`kind = ["rigid", "rotating"]`) under the straight
+/// cable turned by 90° (225 °/m of twist with rigid clamps; no length error tolerated, since
+/// a taut cable's shorter neighbours do not reach): the search takes the rotating one where
+/// the rigid one twists the cable past its limit, and the rigid one — the simpler part —
+/// where both hold.
+#[test]
+fn the_search_chooses_the_simplest_kind_that_holds() {
+    let dir = tempfile::tempdir().unwrap();
+    let keys = "kind = [\"rotating\", \"rigid\"]\n";
+    for (limit, expected) in [(200.0, GuideKind::Rotating), (300.0, GuideKind::Rigid)] {
+        let taut = hanging(dir.path(), keys, limit);
+        let text = std::fs::read_to_string(&taut.source).unwrap();
+        std::fs::write(&taut.source, text.replace("range = 2", "range = 0")).unwrap();
+        let setup = Setup::from_file(&taut.source).unwrap_or_else(|e| panic!("{e}"));
+        let kinds: Vec<GuideKind> = setup.guides[1]
+            .configurations
+            .iter()
+            .map(|c| c.kind)
+            .collect();
+        assert_eq!(kinds, [GuideKind::Rigid, GuideKind::Rotating]);
+        let motion = turning(&setup, 90.0, 1.0);
+        let report = solve(&setup, &motion, &SolveOptions::default()).unwrap();
+        assert_eq!(report.status, Status::Solved, "{}", report.explanation);
+        let path = &report.shown_candidate().expect("an answer").path;
+        let end = path.configurations[1];
+        assert_eq!(
+            setup.guides[1].configurations[end].kind, expected,
+            "limit {limit}"
+        );
+    }
+}
+
+/// Every wrong `kind` is refused naming the file, the line and the key.
+#[test]
+fn wrong_kinds_are_refused_with_the_key_and_the_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    let down = [180.0, 0.0, 0.0];
+    for (keys, says) in [
+        ("kind = \"sliding\"\n", "not solved in this version"),
+        ("kind = \"retraction\"\n", "not solved in this version"),
+        (
+            "kind = \"ball\"\n",
+            "a kind is \"rigid\", \"rotating\" or \"swivel\"",
+        ),
+        ("kind = 3\n", "a kind is"),
+        ("kind = []\n", "an empty list"),
+        ("kind = [\"rigid\", \"rigid\"]\n", "named twice"),
+        ("kind = \"swivel\"\n", "needs cone_deg"),
+        ("kind = \"swivel\"\ncone_deg = 0.0\n", "(0, 180]"),
+        ("kind = \"swivel\"\ncone_deg = 200.0\n", "(0, 180]"),
+        ("cone_deg = 20.0\n", "add kind = \"swivel\""),
+        ("kind = \"rotating\"\ncone_deg = 20.0\n", "offers no swivel"),
+    ] {
+        let path = spindle_setup_file(
+            dir.path(),
+            ("base", [0.0, 0.0, 400.0], down),
+            ("spindle", [0.0, 0.0, 0.0], down),
+            40,
+            &cable_text(40.0, 80.0, 360.0),
+            keys,
+        );
+        let error = Setup::from_file(&path).expect_err(keys).to_string();
+        assert!(error.contains(says), "{keys}: {error}");
+        assert!(
+            error.contains("setup.toml") && error.contains("guides[1]"),
+            "{error}"
+        );
+    }
+}
+
+/// A rotating clamp between two pieces is refused (for now) naming the guide; at the
+/// cable's ends it loads, and the setup's content hash changes with it.
+#[test]
+fn a_kind_between_two_pieces_is_refused_and_one_at_the_end_changes_the_hash() {
+    let root = crate::common::root();
+    let source = root.join("robots/viper_s850/pick_and_place.toml");
+    let text = crate::common::bundled_setup_text();
+    let with = |guide: &str| {
+        let line = format!("name = \"{guide}\"\n");
+        assert!(text.contains(&line));
+        text.replacen(&line, &format!("{line}kind = \"rotating\"\n"), 1)
+    };
+    let error = Setup::from_toml_str(&with("G2"), &source)
+        .expect_err("refused")
+        .to_string();
+    assert!(
+        error.contains("guides[1].kind") && error.contains("G2 is between two pieces"),
+        "{error}"
+    );
+    let plain = Setup::from_toml_str(&text, &source).unwrap();
+    let end = Setup::from_toml_str(&with("G4"), &source).unwrap();
+    assert_eq!(end.guides[3].kinds, [GuideKind::Rotating]);
+    assert_ne!(plain.content_hash, end.content_hash);
+}
