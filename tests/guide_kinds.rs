@@ -144,19 +144,20 @@ fn wrong_kinds_are_refused_with_the_key_and_the_reason() {
     }
 }
 
-/// A rotating clamp between two pieces is refused (for now) naming the guide; at the
-/// cable's ends it loads, and the setup's content hash changes with it.
+/// A swivel between two pieces is refused (for now) naming the guide; a rotating clamp at
+/// the cable's end loads, and the setup's content hash changes with it.
 #[test]
 fn a_kind_between_two_pieces_is_refused_and_one_at_the_end_changes_the_hash() {
     let root = crate::common::root();
     let source = root.join("robots/viper_s850/pick_and_place.toml");
     let text = crate::common::bundled_setup_text();
-    let with = |guide: &str| {
+    let with = |guide: &str, keys: &str| {
         let line = format!("name = \"{guide}\"\n");
         assert!(text.contains(&line));
-        text.replacen(&line, &format!("{line}kind = \"rotating\"\n"), 1)
+        text.replacen(&line, &format!("{line}{keys}"), 1)
     };
-    let error = Setup::from_toml_str(&with("G2"), &source)
+    let swivel = "kind = \"swivel\"\ncone_deg = 20.0\n";
+    let error = Setup::from_toml_str(&with("G2", swivel), &source)
         .expect_err("refused")
         .to_string();
     assert!(
@@ -164,7 +165,78 @@ fn a_kind_between_two_pieces_is_refused_and_one_at_the_end_changes_the_hash() {
         "{error}"
     );
     let plain = Setup::from_toml_str(&text, &source).unwrap();
-    let end = Setup::from_toml_str(&with("G4"), &source).unwrap();
+    let end = Setup::from_toml_str(&with("G4", "kind = \"rotating\"\n"), &source).unwrap();
     assert_eq!(end.guides[3].kinds, [GuideKind::Rotating]);
     assert_ne!(plain.content_hash, end.content_hash);
+}
+
+/// A straight cable down the spindle's axis through a middle clamp on the base: 0.3 m from
+/// the top clamp to the middle one, 0.3 m on to the spindle. Turning the spindle by θ with a
+/// rigid middle clamp twists only the lower piece, by θ over 0.3 m; a rotating middle clamp
+/// lets the cable turn in it until both pieces carry the same torque: each twisted by θ/2,
+/// θ over the whole 0.6 m (closed form), in the motion test.
+#[test]
+fn a_rotating_clamp_between_two_pieces_shares_the_twist_by_their_lengths() {
+    let dir = tempfile::tempdir().unwrap();
+    let down = [180.0, 0.0, 0.0];
+    let cable = cable_text(20.0, 20.0, 1e4);
+    // Writes the robot and the cable file next to the setup.
+    spindle_setup_file(
+        dir.path(),
+        ("base", [0.0, 0.0, 600.0], down),
+        ("spindle", [0.0, 0.0, 0.0], down),
+        60,
+        &cable,
+        "",
+    );
+    let guide = |name: &str, link: &str, z: f64, keys: &str| {
+        format!(
+            "[[guides]]\nname = \"{name}\"\nlink = \"{link}\"\n{keys}configurations = [\n  \
+             {{ name = \"only\", position_mm = [0.0, 0.0, {z:?}], rpy_deg = {down:?} }},\n]\n"
+        )
+    };
+    let segment = |from: &str, to: &str| {
+        format!(
+            "[[segments]]\nfrom = \"{from}\"\nto = \"{to}\"\n\
+             lengths = {{ min = 30, max = 30, step = 1, allow_zero = false }}\n"
+        )
+    };
+    let turned_by_deg = 90.0;
+    for (middle, lower_per_m, upper_per_m) in [
+        ("", turned_by_deg / 0.3, 0.0),
+        (
+            "kind = \"rotating\"\n",
+            turned_by_deg / 0.6,
+            turned_by_deg / 0.6,
+        ),
+    ] {
+        let text = format!(
+            "robot = \"spindle.urdf\"\ncable = \"cable.toml\"\ngravity_m_s2 = [0.0, 0.0, -9.81]\n\
+             max_guides_per_link = 2\ninstall_joints_deg = [0.0]\n\n{}\n{}\n{}\n{}\n{}\n{}",
+            crate::common::limits("\"cable\""),
+            guide("G1", "base", 600.0, ""),
+            guide("G2", "base", 300.0, middle),
+            guide("G3", "spindle", 0.0, ""),
+            segment("G1", "G2"),
+            segment("G2", "G3"),
+        );
+        let path = dir.path().join("three.toml");
+        std::fs::write(&path, text).unwrap();
+        let setup = Setup::from_file(&path).unwrap_or_else(|e| panic!("{e}"));
+        let motion = turning(&setup, turned_by_deg, 1.0);
+        let path = cable_dict::path::CablePath::through_every_guide(vec![30, 30], vec![0, 0, 0]);
+        let options = cable_dict::motion_test::MotionTestOptions::default();
+        let report = cable_dict::motion_test::run(&setup, &path, &motion, &options).unwrap();
+        let twist = |piece: usize| {
+            let twists = &report.twists[piece];
+            twists.twist_deg_per_m.abs()
+        };
+        for (piece, closed_form) in [(0, upper_per_m), (1, lower_per_m)] {
+            assert!(
+                (twist(piece) - closed_form).abs() < 2e-3 * lower_per_m,
+                "{middle} piece {piece}: {} °/m against {closed_form}",
+                twist(piece)
+            );
+        }
+    }
 }

@@ -7,7 +7,7 @@ use crate::motion::Motion;
 use crate::path::CablePath;
 use crate::pose::Pose;
 use crate::setup::{Setup, turn_about_axis};
-use crate::statics::Holds;
+use crate::statics::{Hold, Holds};
 use crate::stress::{ClampZone, GuideEnd};
 
 /// One simulated segment: a segment of the setup (declared, or a span over optional guides)
@@ -34,6 +34,10 @@ pub(super) struct Plan {
     /// (rad): the installed cable's twist references carried from the first clamp along the
     /// whole cable (see [`Setup::clamp_poses`]), so every piece is untwisted at installation.
     pub clamp_turns_rad: Vec<f64>,
+    /// Per simulated clamp, whether it is a rotating clamp between two pieces: the cable's
+    /// turn in it is shared by both, and follows from their torques balancing
+    /// ([`Plan::balance_turns`]).
+    pub shared_turn: Vec<bool>,
 }
 
 impl Plan {
@@ -55,6 +59,17 @@ impl Plan {
         if segments.is_empty() {
             return Err(MotionTestError::NoCable);
         }
+        // A rotating clamp between two pieces holds each of them rigidly at the turn the
+        // cable has in it, which the simulation balances.
+        let count = segments.len();
+        let mut shared_turn = vec![false; count + 1];
+        for i in 1..count {
+            if segments[i].holds.start == Hold::Rotating {
+                shared_turn[i] = true;
+                segments[i - 1].holds.end = Hold::Rigid;
+                segments[i].holds.start = Hold::Rigid;
+            }
+        }
         // A start clamp turned by β turns the untwisted cable's arrival by β too.
         let mut clamp_turns_rad = vec![0.0];
         for s in &segments {
@@ -66,7 +81,40 @@ impl Plan {
         Ok(Plan {
             segments,
             clamp_turns_rad,
+            shared_turn,
         })
+    }
+
+    /// Whether a rotating clamp between two pieces shares the cable's turn between them.
+    pub fn shares_turns(&self) -> bool {
+        self.shared_turn.contains(&true)
+    }
+
+    /// Turns each rotating clamp between two pieces of `guides` (the clamp poses) by the
+    /// cable's turn in it, `turns_rad` (one per clamp; 0 elsewhere).
+    pub fn turned(&self, guides: &mut [Pose], turns_rad: &[f64]) {
+        for ((guide, &shared), &turn) in guides.iter_mut().zip(&self.shared_turn).zip(turns_rad) {
+            if shared {
+                *guide *= turn_about_axis(turn);
+            }
+        }
+    }
+
+    /// One step of the torque balance at every rotating clamp between two pieces: the
+    /// pieces' twists `twists_rad` (Ψ over each, relative to its clamps as turned by
+    /// `turns_rad`) change by `δ` and `−δ` when the cable turns by `δ` more in the clamp, and
+    /// carry equal torques `GJ Ψ / L` when `(Ψ_a + δ)/S_a = (Ψ_b − δ)/S_b`: each clamp's turn
+    /// moves by that `δ`, and the twists with it (the twist being uniform along a piece,
+    /// exactly; the shapes, which the twist bends a little, follow at the next solve).
+    pub fn balance_turns(&self, turns_rad: &mut [f64], twists_rad: &mut [f64]) {
+        for i in (1..self.segments.len()).filter(|&i| self.shared_turn[i]) {
+            let (a, b) = (&self.segments[i - 1], &self.segments[i]);
+            let (ka, kb) = (1.0 / a.sub_segments as f64, 1.0 / b.sub_segments as f64);
+            let delta = (kb * twists_rad[i] - ka * twists_rad[i - 1]) / (ka + kb);
+            turns_rad[i] += delta;
+            twists_rad[i - 1] += delta;
+            twists_rad[i] -= delta;
+        }
     }
 
     /// World poses of the simulated guides (segments + 1), from the link poses. A shared

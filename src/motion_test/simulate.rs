@@ -16,6 +16,10 @@ use crate::statics::{RodParameters, clamp_loads};
 use crate::stress::{bend_profile, curvature_vectors_per_m, stretch};
 use nalgebra::Vector3;
 
+/// Rounds of solving the pieces at rest and balancing the torques at the rotating clamps
+/// between them: the twist bends a piece only slightly, so the turn settles in a few.
+const TURN_BALANCE_ROUNDS: usize = 4;
+
 /// How often (s of the motion) the loads on the clamps are taken.
 pub(super) const LOAD_SAMPLE_S: f64 = 0.02;
 
@@ -46,16 +50,34 @@ impl Context<'_> {
         let t0 = self.motion.times_s()[0];
         let dt = self.options.time_step_s();
         let mut links = self.link_poses(t0)?;
-        let mut guides = self.plan.guide_poses(self.setup, &links);
-        let shapes = match equilibria(self.setup, &self.plan, &guides, t0)? {
-            Ok(shapes) => shapes,
-            Err(no_start) => {
-                if let Some((segment, required)) = no_start.too_short {
-                    tracker.record_too_short(t0, segment, required);
-                }
-                return Ok(ended(Some(no_start.failure), 0));
-            }
+        // The cable's turn in each rotating clamp between two pieces: balanced at rest
+        // (a few rounds of solving the pieces and balancing their torques), then carried
+        // step to step.
+        let mut turns = vec![0.0; self.plan.segments.len() + 1];
+        let rounds = if self.plan.shares_turns() {
+            TURN_BALANCE_ROUNDS
+        } else {
+            1
         };
+        let mut shapes = Vec::new();
+        let mut guides = Vec::new();
+        for round in 0..rounds {
+            guides = self.plan.guide_poses(self.setup, &links);
+            self.plan.turned(&mut guides, &turns);
+            shapes = match equilibria(self.setup, &self.plan, &guides, t0)? {
+                Ok(shapes) => shapes,
+                Err(no_start) => {
+                    if let Some((segment, required)) = no_start.too_short {
+                        tracker.record_too_short(t0, segment, required);
+                    }
+                    return Ok(ended(Some(no_start.failure), 0));
+                }
+            };
+            if round + 1 < rounds {
+                let mut twists: Vec<f64> = shapes.iter().map(|s| s.twist_rad).collect();
+                self.plan.balance_turns(&mut turns, &mut twists);
+            }
+        }
         let mut states: Vec<SegmentState> = shapes
             .iter()
             .map(|shape| SegmentState {
@@ -87,6 +109,7 @@ impl Context<'_> {
                 progress::advance(1);
                 links = self.link_poses(t)?;
                 guides = self.plan.guide_poses(self.setup, &links);
+                self.plan.turned(&mut guides, &turns);
                 states = match cable.advance(&guides, &links)? {
                     Ok(states) => states,
                     Err(diverged) => {
@@ -101,6 +124,15 @@ impl Context<'_> {
             let with_loads = t >= loads_due_s - 1e-9 || k == total;
             if with_loads {
                 loads_due_s = t + LOAD_SAMPLE_S;
+            }
+            if self.plan.shares_turns() {
+                // Balanced after the step: the twists as the turned clamps give them.
+                let mut twists: Vec<f64> =
+                    states.iter().map(|s| s.twist_rad.unwrap_or(0.0)).collect();
+                self.plan.balance_turns(&mut turns, &mut twists);
+                for (state, twist) in states.iter_mut().zip(twists) {
+                    state.twist_rad = state.twist_rad.map(|_| twist);
+                }
             }
             let measures = self.measure(&links, &guides, &mut states, t, with_loads)?;
             tracker.record(t, &measures);

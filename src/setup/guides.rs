@@ -44,7 +44,7 @@ pub(super) fn build(
     }
     check_order(src, robot, raw, &guides)?;
     check_optional_ends(src, raw, &guides)?;
-    check_kinds_at_ends(src, raw, &guides)?;
+    check_swivels_at_ends(src, raw, &guides)?;
     check_per_link(src, robot, raw, &guides, max_per_link)?;
     Ok(guides)
 }
@@ -188,13 +188,14 @@ fn kinds(src: Source, g: usize, raw: &RawGuide) -> Result<Vec<GuideKind>, SetupE
     Ok(kinds)
 }
 
-/// For now only the first and the last guide may be other than rigid: a rotating or swivel
-/// clamp between two pieces lets one piece's twist and moment pass into the other, and the
-/// pieces are solved one by one.
-fn check_kinds_at_ends(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result<(), SetupError> {
+/// For now only the first and the last guide may be swivels: a swivel between two pieces
+/// lets one piece's bending pass into the other, which the solver does not model yet (a
+/// rotating clamp there shares the cable's turn between them: the motion test balances it).
+fn check_swivels_at_ends(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result<(), SetupError> {
     let last = guides.len() - 1;
     for (g, guide) in guides.iter().enumerate() {
-        if g == 0 || g == last || guide.kinds == [GuideKind::Rigid] {
+        let swivel = |k: &GuideKind| matches!(k, GuideKind::Swivel { .. });
+        if g == 0 || g == last || !guide.kinds.iter().any(swivel) {
             continue;
         }
         let span = (raw.get_ref()[g].get_ref().kind.as_ref()).map_or(raw.span(), |k| k.span());
@@ -203,8 +204,8 @@ fn check_kinds_at_ends(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result
             format!("guides[{g}].kind"),
             format!(
                 "{} is between two pieces of cable: only the first and the last guide may be \
-                 rotating or swivel clamps in this version (one between two pieces couples \
-                 their twist and bending, which the solver does not model yet)",
+                 swivel clamps in this version (one between two pieces passes its bending from \
+                 one to the other, which the solver does not model yet)",
                 guide.name
             ),
         ));
