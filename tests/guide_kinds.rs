@@ -174,7 +174,8 @@ fn a_kind_between_two_pieces_is_refused_and_one_at_the_end_changes_the_hash() {
 /// the top clamp to the middle one, 0.3 m on to the spindle. Turning the spindle by θ with a
 /// rigid middle clamp twists only the lower piece, by θ over 0.3 m; a rotating middle clamp
 /// lets the cable turn in it until both pieces carry the same torque: each twisted by θ/2,
-/// θ over the whole 0.6 m (closed form), in the motion test.
+/// θ over the whole 0.6 m (closed form), the cable turned by θ/2 in the clamp, in the motion
+/// test.
 #[test]
 fn a_rotating_clamp_between_two_pieces_shares_the_twist_by_their_lengths() {
     let dir = tempfile::tempdir().unwrap();
@@ -231,6 +232,19 @@ fn a_rotating_clamp_between_two_pieces_shares_the_twist_by_their_lengths() {
             let twists = &report.twists[piece];
             twists.twist_deg_per_m.abs()
         };
+        // The rotating clamp took half the turn off the lower piece: θ/2 turned in it.
+        let turned: Vec<f64> = report
+            .clamp_turns
+            .iter()
+            .map(|t| t.largest_turn_deg.abs())
+            .collect();
+        match middle.is_empty() {
+            true => assert!(turned.is_empty(), "{turned:?}"),
+            false => assert!(
+                turned.len() == 1 && (turned[0] - turned_by_deg / 2.0).abs() < 0.1,
+                "{turned:?}"
+            ),
+        }
         for (piece, closed_form) in [(0, upper_per_m), (1, lower_per_m)] {
             assert!(
                 (twist(piece) - closed_form).abs() < 2e-3 * lower_per_m,

@@ -488,6 +488,7 @@ fn stress_report(points: usize) -> MotionTestReport {
         twists: Vec::new(),
         damage: Vec::new(),
         clamp_loads: Vec::new(),
+        clamp_turns: Vec::new(),
         max_joint_gap_m: 1e-4,
         series,
         final_shape: Vec::new(),

@@ -8,7 +8,7 @@
 
 use cable_dict::pose::pose_from_mm_deg;
 use cable_dict::report::scene::{
-    COLOUR_VARIANTS, CableLine, CableTint, GuideMark, INSTALLATION_ANIMATION, PoseScene,
+    COLOUR_VARIANTS, CableLine, CableTint, ClampPart, GuideMark, INSTALLATION_ANIMATION, PoseScene,
     SceneAnimation, SceneError, SceneSpec, Snapshot, to_glb,
 };
 use cable_dict::robot::Robot;
@@ -96,12 +96,14 @@ fn spec(robot: &Robot) -> SceneSpec<'_> {
                 clamp: "G1".into(),
                 link: link(robot, "link_2"),
                 pose_in_link: pose_from_mm_deg([100.0, 0.0, 100.0], [0.0, 90.0, 0.0]),
+                part: ClampPart::Rigid,
             },
             GuideMark {
                 name: "G2 (link_4/top)".into(),
                 clamp: "G2".into(),
                 link: link(robot, "link_4"),
                 pose_in_link: pose_from_mm_deg([0.0, 80.0, 50.0], [-90.0, 0.0, 30.0]),
+                part: ClampPart::Rigid,
             },
         ],
         animation: Some(SceneAnimation {
@@ -938,4 +940,66 @@ fn damage_per_cycle_colours_the_cable_in_a_second_variant() {
         assert!(matches!(error, SceneError::Damage { .. }), "{error:?}");
         assert!(error.to_string().contains(says), "{error}");
     }
+}
+
+/// Each part is drawn its own way: a rigid clamp's collar, a rotating clamp's flat ring
+/// (wider, half as long), a swivel's ball of the collar's outer radius, each in its colour;
+/// a scene of rigid clamps only has the one marker it always had.
+#[test]
+fn guide_markers_show_the_part() {
+    let robot = robot();
+    let mut parts = spec(&robot);
+    parts.guides[0].part = ClampPart::Rotating;
+    let mut swivel = parts.guides[1].clone();
+    swivel.name = "G3 (link_4/ball)".into();
+    swivel.part = ClampPart::Swivel;
+    parts.guides.push(swivel);
+    let (doc, blob) = import(&glb(&parts));
+    let marker = |name: &str| {
+        doc.nodes()
+            .find(|n| n.name() == Some(name))
+            .and_then(|n| n.mesh())
+            .unwrap_or_else(|| panic!("{name} has a marker"))
+    };
+    // Extents of a marker mesh in its own frame: (radius across, length along z).
+    let extent = |mesh: &gltf::Mesh<'_>| {
+        let points = positions(mesh, &blob);
+        let across = points.iter().map(|p| p.x.hypot(p.y)).fold(0.0, f64::max);
+        let (low, high) = points
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(l, h), p| (l.min(p.z), h.max(p.z)));
+        (across, high - low)
+    };
+    let material = |mesh: &gltf::Mesh<'_>| {
+        let primitive = mesh.primitives().next().expect("a primitive");
+        primitive.material().name().unwrap_or_default().to_owned()
+    };
+    let rotating = marker("G1 (link_2/side)");
+    let rigid = marker("G2 (link_4/top)");
+    let ball = marker("G3 (link_4/ball)");
+    assert_eq!(material(&rigid), "guide");
+    assert_eq!(material(&rotating), "guide, rotating clamp");
+    assert_eq!(material(&ball), "guide, swivel");
+    let (rigid_across, rigid_along) = extent(&rigid);
+    let (ring_across, ring_along) = extent(&rotating);
+    let (ball_across, ball_along) = extent(&ball);
+    assert!(
+        (ring_across / rigid_across - 1.6).abs() < 0.05,
+        "{ring_across} {rigid_across}"
+    );
+    assert!(
+        (ring_along / rigid_along - 0.5).abs() < 0.05,
+        "{ring_along} {rigid_along}"
+    );
+    // The ball: as wide as it is long, the collar's outer radius.
+    assert!((ball_across - rigid_across).abs() < 0.05 * rigid_across);
+    assert!((ball_along - 2.0 * ball_across).abs() < 0.05 * ball_along);
+
+    let plain = spec(&robot);
+    let (doc, _) = import(&glb(&plain));
+    let markers: Vec<String> = (doc.meshes())
+        .filter_map(|m| m.name().map(str::to_owned))
+        .filter(|n| n.starts_with("guide marker"))
+        .collect();
+    assert_eq!(markers, ["guide marker"]);
 }

@@ -65,7 +65,7 @@ mod tracker;
 pub use error::MotionTestError;
 pub use options::{DEFAULT_SETTLE_TAIL_S, Engine, EngineKind, MotionTestOptions};
 pub use report::{
-    ClampLoadPeak, Constraint, Failure, FailureCause, MotionTestReport, PieceLifeDamage,
+    ClampLoadPeak, ClampTurn, Constraint, Failure, FailureCause, MotionTestReport, PieceLifeDamage,
     PieceTwist, PieceWorst, Place, SegmentNodes, SeriesPoint, ShapeFrame, Violation, Worst,
 };
 

@@ -51,6 +51,9 @@ pub struct MotionTestReport {
     /// force and moment the cable puts on it, sampled every 20 ms of the motion (the
     /// implicit engine; empty for the rigid chain).
     pub clamp_loads: Vec<ClampLoadPeak>,
+    /// Per rotating clamp between two pieces, how far the cable turned in it: the twist it
+    /// relieved.
+    pub clamp_turns: Vec<ClampTurn>,
     /// Largest gap between the anchors of two joined bodies over the run (m): the solver's
     /// constraint error, ≈ 0.1 mm at the default settings.
     pub max_joint_gap_m: f64,
@@ -142,6 +145,18 @@ pub struct ClampLoadPeak {
     pub moment_time_s: f64,
     /// The moment then (N·m, world frame).
     pub moment_n_m: [f64; 3],
+}
+
+/// How far the cable turned in a rotating clamp between two pieces over the motion test,
+/// from the cable as laid: the twist the clamp took off the pieces.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ClampTurn {
+    /// The setup's guide at this clamp.
+    pub guide: String,
+    /// The largest turn (deg, signed: right-handed about the cable toward the tool).
+    pub largest_turn_deg: f64,
+    /// When (s).
+    pub time_s: f64,
 }
 
 /// Why a candidate failed the motion test.

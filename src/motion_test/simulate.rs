@@ -133,6 +133,14 @@ impl Context<'_> {
                 for (state, twist) in states.iter_mut().zip(twists) {
                     state.twist_rad = state.twist_rad.map(|_| twist);
                 }
+                let shared: Vec<(&str, f64)> = (0..turns.len())
+                    .filter(|&i| self.plan.shared_turn[i])
+                    .map(|i| {
+                        let guide = self.plan.segments[i].start.0;
+                        (self.setup.guides[guide].name.as_str(), turns[i])
+                    })
+                    .collect();
+                tracker.record_turns(t, &shared);
             }
             let measures = self.measure(&links, &guides, &mut states, t, with_loads)?;
             tracker.record(t, &measures);

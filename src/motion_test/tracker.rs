@@ -2,7 +2,7 @@
 
 use super::engine::ForceAt;
 use super::report::{
-    ClampLoadPeak, Constraint, Failure, FailureCause, MotionTestReport, PieceLifeDamage,
+    ClampLoadPeak, ClampTurn, Constraint, Failure, FailureCause, MotionTestReport, PieceLifeDamage,
     PieceTwist, PieceWorst, Place, SegmentNodes, SeriesPoint, ShapeFrame, Violation, Worst,
 };
 use crate::life::curve::LifeCurve;
@@ -64,6 +64,7 @@ pub(super) struct Tracker<'a> {
     life: Option<(LifeCurve, Vec<Option<PieceHistory>>)>,
     twists: Vec<PieceTwist>,
     clamp_loads: Vec<ClampLoadPeak>,
+    clamp_turns: Vec<ClampTurn>,
     max_joint_gap_m: f64,
     series: Vec<SeriesPoint>,
     final_shape: Vec<SegmentNodes>,
@@ -92,6 +93,7 @@ impl<'a> Tracker<'a> {
             life: LifeCurve::of(&setup.cable.datasheet).map(|curve| (curve, Vec::new())),
             twists: Vec::new(),
             clamp_loads: Vec::new(),
+            clamp_turns: Vec::new(),
             max_joint_gap_m: 0.0,
             series: Vec::new(),
             final_shape: Vec::new(),
@@ -161,6 +163,25 @@ impl<'a> Tracker<'a> {
         self.keep_stretch(time_s, segment, required, thresholds);
     }
 
+    /// Keeps the largest turn of the cable in each rotating clamp between two pieces:
+    /// `turns` pairs the clamp's guide with the turn (rad) at `time_s`.
+    pub fn record_turns(&mut self, time_s: f64, turns: &[(&str, f64)]) {
+        for &(guide, turn) in turns {
+            let deg = turn.to_degrees();
+            match self.clamp_turns.iter_mut().find(|t| t.guide == guide) {
+                Some(kept) if deg.abs() > kept.largest_turn_deg.abs() => {
+                    (kept.largest_turn_deg, kept.time_s) = (deg, time_s);
+                }
+                Some(_) => {}
+                None => self.clamp_turns.push(ClampTurn {
+                    guide: guide.to_owned(),
+                    largest_turn_deg: deg,
+                    time_s,
+                }),
+            }
+        }
+    }
+
     /// The report, with `failure` if the run itself failed (else a violation's, if any).
     pub fn into_report(mut self, failure: Option<Failure>, run: RunFacts) -> MotionTestReport {
         let last_kept = self.shapes.last().map(|frame| frame.time_s);
@@ -203,6 +224,7 @@ impl<'a> Tracker<'a> {
             worst_self_clearance: self.worst_self_clearance,
             twists: self.twists,
             clamp_loads: self.clamp_loads,
+            clamp_turns: self.clamp_turns,
             max_joint_gap_m: self.max_joint_gap_m,
             series: self.series,
             final_shape: self.final_shape,

@@ -475,6 +475,11 @@ fn physical_clamp(
         .unwrap_or(&group[0]);
     let guide = &setup.guides[g];
     let configuration = &guide.configurations[c];
+    // Guides joined by a 0 mm piece are one part: the one that lets the cable do most.
+    let kind = (group.iter())
+        .map(|&(g, c)| setup.guides[g].configurations[c].kind)
+        .max_by_key(GuideKind::rank)
+        .unwrap_or(configuration.kind);
     let clamp_in_body = guide.link_in_body * configuration.pose;
     let free_space_mm = guide
         .fixed
@@ -497,8 +502,8 @@ fn physical_clamp(
         surface_to_cable_axis_mm: surface_to_cable_axis_mm(setup, g, c),
         mark_mm,
         free_space_mm,
-        kind: configuration.kind.word(),
-        cone_deg: match configuration.kind {
+        kind: kind.word(),
+        cone_deg: match kind {
             GuideKind::Swivel { cone_rad } => Some(cone_rad.to_degrees()),
             _ => None,
         },

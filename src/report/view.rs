@@ -9,8 +9,8 @@
 
 use super::error::ReportError;
 use super::scene::{
-    COLOUR_VARIANTS, CableTint, DamageLevel, GuideMark, INSTALLATION_ANIMATION, SceneAnimation,
-    SceneSpec, to_glb,
+    COLOUR_VARIANTS, CableTint, ClampPart, DamageLevel, GuideMark, INSTALLATION_ANIMATION,
+    SceneAnimation, SceneSpec, to_glb,
 };
 use super::views::{TIGHT_SHARE, other_motion_animation};
 use super::worst::{limit_words, smallest_margin};
@@ -305,6 +305,7 @@ pub fn view_html() -> String {
     };
     let swatch = |tint: CableTint| swatch_of(tint.css(), tint.legend());
     let damage_swatch = |level: DamageLevel| swatch_of(level.css(), level.legend());
+    let part_swatch = |part: ClampPart| swatch_of(part.css(), part.legend());
     format!(
         "<section id=\"view-section\">\n<h2>3D view</h2>\n\
 <p>Drag to turn, scroll to zoom. The robot's collision shapes, the cable and its numbered clamps \
@@ -316,7 +317,7 @@ time under the slider says where the motion ends. For a cell of several motions,
 the buttons picks the motion played.</p>\n\
 <p class=\"view-legend\">{} (closer to the robot or to itself than one cable diameter, or within \
 {:.0} % of the bend-radius or stretch limit) {} {} <span class=\"swatch ring\"></span>the worst \
-spot</p>\n\
+spot. Clamp markers: {} {} {}</p>\n\
 <p class=\"view-legend\" id=\"view-damage-legend\" hidden>Damage per cycle (the predicted life's \
 Miner sum per round, along the cable): {} {} {} {}</p>\n\
 <model-viewer id=\"view\" camera-controls camera-orbit=\"-40deg 70deg auto\" animation-crossfade-duration=\"0\" loading=\"eager\" interaction-prompt=\"none\" shadow-intensity=\"0\" \
@@ -336,6 +337,9 @@ aria-label=\"time\"><span id=\"view-worst-tick\"></span></span>\
         100.0 * TIGHT_SHARE,
         swatch(CableTint::Ample),
         swatch(CableTint::Exceeded),
+        part_swatch(ClampPart::Rigid),
+        part_swatch(ClampPart::Rotating),
+        part_swatch(ClampPart::Swivel),
         damage_swatch(DamageLevel::Worst),
         damage_swatch(DamageLevel::Raised),
         damage_swatch(DamageLevel::Low),

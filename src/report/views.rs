@@ -3,13 +3,13 @@
 //! animation, the critical poses as snapshots.
 
 use super::scene::{
-    CableLine, CableTint, GuideMark, PoseScene, SceneAnimation, SceneSpec, Snapshot,
+    CableLine, CableTint, ClampPart, GuideMark, PoseScene, SceneAnimation, SceneSpec, Snapshot,
 };
 use crate::motion::Motion;
 use crate::motion_test::{MotionTestReport, SegmentNodes, ShapeFrame};
 use crate::path::CablePath;
 use crate::robot::JointVectorError;
-use crate::setup::Setup;
+use crate::setup::{GuideKind, Setup};
 use crate::solve::{CriticalPose, PoseShape, ReportShapes, SolveReport, critical_poses};
 use nalgebra::{Point3, Vector3};
 
@@ -31,6 +31,11 @@ fn mark(guide: &crate::setup::Guide, c: usize) -> GuideMark {
         clamp: guide.name.clone(),
         link: guide.link,
         pose_in_link: configuration.pose,
+        part: match configuration.kind {
+            GuideKind::Rigid => ClampPart::Rigid,
+            GuideKind::Rotating => ClampPart::Rotating,
+            GuideKind::Swivel { .. } => ClampPart::Swivel,
+        },
     }
 }
 

@@ -175,6 +175,7 @@ mod tests {
             twists: Vec::new(),
             damage: Vec::new(),
             clamp_loads: Vec::new(),
+            clamp_turns: Vec::new(),
             max_joint_gap_m: 0.0,
             series: Vec::new(),
             final_shape: Vec::new(),

@@ -7,7 +7,7 @@ use super::args;
 use super::output::{Failure, emit, print_json};
 use cable_dict::cable::CableSpec;
 use cable_dict::pose::Pose;
-use cable_dict::report::scene::{CableLine, GuideMark, PoseScene, SceneSpec};
+use cable_dict::report::scene::{CableLine, ClampPart, GuideMark, PoseScene, SceneSpec};
 use cable_dict::robot::Robot;
 use cable_dict::segment::{ConnectKind, PieceError, PieceRequest, SolverKind, connected};
 use nalgebra::{Point3, Vector3};
@@ -202,6 +202,7 @@ fn write_scene(
         clamp: name.into(),
         link: 0,
         pose_in_link: base.inverse() * frame,
+        part: ClampPart::Rigid,
     };
     let spec = SceneSpec {
         robot,

@@ -4,7 +4,7 @@
 use super::document::Builder;
 use super::mesh::{TriangleMesh, cable_joint_sphere, collar, shape_mesh, unit_cable_cylinder};
 use super::tube::swept_tube;
-use super::{COLOUR_VARIANTS, CableTint, DamageLevel, SceneError, SceneSpec, Snapshot};
+use super::{COLOUR_VARIANTS, CableTint, ClampPart, DamageLevel, SceneError, SceneSpec, Snapshot};
 use crate::pose::Pose;
 use crate::robot::Shape;
 use gltf_json::scene::UnitQuaternion as GltfQuaternion;
@@ -23,8 +23,8 @@ pub(super) enum Paint {
     Robot,
     /// The cable, orange or by its margin.
     Cable(CableTint),
-    /// Blue.
-    Guide,
+    /// A guide marker, by its part.
+    Guide(ClampPart),
     /// The cable by its damage per cycle (the second colour variant).
     Damage(DamageLevel),
 }
@@ -44,7 +44,15 @@ impl Paint {
                 let [r, g, b] = tint.linear_rgb();
                 (name, [r, g, b, 1.0], 0.5)
             }
-            Paint::Guide => ("guide", [0.1, 0.3, 0.9, 1.0], 0.5),
+            Paint::Guide(part) => {
+                let name = match part {
+                    ClampPart::Rigid => "guide",
+                    ClampPart::Rotating => "guide, rotating clamp",
+                    ClampPart::Swivel => "guide, swivel",
+                };
+                let [r, g, b] = part.linear_rgb();
+                (name, [r, g, b, 1.0], 0.5)
+            }
             Paint::Damage(level) => {
                 let name = match level {
                     DamageLevel::Slight => "cable, slight damage",
@@ -62,9 +70,9 @@ impl Paint {
     fn slot(self) -> usize {
         match self {
             Paint::Robot => 0,
-            Paint::Guide => 1,
-            Paint::Cable(tint) => 2 + tint as usize,
-            Paint::Damage(level) => 2 + CableTint::ALL.len() + level as usize,
+            Paint::Cable(tint) => 1 + tint as usize,
+            Paint::Damage(level) => 1 + CableTint::ALL.len() + level as usize,
+            Paint::Guide(part) => 1 + CableTint::ALL.len() + DamageLevel::ALL.len() + part as usize,
         }
     }
 }
@@ -72,7 +80,8 @@ impl Paint {
 /// The scene's materials, each made when first used (so none is left unused).
 #[derive(Default)]
 pub(super) struct Materials {
-    made: [Option<Index<Material>>; 2 + CableTint::ALL.len() + DamageLevel::ALL.len()],
+    made: [Option<Index<Material>>;
+        1 + CableTint::ALL.len() + DamageLevel::ALL.len() + ClampPart::ALL.len()],
 }
 
 impl Materials {
@@ -91,7 +100,8 @@ impl Materials {
 pub(super) struct SharedMeshes {
     /// Per link, per collider.
     colliders: Vec<Vec<Index<Mesh>>>,
-    guide: Option<Index<Mesh>>,
+    /// The guide marker of each part used (indexed like [`ClampPart::ALL`]).
+    guide: [Option<Index<Mesh>>; ClampPart::ALL.len()],
     /// Per tint (indexed like [`CableTint::ALL`]) and damage level (indexed like
     /// [`DamageLevel::ALL`], then one for a line without damage) used by a main cable line:
     /// the unit cylinder of a sub-segment and the sphere of a node.
@@ -152,14 +162,30 @@ impl SharedMeshes {
         let r = spec.cable_radius_m;
         let mut shared = SharedMeshes {
             colliders,
-            guide: None,
+            guide: [None; ClampPart::ALL.len()],
             segment: Default::default(),
             joint: Default::default(),
         };
-        if !spec.guides.is_empty() {
-            let collar = collar(r, GUIDE_OUTER_RADII * r, GUIDE_LENGTH_M);
-            let mesh = painted_mesh(builder, materials, "guide marker", &collar, Paint::Guide)?;
-            shared.guide = Some(mesh);
+        for part in ClampPart::ALL {
+            if !spec.guides.iter().any(|g| g.part == part) {
+                continue;
+            }
+            let (name, marker) = match part {
+                ClampPart::Rigid => (
+                    "guide marker",
+                    collar(r, GUIDE_OUTER_RADII * r, GUIDE_LENGTH_M),
+                ),
+                ClampPart::Rotating => (
+                    "guide marker, rotating clamp",
+                    collar(r, 1.6 * GUIDE_OUTER_RADII * r, 0.5 * GUIDE_LENGTH_M),
+                ),
+                ClampPart::Swivel => (
+                    "guide marker, swivel",
+                    cable_joint_sphere(GUIDE_OUTER_RADII * r),
+                ),
+            };
+            let mesh = painted_mesh(builder, materials, name, &marker, Paint::Guide(part))?;
+            shared.guide[part as usize] = Some(mesh);
         }
         if !spec.damage.is_empty() {
             builder.variants(&COLOUR_VARIANTS);
@@ -337,7 +363,7 @@ pub(super) fn robot_copy(
         for guide in spec.guides.iter().filter(|g| g.link == l) {
             let marker = builder.node(
                 guide.name.clone(),
-                Trs::of_pose(&guide.pose_in_link).node(meshes.guide),
+                Trs::of_pose(&guide.pose_in_link).node(meshes.guide[guide.part as usize]),
             );
             builder.add_child(node, marker);
         }

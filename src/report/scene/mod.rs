@@ -314,6 +314,48 @@ pub struct GuideMark {
     pub link: usize,
     /// The guide's frame in the link frame; its +z axis is the cable direction.
     pub pose_in_link: Pose,
+    /// The part there, which decides the marker's shape and colour.
+    pub part: ClampPart,
+}
+
+/// The part a guide marker shows: each drawn its own way.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Default)]
+pub enum ClampPart {
+    /// A clamp holding the cable rigidly: a blue collar.
+    #[default]
+    Rigid,
+    /// A rotating clamp (the cable turns in it): a wider, flatter teal ring.
+    Rotating,
+    /// A swivel (ball joint): a purple ball.
+    Swivel,
+}
+
+impl ClampPart {
+    /// Every part, in the order of the materials.
+    pub const ALL: [ClampPart; 3] = [ClampPart::Rigid, ClampPart::Rotating, ClampPart::Swivel];
+
+    /// Its colour as the scene's material gives it (linear RGB, 0–1).
+    pub fn linear_rgb(self) -> [f32; 3] {
+        match self {
+            ClampPart::Rigid => [0.1, 0.3, 0.9],
+            ClampPart::Rotating => [0.0, 0.6, 0.55],
+            ClampPart::Swivel => [0.55, 0.15, 0.8],
+        }
+    }
+
+    /// The same colour for a page (`#rrggbb`, sRGB).
+    pub fn css(self) -> String {
+        css_of(self.linear_rgb())
+    }
+
+    /// What the marker shows, for a legend.
+    pub fn legend(self) -> &'static str {
+        match self {
+            ClampPart::Rigid => "clamp (a collar)",
+            ClampPart::Rotating => "rotating clamp (a flat ring)",
+            ClampPart::Swivel => "swivel (a ball)",
+        }
+    }
 }
 
 /// Robot and cable over time: keyframes at `times_s`.

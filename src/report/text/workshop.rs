@@ -471,11 +471,21 @@ pub fn load_rows(test: &MotionTestReport, plan: Option<&MountingPlan>) -> Vec<Lo
             .map(|clamp| clamp.name())
             .unwrap_or_else(|| c.guides.join(" = "));
         let (force, moment) = (decimal(c.max_force_n, 2), decimal(c.max_moment_n_m, 3));
+        // A rotating clamp between two pieces: how far the cable turned in it.
+        let turned = (test.clamp_turns.iter())
+            .find(|t| c.guides.contains(&t.guide))
+            .map_or(String::new(), |t| {
+                format!(
+                    "; the cable turned in it by up to {}° at t = {:.2} s",
+                    decimal(t.largest_turn_deg, 0),
+                    t.time_s
+                )
+            });
         LoadRow {
             name,
             words: format!(
                 "largest force {force} N at t = {:.2} s, largest moment {moment} N·m at t = \
-                 {:.2} s",
+                 {:.2} s{turned}",
                 c.force_time_s, c.moment_time_s
             ),
             short: format!(
