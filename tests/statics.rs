@@ -844,3 +844,109 @@ fn a_rotating_clamp_lets_a_twisted_cable_relax_fully() {
         assert!(a < 1e-9 * closed_form && b < 1e-9 * closed_form, "{a} {b}");
     }
 }
+
+/// Level catenary through `(0, 0)` and `(span, 0)` of `length`: its parameter `a`
+/// (`L = 2a sinh(D/2a)`, bisection) and the tension at its supports, `w a cosh(D/2a)`, per
+/// unit weight.
+fn level_catenary(span: f64, length: f64) -> (f64, f64) {
+    let (mut lo, mut hi) = (1e-4, 1e3);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if 2.0 * mid * (span / (2.0 * mid)).sinh() > length {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let a = 0.5 * (lo + hi);
+    (a, a * (span / (2.0 * a)).cosh())
+}
+
+/// A limp cable from a clamp through a frictionless ring to another clamp, all three at one
+/// height (spans 0.3 m and 0.2 m, 0.7 m of cable; 80 and 40 sub-segments): it slides until
+/// it pulls equally on the ring from both sides. Closed form: two level catenaries whose support tensions
+/// `w a cosh(D/2a)` are equal, the split found by bisection; each piece hangs as its catenary.
+#[test]
+fn a_limp_cable_through_a_frictionless_ring_pulls_equally_on_both_sides() {
+    use cable_dict::statics::sliding::{Slide, solve_through_slide};
+    let mut params = cable(9.81);
+    params.bending_stiffness_n_m2 *= 1e-4;
+    params.torsion_stiffness_n_m2 *= 1e-4;
+    let (left, right, total) = (0.3, 0.2, 0.7);
+    let start = planar_guide(-left, 0.0, 0.0, 0.0);
+    let ring = planar_guide(0.0, 0.0, 0.0, 0.0);
+    let end = planar_guide(right, 0.0, 0.0, 0.0);
+    let slide = Slide {
+        guide: ring,
+        total_m: total,
+        sub_segments: (80, 40),
+    };
+    let options = SolverOptions {
+        force_tolerance_n: 1e-9,
+        max_iterations: 200,
+    };
+    let solved = solve_through_slide(&params, &start, &slide, &end, &options)
+        .unwrap_or_else(|e| panic!("{e}"));
+    // The closed-form split: equal support tensions.
+    let imbalance =
+        |split: f64| level_catenary(left, split).1 - level_catenary(right, total - split).1;
+    let (mut lo, mut hi) = (left * 1.0001, total - right * 1.0001);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        // The tension falls as a piece gets longer (slacker).
+        if imbalance(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let closed_form = 0.5 * (lo + hi);
+    println!(
+        "split {:.5} m vs closed form {closed_form:.5} m, {} evaluations",
+        solved.split_m, solved.evaluations
+    );
+    assert!(
+        (solved.split_m - closed_form).abs() < 1e-3,
+        "{} vs {closed_form}",
+        solved.split_m
+    );
+    // Each piece hangs as the catenary of its own span and length.
+    for (piece, (x0, span, length)) in solved.pieces.iter().zip([
+        (-left, left, solved.split_m),
+        (0.0, right, total - solved.split_m),
+    ]) {
+        let (a, _) = level_catenary(span, length);
+        let curve = |x: f64| a * ((x - span / 2.0) / a).cosh() - a * (span / (2.0 * a)).cosh();
+        let worst = (piece.nodes.iter())
+            .map(|p| (p.z - curve(p.x - x0)).abs())
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-3, "span {span}: {worst} m off its catenary");
+    }
+    // And both pull on the ring with the same tension, the closed form's (the clamp loads,
+    // less the half sub-segment of cable hanging on the clamp itself: a limp cable's end
+    // force is its tension, whatever the slope).
+    let tension = |k: usize| {
+        let piece = &solved.pieces[k];
+        let length = [solved.split_m, total - solved.split_m][k];
+        let params = RodParameters {
+            pitch_m: length / [80.0, 40.0][k],
+            ..params
+        };
+        let (s, e) = [(start, ring), (ring, end)][k];
+        let (at_start, at_end) = clamp_loads(&params, &s, Some(&e), &piece.nodes, piece.twist_rad);
+        let load = [at_end.expect("a clamped end"), at_start][k];
+        let hanging = 0.5 * RHO * params.pitch_m * params.gravity_m_s2;
+        (Vector3::from(load.force_n) - hanging).norm()
+    };
+    // The chain's end force nears the catenary's tension to first order in the pitch: 2.2 %
+    // off with the 12 mm pitch of 40 sub-segments, 1.1 % with 80.
+    let closed_form = RHO * 9.81 * level_catenary(left, closed_form).1;
+    for k in [0, 1] {
+        let t = tension(k);
+        println!("tension at the ring from piece {k}: {t:.4} N, closed form {closed_form:.4} N");
+        assert!(
+            (t - closed_form).abs() < 0.015 * closed_form,
+            "{t} N vs {closed_form} N"
+        );
+    }
+}

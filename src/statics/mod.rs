@@ -22,6 +22,7 @@ mod loads;
 pub(crate) mod newton;
 mod retract;
 pub(crate) mod rod;
+pub mod sliding;
 pub mod turns;
 
 pub use loads::{ClampLoad, clamp_loads};
