@@ -136,16 +136,7 @@ fn a_very_stiff_taut_cable_is_a_straight_line() {
 /// Catenary through (±D/2, 0) with length L: `z = a (cosh(x/a) − cosh(D/2a))`, `a` from
 /// `L = 2a sinh(D/2a)` (bisection: the right side decreases in `a`).
 fn catenary(span: f64, length: f64) -> impl Fn(f64) -> f64 {
-    let (mut lo, mut hi) = (1e-4, 1e3);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if 2.0 * mid * (span / (2.0 * mid)).sinh() > length {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let a = 0.5 * (lo + hi);
+    let (a, _) = level_catenary(span, length);
     move |x| a * ((x / a).cosh() - (span / (2.0 * a)).cosh())
 }
 

@@ -86,10 +86,7 @@ impl Cable {
                 let params = RodParameters::new(&setup.cable, setup.gravity_m_s2);
                 let mut segments = Vec::with_capacity(shapes.len());
                 for (j, (shape, planned)) in shapes.iter().zip(&plan.segments).enumerate() {
-                    let params = RodParameters {
-                        holds: planned.holds,
-                        ..params
-                    };
+                    let params = planned.rod(&params);
                     match SegmentDynamics::at_rest(
                         &params,
                         guides[j],

@@ -75,10 +75,7 @@ pub(super) fn equilibria(
                 )));
             }
         };
-        let params = RodParameters {
-            holds: planned.holds,
-            ..params
-        };
+        let params = planned.rod(&params);
         let solved = solver.solve(
             &params,
             start,

@@ -7,7 +7,7 @@ use crate::motion::Motion;
 use crate::path::CablePath;
 use crate::pose::Pose;
 use crate::setup::{Setup, turn_about_axis};
-use crate::statics::{Hold, Holds};
+use crate::statics::{Hold, Holds, RodParameters};
 use crate::stress::{ClampZone, GuideEnd};
 
 /// One simulated segment: a segment of the setup (declared, or a span over optional guides)
@@ -24,6 +24,16 @@ pub(super) struct PlannedSegment {
     pub end: (usize, usize),
     /// How its clamps hold it.
     pub holds: Holds,
+}
+
+impl PlannedSegment {
+    /// The cable model `params` held as this piece's clamps hold it.
+    pub fn rod(&self, params: &RodParameters) -> RodParameters {
+        RodParameters {
+            holds: self.holds,
+            ..*params
+        }
+    }
 }
 
 /// The simulated cable: its segments in order, consecutive ones sharing a clamp.

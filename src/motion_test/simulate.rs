@@ -206,10 +206,7 @@ impl Context<'_> {
                 false => Vec::new(),
             };
             let loads = state.twist_rad.filter(|_| with_loads).and_then(|twist| {
-                let params = RodParameters {
-                    holds: planned.holds,
-                    ..params
-                };
+                let params = planned.rod(&params);
                 let (start, end) =
                     clamp_loads(&params, &guides[j], Some(&guides[j + 1]), &nodes, twist);
                 Some((start, end?))
