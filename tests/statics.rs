@@ -167,14 +167,9 @@ fn a_limp_cable_hangs_as_a_catenary() {
     assert!(worst < 1e-3, "worst deviation {worst}");
 }
 
-/// A taut straight cable whose end guide is rolled 90° about the cable axis: no writhe, so
-/// the total twist is the imposed quarter turn and the torsion moment is `GJ (π/2) / L`.
-/// The moment is measured as the derivative of the equilibrium energy with respect to a
-/// further roll of the end guide.
-#[test]
-fn a_taut_twisted_cable_carries_the_closed_form_torsion_moment() {
-    let params = cable(0.0);
-    let sub_segments = 30;
+/// A straight cable of `sub_segments` along +x whose end guide is rolled 90° about it: its
+/// length, start and end guides, and its nodes.
+fn quarter_turned_straight(sub_segments: usize) -> (f64, Pose, Pose, Vec<Point3<f64>>) {
     let length = sub_segments as f64 * PITCH;
     let start = planar_guide(0.0, 0.0, 0.0, 0.0);
     let end = planar_guide(length, 0.0, 0.0, FRAC_PI_2);
@@ -183,6 +178,17 @@ fn a_taut_twisted_cable_carries_the_closed_form_torsion_moment() {
         Point3::new(length, 0.0, 0.0),
         sub_segments,
     );
+    (length, start, end, nodes)
+}
+
+/// A taut straight cable whose end guide is rolled 90° about the cable axis: no writhe, so
+/// the total twist is the imposed quarter turn and the torsion moment is `GJ (π/2) / L`.
+/// The moment is measured as the derivative of the equilibrium energy with respect to a
+/// further roll of the end guide.
+#[test]
+fn a_taut_twisted_cable_carries_the_closed_form_torsion_moment() {
+    let params = cable(0.0);
+    let (length, start, end, nodes) = quarter_turned_straight(30);
     let solution = solve(&params, &start, &FarEnd::Clamped(end), &nodes, 1e-10);
     assert!((solution.twist_rad - FRAC_PI_2).abs() < 1e-9);
     let h = 1e-6;
@@ -780,15 +786,7 @@ fn a_swivel_carries_no_moment_within_its_cone_and_holds_the_cable_at_its_edge() 
 /// twist energy, no torque.
 #[test]
 fn a_rotating_clamp_lets_a_twisted_cable_relax_fully() {
-    let sub_segments = 30;
-    let length = sub_segments as f64 * PITCH;
-    let start = planar_guide(0.0, 0.0, 0.0, 0.0);
-    let end = planar_guide(length, 0.0, 0.0, FRAC_PI_2);
-    let nodes = straight_nodes(
-        Point3::origin(),
-        Point3::new(length, 0.0, 0.0),
-        sub_segments,
-    );
+    let (length, start, end, nodes) = quarter_turned_straight(30);
     let torque = |holds: Holds| {
         let params = RodParameters {
             holds,

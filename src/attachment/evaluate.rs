@@ -243,6 +243,7 @@ impl<'a> Evaluator<'a> {
         let mut solver = StaticSolver::default();
         let open = |verdicts: &[Option<Miss>], i: usize| wanted[i] && verdicts[i].is_none();
         let turns = ClampTurns::new(self.setup, m, (start, end), lengths);
+        let piece = (m, self.holds(m, (start, end)));
         // Per length, per motion: how its shapes flex (only where a flexing radius applies).
         type AtPose = (usize, (Pose, Pose));
         let mut flexing: Vec<BTreeMap<usize, FlexWatch<AtPose>>> = match self.watches_flexing(m) {
@@ -261,7 +262,7 @@ impl<'a> Evaluator<'a> {
             let (scene, declared) = self.at_pose(m, (start, end), pose);
             self.continue_lengths(
                 &mut solver,
-                (m, self.holds(m, (start, end))),
+                piece,
                 (&declared, &turns),
                 &scene,
                 open_lengths.into_iter(),

@@ -59,10 +59,11 @@ impl Context<'_> {
         } else {
             1
         };
+        let declared = self.plan.guide_poses(self.setup, &links);
         let mut shapes = Vec::new();
         let mut guides = Vec::new();
         for round in 0..rounds {
-            guides = self.plan.guide_poses(self.setup, &links);
+            guides = declared.clone();
             self.plan.turned(&mut guides, &turns);
             shapes = match equilibria(self.setup, &self.plan, &guides, t0)? {
                 Ok(shapes) => shapes,

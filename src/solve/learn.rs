@@ -140,10 +140,11 @@ impl Learned {
         // The same limits a sweep stops below ([`Learned::needed`]), compared the same way;
         // a piece that flexed keeps its swing inside the flexing radius.
         let needed = self.needed(m, pv, thresholds)?;
-        let swing = needed.bend_radius_m - thresholds.min_bend_radius_m;
         let limit = thresholds.bend_radius_for(least.flexes, false);
         let mm = |v: f64| v * 1e3;
-        if least.bend_radius_m < limit + swing {
+        if let Some(swing) = self.swing(m, pv).bend_radius_m
+            && least.bend_radius_m < limit + swing
+        {
             return Some(format!(
                 "its static bend radius {:.2} mm is within the {:.2} mm its loop swung below the \
                  static one in a motion test ({} {:.1} mm)",

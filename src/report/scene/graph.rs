@@ -32,6 +32,8 @@ pub(super) enum Paint {
 impl Paint {
     /// Material name, base colour (linear RGBA) and roughness.
     fn material(self) -> (&'static str, [f32; 4], f32) {
+        // The cable's and the guides' colours: opaque, half rough.
+        let opaque = |name, [r, g, b]: [f32; 3]| (name, [r, g, b, 1.0], 0.5);
         match self {
             Paint::Robot => ("robot", [0.8, 0.8, 0.8, 1.0], 0.7),
             Paint::Cable(tint) => {
@@ -41,8 +43,7 @@ impl Paint {
                     CableTint::Tight => "cable, tight margin",
                     CableTint::Exceeded => "cable, limit exceeded",
                 };
-                let [r, g, b] = tint.linear_rgb();
-                (name, [r, g, b, 1.0], 0.5)
+                opaque(name, tint.linear_rgb())
             }
             Paint::Guide(part) => {
                 let name = match part {
@@ -50,8 +51,7 @@ impl Paint {
                     ClampPart::Rotating => "guide, rotating clamp",
                     ClampPart::Swivel => "guide, swivel",
                 };
-                let [r, g, b] = part.linear_rgb();
-                (name, [r, g, b, 1.0], 0.5)
+                opaque(name, part.linear_rgb())
             }
             Paint::Damage(level) => {
                 let name = match level {
@@ -60,8 +60,7 @@ impl Paint {
                     DamageLevel::Raised => "cable, raised damage",
                     DamageLevel::Worst => "cable, worst damage",
                 };
-                let [r, g, b] = level.linear_rgb();
-                (name, [r, g, b, 1.0], 0.5)
+                opaque(name, level.linear_rgb())
             }
         }
     }
