@@ -939,3 +939,97 @@ fn a_limp_cable_through_a_frictionless_ring_pulls_equally_on_both_sides() {
         );
     }
 }
+
+/// A limp cable out of a retraction system's outlet to a clamp at its height, 0.3 m away
+/// (0.5 m above the base, so that the stored cable's weight is counted), 0.32 m long at rest
+/// in 60 sub-segments: the spring pulls it back until its force equals the cable's pull at
+/// the outlet. Closed form: the travel `x` where `P + k·x = w·a·cosh(D/2a)` of the level
+/// catenary `0.32 + x = 2a·sinh(D/2a)` (bisection). A preload above every pull leaves it on
+/// its rest stop; a spring too weak for the slack pulls it out to its end stop.
+#[test]
+fn a_retraction_spring_balances_the_hanging_cable_it_pulls_back() {
+    use cable_dict::statics::sliding::{RetractionUnit, solve_through_retraction};
+    let mut params = cable(9.81);
+    params.bending_stiffness_n_m2 *= 1e-4;
+    params.torsion_stiffness_n_m2 *= 1e-4;
+    let (span, rest, height) = (0.3, 0.32, 0.5);
+    let outlet = planar_guide(0.0, height, 0.0, 0.0);
+    let end = planar_guide(span, height, 0.0, 0.0);
+    let options = SolverOptions {
+        force_tolerance_n: 1e-9,
+        max_iterations: 200,
+    };
+    let weight = RHO * 9.81;
+    let unit = |preload_n: f64, rate_n_per_m: f64| RetractionUnit {
+        outlet,
+        preload_n,
+        rate_n_per_m,
+        travel_max_m: 0.1,
+    };
+    // Between the stops: the tension of a 0.33 m catenary over 0.3 m is about 0.38 N.
+    let spring = unit(0.2, 10.0);
+    let solve = |unit: &RetractionUnit, end: &Pose, n: usize| {
+        solve_through_retraction(&params, unit, end, (rest, n), &options)
+    };
+    let solved: Vec<_> = [60, 120, 240]
+        .iter()
+        .map(|&n| solve(&spring, &end, n).unwrap_or_else(|e| panic!("{e}")))
+        .collect();
+    let imbalance = |x: f64| spring.force_n(x) - weight * level_catenary(span, rest + x).1;
+    let (mut lo, mut hi) = (0.0, 0.1);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        // The spring's force grows with the travel, the cable's pull falls.
+        if imbalance(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let closed_form = 0.5 * (lo + hi);
+    let travels: Vec<f64> = solved.iter().map(|s| s.travel_m).collect();
+    println!(
+        "travel {travels:?} m (60, 120, 240 sub-segments) vs closed form {closed_form:.5} m \
+         ({:.4} N), {} evaluations",
+        spring.force_n(closed_form),
+        solved[0].evaluations
+    );
+    assert!(closed_form > 0.001 && closed_form < 0.099, "{closed_form}");
+    // The lumped chain's pull at its end nears the catenary's to first order in the pitch
+    // (the travel 2 mm off at 60 sub-segments): each halving of the pitch halves the error,
+    // and the extrapolation to a zero pitch meets the closed form.
+    for k in 1..3 {
+        let (coarse, fine) = (travels[k - 1] - closed_form, travels[k] - closed_form);
+        assert!(
+            fine.abs() < 0.6 * coarse.abs(),
+            "{travels:?} vs {closed_form}"
+        );
+    }
+    let extrapolated = 2.0 * travels[2] - travels[1];
+    assert!(
+        (extrapolated - closed_form).abs() < 2e-4,
+        "{extrapolated} vs {closed_form}"
+    );
+    let solved = &solved[2];
+    assert!((solved.force_n - spring.force_n(solved.travel_m)).abs() < 1e-12);
+    let (a, _) = level_catenary(span, rest + solved.travel_m);
+    let curve = |x: f64| a * ((x - span / 2.0) / a).cosh() - a * (span / (2.0 * a)).cosh();
+    let worst = (solved.piece.nodes.iter())
+        .map(|p| (p.z - height - curve(p.x)).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-3, "{worst} m off its catenary");
+    // A preload above the rest shape's pull (≈ 0.5 N for 0.32 m over 0.3 m): on the rest stop.
+    let pull_at_rest = weight * level_catenary(span, rest).1;
+    let stiff = unit(2.0 * pull_at_rest, 10.0);
+    let held = solve(&stiff, &end, 60).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(held.travel_m, 0.0);
+    // A spring weaker than the pull of the cable at full travel: on the end stop.
+    let pull_at_full = weight * level_catenary(span, rest + 0.1).1;
+    let weak = unit(0.5 * pull_at_full, 0.0);
+    let out = solve(&weak, &end, 60).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(out.travel_m, 0.1);
+    // A clamp beyond the rest length plus the whole travel: refused, with the distances.
+    let far = planar_guide(0.45, height, 0.0, 0.0);
+    let error = solve(&spring, &far, 60).expect_err("0.42 m of cable cannot reach 0.45 m");
+    assert!(error.to_string().contains("cannot reach"), "{error}");
+}

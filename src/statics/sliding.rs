@@ -9,9 +9,16 @@
 //!
 //! Each piece keeps its number of sub-segments; its pitch is its share of the length over
 //! that number, so the split is continuous. The split is found by a golden-section search on
-//! the total energy between the shortest lengths that reach the guide from either side.
+//! the total energy between the shortest lengths that reach the guide from either side. The
+//! cable turns freely in the guide (a ring takes no torque).
+//!
+//! A retraction system is a sliding guide (its outlet) with a spring behind it instead of a
+//! second piece: [`solve_through_retraction`] finds the travel where the spring's force
+//! balances the free piece's pull, within the unit's stops.
 
-use super::{Equilibrium, FarEnd, RodParameters, SolverOptions, StaticSolver, StaticsError};
+use super::{
+    Equilibrium, FarEnd, Hold, Holds, RodParameters, SolverOptions, StaticSolver, StaticsError,
+};
 use crate::geometry::{connect, sag_direction};
 use crate::pose::Pose;
 
@@ -77,42 +84,38 @@ pub fn solve_through_slide(
         )));
     }
     let mut solver = StaticSolver::default();
-    let mut evaluations = 0;
+    let (start_hold, end_hold) = (params.holds.start, params.holds.end);
+    let before = RodParameters {
+        holds: Holds {
+            start: start_hold,
+            end: Hold::Rotating,
+        },
+        ..*params
+    };
+    let after = RodParameters {
+        holds: Holds {
+            start: Hold::Rotating,
+            end: end_hold,
+        },
+        ..*params
+    };
     let mut at = |split: f64| -> Result<(f64, [Equilibrium; 2]), StaticsError> {
-        evaluations += 1;
         let first = piece(
             &mut solver,
-            params,
+            &before,
             (start, &slide.guide),
             split,
             na,
             options,
         )?;
         let rest = slide.total_m - split;
-        let second = piece(&mut solver, params, (&slide.guide, end), rest, nb, options)?;
+        let second = piece(&mut solver, &after, (&slide.guide, end), rest, nb, options)?;
         Ok((
             first.energy.total_j() + second.energy.total_j(),
             [first, second],
         ))
     };
-    // Golden-section search for the least energy over [low, high].
-    let ratio = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut a, mut b) = (low, high);
-    let mut c = b - ratio * (b - a);
-    let mut d = a + ratio * (b - a);
-    let (mut fc, mut fd) = (at(c)?.0, at(d)?.0);
-    while b - a > SPLIT_TOLERANCE_M {
-        if fc < fd {
-            (b, d, fd) = (d, c, fc);
-            c = b - ratio * (b - a);
-            fc = at(c)?.0;
-        } else {
-            (a, c, fc) = (c, d, fd);
-            d = a + ratio * (b - a);
-            fd = at(d)?.0;
-        }
-    }
-    let split_m = 0.5 * (a + b);
+    let (split_m, evaluations) = least_energy((low, high), &[], |split| Ok(at(split)?.0))?;
     let (energy_j, pieces) = at(split_m)?;
     Ok(SlidEquilibrium {
         split_m,
@@ -120,6 +123,161 @@ pub fn solve_through_slide(
         energy_j,
         evaluations,
     })
+}
+
+/// A retraction system: the cable leaves its outlet (a sliding guide) towards the tool, and
+/// a spring inside pulls the cable stored behind the outlet back with `preload_n` plus
+/// `rate_n_per_m` per metre pulled out, up to `travel_max_m`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RetractionUnit {
+    /// The outlet's pose: the cable leaves through its origin along its +z.
+    pub outlet: Pose,
+    /// The spring's force at zero travel, where the unit rests on its stop (N).
+    pub preload_n: f64,
+    /// How much the force grows per metre of cable pulled out (N/m).
+    pub rate_n_per_m: f64,
+    /// The most cable the unit can give out (m).
+    pub travel_max_m: f64,
+}
+
+impl RetractionUnit {
+    /// The spring's force at `travel_m` (N).
+    pub fn force_n(&self, travel_m: f64) -> f64 {
+        self.preload_n + self.rate_n_per_m * travel_m
+    }
+
+    /// The spring's energy at `travel_m` from zero travel (J).
+    pub fn energy_j(&self, travel_m: f64) -> f64 {
+        travel_m * (self.preload_n + 0.5 * self.rate_n_per_m * travel_m)
+    }
+}
+
+/// The equilibrium of the free piece out of a retraction system.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RetractedEquilibrium {
+    /// Cable pulled out of the unit beyond its rest (m), in `[0, travel_max_m]`.
+    pub travel_m: f64,
+    /// The free piece from the outlet to the end clamp: `rest_length_m + travel_m` long.
+    pub piece: Equilibrium,
+    /// The spring's force at that travel (N).
+    pub force_n: f64,
+    /// Energy evaluations (static solves) the search took.
+    pub evaluations: usize,
+}
+
+/// The equilibrium of the cable out of `unit`'s outlet to the clamp `end`, `rest_length_m`
+/// long at zero travel in `sub_segments`: the travel of least total energy — the free
+/// piece's, the spring's and that of the stored cable given out (counted at the outlet's
+/// height, so that in equilibrium the spring's force equals the free piece's pull at the
+/// outlet; the unit carries the stored cable's weight). At the stops (zero travel, or
+/// `travel_max_m`) the stop takes the difference. Fails when even the full travel does not
+/// reach `end`.
+pub fn solve_through_retraction(
+    params: &RodParameters,
+    unit: &RetractionUnit,
+    end: &Pose,
+    (rest_length_m, sub_segments): (f64, usize),
+    options: &SolverOptions,
+) -> Result<RetractedEquilibrium, StaticsError> {
+    let invalid = |what: String| StaticsError::InvalidInput { what };
+    let finite = [
+        unit.preload_n,
+        unit.rate_n_per_m,
+        unit.travel_max_m,
+        rest_length_m,
+    ];
+    if sub_segments == 0 || finite.iter().any(|v| !v.is_finite() || *v < 0.0) {
+        return Err(invalid(format!(
+            "a retraction needs a free piece of sub-segments and finite, non-negative preload,              rate, travel and length ({finite:?})"
+        )));
+    }
+    let reach = (end.translation.vector - unit.outlet.translation.vector).norm();
+    let low = (reach * (1.0 + REACH_MARGIN) - rest_length_m).max(0.0);
+    if low >= unit.travel_max_m && low > 0.0 {
+        return Err(invalid(format!(
+            "{:.4} m of free cable with all {:.4} m of the retraction's travel cannot reach from              its outlet to the clamp {reach:.4} m away",
+            rest_length_m, unit.travel_max_m
+        )));
+    }
+    let params = RodParameters {
+        holds: Holds {
+            start: Hold::Rotating,
+            end: params.holds.end,
+        },
+        ..*params
+    };
+    // The stored cable given out, its weight counted at the outlet.
+    let stored_per_m =
+        -params.mass_per_length_kg_m * params.gravity_m_s2.dot(&unit.outlet.translation.vector);
+    let mut solver = StaticSolver::default();
+    let mut at = |travel: f64| -> Result<(f64, Equilibrium), StaticsError> {
+        let piece = piece(
+            &mut solver,
+            &params,
+            (&unit.outlet, end),
+            rest_length_m + travel,
+            sub_segments,
+            options,
+        )?;
+        let energy = piece.energy.total_j() + unit.energy_j(travel) - stored_per_m * travel;
+        Ok((energy, piece))
+    };
+    // The stops within reach: zero travel (when the rest length reaches) and the full one.
+    let stops: Vec<f64> = [0.0, unit.travel_max_m]
+        .into_iter()
+        .filter(|&stop| stop >= low)
+        .collect();
+    let (travel_m, evaluations) = if low < unit.travel_max_m {
+        least_energy((low, unit.travel_max_m), &stops, |travel| Ok(at(travel)?.0))?
+    } else {
+        (unit.travel_max_m, 0)
+    };
+    let (_, piece) = at(travel_m)?;
+    Ok(RetractedEquilibrium {
+        travel_m,
+        piece,
+        force_n: unit.force_n(travel_m),
+        evaluations: evaluations + 1,
+    })
+}
+
+/// The argument of least `energy` on `[low, high]` (golden-section search to
+/// [`SPLIT_TOLERANCE_M`], then compared with the `stops`: ends of the interval where a stop
+/// holds the cable), and the evaluations it took.
+fn least_energy(
+    (low, high): (f64, f64),
+    stops: &[f64],
+    mut energy: impl FnMut(f64) -> Result<f64, StaticsError>,
+) -> Result<(f64, usize), StaticsError> {
+    let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (low, high);
+    let mut c = b - ratio * (b - a);
+    let mut d = a + ratio * (b - a);
+    let (mut fc, mut fd) = (energy(c)?, energy(d)?);
+    let mut evaluations = 2;
+    while b - a > SPLIT_TOLERANCE_M {
+        evaluations += 1;
+        if fc < fd {
+            (b, d, fd) = (d, c, fc);
+            c = b - ratio * (b - a);
+            fc = energy(c)?;
+        } else {
+            (a, c, fc) = (c, d, fd);
+            d = a + ratio * (b - a);
+            fd = energy(d)?;
+        }
+    }
+    // A least at a stop: the search closes in on it from inside; the stop itself is exact.
+    let inside = 0.5 * (a + b);
+    let mut best = (energy(inside)?, inside);
+    evaluations += 1;
+    for &stop in stops {
+        if (stop - inside).abs() <= 2.0 * SPLIT_TOLERANCE_M {
+            best = (energy(stop)?, stop);
+            evaluations += 1;
+        }
+    }
+    Ok((best.1, evaluations))
 }
 
 /// The equilibrium of a piece of `length_m` in `sub_segments` between `guides`, from the
