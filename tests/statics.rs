@@ -1033,3 +1033,103 @@ fn a_retraction_spring_balances_the_hanging_cable_it_pulls_back() {
     let error = solve(&spring, &far, 60).expect_err("0.42 m of cable cannot reach 0.45 m");
     assert!(error.to_string().contains("cannot reach"), "{error}");
 }
+
+/// A limp cable through a ring between two clamps at its height, followed while the end
+/// clamp moves 60 mm outwards in 1 mm steps. Frictionless, the followed split stays where a
+/// fresh search for the least energy puts it (a second method). With friction μ = 0.3 the
+/// cable slides only once the outer piece pulls harder than the inner one by the friction,
+/// and then stays at that edge: closed form, two level catenaries with
+/// `T_after − T_before = μ·w·(L_before + L_after)/2` (the ring holds the cable's whole weight
+/// between the clamps' halves across its axis).
+#[test]
+fn a_cable_followed_through_a_ring_slides_at_the_edge_of_its_friction() {
+    use cable_dict::setup::GuideKind;
+    use cable_dict::statics::sliding::{SlideTrack, solve_through};
+    let mut params = cable(9.81);
+    params.bending_stiffness_n_m2 *= 1e-4;
+    params.torsion_stiffness_n_m2 *= 1e-4;
+    let (left, total, sub_segments, pitch) = (0.3, 0.8, 80, 0.01);
+    let options = SolverOptions {
+        force_tolerance_n: 1e-9,
+        max_iterations: 200,
+    };
+    let start = planar_guide(-left, 0.0, 0.0, 0.0);
+    let ring = planar_guide(0.0, 0.0, 0.0, 0.0);
+    let end_at = |x: f64| planar_guide(x, 0.0, 0.0, 0.0);
+    let follow = |friction: f64| {
+        let kind = GuideKind::Sliding { friction };
+        let first = solve_through(
+            &params,
+            (kind, 0),
+            (&start, &ring, &end_at(0.2)),
+            (sub_segments, pitch),
+            &options,
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let mut track = SlideTrack::start(kind, &first, (start, ring, end_at(0.2)));
+        for k in 1..=60 {
+            let x = 0.2 + 0.001 * k as f64;
+            track
+                .step(&params, (start, ring, end_at(x)), &options)
+                .unwrap_or_else(|e| panic!("step {k}: {e}"));
+        }
+        // A few more steps at the last pose: the Newton steps settle.
+        for _ in 0..5 {
+            track
+                .step(&params, (start, ring, end_at(0.26)), &options)
+                .unwrap_or_else(|e| panic!("{e}"));
+        }
+        (first, track)
+    };
+    let (_, free) = follow(0.0);
+    let fresh = solve_through(
+        &params,
+        (GuideKind::Sliding { friction: 0.0 }, 0),
+        (&start, &ring, &end_at(0.26)),
+        (sub_segments, pitch),
+        &options,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let cable_dict::statics::sliding::Slid::Split { before_m } = fresh.slid else {
+        panic!("a sliding guide has a split");
+    };
+    println!(
+        "frictionless: followed {:.5} m, fresh {before_m:.5} m",
+        free.coordinate()
+    );
+    assert!((free.coordinate() - before_m).abs() < 2e-4);
+    // With friction: the closed-form edge of the band at the last pose.
+    let (mu, right) = (0.3, 0.26);
+    let (first, rough) = follow(mu);
+    let cable_dict::statics::sliding::Slid::Split { before_m: started } = first.slid else {
+        panic!("a sliding guide has a split");
+    };
+    let edge = |split: f64| {
+        level_catenary(right, total - split).1 - level_catenary(left, split).1 - mu * total / 2.0
+    };
+    let (mut lo, mut hi) = (left * 1.0001, total - right * 1.0001);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        // A longer piece before the ring leaves the one after it tauter.
+        if edge(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let closed_form = 0.5 * (lo + hi);
+    println!(
+        "μ = {mu}: started at {started:.5} m, followed to {:.5} m, closed form {closed_form:.5} m \
+         (frictionless {before_m:.5} m)",
+        rough.coordinate()
+    );
+    // It slid (less cable before the ring than at the start), but less far than without
+    // friction, to the band's edge.
+    assert!(rough.coordinate() < started - 0.005);
+    assert!(rough.coordinate() > before_m + 0.005);
+    assert!(
+        (rough.coordinate() - closed_form).abs() < 1e-3,
+        "{} vs {closed_form}",
+        rough.coordinate()
+    );
+}

@@ -98,6 +98,9 @@ impl Evaluator<'_> {
         scene: &Scene<'_>,
         warm: Warm<'_>,
     ) -> Result<Solved, Check> {
+        if self.setup.segments[m].through.is_some() {
+            return self.solve_through((m, holds), guides, sub_segments, scene);
+        }
         if self.method == ConnectMethod::Linear {
             self.count_static_solve(m);
             let nodes = self.relaxed(&guides.0, &guides.1, sub_segments, scene.gravity_m_s2)?;
@@ -105,6 +108,8 @@ impl Evaluator<'_> {
                 nodes,
                 connected: Vec::new(),
                 twist_rad: 0.0,
+                pitch_m: self.setup.cable.sub_segment_pitch_m,
+                from: None,
             });
         }
         let pitch = self.setup.cable.sub_segment_pitch_m;
@@ -187,6 +192,8 @@ impl Evaluator<'_> {
             nodes: solved.nodes,
             connected,
             twist_rad: solved.twist_rad,
+            pitch_m: pitch,
+            from: None,
         })
     }
 }

@@ -179,7 +179,12 @@ impl<'a> Evaluator<'a> {
         let (start, end) =
             self.setup
                 .clamp_poses(link_poses, m, pv.sub_segments, (pv.start, pv.end));
-        self.equilibrium(m, pv, &(start, end), self.rod.gravity_m_s2)
+        let scene = Scene {
+            link_poses,
+            gravity_m_s2: self.rod.gravity_m_s2,
+            clearance_link: None,
+        };
+        self.equilibrium(m, pv, &(start, end), &scene)
             .map(|solved| solved.nodes)
             .map_err(|check| check.detail.unwrap_or_else(|| "no equilibrium".into()))
     }
@@ -191,7 +196,7 @@ impl<'a> Evaluator<'a> {
         let (start, end) =
             self.setup
                 .clamp_poses(scene.link_poses, m, pv.sub_segments, (pv.start, pv.end));
-        match self.equilibrium(m, pv, &(start, end), scene.gravity_m_s2) {
+        match self.equilibrium(m, pv, &(start, end), scene) {
             Ok(solved) => self.judge(m, &(start, end), &solved, scene),
             Err(check) => check,
         }
@@ -275,7 +280,7 @@ impl<'a> Evaluator<'a> {
                             (verdicts[i], flexing.get_mut(i), solved)
                         {
                             let watch = watches.entry(pose.motion).or_default();
-                            watch.take(self.setup, solved, guides, check, || (p, *guides));
+                            watch.take(solved, guides, check, || (p, *guides));
                         }
                     }
                 },
@@ -350,7 +355,7 @@ impl<'a> Evaluator<'a> {
                 match self.solve_warm(&mut solver, piece, &guides, pv.sub_segments, &scene, warm) {
                     Ok(solved) => {
                         let check = self.judge(m, &guides, &solved, &scene);
-                        flexing.take(self.setup, &solved, &guides, &check, || pose);
+                        flexing.take(&solved, &guides, &check, || pose);
                         earlier.insert(0, (solved, guides));
                         earlier.truncate(2);
                         check
@@ -426,27 +431,22 @@ impl<'a> Evaluator<'a> {
         (scene, guides)
     }
 
-    /// The equilibrium of PV `pv` of segment `m` between its clamp poses `guides`, or the
-    /// failed check.
+    /// The equilibrium of PV `pv` of segment `m` between its clamp poses `guides` in `scene`
+    /// (solved from the connected geometry), or the failed check.
     fn equilibrium(
         &self,
         m: usize,
         pv: &Pv,
         guides: &(Pose, Pose),
-        gravity_m_s2: Vector3<f64>,
+        scene: &Scene<'_>,
     ) -> Result<Solved, Check> {
-        let scene = Scene {
-            link_poses: &[],
-            gravity_m_s2,
-            clearance_link: None,
-        };
         let mut solver = StaticSolver::default();
         self.solve_warm(
             &mut solver,
             (m, self.holds(m, (pv.start, pv.end))),
             guides,
             pv.sub_segments,
-            &scene,
+            scene,
             Warm::Length(&[]),
         )
     }
@@ -488,9 +488,10 @@ impl<'a> Evaluator<'a> {
         let within = clearance.as_ref().map_or(f64::INFINITY, |c| {
             (c.clearance_m - limit).max(0.0) + setup.cable.diameter_m
         });
+        let start = solved.from.as_ref().unwrap_or(start);
         let metrics = Metrics::of_shape(
             &setup.cable,
-            nodes,
+            (nodes, solved.pitch_m),
             (start, end),
             clearance.as_ref(),
             within,
@@ -522,15 +523,15 @@ impl<At> FlexWatch<At> {
     /// where it is, kept when it is the tightest so far.
     fn take(
         &mut self,
-        setup: &Setup,
         solved: &Solved,
         guides: &(Pose, Pose),
         check: &Check,
         at: impl FnOnce() -> At,
     ) {
         let axis = |pose: &Pose| pose.rotation * Vector3::z();
-        let pitch = setup.cable.sub_segment_pitch_m;
-        let curvatures = curvatures_per_m(&solved.nodes, &axis(&guides.0), &axis(&guides.1), pitch);
+        let start = solved.from.as_ref().unwrap_or(&guides.0);
+        let (nodes, pitch) = (&solved.nodes, solved.pitch_m);
+        let curvatures = curvatures_per_m(nodes, &axis(start), &axis(&guides.1), pitch);
         self.range.take(&curvatures);
         let radius = |c: &Check| c.metrics.map_or(f64::INFINITY, |m| m.min_bend_radius_m);
         if self
@@ -617,6 +618,12 @@ pub(super) struct Solved {
     pub(super) nodes: Vec<Point3<f64>>,
     pub(super) connected: Vec<Point3<f64>>,
     pub(super) twist_rad: f64,
+    /// The cable length between two of its nodes (m): the setup's pitch, but for the free
+    /// piece out of a retraction, whose length changes with the travel.
+    pub(super) pitch_m: f64,
+    /// Where its nodes start when not at the segment's start clamp: a retraction's outlet
+    /// (the cable stored in the unit behind it is not free).
+    pub(super) from: Option<Pose>,
 }
 
 /// The neighbouring solution a solve starts from, if any.

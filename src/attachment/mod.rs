@@ -43,6 +43,7 @@ mod memory;
 mod poses;
 mod sets;
 mod sweep;
+mod through;
 mod verdict;
 
 pub use continuation::CONTINUATION_BLOCK;

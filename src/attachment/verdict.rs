@@ -255,13 +255,12 @@ impl Metrics {
     /// measure of a shape for every caller: the attachment test and `cable-dict segment`.
     pub fn of_shape(
         cable: &CableSpec,
-        nodes: &[Point3<f64>],
+        (nodes, pitch): (&[Point3<f64>], f64),
         (start, end): (&Pose, &Pose),
         clearance: Option<&Clearance>,
         self_within_m: f64,
         twist_rad: f64,
     ) -> Metrics {
-        let pitch = cable.sub_segment_pitch_m;
         let z = |pose: &Pose| pose.rotation.transform_vector(&Vector3::z());
         let bend = min_bend_radius(nodes, &z(start), &z(end), pitch);
         let within = self_within_m.max(cable.diameter_m);

@@ -317,7 +317,7 @@ time under the slider says where the motion ends. For a cell of several motions,
 the buttons picks the motion played.</p>\n\
 <p class=\"view-legend\">{} (closer to the robot or to itself than one cable diameter, or within \
 {:.0} % of the bend-radius or stretch limit) {} {} <span class=\"swatch ring\"></span>the worst \
-spot. Clamp markers: {} {} {}</p>\n\
+spot. Clamp markers: {} {} {} {} {}</p>\n\
 <p class=\"view-legend\" id=\"view-damage-legend\" hidden>Damage per cycle (the predicted life's \
 Miner sum per round, along the cable): {} {} {} {}</p>\n\
 <model-viewer id=\"view\" camera-controls camera-orbit=\"-40deg 70deg auto\" animation-crossfade-duration=\"0\" loading=\"eager\" interaction-prompt=\"none\" shadow-intensity=\"0\" \
@@ -340,6 +340,8 @@ aria-label=\"time\"><span id=\"view-worst-tick\"></span></span>\
         part_swatch(ClampPart::Rigid),
         part_swatch(ClampPart::Rotating),
         part_swatch(ClampPart::Swivel),
+        part_swatch(ClampPart::Sliding),
+        part_swatch(ClampPart::Retraction),
         damage_swatch(DamageLevel::Worst),
         damage_swatch(DamageLevel::Raised),
         damage_swatch(DamageLevel::Low),

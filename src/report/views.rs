@@ -35,6 +35,8 @@ fn mark(guide: &crate::setup::Guide, c: usize) -> GuideMark {
             GuideKind::Rigid => ClampPart::Rigid,
             GuideKind::Rotating => ClampPart::Rotating,
             GuideKind::Swivel { .. } => ClampPart::Swivel,
+            GuideKind::Sliding { .. } => ClampPart::Sliding,
+            GuideKind::Retraction { .. } => ClampPart::Retraction,
         },
     }
 }

@@ -45,6 +45,7 @@ pub(super) fn build(
     check_order(src, robot, raw, &guides)?;
     check_optional_ends(src, raw, &guides)?;
     check_swivels_at_ends(src, raw, &guides)?;
+    check_slides(src, raw, &guides)?;
     check_per_link(src, robot, raw, &guides, max_per_link)?;
     Ok(guides)
 }
@@ -107,82 +108,171 @@ fn guide(
 }
 
 /// The kinds of clamp `raw` may be, simplest first: `kind` (a word or a list of them) with
-/// the swivel's `cone_deg`.
+/// each kind's own keys (a swivel's `cone_deg`, a sliding guide's `friction_coefficient`, a
+/// retraction's `preload_n`, `rate_n_per_mm`, `travel_mm` and `stored_from`). A guide the
+/// cable slides through is one kind alone: it decides which pieces there are.
 fn kinds(src: Source, g: usize, raw: &RawGuide) -> Result<Vec<GuideKind>, SetupError> {
     let key = format!("guides[{g}].kind");
-    let cone_key = format!("guides[{g}].cone_deg");
-    let Some(kind) = &raw.kind else {
-        if let Some(cone) = &raw.cone_deg {
+    let own_keys: [(&str, Option<std::ops::Range<usize>>, &str); 6] = [
+        (
+            "cone_deg",
+            raw.cone_deg.as_ref().map(Spanned::span),
+            "swivel",
+        ),
+        (
+            "friction_coefficient",
+            raw.friction_coefficient.as_ref().map(Spanned::span),
+            "sliding",
+        ),
+        (
+            "preload_n",
+            raw.preload_n.as_ref().map(Spanned::span),
+            "retraction",
+        ),
+        (
+            "rate_n_per_mm",
+            raw.rate_n_per_mm.as_ref().map(Spanned::span),
+            "retraction",
+        ),
+        (
+            "travel_mm",
+            raw.travel_mm.as_ref().map(Spanned::span),
+            "retraction",
+        ),
+        (
+            "stored_from",
+            raw.stored_from.as_ref().map(Spanned::span),
+            "retraction",
+        ),
+    ];
+    let words: Vec<&toml::Value> = match raw.kind.as_ref().map(Spanned::get_ref) {
+        None => Vec::new(),
+        Some(toml::Value::Array(list)) => list.iter().collect(),
+        Some(one) => vec![one],
+    };
+    let offered = |word: &str| words.iter().any(|w| w.as_str() == Some(word));
+    for (name, span, owner) in &own_keys {
+        if let (Some(span), false) = (span, offered(owner)) {
             return Err(src.error(
-                cone.span(),
-                cone_key,
-                "cone_deg is a swivel's: add kind = \"swivel\"",
+                span.clone(),
+                format!("guides[{g}].{name}"),
+                format!("{name} is a {owner}'s: this guide offers no {owner} (kind = \"{owner}\")"),
             ));
         }
+    }
+    let Some(kind) = &raw.kind else {
         return Ok(vec![GuideKind::Rigid]);
-    };
-    let words: Vec<&toml::Value> = match kind.get_ref() {
-        toml::Value::Array(list) => list.iter().collect(),
-        one => vec![one],
     };
     if words.is_empty() {
         return Err(src.error(kind.span(), key, "an empty list: name at least one kind"));
     }
-    let swivel = || -> Result<GuideKind, SetupError> {
-        let Some(cone) = &raw.cone_deg else {
-            return Err(src.error(
-                kind.span(),
-                key.clone(),
-                "a swivel needs cone_deg: the half-angle of the cone its direction may turn \
-                 within (deg)",
-            ));
+    // A number the kind needs, checked against `valid` (what it must be, said when not).
+    let number = |value: &Option<Spanned<f64>>,
+                  name: &str,
+                  what: &str,
+                  valid: fn(f64) -> bool,
+                  must: &str|
+     -> Result<f64, SetupError> {
+        let Some(value) = value else {
+            return Err(src.error(kind.span(), key.clone(), format!("{what} needs {name}")));
         };
-        let deg = *cone.get_ref();
-        if !(deg.is_finite() && deg > 0.0 && deg <= 180.0) {
+        let v = *value.get_ref();
+        if !(v.is_finite() && valid(v)) {
             return Err(src.error(
-                cone.span(),
-                cone_key.clone(),
-                format!("{deg} deg: a cone's half-angle is in (0, 180] deg"),
+                value.span(),
+                format!("guides[{g}].{name}"),
+                format!("{v}: {must}"),
             ));
         }
+        Ok(v)
+    };
+    let swivel = || -> Result<GuideKind, SetupError> {
+        let deg = number(
+            &raw.cone_deg,
+            "cone_deg",
+            "a swivel",
+            |d| d > 0.0 && d <= 180.0,
+            "a cone's half-angle is in (0, 180] deg",
+        )?;
         Ok(GuideKind::Swivel {
             cone_rad: deg.to_radians(),
         })
     };
+    let sliding = || -> Result<GuideKind, SetupError> {
+        let friction = number(
+            &raw.friction_coefficient,
+            "friction_coefficient",
+            "a sliding guide (its Coulomb coefficient on the cable, 0 for none)",
+            |f| (0.0..=2.0).contains(&f),
+            "a friction coefficient is in [0, 2]",
+        )?;
+        Ok(GuideKind::Sliding { friction })
+    };
+    let retraction = || -> Result<GuideKind, SetupError> {
+        let what = "a retraction";
+        let non_negative = |v: f64| v >= 0.0;
+        let preload_n = number(
+            &raw.preload_n,
+            "preload_n",
+            what,
+            non_negative,
+            "a force ≥ 0 N",
+        )?;
+        let rate = number(
+            &raw.rate_n_per_mm,
+            "rate_n_per_mm",
+            what,
+            non_negative,
+            "a spring rate ≥ 0 N/mm",
+        )?;
+        let travel = number(
+            &raw.travel_mm,
+            "travel_mm",
+            what,
+            |t| t > 0.0 && t <= 5000.0,
+            "a travel in (0, 5000] mm",
+        )?;
+        if raw.stored_from.is_none() {
+            return Err(src.error(
+                kind.span(),
+                key.clone(),
+                "a retraction needs stored_from: the guide its stored cable comes from (its \
+                 inlet, the guide before it)",
+            ));
+        }
+        Ok(GuideKind::Retraction {
+            preload_n,
+            rate_n_per_m: rate * 1e3,
+            travel_max_m: travel * 1e-3,
+        })
+    };
     let mut kinds: Vec<GuideKind> = Vec::new();
-    for word in words {
+    for word in &words {
         let refuse = |problem: String| src.error(kind.span(), key.clone(), problem);
         let kind = match word.as_str() {
             Some("rigid") => GuideKind::Rigid,
             Some("rotating") => GuideKind::Rotating,
             Some("swivel") => swivel()?,
-            Some(part @ ("sliding" | "retraction")) => {
-                return Err(refuse(format!(
-                    "\"{part}\": the cable's length through a {part} guide is not solved in \
-                     this version (only rigid, rotating and swivel clamps are)"
-                )));
-            }
+            Some("sliding") => sliding()?,
+            Some("retraction") => retraction()?,
             _ => {
                 return Err(refuse(format!(
-                    "{word}: a kind is \"rigid\", \"rotating\" or \"swivel\" (or a list of \
-                     them the search may choose from)"
+                    "{word}: a kind is \"rigid\", \"rotating\", \"swivel\", \"sliding\" or \
+                     \"retraction\" (or a list of clamp kinds the search may choose from)"
                 )));
             }
         };
         if kinds.iter().any(|k| k.word() == kind.word()) {
             return Err(refuse(format!("\"{}\" is named twice", kind.word())));
         }
+        if kind.slides() && words.len() > 1 {
+            return Err(refuse(format!(
+                "a {} guide is not one of several kinds to choose from: the cable slides \
+                 through it, which changes which pieces there are; offer it alone",
+                kind.word()
+            )));
+        }
         kinds.push(kind);
-    }
-    if let (Some(cone), false) = (
-        &raw.cone_deg,
-        kinds.iter().any(|k| matches!(k, GuideKind::Swivel { .. })),
-    ) {
-        return Err(src.error(
-            cone.span(),
-            cone_key,
-            "cone_deg is a swivel's, and this guide offers no swivel",
-        ));
     }
     kinds.sort_by_key(GuideKind::rank);
     Ok(kinds)
@@ -507,6 +597,101 @@ fn check_optional_ends(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result
                     if g == 0 { "starts" } else { "ends" }
                 ),
             ));
+        }
+    }
+    Ok(())
+}
+
+/// A guide the cable slides through (a sliding guide, a retraction's outlet) sits between
+/// two clamps that are always mounted, on different links (the two pieces through it are
+/// one piece of the search), and has one place (`fixed`, or one configuration): the
+/// search does not move it. A retraction's `stored_from` names the guide before it, its
+/// inlet, on its own link.
+fn check_slides(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result<(), SetupError> {
+    let last = guides.len() - 1;
+    for (g, guide) in guides.iter().enumerate() {
+        let Some(kind) = guide.kinds.iter().find(|k| k.slides()) else {
+            continue;
+        };
+        let entry = raw.get_ref()[g].get_ref();
+        let kind_span = entry.kind.as_ref().map_or(raw.span(), |k| k.span());
+        let refuse = |problem: String| {
+            Err(src.error(kind_span.clone(), format!("guides[{g}].kind"), problem))
+        };
+        let word = kind.word();
+        if g == 0 || g == last {
+            return refuse(format!(
+                "{} is the {} guide: a {word} guide sits between two clamps",
+                guide.name,
+                if g == 0 { "first" } else { "last" }
+            ));
+        }
+        if guide.optional {
+            return refuse(format!(
+                "{} is optional: a {word} guide is always there (leave out a clamp instead)",
+                guide.name
+            ));
+        }
+        if guide.configurations.len() != 1 || guide.generated.is_some() {
+            return refuse(format!(
+                "{} has {} places: a {word} guide has one (`fixed = {{…}}`, or one \
+                 configuration); the search does not move it in this version",
+                guide.name,
+                guide.configurations.len()
+            ));
+        }
+        for n in [g - 1, g + 1] {
+            let neighbour = &guides[n];
+            if neighbour.optional || neighbour.kinds.iter().any(GuideKind::slides) {
+                return refuse(format!(
+                    "{} is next to {}, which is {}: the clamps on either side of a {word} guide \
+                     are always mounted and hold the cable",
+                    guide.name,
+                    neighbour.name,
+                    if neighbour.optional {
+                        "optional"
+                    } else {
+                        "one the cable slides through"
+                    }
+                ));
+            }
+        }
+        if guides[g - 1].body == guides[g + 1].body {
+            return refuse(format!(
+                "{} and {} on either side of {} are on one link: the cable through a {word} \
+                 guide between them cannot change its split as the robot moves",
+                guides[g - 1].name,
+                guides[g + 1].name,
+                guide.name
+            ));
+        }
+        if let (GuideKind::Retraction { .. }, Some(stored)) = (kind, &entry.stored_from) {
+            let inlet = &guides[g - 1];
+            let key = format!("guides[{g}].stored_from");
+            if stored.get_ref() != &inlet.name {
+                return Err(src.error(
+                    stored.span(),
+                    key,
+                    format!(
+                        "\"{}\" but the guide before {} is {}: the stored cable runs from the \
+                         unit's inlet, the guide before its outlet",
+                        stored.get_ref(),
+                        guide.name,
+                        inlet.name
+                    ),
+                ));
+            }
+            if inlet.body != guide.body {
+                return Err(src.error(
+                    stored.span(),
+                    key,
+                    format!(
+                        "{} is on another link than {}: a retraction system's inlet and outlet \
+                         are on the unit, on one link",
+                        inlet.name, guide.name
+                    ),
+                ));
+            }
         }
     }
     Ok(())

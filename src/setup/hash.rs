@@ -70,8 +70,9 @@ pub(super) fn canonical_bytes(setup: &Setup) -> Vec<u8> {
         for guide in &setup.guides {
             for kind in guide.configurations.iter().map(|c| c.kind) {
                 out.str(kind.word());
-                if let super::GuideKind::Swivel { cone_rad } = kind {
-                    out.floats(&[cone_rad]);
+                let parameters = kind.parameters();
+                if !parameters.is_empty() {
+                    out.floats(&parameters);
                 }
             }
         }

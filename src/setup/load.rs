@@ -55,7 +55,8 @@ pub(super) fn from_str(
     };
     let sites = SiteContext::new(0.5 * cable.diameter_m, installation.as_ref());
     let mut guides = guides::build(src, &robot, &raw.guides, max_guides_per_link, &sites)?;
-    let mut segments = segments::build(src, &guides, &raw.segments, robustness.delta_s)?;
+    let delta_pitch = (robustness.delta_s, cable.sub_segment_pitch_m);
+    let mut segments = segments::build(src, &guides, &raw.segments, delta_pitch)?;
     guides::warn_buried_clamps(src, &robot, &guides, &sites);
     coincide::add_copies(&mut guides, &segments);
     guides::expand_kinds(&mut guides);

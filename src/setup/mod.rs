@@ -207,6 +207,22 @@ pub enum GuideKind {
         /// The cone's half-angle (rad), in (0, π].
         cone_rad: f64,
     },
+    /// Position and direction held; the cable slides through (and turns in) it, so the
+    /// length on either side changes with the pose: a ring or roller between two clamps.
+    Sliding {
+        /// Coulomb friction coefficient of the guide on the cable (0: frictionless).
+        friction: f64,
+    },
+    /// The outlet of a retraction system: a sliding guide whose cable behind it is stored in
+    /// the unit (from the previous guide, its inlet) and pulled back by a spring.
+    Retraction {
+        /// The spring's force at zero travel, the unit resting on its stop (N).
+        preload_n: f64,
+        /// The force's growth per metre of cable pulled out (N/m).
+        rate_n_per_m: f64,
+        /// The most cable the unit gives out (m).
+        travel_max_m: f64,
+    },
 }
 
 impl GuideKind {
@@ -216,7 +232,33 @@ impl GuideKind {
             GuideKind::Rigid => "rigid",
             GuideKind::Rotating => "rotating",
             GuideKind::Swivel { .. } => "swivel",
+            GuideKind::Sliding { .. } => "sliding",
+            GuideKind::Retraction { .. } => "retraction",
         }
+    }
+
+    /// Its parameters in SI, in a fixed order (for the content hash): none for a rigid or
+    /// rotating clamp.
+    pub fn parameters(&self) -> Vec<f64> {
+        match *self {
+            GuideKind::Rigid | GuideKind::Rotating => Vec::new(),
+            GuideKind::Swivel { cone_rad } => vec![cone_rad],
+            GuideKind::Sliding { friction } => vec![friction],
+            GuideKind::Retraction {
+                preload_n,
+                rate_n_per_m,
+                travel_max_m,
+            } => vec![preload_n, rate_n_per_m, travel_max_m],
+        }
+    }
+
+    /// Whether the cable slides through it (a sliding guide or a retraction's outlet): the
+    /// pieces on either side are one piece of the search, their split found by the solver.
+    pub fn slides(&self) -> bool {
+        matches!(
+            self,
+            GuideKind::Sliding { .. } | GuideKind::Retraction { .. }
+        )
     }
 
     /// How simple the part is: the search prefers the simplest of equally good ones.
@@ -225,6 +267,8 @@ impl GuideKind {
             GuideKind::Rigid => 0,
             GuideKind::Rotating => 1,
             GuideKind::Swivel { .. } => 2,
+            GuideKind::Sliding { .. } => 3,
+            GuideKind::Retraction { .. } => 4,
         }
     }
 }
@@ -294,6 +338,11 @@ pub struct SegmentSpec {
     pub intra_link: bool,
     /// The range as written.
     pub range: LengthRange,
+    /// For the piece through a sliding guide or a retraction's outlet, that guide (its only
+    /// configuration): the cable runs from `guides.0` through it to `guides.1`, its split
+    /// found by the solver. The declared segments on either side of such a guide have no
+    /// lengths: they are never pieces alone.
+    pub through: Option<usize>,
 }
 
 /// `lengths = { min, max, step, allow_zero }` as written (sub-segments).

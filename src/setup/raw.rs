@@ -101,6 +101,21 @@ pub(super) struct RawGuide {
     /// A swivel's cone: the half-angle its direction may turn within (deg).
     #[serde(default)]
     pub cone_deg: Option<Spanned<f64>>,
+    /// A sliding guide's Coulomb friction coefficient on the cable (0 allowed).
+    #[serde(default)]
+    pub friction_coefficient: Option<Spanned<f64>>,
+    /// A retraction's spring force at zero travel (N).
+    #[serde(default)]
+    pub preload_n: Option<Spanned<f64>>,
+    /// A retraction's spring rate (N per mm of cable pulled out).
+    #[serde(default)]
+    pub rate_n_per_mm: Option<Spanned<f64>>,
+    /// A retraction's travel: the most cable it gives out (mm).
+    #[serde(default)]
+    pub travel_mm: Option<Spanned<f64>>,
+    /// A retraction's inlet: the guide the stored cable comes from (the previous guide).
+    #[serde(default)]
+    pub stored_from: Option<Spanned<String>>,
 }
 
 /// `sites = { spacing_mm, clamp_height_mm, directions_deg, region, reference_axis }`: a site

@@ -3,15 +3,15 @@
 use super::error::Source;
 use super::guides::same_pose;
 use super::raw::{RawGuide, RawLengths, RawSegment};
-use super::{Guide, LengthRange, MAX_SUB_SEGMENTS, SegmentSpec, SetupError};
+use super::{Guide, GuideKind, LengthRange, MAX_SUB_SEGMENTS, SegmentSpec, SetupError};
 use toml::Spanned;
 
-/// Validates the `[[segments]]` list against the guides and ΔS.
+/// Validates the `[[segments]]` list against the guides, ΔS and the pitch (m).
 pub(super) fn build(
     src: Source,
     guides: &[Guide],
     raw: &Spanned<Vec<Spanned<RawSegment>>>,
-    delta_s: usize,
+    (delta_s, pitch_m): (usize, f64),
 ) -> Result<Vec<SegmentSpec>, SetupError> {
     let expected = guides.len() - 1;
     if raw.get_ref().len() != expected {
@@ -29,7 +29,7 @@ pub(super) fn build(
     raw.get_ref()
         .iter()
         .enumerate()
-        .map(|(m, entry)| segment(src, guides, m, entry.get_ref(), delta_s))
+        .map(|(m, entry)| segment(src, guides, m, entry.get_ref(), (delta_s, pitch_m)))
         .collect()
 }
 
@@ -38,7 +38,7 @@ fn segment(
     guides: &[Guide],
     m: usize,
     raw: &RawSegment,
-    delta_s: usize,
+    (delta_s, pitch_m): (usize, f64),
 ) -> Result<SegmentSpec, SetupError> {
     let (a, b) = (&guides[m], &guides[m + 1]);
     check_end(src, &raw.from, &format!("segments[{m}].from"), &a.name)?;
@@ -51,11 +51,24 @@ fn segment(
     }
     let zero = range.allow_zero.then_some(0);
     let series = (range.min..=range.max).step_by(range.step);
+    // The segments on either side of a guide the cable slides through are one piece: the
+    // span through it.
+    let slides = |g: &Guide| g.kinds.iter().any(|k| k.slides());
+    let lengths = match slides(a) || slides(b) {
+        true => Vec::new(),
+        false => zero.into_iter().chain(series).collect(),
+    };
+    if let Some(GuideKind::Retraction { travel_max_m, .. }) = b.kinds.first()
+        && b.kinds.len() == 1
+    {
+        check_stored(src, &key, raw, (a, b), *travel_max_m, pitch_m)?;
+    }
     Ok(SegmentSpec {
         guides: (m, m + 1),
-        lengths: zero.into_iter().chain(series).collect(),
+        lengths,
         intra_link,
         range,
+        through: None,
     })
 }
 
@@ -76,6 +89,11 @@ pub(super) fn spans(
         // Every guide strictly between a and b is optional.
         for b in a + 2..guides.len() {
             let skipped = b - 1;
+            let slides = guides[skipped].kinds.iter().any(|k| k.slides());
+            if slides && b == a + 2 {
+                spans.push(through(guides, &declared[a..b], skipped));
+                break;
+            }
             if !guides[skipped].optional {
                 break;
             }
@@ -112,10 +130,83 @@ pub(super) fn spans(
                     step,
                     allow_zero: false,
                 },
+                through: None,
             });
         }
     }
     Ok(spans)
+}
+
+/// The piece from guide `g − 1` through guide `g` (a sliding guide or a retraction's outlet)
+/// to guide `g + 1`: its lengths the sums of the two declared segments' `declared` (a
+/// retraction's stored cable at rest is the first one's only length), in steps of their
+/// steps' greatest common divisor. Both ends are mounted clamps on different links
+/// (checked with the guides).
+fn through(guides: &[Guide], declared: &[SegmentSpec], g: usize) -> SegmentSpec {
+    let ranges = || declared.iter().map(|s| s.range);
+    let min: usize = ranges().map(|r| r.min).sum();
+    let max: usize = ranges().map(|r| r.max).sum();
+    let step = ranges().map(|r| r.step).fold(0, gcd);
+    SegmentSpec {
+        guides: (g - 1, g + 1),
+        lengths: (min..=max).step_by(step).collect(),
+        intra_link: guides[g - 1].body == guides[g + 1].body,
+        range: LengthRange {
+            min,
+            max,
+            step,
+            allow_zero: false,
+        },
+        through: Some(g),
+    }
+}
+
+/// The segment from a retraction's inlet `a` to its outlet `b` is the cable stored in the
+/// unit at rest: one length (`min = max`, no S = 0), long enough to give out the whole
+/// travel beyond the straight run between them.
+fn check_stored(
+    src: Source,
+    key: &str,
+    raw: &RawSegment,
+    (a, b): (&Guide, &Guide),
+    travel_max_m: f64,
+    pitch_m: f64,
+) -> Result<(), SetupError> {
+    let lengths = &raw.lengths;
+    let (min, max) = (*lengths.min.get_ref(), *lengths.max.get_ref());
+    if min != max || *lengths.allow_zero.get_ref() {
+        return Err(src.error(
+            raw.lengths.max.span(),
+            format!("{key}.max"),
+            format!(
+                "{} to {} is the cable stored in the retraction system at rest: one length \
+                 (min = max, no allow_zero), not {min} to {max}",
+                a.name, b.name
+            ),
+        ));
+    }
+    let outlet = b.pose_in_body(0).translation.vector;
+    let straight_m = (0..a.configurations.len())
+        .map(|c| (a.pose_in_body(c).translation.vector - outlet).norm())
+        .fold(0.0, f64::max);
+    let stored_m = min as f64 * pitch_m;
+    if stored_m < straight_m + travel_max_m {
+        return Err(src.error(
+            raw.lengths.min.span(),
+            format!("{key}.min"),
+            format!(
+                "{:.0} mm stored between {} and {} cannot give out the {:.0} mm of travel \
+                 beyond their {:.0} mm straight run: at least {} sub-segments",
+                stored_m * 1e3,
+                a.name,
+                b.name,
+                travel_max_m * 1e3,
+                straight_m * 1e3,
+                ((straight_m + travel_max_m) / pitch_m).ceil()
+            ),
+        ));
+    }
+    Ok(())
 }
 
 fn gcd(a: usize, b: usize) -> usize {

@@ -81,6 +81,8 @@ impl Hold {
             GuideKind::Rigid => Hold::Rigid,
             GuideKind::Rotating => Hold::Rotating,
             GuideKind::Swivel { cone_rad } => Hold::Swivel { cone_rad },
+            // The cable turns in a ring it slides through; the ring holds its direction.
+            GuideKind::Sliding { .. } | GuideKind::Retraction { .. } => Hold::Rotating,
         }
     }
 

@@ -167,7 +167,7 @@ impl Metrics {
         // here the scene's, reported apart).
         let shape = ShapeMetrics::of_shape(
             cable,
-            nodes,
+            (nodes, cable.sub_segment_pitch_m),
             (&args.start, &args.end),
             None,
             f64::INFINITY,

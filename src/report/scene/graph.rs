@@ -50,6 +50,8 @@ impl Paint {
                     ClampPart::Rigid => "guide",
                     ClampPart::Rotating => "guide, rotating clamp",
                     ClampPart::Swivel => "guide, swivel",
+                    ClampPart::Sliding => "guide, sliding",
+                    ClampPart::Retraction => "guide, retraction outlet",
                 };
                 opaque(name, part.linear_rgb())
             }
@@ -181,6 +183,14 @@ impl SharedMeshes {
                 ClampPart::Swivel => (
                     "guide marker, swivel",
                     cable_joint_sphere(GUIDE_OUTER_RADII * r),
+                ),
+                ClampPart::Sliding => (
+                    "guide marker, sliding guide",
+                    collar(r, 0.8 * GUIDE_OUTER_RADII * r, 2.0 * GUIDE_LENGTH_M),
+                ),
+                ClampPart::Retraction => (
+                    "guide marker, retraction outlet",
+                    collar(r, 2.5 * GUIDE_OUTER_RADII * r, GUIDE_LENGTH_M),
                 ),
             };
             let mesh = painted_mesh(builder, materials, name, &marker, Paint::Guide(part))?;

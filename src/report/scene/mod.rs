@@ -328,11 +328,21 @@ pub enum ClampPart {
     Rotating,
     /// A swivel (ball joint): a purple ball.
     Swivel,
+    /// A sliding guide (the cable slides through): a long, thin grey sleeve.
+    Sliding,
+    /// A retraction system's outlet: a wide orange drum.
+    Retraction,
 }
 
 impl ClampPart {
     /// Every part, in the order of the materials.
-    pub const ALL: [ClampPart; 3] = [ClampPart::Rigid, ClampPart::Rotating, ClampPart::Swivel];
+    pub const ALL: [ClampPart; 5] = [
+        ClampPart::Rigid,
+        ClampPart::Rotating,
+        ClampPart::Swivel,
+        ClampPart::Sliding,
+        ClampPart::Retraction,
+    ];
 
     /// Its colour as the scene's material gives it (linear RGB, 0–1).
     pub fn linear_rgb(self) -> [f32; 3] {
@@ -340,6 +350,8 @@ impl ClampPart {
             ClampPart::Rigid => [0.1, 0.3, 0.9],
             ClampPart::Rotating => [0.0, 0.6, 0.55],
             ClampPart::Swivel => [0.55, 0.15, 0.8],
+            ClampPart::Sliding => [0.45, 0.45, 0.45],
+            ClampPart::Retraction => [0.9, 0.35, 0.02],
         }
     }
 
@@ -354,6 +366,8 @@ impl ClampPart {
             ClampPart::Rigid => "clamp (a collar)",
             ClampPart::Rotating => "rotating clamp (a flat ring)",
             ClampPart::Swivel => "swivel (a ball)",
+            ClampPart::Sliding => "sliding guide (a long grey sleeve)",
+            ClampPart::Retraction => "retraction outlet (an orange drum)",
         }
     }
 }

@@ -1,0 +1,62 @@
+//! The attachment test of a piece through a sliding guide or out of a retraction: the pieces
+//! on either side of the guide are one piece of the search (its length the total between
+//! the clamps), solved from scratch at every pose by the split (or travel) of least energy
+//! (docs/architecture.md, "Sliding guides and retractions").
+
+use super::evaluate::{Evaluator, Scene, Solved};
+use super::verdict::{Check, Rejection};
+use crate::pose::Pose;
+use crate::statics::{Holds, RodParameters, sliding};
+
+impl Evaluator<'_> {
+    /// The equilibrium of a piece of segment `m` (a span through a sliding guide or a
+    /// retraction's outlet) of `sub_segments` between `guides`, held by its clamps as
+    /// `holds`, in `scene`.
+    pub(super) fn solve_through(
+        &self,
+        (m, holds): (usize, Holds),
+        guides: &(Pose, Pose),
+        sub_segments: usize,
+        scene: &Scene<'_>,
+    ) -> Result<Solved, Check> {
+        let setup = self.setup;
+        let Some(g) = setup.segments[m].through else {
+            return Err(Check::fail(
+                Rejection::Diverged,
+                "not a piece through a sliding guide".into(),
+                None,
+            ));
+        };
+        let guide = &setup.guides[g];
+        let through = setup.guide_world_pose(scene.link_poses, g, 0);
+        let stored = setup.segments[g - 1].range.min;
+        let rod = RodParameters {
+            gravity_m_s2: scene.gravity_m_s2,
+            holds,
+            ..self.rod
+        };
+        let solved = sliding::solve_through(
+            &rod,
+            (guide.configurations[0].kind, stored),
+            (&guides.0, &through, &guides.1),
+            (sub_segments, setup.cable.sub_segment_pitch_m),
+            &self.solver,
+        );
+        match solved {
+            Ok(solved) => {
+                (0..solved.solves).for_each(|_| self.count_static_solve(m));
+                Ok(Solved {
+                    nodes: solved.nodes,
+                    connected: Vec::new(),
+                    twist_rad: 0.0,
+                    pitch_m: solved.pitch_m,
+                    from: solved.from,
+                })
+            }
+            Err(e @ crate::statics::StaticsError::InvalidInput { .. }) => {
+                Err(Check::fail(Rejection::TooShort, e.to_string(), None))
+            }
+            Err(e) => Err(Check::fail(Rejection::Diverged, e.to_string(), None)),
+        }
+    }
+}
