@@ -11,7 +11,8 @@ use crate::pose::Pose;
 #[cfg(feature = "rigid-chain")]
 use crate::rigid_chain::{CableWorld, ContactSummary, RigidChainError, SegmentShape};
 use crate::setup::Setup;
-use crate::statics::{Equilibrium, FarEnd, RodParameters};
+use crate::statics::sliding::{SlideReading, SlideTrack, ThroughEquilibrium};
+use crate::statics::{Equilibrium, FarEnd, RodParameters, SolverOptions};
 use crate::stress::ClampZone;
 #[cfg(feature = "rigid-chain")]
 use crate::stress::GuideEnd;
@@ -20,8 +21,16 @@ use rayon::prelude::*;
 
 /// One simulated segment after a step.
 pub(super) struct SegmentState {
-    /// `S + 1` nodes, world frame (m).
+    /// `S + 1` nodes, world frame (m); a retraction's free piece only.
     pub nodes: Vec<Point3<f64>>,
+    /// The cable length between two nodes (m): the setup's pitch, but for a retraction's
+    /// free piece, stretched by its travel.
+    pub pitch_m: f64,
+    /// Where the nodes start when not at the segment's start clamp: a retraction's outlet.
+    pub from: Option<Pose>,
+    /// Through a sliding guide or out of a retraction: the split or travel (m) and the
+    /// retraction's spring force (N).
+    pub slid: Option<SlideReading>,
     /// The most loaded sub-segment outside the clamp zones (rigid chain only).
     pub contact: Option<ForceAt>,
     /// Largest joint gap (m): the rigid chain's constraint error; 0 for the implicit engine,
@@ -49,17 +58,90 @@ pub(super) struct Diverged {
     pub detail: String,
 }
 
+/// One segment of the implicit engine: in motion between its clamps, or (through a sliding
+/// guide or out of a retraction) followed quasi-statically with its split carried.
+pub(super) enum Simulated {
+    Dynamic(SegmentDynamics),
+    Through {
+        track: Box<SlideTrack>,
+        /// The guide's link and its pose in that link's frame.
+        guide: (usize, Pose),
+        params: RodParameters,
+    },
+}
+
+impl Simulated {
+    /// Steps to the clamps at `(start, end)`, the links at `links`, by the engine's step.
+    fn step(
+        &mut self,
+        (start, end): (Pose, Pose),
+        links: &[Pose],
+        settings: &IntegratorSettings,
+    ) -> Result<(), String> {
+        match self {
+            Simulated::Dynamic(segment) => segment
+                .step(start, FarEnd::Clamped(end), settings.time_step_s, settings)
+                .map(|_| ())
+                .map_err(|e| e.to_string()),
+            Simulated::Through {
+                track,
+                guide: (link, pose),
+                params,
+            } => {
+                let through = links[*link] * *pose;
+                track
+                    .step(params, (start, through, end), &SolverOptions::STRESS_CHECK)
+                    .map_err(|e| e.to_string())
+            }
+        }
+    }
+
+    /// Its state now.
+    fn state(&self, pitch_m: f64) -> SegmentState {
+        match self {
+            Simulated::Dynamic(segment) => SegmentState {
+                nodes: segment.nodes(),
+                pitch_m,
+                from: None,
+                slid: None,
+                contact: None,
+                max_joint_gap_m: 0.0,
+                twist_rad: Some(segment.twist_rad()),
+            },
+            Simulated::Through { track, .. } => track_state(track),
+        }
+    }
+}
+
+/// The state of a piece followed through a sliding guide or out of a retraction.
+pub(super) fn track_state(track: &SlideTrack) -> SegmentState {
+    let (nodes, pitch_m) = track.nodes();
+    SegmentState {
+        nodes,
+        pitch_m,
+        from: track.outlet(),
+        slid: Some(track.reading()),
+        contact: None,
+        max_joint_gap_m: 0.0,
+        twist_rad: Some(0.0),
+    }
+}
+
 /// The cable in one of the engines.
 pub(super) enum Cable {
     Implicit {
-        segments: Vec<SegmentDynamics>,
+        segments: Vec<Simulated>,
         settings: IntegratorSettings,
+        /// The setup's pitch (m).
+        pitch_m: f64,
     },
     #[cfg(feature = "rigid-chain")]
     RigidChain {
         world: Box<CableWorld>,
         /// Sub-segments at each end left out of the contact force summary.
         zone_sub_segments: usize,
+        /// The setup's pitch (m).
+        pitch_m: f64,
     },
 }
 
@@ -72,9 +154,8 @@ impl Cable {
         engine: &Engine,
         (setup, plan): (&Setup, &Plan),
         zones: &[Vec<ClampZone>],
-        guides: &[Pose],
-        links: &[Pose],
-        shapes: &[Equilibrium],
+        (guides, links): (&[Pose], &[Pose]),
+        (shapes, throughs): (&[Equilibrium], &[Option<ThroughEquilibrium>]),
     ) -> Result<Result<Cable, Failure>, MotionTestError> {
         let refused = |what: String| Failure {
             cause: FailureCause::NoInitialShape,
@@ -87,6 +168,22 @@ impl Cable {
                 let mut segments = Vec::with_capacity(shapes.len());
                 for (j, (shape, planned)) in shapes.iter().zip(&plan.segments).enumerate() {
                     let params = planned.rod(&params);
+                    if let (Some(g), Some(Some(solved))) = (planned.through, throughs.get(j)) {
+                        let guide = &setup.guides[g];
+                        let configuration = &guide.configurations[0];
+                        let through = setup.guide_world_pose(links, g, 0);
+                        let track = SlideTrack::start(
+                            configuration.kind,
+                            solved,
+                            (guides[j], through, guides[j + 1]),
+                        );
+                        segments.push(Simulated::Through {
+                            track: Box::new(track),
+                            guide: (guide.link, configuration.pose),
+                            params,
+                        });
+                        continue;
+                    }
                     match SegmentDynamics::at_rest(
                         &params,
                         guides[j],
@@ -94,13 +191,14 @@ impl Cable {
                         &shape.nodes,
                         shape.twist_rad,
                     ) {
-                        Ok(segment) => segments.push(segment),
+                        Ok(segment) => segments.push(Simulated::Dynamic(segment)),
                         Err(e) => return Ok(Err(refused(e.to_string()))),
                     }
                 }
                 Ok(Ok(Cable::Implicit {
                     segments,
                     settings: *settings,
+                    pitch_m: setup.cable.sub_segment_pitch_m,
                 }))
             }
             #[cfg(not(feature = "rigid-chain"))]
@@ -114,12 +212,13 @@ impl Cable {
                 if let Some(planned) = plan
                     .segments
                     .iter()
-                    .find(|s| s.holds != crate::statics::Holds::RIGID)
+                    .find(|s| s.holds != crate::statics::Holds::RIGID || s.through.is_some())
                 {
                     return Err(MotionTestError::Options {
                         what: format!(
                             "the rigid-chain engine holds the cable in rigid clamps only, and \
-                             {} ends in a rotating or swivel clamp: use the implicit engine",
+                             {} ends in a rotating or swivel clamp or runs through a sliding \
+                             guide: use the implicit engine",
                             setup.segment_name(planned.setup_index)
                         ),
                     });
@@ -135,6 +234,7 @@ impl Cable {
                 Ok(Ok(Cable::RigidChain {
                     world,
                     zone_sub_segments: setup.clamp_zone(GuideEnd::Start, 0).sub_segments,
+                    pitch_m: setup.cable.sub_segment_pitch_m,
                 }))
             }
         }
@@ -150,19 +250,17 @@ impl Cable {
         links: &[Pose],
     ) -> Result<Result<Vec<SegmentState>, Diverged>, MotionTestError> {
         match self {
-            Cable::Implicit { segments, settings } => {
+            Cable::Implicit {
+                segments,
+                settings,
+                pitch_m,
+            } => {
                 // Segments are independent between clamps: stepped in parallel, each the same
                 // computation whatever the thread count.
                 let stepped: Vec<Result<(), String>> = segments
                     .par_iter_mut()
                     .enumerate()
-                    .map(|(j, segment)| {
-                        let end = FarEnd::Clamped(guides[j + 1]);
-                        segment
-                            .step(guides[j], end, settings.time_step_s, settings)
-                            .map(|_| ())
-                            .map_err(|e| e.to_string())
-                    })
+                    .map(|(j, segment)| segment.step((guides[j], guides[j + 1]), links, settings))
                     .collect();
                 if let Some((j, Err(detail))) = stepped
                     .into_iter()
@@ -174,20 +272,13 @@ impl Cable {
                         detail,
                     }));
                 }
-                Ok(Ok(segments
-                    .iter()
-                    .map(|segment| SegmentState {
-                        nodes: segment.nodes(),
-                        contact: None,
-                        max_joint_gap_m: 0.0,
-                        twist_rad: Some(segment.twist_rad()),
-                    })
-                    .collect()))
+                Ok(Ok(segments.iter().map(|s| s.state(*pitch_m)).collect()))
             }
             #[cfg(feature = "rigid-chain")]
             Cable::RigidChain {
                 world,
                 zone_sub_segments,
+                pitch_m,
             } => {
                 world
                     .move_guides(guides)
@@ -210,6 +301,9 @@ impl Cable {
                     .map(|(j, rec)| {
                         let nodes = world.segment_nodes(j).unwrap_or_default();
                         SegmentState {
+                            pitch_m: *pitch_m,
+                            from: None,
+                            slid: None,
                             contact: force_outside_zones(&rec.contact, *zone_sub_segments),
                             max_joint_gap_m: rec.max_joint_gap_m,
                             nodes,

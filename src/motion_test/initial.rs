@@ -8,6 +8,7 @@ use super::report::{Failure, FailureCause};
 use crate::geometry::{ConnectError, connect, sag_direction};
 use crate::pose::Pose;
 use crate::setup::Setup;
+use crate::statics::sliding::{ThroughEquilibrium, solve_through};
 use crate::statics::{
     Equilibrium, FarEnd, RodParameters, SolverOptions, StaticSolver, StaticsError,
 };
@@ -19,20 +20,28 @@ pub(super) struct NoStart {
     pub too_short: Option<(usize, f64)>,
 }
 
+/// The initial shapes: per simulated segment its equilibrium (for a piece through a sliding
+/// guide or out of a retraction, the cable as judged, and the solution behind it).
+pub(super) struct Shapes {
+    pub equilibria: Vec<Equilibrium>,
+    pub throughs: Vec<Option<ThroughEquilibrium>>,
+}
+
 /// The equilibrium of every simulated segment between `guides` (segments + 1 world poses)
-/// at `time_s`; `Ok(Err(_))` when the candidate has no initial shape (a segment too short,
-/// no connected geometry, no equilibrium).
+/// at `time_s`, the links at `links`; `Ok(Err(_))` when the candidate has no initial shape
+/// (a segment too short, no connected geometry, no equilibrium).
 pub(super) fn equilibria(
     setup: &Setup,
     plan: &Plan,
-    guides: &[Pose],
+    (guides, links): (&[Pose], &[Pose]),
     time_s: f64,
-) -> Result<Result<Vec<Equilibrium>, NoStart>, MotionTestError> {
+) -> Result<Result<Shapes, NoStart>, MotionTestError> {
     let sag = sag_direction(&setup.gravity_m_s2);
     let pitch = setup.cable.sub_segment_pitch_m;
     let params = RodParameters::new(&setup.cable, setup.gravity_m_s2);
     let mut solver = StaticSolver::default();
     let mut shapes = Vec::with_capacity(plan.segments.len());
+    let mut throughs = Vec::with_capacity(plan.segments.len());
     for (j, planned) in plan.segments.iter().enumerate() {
         let segment = planned.setup_index;
         let (start, end) = (&guides[j], &guides[j + 1]);
@@ -47,6 +56,40 @@ pub(super) fn equilibria(
             },
             too_short,
         };
+        if let Some(g) = planned.through {
+            let kind = setup.guides[g].configurations[0].kind;
+            let through = setup.guide_world_pose(links, g, 0);
+            let stored = setup.segments[g - 1].range.min;
+            let solved = solve_through(
+                &planned.rod(&params),
+                (kind, stored),
+                (start, &through, end),
+                (planned.sub_segments, pitch),
+                &SolverOptions::STRESS_CHECK,
+            );
+            match solved {
+                Ok(solved) => {
+                    shapes.push(Equilibrium {
+                        nodes: solved.nodes.clone(),
+                        frames: Vec::new(),
+                        twist_rad: 0.0,
+                        energy: Default::default(),
+                        iterations: 0,
+                        residual_n: 0.0,
+                    });
+                    throughs.push(Some(solved));
+                    continue;
+                }
+                Err(e @ StaticsError::InvalidInput { .. }) => {
+                    let cause = FailureCause::TooShort;
+                    return Ok(Err(no_start(cause, e.to_string(), None)));
+                }
+                Err(e @ StaticsError::NotConverged { .. }) => {
+                    let problem = format!("no static equilibrium: {e}");
+                    return Ok(Err(no_start(FailureCause::NoInitialShape, problem, None)));
+                }
+            }
+        }
         let geometry = match connect(start, end, planned.sub_segments, pitch, &sag) {
             Ok(geometry) => geometry,
             Err(source @ ConnectError::InvalidInput { .. }) => {
@@ -85,7 +128,10 @@ pub(super) fn equilibria(
             &SolverOptions::STRESS_CHECK,
         );
         match solved {
-            Ok(equilibrium) => shapes.push(equilibrium),
+            Ok(equilibrium) => {
+                shapes.push(equilibrium);
+                throughs.push(None);
+            }
             Err(source @ StaticsError::InvalidInput { .. }) => {
                 return Err(MotionTestError::Statics {
                     segment: setup.segment_name(segment),
@@ -98,5 +144,8 @@ pub(super) fn equilibria(
             }
         }
     }
-    Ok(Ok(shapes))
+    Ok(Ok(Shapes {
+        equilibria: shapes,
+        throughs,
+    }))
 }

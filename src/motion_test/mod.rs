@@ -65,8 +65,9 @@ mod tracker;
 pub use error::MotionTestError;
 pub use options::{DEFAULT_SETTLE_TAIL_S, Engine, EngineKind, MotionTestOptions};
 pub use report::{
-    ClampLoadPeak, ClampTurn, Constraint, Failure, FailureCause, MotionTestReport, PieceLifeDamage,
-    PieceTwist, PieceWorst, Place, SegmentNodes, SeriesPoint, ShapeFrame, Violation, Worst,
+    ClampLoadPeak, ClampTurn, Constraint, Failure, FailureCause, GuideSlide, MotionTestReport,
+    PieceLifeDamage, PieceTwist, PieceWorst, Place, SLIDE_SAMPLE_S, SegmentNodes, SeriesPoint,
+    ShapeFrame, SlidePoint, Violation, Worst,
 };
 
 use crate::motion::Motion;

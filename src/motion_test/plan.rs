@@ -24,6 +24,9 @@ pub(super) struct PlannedSegment {
     pub end: (usize, usize),
     /// How its clamps hold it.
     pub holds: Holds,
+    /// The sliding guide or retraction outlet it runs through, if any (index into the
+    /// setup's guides): followed quasi-statically, its split carried step to step.
+    pub through: Option<usize>,
 }
 
 impl PlannedSegment {
@@ -64,6 +67,7 @@ impl Plan {
                 start: (a, pv.start),
                 end: (b, pv.end),
                 holds: Holds::of(setup.piece_kinds(m, (pv.start, pv.end))),
+                through: setup.segments[m].through,
             });
         }
         if segments.is_empty() {

@@ -54,6 +54,9 @@ pub struct MotionTestReport {
     /// Per rotating clamp between two pieces, how far the cable turned in it: the twist it
     /// relieved.
     pub clamp_turns: Vec<ClampTurn>,
+    /// Per sliding guide and retraction on the path: how far the cable slid through it,
+    /// the spring's force.
+    pub slides: Vec<GuideSlide>,
     /// Largest gap between the anchors of two joined bodies over the run (m): the solver's
     /// constraint error, ≈ 0.1 mm at the default settings.
     pub max_joint_gap_m: f64,
@@ -159,6 +162,51 @@ pub struct ClampTurn {
     pub time_s: f64,
 }
 
+/// A sliding guide or a retraction over the run: how far the cable slid through it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GuideSlide {
+    /// The setup's guide.
+    pub guide: String,
+    /// `"sliding"` or `"retraction"`.
+    pub kind: &'static str,
+    /// The setup's segment of the piece through it (C1 = 0), and its name.
+    pub segment: usize,
+    /// E.g. `C2–C3`.
+    pub segment_name: String,
+    /// At the first instant: the cable before a sliding guide, or a retraction's travel (m).
+    pub first_m: f64,
+    /// The least of it over the run (m), and when.
+    pub least_m: f64,
+    /// When the least was (s).
+    pub least_time_s: f64,
+    /// The most of it over the run (m).
+    pub most_m: f64,
+    /// When the most was (s).
+    pub most_time_s: f64,
+    /// A retraction's travel (m); `None` for a sliding guide.
+    pub travel_max_m: Option<f64>,
+    /// A retraction's largest spring force (N).
+    pub peak_force_n: Option<f64>,
+    /// Time a retraction spent on its end stop (s).
+    pub end_stop_s: f64,
+    /// Samples every [`SLIDE_SAMPLE_S`] of the run.
+    pub series: Vec<SlidePoint>,
+}
+
+/// How often (s) a slide's series is sampled.
+pub const SLIDE_SAMPLE_S: f64 = 0.01;
+
+/// One sample of a slide.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SlidePoint {
+    /// Time (s).
+    pub time_s: f64,
+    /// The cable before the sliding guide, or the travel (m).
+    pub amount_m: f64,
+    /// A retraction's spring force (N).
+    pub force_n: Option<f64>,
+}
+
 /// Why a candidate failed the motion test.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Failure {
@@ -207,6 +255,9 @@ pub enum Constraint {
     Twist,
     /// The cable touches or passes through itself (clearance to itself below 0).
     SelfContact,
+    /// A retraction at its end stop with the cable pulling harder than its spring: it ran
+    /// out of travel.
+    Travel,
 }
 
 /// The worst value of one metric over the run, and when and where it happened.
@@ -339,6 +390,7 @@ impl fmt::Display for Constraint {
             Constraint::FlexingBendRadius => "flexing bend radius",
             Constraint::Twist => "twist",
             Constraint::SelfContact => "self-contact",
+            Constraint::Travel => "travel",
         })
     }
 }
@@ -406,6 +458,12 @@ impl fmt::Display for Violation {
                 format!("{:.2} mm", self.value * 1e3),
                 "<",
                 format!("{:.2} mm", self.threshold * 1e3),
+            ),
+            Constraint::Travel => (
+                "pull on the retraction's end stop",
+                format!("{:.2} N", self.value),
+                ">",
+                format!("{:.2} N", self.threshold),
             ),
         };
         write!(

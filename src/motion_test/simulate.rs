@@ -3,7 +3,7 @@
 
 use super::clearance::ClearanceQuery;
 use super::engine::{Cable, SegmentState};
-use super::initial::equilibria;
+use super::initial::{Shapes, equilibria};
 use super::plan::Plan;
 use super::report::{Failure, FailureCause};
 use super::tracker::{SegmentMeasure, Tracker};
@@ -60,12 +60,15 @@ impl Context<'_> {
             1
         };
         let declared = self.plan.guide_poses(self.setup, &links);
-        let mut shapes = Vec::new();
+        let mut shapes = Shapes {
+            equilibria: Vec::new(),
+            throughs: Vec::new(),
+        };
         let mut guides = Vec::new();
         for round in 0..rounds {
             guides = declared.clone();
             self.plan.turned(&mut guides, &turns);
-            shapes = match equilibria(self.setup, &self.plan, &guides, t0)? {
+            shapes = match equilibria(self.setup, &self.plan, (&guides, &links), t0)? {
                 Ok(shapes) => shapes,
                 Err(no_start) => {
                     if let Some((segment, required)) = no_start.too_short {
@@ -75,26 +78,40 @@ impl Context<'_> {
                 }
             };
             if round + 1 < rounds {
-                let mut twists: Vec<f64> = shapes.iter().map(|s| s.twist_rad).collect();
+                let mut twists: Vec<f64> = shapes.equilibria.iter().map(|s| s.twist_rad).collect();
                 self.plan.balance_turns(&mut turns, &mut twists);
             }
         }
-        let mut states: Vec<SegmentState> = shapes
-            .iter()
-            .map(|shape| SegmentState {
-                nodes: shape.nodes.clone(),
-                contact: None,
-                max_joint_gap_m: 0.0,
-                twist_rad: Some(shape.twist_rad),
+        let pitch_m = self.setup.cable.sub_segment_pitch_m;
+        let mut states: Vec<SegmentState> = (shapes.equilibria.iter())
+            .zip(&shapes.throughs)
+            .map(|(shape, through)| match through {
+                Some(through) => SegmentState {
+                    nodes: through.nodes.clone(),
+                    pitch_m: through.pitch_m,
+                    from: through.from,
+                    slid: Some(through.slid.reading()),
+                    contact: None,
+                    max_joint_gap_m: 0.0,
+                    twist_rad: Some(0.0),
+                },
+                None => SegmentState {
+                    nodes: shape.nodes.clone(),
+                    pitch_m,
+                    from: None,
+                    slid: None,
+                    contact: None,
+                    max_joint_gap_m: 0.0,
+                    twist_rad: Some(shape.twist_rad),
+                },
             })
             .collect();
         let start = Cable::start(
             &self.options.engine,
             (self.setup, &self.plan),
             self.clearance.zones(),
-            &guides,
-            &links,
-            &shapes,
+            (&guides, &links),
+            (&shapes.equilibria, &shapes.throughs),
         )?;
         let mut cable = match start {
             Ok(cable) => cable,
@@ -184,35 +201,43 @@ impl Context<'_> {
         time_s: f64,
         with_loads: bool,
     ) -> Result<Vec<SegmentMeasure>, MotionTestError> {
-        let pitch = self.setup.cable.sub_segment_pitch_m;
         let axis = |pose: &Pose| pose.rotation * Vector3::z();
         let params = RodParameters::new(&self.setup.cable, self.setup.gravity_m_s2);
         let mut measures = Vec::with_capacity(states.len());
         for (j, (planned, state)) in self.plan.segments.iter().zip(states).enumerate() {
             let segment = planned.setup_index;
             let nodes = std::mem::take(&mut state.nodes);
-            let natural = planned.sub_segments as f64 * pitch;
+            let pitch = state.pitch_m;
+            let start = state.from.as_ref().unwrap_or(&guides[j]);
+            let natural = nodes.len().saturating_sub(1) as f64 * pitch;
             let (bend, curvatures) =
-                bend_profile(&nodes, &axis(&guides[j]), &axis(&guides[j + 1]), pitch);
+                bend_profile(&nodes, &axis(start), &axis(&guides[j + 1]), pitch);
             // The bending each conductor feels, for the cable's life (only when it has a
             // life curve: 12 conductors per joint at every step).
             let bending = match self.setup.cable.datasheet.predicts_life() {
                 true => curvature_vectors_per_m(
                     &nodes,
-                    &guides[j].rotation.to_rotation_matrix(),
+                    &start.rotation.to_rotation_matrix(),
                     &axis(&guides[j + 1]),
                     state.twist_rad.unwrap_or(0.0),
                     pitch,
                 ),
                 false => Vec::new(),
             };
-            let loads = state.twist_rad.filter(|_| with_loads).and_then(|twist| {
-                let params = planned.rod(&params);
-                let (start, end) =
-                    clamp_loads(&params, &guides[j], Some(&guides[j + 1]), &nodes, twist);
-                Some((start, end?))
-            });
+            // The loads of a piece through a sliding guide are not one rod's between its clamps.
+            let rod = planned.through.is_none();
+            let loads = state
+                .twist_rad
+                .filter(|_| with_loads && rod)
+                .and_then(|twist| {
+                    let params = planned.rod(&params);
+                    let (start, end) =
+                        clamp_loads(&params, &guides[j], Some(&guides[j + 1]), &nodes, twist);
+                    Some((start, end?))
+                });
             measures.push(SegmentMeasure {
+                pitch_m: pitch,
+                slid: state.slid,
                 twist_rad: state.twist_rad,
                 loads,
                 segment,

@@ -2,13 +2,15 @@
 
 use super::engine::ForceAt;
 use super::report::{
-    ClampLoadPeak, ClampTurn, Constraint, Failure, FailureCause, MotionTestReport, PieceLifeDamage,
-    PieceTwist, PieceWorst, Place, SegmentNodes, SeriesPoint, ShapeFrame, Violation, Worst,
+    ClampLoadPeak, ClampTurn, Constraint, Failure, FailureCause, GuideSlide, MotionTestReport,
+    PieceLifeDamage, PieceTwist, PieceWorst, Place, SLIDE_SAMPLE_S, SegmentNodes, SeriesPoint,
+    ShapeFrame, SlidePoint, Violation, Worst,
 };
 use crate::life::curve::LifeCurve;
 use crate::life::damage::PieceHistory;
-use crate::setup::{Setup, Thresholds};
+use crate::setup::{GuideKind, Setup, Thresholds};
 use crate::statics::ClampLoad;
+use crate::statics::sliding::SlideReading;
 use crate::stress::{
     BendRadius, Clearance, CurvatureRange, self_contact_within, twist_per_length_deg_per_m,
 };
@@ -18,6 +20,11 @@ use nalgebra::Point3;
 pub(super) struct SegmentMeasure {
     /// Index into the setup's segments.
     pub segment: usize,
+    /// The cable length between two of its nodes (m).
+    pub pitch_m: f64,
+    /// Through a sliding guide or out of a retraction: the split or travel (m), and the
+    /// retraction's spring force (N).
+    pub slid: Option<SlideReading>,
     /// The segment's nodes (m, world frame).
     pub nodes: Vec<Point3<f64>>,
     /// Lowest clearance to the robot, clamp zones excluded.
@@ -65,6 +72,7 @@ pub(super) struct Tracker<'a> {
     twists: Vec<PieceTwist>,
     clamp_loads: Vec<ClampLoadPeak>,
     clamp_turns: Vec<ClampTurn>,
+    slides: Vec<GuideSlide>,
     max_joint_gap_m: f64,
     series: Vec<SeriesPoint>,
     final_shape: Vec<SegmentNodes>,
@@ -94,6 +102,7 @@ impl<'a> Tracker<'a> {
             twists: Vec::new(),
             clamp_loads: Vec::new(),
             clamp_turns: Vec::new(),
+            slides: Vec::new(),
             max_joint_gap_m: 0.0,
             series: Vec::new(),
             final_shape: Vec::new(),
@@ -122,10 +131,10 @@ impl<'a> Tracker<'a> {
         }
         self.keep_self_contact(time_s, measures);
         self.keep_twists(time_s, measures);
+        self.keep_slides(time_s, measures);
         let clamp_force = self.keep_clamp_loads(time_s, measures);
         if self.record_series {
-            let pitch = self.setup.cable.sub_segment_pitch_m;
-            let mut point = series_point(time_s, measures, pitch);
+            let mut point = series_point(time_s, measures);
             point.max_clamp_force_n = clamp_force;
             self.series.push(point);
         }
@@ -182,6 +191,78 @@ impl<'a> Tracker<'a> {
         }
     }
 
+    /// Each sliding guide's and retraction's amount, force and end stop at `time_s`; a pull
+    /// on a retraction's end stop is a violation.
+    fn keep_slides(&mut self, time_s: f64, measures: &[SegmentMeasure]) {
+        let dt = time_s - self.last_time_s;
+        for m in measures {
+            let (Some(reading), Some(g)) = (m.slid, self.setup.segments[m.segment].through) else {
+                continue;
+            };
+            let guide = &self.setup.guides[g];
+            let kind = guide.configurations[0].kind;
+            let travel_max_m = match kind {
+                GuideKind::Retraction { travel_max_m, .. } => Some(travel_max_m),
+                _ => None,
+            };
+            let amount = reading.amount_m;
+            let point = SlidePoint {
+                time_s,
+                amount_m: amount,
+                force_n: reading.force_n,
+            };
+            let at = match self.slides.iter().position(|s| s.segment == m.segment) {
+                Some(at) => at,
+                None => {
+                    self.slides.push(GuideSlide {
+                        guide: guide.name.clone(),
+                        kind: kind.word(),
+                        segment: m.segment,
+                        segment_name: self.setup.segment_name(m.segment),
+                        first_m: amount,
+                        least_m: amount,
+                        least_time_s: time_s,
+                        most_m: amount,
+                        most_time_s: time_s,
+                        travel_max_m,
+                        peak_force_n: reading.force_n,
+                        end_stop_s: 0.0,
+                        series: vec![point],
+                    });
+                    self.slides.len() - 1
+                }
+            };
+            let slide = &mut self.slides[at];
+            if amount < slide.least_m {
+                (slide.least_m, slide.least_time_s) = (amount, time_s);
+            }
+            if amount > slide.most_m {
+                (slide.most_m, slide.most_time_s) = (amount, time_s);
+            }
+            if let (Some(force), Some(peak)) = (reading.force_n, &mut slide.peak_force_n) {
+                *peak = peak.max(force);
+            }
+            if travel_max_m.is_some_and(|max| amount >= max - 1e-9) && dt > 0.0 {
+                slide.end_stop_s += dt;
+            }
+            let due = slide.series.last().map_or(0.0, |p| p.time_s) + SLIDE_SAMPLE_S;
+            if time_s >= due - 1e-9 {
+                slide.series.push(point);
+            }
+            if reading.stop_force_n > STOP_FORCE_TOLERANCE_N {
+                let worst = Worst {
+                    value: reading.stop_force_n,
+                    unit: "N",
+                    time_s,
+                    segment: m.segment,
+                    segment_name: self.setup.segment_name(m.segment),
+                    place: Place::default(),
+                };
+                self.violate(Constraint::Travel, STOP_FORCE_TOLERANCE_N, &worst);
+            }
+        }
+    }
+
     /// The report, with `failure` if the run itself failed (else a violation's, if any).
     pub fn into_report(mut self, failure: Option<Failure>, run: RunFacts) -> MotionTestReport {
         let last_kept = self.shapes.last().map(|frame| frame.time_s);
@@ -225,6 +306,7 @@ impl<'a> Tracker<'a> {
             twists: self.twists,
             clamp_loads: self.clamp_loads,
             clamp_turns: self.clamp_turns,
+            slides: self.slides,
             max_joint_gap_m: self.max_joint_gap_m,
             series: self.series,
             final_shape: self.final_shape,
@@ -255,8 +337,7 @@ impl<'a> Tracker<'a> {
     /// Counts `measure`'s bending and twisting into its piece's history (with a life curve).
     fn keep_history(&mut self, measure: &SegmentMeasure) {
         let at = self.piece_index(measure.segment);
-        let pitch = self.setup.cable.sub_segment_pitch_m;
-        let length_m = measure.nodes.len().saturating_sub(1) as f64 * pitch;
+        let length_m = measure.nodes.len().saturating_sub(1) as f64 * measure.pitch_m;
         let Some((curve, histories)) = &mut self.life else {
             return;
         };
@@ -472,8 +553,7 @@ impl<'a> Tracker<'a> {
             let Some(twist) = m.twist_rad else {
                 continue;
             };
-            let length_m =
-                m.nodes.len().saturating_sub(1) as f64 * self.setup.cable.sub_segment_pitch_m;
+            let length_m = m.nodes.len().saturating_sub(1) as f64 * m.pitch_m;
             let twist_deg = twist.to_degrees();
             let per_m = twist_per_length_deg_per_m(twist, length_m);
             let candidate = PieceTwist {
@@ -586,6 +666,9 @@ impl<'a> Tracker<'a> {
             .map_or_else(|| format!("link #{link}"), |l| l.name.clone())
     }
 }
+
+/// A pull on a retraction's end stop below this (N) is the finite differences' noise.
+const STOP_FORCE_TOLERANCE_N: f64 = 0.01;
 
 /// While no approach of the cable to itself is known, how often (s of the motion) a search
 /// for one runs; touching is checked at every step.
@@ -700,9 +783,9 @@ fn joined_runs(measures: &[SegmentMeasure]) -> Vec<JoinedRun> {
 
 /// The whole cable's metrics at one instant (`pitch_m` the sub-segments' length); the
 /// clamp force is the caller's.
-fn series_point(time_s: f64, measures: &[SegmentMeasure], pitch_m: f64) -> SeriesPoint {
+fn series_point(time_s: f64, measures: &[SegmentMeasure]) -> SeriesPoint {
     let twists = measures.iter().filter_map(|m| {
-        let length = m.nodes.len().saturating_sub(1) as f64 * pitch_m;
+        let length = m.nodes.len().saturating_sub(1) as f64 * m.pitch_m;
         let twist = m.twist_rad?;
         (length > 0.0).then(|| twist.abs().to_degrees() / length)
     });

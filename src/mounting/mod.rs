@@ -49,6 +49,80 @@ pub struct MountingPlan {
     /// The robot pose at which the cable is laid untwisted; `None` when the setup gives none
     /// (the clamps' declared frames are then the twist references).
     pub installation_pose: Option<Vec<JointValue>>,
+    /// The sliding guides and retraction outlets the cable runs through, from the base side:
+    /// parts to mount that grip no mark.
+    pub sliding_parts: Vec<SlidingPart>,
+}
+
+/// A sliding guide or a retraction's outlet on the robot: the cable runs through it, so it
+/// has no mark; the piece through it is one piece between two clamps.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SlidingPart {
+    /// The setup's guide.
+    pub guide: String,
+    /// `sliding` or `retraction`.
+    pub kind: &'static str,
+    /// The link it is screwed onto.
+    pub link: String,
+    /// The placement's name.
+    pub placement: String,
+    /// Position in the frame of `link` (mm).
+    pub xyz_mm: [f64; 3],
+    /// URDF roll, pitch, yaw in the frame of `link` (deg).
+    pub rpy_deg: [f64; 3],
+    /// The place measured from the link's features.
+    pub place: Option<LinkPlace>,
+    /// Index into [`MountingPlan::pieces`] of the piece through it.
+    pub piece: usize,
+    /// A sliding guide's friction coefficient.
+    pub friction: Option<f64>,
+    /// A retraction's spring: force at rest (N), rate (N/mm), travel (mm), and the cable
+    /// stored in it at rest from its inlet clamp (mm).
+    pub retraction: Option<RetractionSpring>,
+}
+
+/// A retraction's spring and stored cable, as the fitter sets it up.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RetractionSpring {
+    /// Spring force at zero travel (N).
+    pub preload_n: f64,
+    /// Growth per mm pulled out (N/mm).
+    pub rate_n_per_mm: f64,
+    /// Travel (mm).
+    pub travel_mm: f64,
+    /// Cable stored between the inlet clamp and the outlet at rest (mm).
+    pub stored_mm: f64,
+}
+
+impl SlidingPart {
+    /// `sliding guide S`, `retraction outlet R`.
+    pub fn name(&self) -> String {
+        match self.kind {
+            "retraction" => format!("retraction outlet {}", self.guide),
+            _ => format!("sliding guide {}", self.guide),
+        }
+    }
+
+    /// What it does and how it is set up, in the fitter's words, on the piece `piece`
+    /// (`1 → gripper connector`).
+    pub fn note(&self, piece: &str) -> String {
+        match (&self.retraction, self.friction) {
+            (Some(r), _) => format!(
+                "the cable slides out of a retraction system on piece {piece}: load {} mm of \
+                 cable into it from the inlet clamp at rest; spring {} N at rest, {} N/mm, {} mm \
+                 of travel",
+                decimal(r.stored_mm, 0),
+                decimal(r.preload_n, 1),
+                decimal(r.rate_n_per_mm, 3),
+                decimal(r.travel_mm, 0)
+            ),
+            (None, friction) => format!(
+                "the cable slides through it on piece {piece} (friction coefficient {}): do \
+                 not clamp the cable there",
+                decimal(friction.unwrap_or(0.0), 2)
+            ),
+        }
+    }
 }
 
 /// The cable to cut: the designed length and the cable file's allowances (mm).
@@ -425,6 +499,15 @@ pub fn mounting_plan(setup: &Setup, path: &CablePath) -> MountingPlan {
         joined.push(Vec::new());
         marks.push(length_mm - from_start_mm);
     }
+    let sliding_parts = path
+        .pieces()
+        .filter(|(_, pv)| pv.sub_segments > 0)
+        .enumerate()
+        .filter_map(|(piece, (m, _))| {
+            let g = setup.segments[m].through?;
+            Some(sliding_part(setup, g, piece, &link_poses))
+        })
+        .collect();
     let count = groups.len();
     let mut number = 0;
     let clamps = groups
@@ -457,6 +540,45 @@ pub fn mounting_plan(setup: &Setup, path: &CablePath) -> MountingPlan {
             .installation
             .as_ref()
             .map(|i| joint_values(setup, &i.joints)),
+        sliding_parts,
+    }
+}
+
+/// The sliding guide or retraction outlet `g` (its one configuration) on the plan's piece
+/// `piece`.
+fn sliding_part(setup: &Setup, g: usize, piece: usize, link_poses: &[Pose]) -> SlidingPart {
+    let guide = &setup.guides[g];
+    let configuration = &guide.configurations[0];
+    let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
+    let in_body = guide.link_in_body * configuration.pose;
+    let (friction, retraction) = match configuration.kind {
+        GuideKind::Sliding { friction } => (Some(friction), None),
+        GuideKind::Retraction {
+            preload_n,
+            rate_n_per_m,
+            travel_max_m,
+        } => (
+            None,
+            Some(RetractionSpring {
+                preload_n,
+                rate_n_per_mm: rate_n_per_m * 1e-3,
+                travel_mm: travel_max_m * 1e3,
+                stored_mm: setup.segments[g - 1].range.min as f64 * pitch_mm,
+            }),
+        ),
+        _ => (None, None),
+    };
+    SlidingPart {
+        guide: guide.name.clone(),
+        kind: configuration.kind.word(),
+        link: setup.robot.links[guide.link].name.clone(),
+        placement: configuration.name.clone(),
+        xyz_mm: configuration.position_mm,
+        rpy_deg: configuration.rpy_deg,
+        place: link_place(&setup.robot, guide.body, &in_body, link_poses),
+        piece,
+        friction,
+        retraction,
     }
 }
 

@@ -33,6 +33,8 @@ pub struct ClampRow {
     pub search_names: String,
     /// Position and orientation in the link frame, for CAD: `x, y, z mm; r, p, y deg`.
     pub link_frame: String,
+    /// A sliding guide or retraction outlet: the cable slides through it (no mark).
+    pub slides: bool,
 }
 
 /// One piece of cable between two physical clamps.
@@ -95,7 +97,54 @@ fn clamp_row(clamp: &PhysicalClamp) -> ClampRow {
             decimals(&clamp.xyz_mm, 1),
             decimals(&clamp.rpy_deg, 1)
         ),
+        slides: false,
     }
+}
+
+/// The plan's sliding guides and retraction outlets as rows, from the base side: `slides`
+/// where a clamp's mark would be.
+pub fn sliding_rows(plan: &MountingPlan) -> Vec<ClampRow> {
+    plan.sliding_parts
+        .iter()
+        .map(|part| {
+            let (along, around, cable) = match &part.place {
+                Some(place) => (
+                    place.along_words(),
+                    place.around_words(),
+                    place.cable_direction(),
+                ),
+                None => (
+                    format!("on {}, which no joint turns", part.link),
+                    String::new(),
+                    String::new(),
+                ),
+            };
+            let piece = plan
+                .pieces
+                .get(part.piece)
+                .map(|p| plan.piece_name(p.from_clamp))
+                .unwrap_or_default();
+            ClampRow {
+                name: part.name(),
+                short_name: part.guide.clone(),
+                link: part.link.clone(),
+                mark_mm: "slides".into(),
+                note: Some(part.note(&piece)),
+                along,
+                around,
+                cable,
+                height: "placement written by hand: the cable's axis as given".into(),
+                height_mm: None,
+                search_names: format!("{} ({})", part.guide, part.placement),
+                link_frame: format!(
+                    "{} mm; {} deg",
+                    decimals(&part.xyz_mm, 1),
+                    decimals(&part.rpy_deg, 1)
+                ),
+                slides: true,
+            }
+        })
+        .collect()
 }
 
 /// The plan's pieces as rows, from the base side.
@@ -123,8 +172,13 @@ pub fn count_words(plan: &MountingPlan) -> String {
         .last()
         .map(PhysicalClamp::in_words)
         .unwrap_or_default();
+    let sliding = match plan.sliding_parts.len() {
+        0 => String::new(),
+        1 => " and a guide the cable slides through".to_string(),
+        k => format!(" and {k} guides the cable slides through"),
+    };
     format!(
-        "{n} clamp{} to mount; marks are cable lengths from its end at {end}",
+        "{n} clamp{}{sliding} to mount; marks are cable lengths from its end at {end}",
         if n == 1 { "" } else { "s" }
     )
 }

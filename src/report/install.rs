@@ -254,7 +254,10 @@ fn clamp_table(html: &mut String, plan: &MountingPlan, loads: &[LoadRow]) {
          <th>the cable leaves</th><th>the cable's axis above the surface (clamp and cable \
          radius)</th><th>largest load in the motion test</th></tr>\n",
     );
-    for row in rows::clamp_rows(plan) {
+    for row in rows::clamp_rows(plan)
+        .into_iter()
+        .chain(rows::sliding_rows(plan))
+    {
         let note = row
             .note
             .as_deref()

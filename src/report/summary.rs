@@ -159,13 +159,17 @@ fn mounting_tables(md: &mut String, plan: &MountingPlan) {
         md,
         &["clamp", "link", "mark (mm)", "place on the link", "cable"],
     );
-    for clamp in rows::clamp_rows(plan) {
+    for clamp in rows::clamp_rows(plan)
+        .into_iter()
+        .chain(rows::sliding_rows(plan))
+    {
+        let note = clamp.note.filter(|_| clamp.slides).unwrap_or_default();
         let place = [clamp.along, clamp.around]
             .into_iter()
             .filter(|s| !s.is_empty())
             .collect::<Vec<_>>()
             .join("; ");
-        let cable = [clamp.cable, clamp.height]
+        let cable = [clamp.cable, clamp.height, note]
             .into_iter()
             .filter(|s| !s.is_empty())
             .collect::<Vec<_>>()

@@ -41,12 +41,16 @@ fn mark(guide: &crate::setup::Guide, c: usize) -> GuideMark {
     }
 }
 
-/// The clamps of `path`, each at the configuration the path uses.
+/// The clamps of `path`, each at the configuration the path uses, then the sliding guides
+/// and retraction outlets its pieces run through.
 pub fn guide_marks(setup: &Setup, path: &CablePath) -> Vec<GuideMark> {
-    path.guides(setup)
+    let clamps = (path.guides(setup))
         .zip(&path.configurations)
-        .map(|(g, &c)| mark(&setup.guides[g], c))
-        .collect()
+        .map(|(g, &c)| mark(&setup.guides[g], c));
+    let through = (path.pieces())
+        .filter_map(|(m, _)| setup.segments[m].through)
+        .map(|g| mark(&setup.guides[g], 0));
+    clamps.chain(through).collect()
 }
 
 /// The scene of `path` in its static `shape` at one pose ([`crate::solve::path_shape`]).

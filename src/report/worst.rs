@@ -119,6 +119,10 @@ pub(super) fn limit_words(constraint: Constraint, value: f64, limit: f64) -> Str
             millimetres(value),
             millimetres(limit)
         ),
+        Constraint::Travel => format!(
+            "a retraction out of travel: the cable pulls {value:.2} N more than its spring at \
+             the end stop (limit {limit:.2} N)"
+        ),
     }
 }
 

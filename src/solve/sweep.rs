@@ -70,7 +70,9 @@ impl ChainSweep for SweepAtRest<'_, '_, '_> {
             (FailureCause::TooShort, _) => Rejection::TooShort,
             (FailureCause::Violation, Some(violation)) => match violation.constraint {
                 Constraint::Contact | Constraint::ContactForce => Rejection::Contact,
+                // Out of travel: the piece is too short for the pose.
                 Constraint::Stretch => Rejection::Stretch,
+                Constraint::Travel => Rejection::TooShort,
                 Constraint::BendRadius | Constraint::FlexingBendRadius => Rejection::Bend,
                 Constraint::Twist => Rejection::Twist,
                 Constraint::SelfContact => Rejection::SelfContact,

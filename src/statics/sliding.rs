@@ -425,6 +425,33 @@ pub enum Slid {
     },
 }
 
+impl Slid {
+    /// The reading of a cable at rest where it settled (no stop taking a pull).
+    pub fn reading(&self) -> SlideReading {
+        let (amount_m, force_n) = match *self {
+            Slid::Split { before_m } => (before_m, None),
+            Slid::Travel { travel_m, force_n } => (travel_m, Some(force_n)),
+        };
+        SlideReading {
+            amount_m,
+            force_n,
+            stop_force_n: 0.0,
+        }
+    }
+}
+
+/// A piece through a sliding guide or out of a retraction at one instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlideReading {
+    /// The cable before the sliding guide, or the retraction's travel (m).
+    pub amount_m: f64,
+    /// The retraction's spring force (N); `None` for a sliding guide.
+    pub force_n: Option<f64>,
+    /// How much harder than its spring the cable pulls on a retraction at its end stop: the
+    /// force the stop takes (N); 0 off the stop.
+    pub stop_force_n: f64,
+}
+
 /// The cable of one piece through a sliding guide or out of a retraction, as the limits
 /// judge it.
 #[derive(Debug, Clone, PartialEq)]
@@ -573,6 +600,8 @@ pub struct SlideTrack {
     pieces: Vec<Equilibrium>,
     guides: (Pose, Pose, Pose),
     solver: StaticSolver,
+    /// The pull a retraction's end stop takes (N).
+    stop_force_n: f64,
 }
 
 /// Step (m) of the finite differences of the energy in the split.
@@ -606,6 +635,16 @@ impl SlideTrack {
             pieces,
             guides,
             solver: StaticSolver::default(),
+            stop_force_n: 0.0,
+        }
+    }
+
+    /// Where it is now: split or travel, spring force, the end stop's pull.
+    pub fn reading(&self) -> SlideReading {
+        SlideReading {
+            amount_m: self.coordinate,
+            force_n: self.force_n(),
+            stop_force_n: self.stop_force_n,
         }
     }
 
@@ -631,6 +670,11 @@ impl SlideTrack {
                 (evenly(&polygon, total), self.length_m / total as f64)
             }
         }
+    }
+
+    /// The retraction's outlet now, where its free piece starts; `None` for a sliding guide.
+    pub fn outlet(&self) -> Option<Pose> {
+        matches!(self.kind, GuideKind::Retraction { .. }).then_some(self.guides.1)
     }
 
     /// The spring's force now (N); `None` for a sliding guide.
@@ -688,6 +732,7 @@ impl SlideTrack {
         let (e0, pieces0) = solve(self, c0)?;
         let h = TRACK_DIFFERENCE_M.min(0.5 * (high - low));
         let mut next = c0;
+        self.stop_force_n = 0.0;
         if h > 0.0 {
             let lower = (c0 - h).max(low);
             let upper = (c0 + h).min(high);
@@ -697,6 +742,11 @@ impl SlideTrack {
             let curvature = 2.0 * ((e_upper - e0) / (upper - c0) - (e0 - e_lower) / (c0 - lower))
                 / (upper - lower);
             let hold = self.friction_holds_n(params, &guides, &pieces0);
+            let at_end_stop = matches!(self.kind, GuideKind::Retraction { travel_max_m, .. }
+                if c0 >= travel_max_m - SPLIT_TOLERANCE_M);
+            if at_end_stop && slope < 0.0 {
+                self.stop_force_n = -slope;
+            }
             if slope.abs() > hold {
                 let target = hold.copysign(slope);
                 let newton = match curvature > 0.0 {

@@ -92,7 +92,8 @@ fn panels(test: &MotionTestReport, thresholds: &Thresholds, names: &PlotNames) -
         let i = match v.constraint {
             // The cable touching itself is contact too: shown in the clearance panel.
             Constraint::Contact | Constraint::ContactForce | Constraint::SelfContact => 0,
-            Constraint::Stretch => 1,
+            // A retraction out of travel pulls the cable taut: next to the stretch.
+            Constraint::Stretch | Constraint::Travel => 1,
             Constraint::BendRadius | Constraint::FlexingBendRadius => 2,
             // The twist panel follows the three limits when the engine measured twist.
             Constraint::Twist => 3.min(panels.len() - 1),

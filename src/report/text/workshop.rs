@@ -4,7 +4,7 @@
 //! No search vocabulary: that is `solve -v` ([`SolveReport`]'s `{:#}`) and the JSON.
 
 use crate::life::estimate::CableLife;
-use crate::motion_test::{Constraint, MotionTestReport, Worst};
+use crate::motion_test::{Constraint, GuideSlide, MotionTestReport, Worst};
 use crate::mounting::{self, MountingPlan, rows};
 use crate::setup::Thresholds;
 use crate::solve::{
@@ -120,26 +120,28 @@ pub(super) fn write_allowed_ranges(
 fn write_clamps(f: &mut fmt::Formatter<'_>, plan: &MountingPlan) -> fmt::Result {
     writeln!(f, "\n{}", rows::count_words(plan))?;
     let clamp_rows = rows::clamp_rows(plan);
-    let width = clamp_rows
-        .iter()
+    let width = (clamp_rows.iter().chain(&rows::sliding_rows(plan)))
         .map(|r| r.name.chars().count())
         .max()
         .unwrap_or(0);
-    let link_width = clamp_rows
-        .iter()
+    let link_width = (clamp_rows.iter().chain(&rows::sliding_rows(plan)))
         .map(|r| r.link.chars().count())
         .max()
         .unwrap_or(0);
-    for row in clamp_rows {
+    for row in clamp_rows.into_iter().chain(rows::sliding_rows(plan)) {
         let note = row
             .note
             .as_deref()
             .map(|n| format!("  ({n})"))
             .unwrap_or_default();
+        let mark = match row.slides {
+            true => "no mark".to_string(),
+            false => format!("mark {:>5} mm", row.mark_mm),
+        };
         writeln!(
             f,
-            "  {:<width$}  on {:<link_width$}  mark {:>5} mm{note}",
-            row.name, row.link, row.mark_mm
+            "  {:<width$}  on {:<link_width$}  {mark}{note}",
+            row.name, row.link
         )?;
         let around = if row.around.is_empty() {
             String::new()
@@ -494,7 +496,59 @@ pub fn load_rows(test: &MotionTestReport, plan: Option<&MountingPlan>) -> Vec<Lo
             ),
         }
     }));
+    rows.extend(test.slides.iter().map(slide_row));
     rows
+}
+
+/// How far the cable slid through a sliding guide, or a retraction's travel and force.
+fn slide_row(s: &GuideSlide) -> LoadRow {
+    let mm = |m: f64| decimal(m * 1e3, 0);
+    match (s.travel_max_m, s.peak_force_n) {
+        (Some(travel), Some(force)) => {
+            let stop = match s.end_stop_s > 0.0 {
+                true => format!("; on its end stop for {:.2} s", s.end_stop_s),
+                false => String::new(),
+            };
+            LoadRow {
+                name: format!("retraction outlet {}", s.guide),
+                words: format!(
+                    "cable pulled out {}–{} mm of its {} mm travel (most at t = {:.2} s), spring \
+                     force up to {} N{stop}",
+                    mm(s.least_m),
+                    mm(s.most_m),
+                    mm(travel),
+                    s.most_time_s,
+                    decimal(force, 2)
+                ),
+                short: format!(
+                    "travel {}–{} of {} mm, up to {} N",
+                    mm(s.least_m),
+                    mm(s.most_m),
+                    mm(travel),
+                    decimal(force, 2)
+                ),
+            }
+        }
+        _ => LoadRow {
+            name: format!("sliding guide {}", s.guide),
+            words: format!(
+                "the cable slid {} mm through it: {}–{} mm of cable before it (least at t = \
+                 {:.2} s, most at t = {:.2} s; {} mm at the start)",
+                mm(s.most_m - s.least_m),
+                mm(s.least_m),
+                mm(s.most_m),
+                s.least_time_s,
+                s.most_time_s,
+                mm(s.first_m)
+            ),
+            short: format!(
+                "slid {} mm ({}–{} mm before it)",
+                mm(s.most_m - s.least_m),
+                mm(s.least_m),
+                mm(s.most_m)
+            ),
+        },
+    }
 }
 
 /// One limit's worst value over the motion test, in words.
@@ -673,6 +727,12 @@ fn worst_row_of(
             format!("{} N", decimal(w.value, 3)),
             "0 N".to_string(),
             format!("{} N", decimal(-w.value, 3)),
+        ),
+        Constraint::Travel => (
+            "largest pull on a retraction's end stop",
+            format!("{} N", decimal(w.value, 2)),
+            format!("{} N", decimal(limit, 2)),
+            format!("{} N", decimal(limit - w.value, 2)),
         ),
     };
     WorstRow {
