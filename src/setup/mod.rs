@@ -518,6 +518,12 @@ impl Setup {
             .all(|&g| (self.guides[g].configurations.iter()).all(|c| c.kind == GuideKind::Rigid))
     }
 
+    /// Whether segment `m` has candidate lengths: not those on either side of a sliding guide
+    /// or a retraction's outlet, which are one piece through it.
+    pub fn has_candidates(&self, m: usize) -> bool {
+        !self.segments[m].lengths.is_empty()
+    }
+
     /// Indices into [`Setup::guides`] of segment `m`'s start and end guides: `(m, m + 1)`
     /// for a declared segment, the guides a span joins for a span.
     pub fn segment_guides(&self, m: usize) -> (usize, usize) {

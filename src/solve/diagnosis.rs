@@ -196,8 +196,10 @@ pub(super) fn diagnose(
     sets: &[SegmentSets],
     outcome: &MotionSearch,
 ) -> Diagnosis {
-    let blocking: Vec<usize> = (0..sets.len()).filter(|&m| sets[m].d2.is_empty()).collect();
-    let segments = if !blocking.is_empty() {
+    let blocking: Vec<usize> = (0..sets.len())
+        .filter(|&m| sets[m].d2.is_empty() && setup.has_candidates(m))
+        .collect();
+    let mut segments: Vec<SegmentDiagnosis> = if !blocking.is_empty() {
         blocking
             .into_iter()
             .map(|m| attachment_diagnosis(setup, poses, &sets[m], m))
@@ -205,7 +207,63 @@ pub(super) fn diagnose(
     } else {
         motion_diagnosis(setup, cell, outcome)
     };
+    if segments.is_empty() {
+        segments = disagreements(setup, sets);
+    }
     Diagnosis { segments }
+}
+
+/// Where every segment has robust pieces but no chain joins them: per clamp between two
+/// pieces, the placements the robust pieces before it end in and those after it start
+/// from, when no placement has both.
+fn disagreements(setup: &Setup, sets: &[SegmentSets]) -> Vec<SegmentDiagnosis> {
+    let placements = |g: usize, ends: &mut dyn Iterator<Item = usize>| {
+        let mut used: Vec<usize> = ends.collect();
+        used.sort_unstable();
+        used.dedup();
+        let names: Vec<&str> = (used.iter())
+            .map(|&c| setup.guides[g].configurations[c].name.as_str())
+            .collect();
+        (used, names)
+    };
+    (1..setup.guides.len() - 1)
+        .filter_map(|g| {
+            let (before, before_names) = placements(
+                g,
+                &mut setup
+                    .segments_into(g)
+                    .flat_map(|m| sets[m].d2.iter().map(|pv| pv.end)),
+            );
+            let (after, after_names) = placements(
+                g,
+                &mut setup
+                    .segments_from(g)
+                    .flat_map(|m| sets[m].d2.iter().map(|pv| pv.start)),
+            );
+            if before.is_empty() || after.is_empty() || before.iter().any(|c| after.contains(c)) {
+                return None;
+            }
+            let m = setup.segments_from(g).find(|&m| setup.has_candidates(m))?;
+            let guide = &setup.guides[g].name;
+            Some(SegmentDiagnosis {
+                segment: setup.segment_name(m),
+                from_guide: guide.clone(),
+                problem: format!(
+                    "the robust pieces before {guide} end in its placements {}, those after it \
+                     start from {}: none in common",
+                    before_names.join(", "),
+                    after_names.join(", ")
+                ),
+                nearest_misses: Vec::new(),
+                rejecting_poses: Vec::new(),
+                failures: Vec::new(),
+                suggestions: vec![format!(
+                    "offer {guide} more placements, or lengths that reach the ones the other side \
+                     uses"
+                )],
+            })
+        })
+        .collect()
 }
 
 /// A segment none of whose candidate pieces is robust.

@@ -372,7 +372,8 @@ fn unsolved_reason(sets: &[SegmentSets], setup: &Setup) -> String {
     let empty: Vec<String> = sets
         .iter()
         .enumerate()
-        .filter(|(_, s)| s.d2.is_empty())
+        // The segments on either side of a sliding guide are never pieces alone.
+        .filter(|(m, s)| s.d2.is_empty() && setup.has_candidates(*m))
         .map(|(m, s)| {
             let worst = s
                 .rejections
