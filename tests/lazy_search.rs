@@ -92,3 +92,35 @@ fn both_searches_find_the_same_path_under_a_flexing_radius() {
     let csv = "motions/viper_s850/pick_and_place.csv";
     same_answer(&rule, &motion(&rule, csv), "pick and place, makers' rule");
 }
+
+/// The bundled dress pack (a retraction on the upper arm, a sliding ring on the forearm, a
+/// rotating connector; its one searched clamp's sites 120 mm apart instead of 80 to keep the
+/// exhaustive run short): the pieces through the outlet and the ring are spans solved at their
+/// split of least energy, and both searches find the same path through the same candidates.
+#[test]
+fn both_searches_find_the_same_path_through_sliding_guides() {
+    let source = root("robots/viper_s850/dress_pack.toml");
+    let text = std::fs::read_to_string(&source).unwrap();
+    let coarse = text.replacen(
+        "sites = { spacing_mm = 80.0",
+        "sites = { spacing_mm = 120.0",
+        1,
+    );
+    assert_ne!(coarse, text);
+    let dress_pack = Setup::from_toml_str(&coarse, &source).unwrap_or_else(|e| panic!("{e}"));
+    let motion = motion(&dress_pack, "motions/viper_s850/pick_and_place.csv");
+    same_answer(&dress_pack, &motion, "dress pack");
+    let report = solved(&dress_pack, &motion, SearchKind::Lazy);
+    let test = report.motion_test.as_ref().expect("a path was tested");
+    assert!(test.passed);
+    // Both sliding parts were followed over the motion: the ring's split moved, the
+    // retraction's travel stayed within its stops.
+    let slides: Vec<(&str, &str)> = (test.slides.iter())
+        .map(|s| (s.guide.as_str(), s.kind))
+        .collect();
+    assert_eq!(slides, [("R", "retraction"), ("S", "sliding")]);
+    let ring = &test.slides[1];
+    assert!(ring.most_m > ring.least_m && ring.series.len() > 100);
+    let outlet = &test.slides[0];
+    assert!(outlet.least_m >= 0.0 && outlet.most_m <= 0.15);
+}

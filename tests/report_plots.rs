@@ -489,6 +489,7 @@ fn stress_report(points: usize) -> MotionTestReport {
         damage: Vec::new(),
         clamp_loads: Vec::new(),
         clamp_turns: Vec::new(),
+        slides: Vec::new(),
         max_joint_gap_m: 1e-4,
         series,
         final_shape: Vec::new(),

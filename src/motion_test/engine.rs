@@ -61,7 +61,7 @@ pub(super) struct Diverged {
 /// One segment of the implicit engine: in motion between its clamps, or (through a sliding
 /// guide or out of a retraction) followed quasi-statically with its split carried.
 pub(super) enum Simulated {
-    Dynamic(SegmentDynamics),
+    Dynamic(Box<SegmentDynamics>),
     Through {
         track: Box<SlideTrack>,
         /// The guide's link and its pose in that link's frame.
@@ -191,7 +191,7 @@ impl Cable {
                         &shape.nodes,
                         shape.twist_rad,
                     ) {
-                        Ok(segment) => segments.push(Simulated::Dynamic(segment)),
+                        Ok(segment) => segments.push(Simulated::Dynamic(Box::new(segment))),
                         Err(e) => return Ok(Err(refused(e.to_string()))),
                     }
                 }

@@ -839,6 +839,8 @@ mod tests {
             .unwrap_or_else(|e| panic!("{e}"));
         let pitch = setup.cable.sub_segment_pitch_m;
         let measure = |segment: usize, nodes: Vec<Point3<f64>>| SegmentMeasure {
+            pitch_m: pitch,
+            slid: None,
             segment,
             nodes,
             clearance: None,

@@ -405,9 +405,17 @@ impl MountingPlan {
     pub fn place_on_cable(&self, segment: &str, along_mm: Option<f64>) -> Option<String> {
         if let Some(piece) = self.piece_of_segment(segment) {
             let mut words = format!("on piece {}", self.piece_name(piece.from_clamp));
+            // A retraction's free piece is measured from its outlet (the cable behind it is
+            // stored in the unit).
+            let index = self.pieces.iter().position(|p| std::ptr::eq(p, piece));
+            let outlet = (self.sliding_parts.iter())
+                .find(|part| Some(part.piece) == index && part.retraction.is_some());
             if let Some(along) = along_mm {
-                let from = &self.clamps[piece.from_clamp];
-                words += &format!(", {} mm from {}", decimal(along, 0), from.in_words());
+                let from = match outlet {
+                    Some(outlet) => format!("out of the {}", outlet.name()),
+                    None => format!("from {}", self.clamps[piece.from_clamp].in_words()),
+                };
+                words += &format!(", {} mm {from}", decimal(along, 0));
             }
             return Some(words);
         }

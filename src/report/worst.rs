@@ -180,6 +180,7 @@ mod tests {
             damage: Vec::new(),
             clamp_loads: Vec::new(),
             clamp_turns: Vec::new(),
+            slides: Vec::new(),
             max_joint_gap_m: 0.0,
             series: Vec::new(),
             final_shape: Vec::new(),
