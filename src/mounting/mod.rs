@@ -103,22 +103,19 @@ impl SlidingPart {
         }
     }
 
-    /// What it does and how it is set up, in the fitter's words, on the piece `piece`
-    /// (`1 → gripper connector`).
-    pub fn note(&self, piece: &str) -> String {
+    /// What it does and how it is set up, in the fitter's words.
+    pub fn note(&self) -> String {
         match (&self.retraction, self.friction) {
             (Some(r), _) => format!(
-                "the cable slides out of a retraction system on piece {piece}: load {} mm of \
-                 cable into it from the inlet clamp at rest; spring {} N at rest, {} N/mm, {} mm \
-                 of travel",
+                "retraction: load {} mm of cable from the inlet at rest; spring {} N + {} N/mm, \
+                 {} mm of travel",
                 decimal(r.stored_mm, 0),
                 decimal(r.preload_n, 1),
                 decimal(r.rate_n_per_mm, 3),
                 decimal(r.travel_mm, 0)
             ),
             (None, friction) => format!(
-                "the cable slides through it on piece {piece} (friction coefficient {}): do \
-                 not clamp the cable there",
+                "the cable slides through it (friction {}): do not clamp it",
                 decimal(friction.unwrap_or(0.0), 2)
             ),
         }

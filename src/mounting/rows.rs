@@ -119,17 +119,12 @@ pub fn sliding_rows(plan: &MountingPlan) -> Vec<ClampRow> {
                     String::new(),
                 ),
             };
-            let piece = plan
-                .pieces
-                .get(part.piece)
-                .map(|p| plan.piece_name(p.from_clamp))
-                .unwrap_or_default();
             ClampRow {
                 name: part.name(),
                 short_name: part.guide.clone(),
                 link: part.link.clone(),
                 mark_mm: "slides".into(),
-                note: Some(part.note(&piece)),
+                note: Some(part.note()),
                 along,
                 around,
                 cable,
@@ -151,15 +146,29 @@ pub fn sliding_rows(plan: &MountingPlan) -> Vec<ClampRow> {
 pub fn piece_rows(plan: &MountingPlan) -> Vec<PieceRow> {
     plan.pieces
         .iter()
-        .map(|piece| PieceRow {
-            name: plan.piece_name(piece.from_clamp),
-            length_mm: decimal(piece.length_mm, 0),
-            across: if piece.across_joints.is_empty() {
-                "on one link".into()
+        .enumerate()
+        .map(|(k, piece)| {
+            let mut across = if piece.across_joints.is_empty() {
+                "on one link".to_string()
             } else {
                 format!("across {}", piece.across_joints.join(", "))
-            },
-            segment: piece.segment.clone(),
+            };
+            // What it runs through: a sliding guide, or a retraction holding part of it.
+            for part in plan.sliding_parts.iter().filter(|p| p.piece == k) {
+                across += &match &part.retraction {
+                    Some(r) => format!(
+                        "; {} mm of it stored in the retraction at rest",
+                        decimal(r.stored_mm, 0)
+                    ),
+                    None => format!("; through {}", part.name()),
+                };
+            }
+            PieceRow {
+                name: plan.piece_name(piece.from_clamp),
+                length_mm: decimal(piece.length_mm, 0),
+                across,
+                segment: piece.segment.clone(),
+            }
         })
         .collect()
 }

@@ -145,7 +145,8 @@ pub fn install_html(sheet: &Sheet<'_>) -> String {
         } else {
             0.0
         };
-        let height_mm = (PICTURE_MM - PICTURE_PER_ROW_MM * plan.clamps.len() as f64 - dials_mm)
+        let rows = plan.clamps.len() + plan.sliding_parts.len();
+        let height_mm = (PICTURE_MM - PICTURE_PER_ROW_MM * rows as f64 - dials_mm)
             .max(MIN_PICTURE_MM - dials_mm);
         let _ = writeln!(
             html,

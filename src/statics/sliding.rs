@@ -739,8 +739,14 @@ impl SlideTrack {
             let (e_lower, _) = solve(self, lower)?;
             let (e_upper, _) = solve(self, upper)?;
             let slope = (e_upper - e_lower) / (upper - lower);
-            let curvature = 2.0 * ((e_upper - e0) / (upper - c0) - (e0 - e_lower) / (c0 - lower))
-                / (upper - lower);
+            // At a stop only one side is known: no curvature, a full step downhill.
+            let curvature = match lower < c0 && c0 < upper {
+                true => {
+                    2.0 * ((e_upper - e0) / (upper - c0) - (e0 - e_lower) / (c0 - lower))
+                        / (upper - lower)
+                }
+                false => 0.0,
+            };
             let hold = self.friction_holds_n(params, &guides, &pieces0);
             let at_end_stop = matches!(self.kind, GuideKind::Retraction { travel_max_m, .. }
                 if c0 >= travel_max_m - SPLIT_TOLERANCE_M);

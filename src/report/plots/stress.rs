@@ -7,7 +7,7 @@ use super::{
     LIMIT_RED, PlotError, PlotNames, Root, draw_error, finite_range, font, padded, render, short,
     text,
 };
-use crate::motion_test::{Constraint, MotionTestReport, Violation, Worst};
+use crate::motion_test::{Constraint, GuideSlide, MotionTestReport, SlidePoint, Violation, Worst};
 use crate::setup::Thresholds;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -27,7 +27,7 @@ const MAX_REASON_CHARS: usize = 110;
 /// One stacked panel, values in plot units (mm or dimensionless).
 struct Panel {
     /// Header, e.g. `min clearance`.
-    name: &'static str,
+    name: String,
     /// Y axis label with unit.
     y_desc: String,
     /// (time s, value) per series entry; `None` (nothing to draw) breaks the line.
@@ -63,7 +63,11 @@ pub fn stress_svg(
         padded(t0, t1, 0.0)
     };
     let panels = panels(test, thresholds, names);
-    render(SIZE, |root| {
+    // Five panels fill the page; more (sliding guides, retractions) lengthen it.
+    let height = SIZE
+        .1
+        .max(HEAD_PX + (SIZE.1 - HEAD_PX) / 5 * panels.len() as u32);
+    render((SIZE.0, height), |root| {
         draw_head(root, test, title, names)?;
         let (_, body) = root.split_vertically(HEAD_PX);
         let areas = body.split_evenly((panels.len(), 1));
@@ -88,19 +92,86 @@ fn panels(test: &MotionTestReport, thresholds: &Thresholds, names: &PlotNames) -
     if test.series.iter().any(|p| p.max_clamp_force_n.is_some()) {
         panels.push(clamp_force_panel(test, names));
     }
+    let limit_panels = panels.len();
+    panels.extend(test.slides.iter().flat_map(|s| slide_panels(s, names)));
     if let Some(v) = test.first_violation.as_ref().filter(|_| !test.passed) {
         let i = match v.constraint {
             // The cable touching itself is contact too: shown in the clearance panel.
             Constraint::Contact | Constraint::ContactForce | Constraint::SelfContact => 0,
-            // A retraction out of travel pulls the cable taut: next to the stretch.
-            Constraint::Stretch | Constraint::Travel => 1,
+            Constraint::Stretch => 1,
+            // A retraction out of travel: its travel panel.
+            Constraint::Travel => (test.slides.iter())
+                .position(|s| s.segment == v.segment && s.travel_max_m.is_some())
+                .map_or(1, |k| limit_panels + slide_panel_index(test, k)),
             Constraint::BendRadius | Constraint::FlexingBendRadius => 2,
             // The twist panel follows the three limits when the engine measured twist.
-            Constraint::Twist => 3.min(panels.len() - 1),
+            Constraint::Twist => 3.min(limit_panels - 1),
         };
         panels[i].violation = Some((v.time_s, violation_label(v, names)));
     }
     panels
+}
+
+/// The panels of a sliding guide (the cable before it, mm) or a retraction (its travel against
+/// its stops, mm; its spring's force, N), over the motion.
+fn slide_panels(slide: &GuideSlide, names: &PlotNames) -> Vec<Panel> {
+    let piece = names.piece(&slide.segment_name);
+    let series = |value: &dyn Fn(&SlidePoint) -> Option<f64>| -> Vec<Option<(f64, f64)>> {
+        (slide.series.iter())
+            .map(|p| value(p).map(|v| (p.time_s, v)))
+            .collect()
+    };
+    match slide.travel_max_m {
+        None => vec![Panel {
+            name: format!("cable before sliding guide {} ({piece})", slide.guide),
+            y_desc: "length (mm)".into(),
+            points: series(&|p| Some(p.amount_m * 1e3)),
+            color: RGBColor(127, 127, 127),
+            limit: None,
+            limit_label: String::new(),
+            worst: Some((
+                slide.most_time_s,
+                slide.most_m * 1e3,
+                format!("slid {:.0} mm", (slide.most_m - slide.least_m) * 1e3),
+            )),
+            violation: None,
+        }],
+        Some(travel) => vec![
+            Panel {
+                name: format!("travel of retraction {} ({piece})", slide.guide),
+                y_desc: "cable pulled out (mm)".into(),
+                points: series(&|p| Some(p.amount_m * 1e3)),
+                color: RGBColor(230, 90, 5),
+                limit: Some(travel * 1e3),
+                limit_label: format!("end stop {:.0} mm", travel * 1e3),
+                worst: Some((
+                    slide.most_time_s,
+                    slide.most_m * 1e3,
+                    format!("most {:.0} mm", slide.most_m * 1e3),
+                )),
+                violation: None,
+            },
+            Panel {
+                name: format!("spring force of retraction {}", slide.guide),
+                y_desc: "force (N)".into(),
+                points: series(&|p| p.force_n),
+                color: RGBColor(140, 60, 10),
+                limit: None,
+                limit_label: String::new(),
+                worst: slide
+                    .peak_force_n
+                    .map(|f| (slide.most_time_s, f, format!("up to {f:.2} N"))),
+                violation: None,
+            },
+        ],
+    }
+}
+
+/// Index among the slide panels of the first panel of slide `k` (a retraction has two).
+fn slide_panel_index(test: &MotionTestReport, k: usize) -> usize {
+    (test.slides.iter().take(k))
+        .map(|s| 1 + usize::from(s.travel_max_m.is_some()))
+        .sum()
 }
 
 /// The largest twist per metre of any piece (magnitude), from the cable as laid.
@@ -119,7 +190,7 @@ fn twist_panel(test: &MotionTestReport, names: &PlotNames) -> Panel {
             (t.time_s, t.twist_deg_per_m.abs(), label)
         });
     Panel {
-        name: "largest twist of a piece",
+        name: "largest twist of a piece".into(),
         y_desc: "twist (deg/m, from the cable as laid)".into(),
         points: test
             .series
@@ -150,7 +221,7 @@ fn clamp_force_panel(test: &MotionTestReport, names: &PlotNames) -> Panel {
             (c.force_time_s, c.max_force_n, label)
         });
     Panel {
-        name: "largest force on a clamp",
+        name: "largest force on a clamp".into(),
         y_desc: "force (N)".into(),
         points: test
             .series
@@ -168,7 +239,7 @@ fn clamp_force_panel(test: &MotionTestReport, names: &PlotNames) -> Panel {
 fn clearance_panel(test: &MotionTestReport, thresholds: &Thresholds, names: &PlotNames) -> Panel {
     let limit_mm = thresholds.contact_clearance_m * 1e3;
     Panel {
-        name: "min clearance",
+        name: "min clearance".into(),
         y_desc: "clearance (mm)".into(),
         points: test
             .series
@@ -187,7 +258,7 @@ fn clearance_panel(test: &MotionTestReport, thresholds: &Thresholds, names: &Plo
 
 fn stretch_panel(test: &MotionTestReport, thresholds: &Thresholds, names: &PlotNames) -> Panel {
     Panel {
-        name: "max stretch",
+        name: "max stretch".into(),
         y_desc: "stretch (length / natural length)".into(),
         points: test
             .series
@@ -215,7 +286,7 @@ fn bend_panel(test: &MotionTestReport, thresholds: &Thresholds, names: &PlotName
         finite_range(radii_mm).map_or(1e3, |(_, hi)| hi.max(1.0))
     };
     Panel {
-        name: "min bend radius",
+        name: "min bend radius".into(),
         y_desc: format!("bend radius (mm, clipped at {} mm)", short(cap_mm, 0)),
         points: test
             .series
