@@ -838,17 +838,24 @@ fn a_rotating_clamp_lets_a_twisted_cable_relax_fully() {
 /// (`L = 2a sinh(D/2a)`, bisection) and the tension at its supports, `w a cosh(D/2a)`, per
 /// unit weight.
 fn level_catenary(span: f64, length: f64) -> (f64, f64) {
-    let (mut lo, mut hi) = (1e-4, 1e3);
+    let a = bisect((1e-4, 1e3), |a| {
+        2.0 * a * (span / (2.0 * a)).sinh() > length
+    });
+    (a, a * (span / (2.0 * a)).cosh())
+}
+
+/// The point of `(lo, hi)` where `above` turns false (200 halvings): `above(x)` is true
+/// while the answer lies above `x`.
+fn bisect((mut lo, mut hi): (f64, f64), above: impl Fn(f64) -> bool) -> f64 {
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
-        if 2.0 * mid * (span / (2.0 * mid)).sinh() > length {
+        if above(mid) {
             lo = mid;
         } else {
             hi = mid;
         }
     }
-    let a = 0.5 * (lo + hi);
-    (a, a * (span / (2.0 * a)).cosh())
+    0.5 * (lo + hi)
 }
 
 /// A limp cable from a clamp through a frictionless ring to another clamp, all three at one
@@ -879,17 +886,9 @@ fn a_limp_cable_through_a_frictionless_ring_pulls_equally_on_both_sides() {
     // The closed-form split: equal support tensions.
     let imbalance =
         |split: f64| level_catenary(left, split).1 - level_catenary(right, total - split).1;
-    let (mut lo, mut hi) = (left * 1.0001, total - right * 1.0001);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        // The tension falls as a piece gets longer (slacker).
-        if imbalance(mid) > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let closed_form = 0.5 * (lo + hi);
+    // The tension falls as a piece gets longer (slacker).
+    let reach = (left * 1.0001, total - right * 1.0001);
+    let closed_form = bisect(reach, |split| imbalance(split) > 0.0);
     println!(
         "split {:.5} m vs closed form {closed_form:.5} m, {} evaluations",
         solved.split_m, solved.evaluations
@@ -976,17 +975,8 @@ fn a_retraction_spring_balances_the_hanging_cable_it_pulls_back() {
         .map(|&n| solve(&spring, &end, n).unwrap_or_else(|e| panic!("{e}")))
         .collect();
     let imbalance = |x: f64| spring.force_n(x) - weight * level_catenary(span, rest + x).1;
-    let (mut lo, mut hi) = (0.0, 0.1);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        // The spring's force grows with the travel, the cable's pull falls.
-        if imbalance(mid) < 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let closed_form = 0.5 * (lo + hi);
+    // The spring's force grows with the travel, the cable's pull falls.
+    let closed_form = bisect((0.0, 0.1), |x| imbalance(x) < 0.0);
     let travels: Vec<f64> = solved.iter().map(|s| s.travel_m).collect();
     println!(
         "travel {travels:?} m (60, 120, 240 sub-segments) vs closed form {closed_form:.5} m \
@@ -1107,17 +1097,9 @@ fn a_cable_followed_through_a_ring_slides_at_the_edge_of_its_friction() {
     let edge = |split: f64| {
         level_catenary(right, total - split).1 - level_catenary(left, split).1 - mu * total / 2.0
     };
-    let (mut lo, mut hi) = (left * 1.0001, total - right * 1.0001);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        // A longer piece before the ring leaves the one after it tauter.
-        if edge(mid) < 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let closed_form = 0.5 * (lo + hi);
+    // A longer piece before the ring leaves the one after it tauter.
+    let reach = (left * 1.0001, total - right * 1.0001);
+    let closed_form = bisect(reach, |split| edge(split) < 0.0);
     println!(
         "μ = {mu}: started at {started:.5} m, followed to {:.5} m, closed form {closed_form:.5} m \
          (frictionless {before_m:.5} m)",

@@ -113,48 +113,30 @@ fn guide(
 /// cable slides through is one kind alone: it decides which pieces there are.
 fn kinds(src: Source, g: usize, raw: &RawGuide) -> Result<Vec<GuideKind>, SetupError> {
     let key = format!("guides[{g}].kind");
-    let own_keys: [(&str, Option<std::ops::Range<usize>>, &str); 6] = [
-        (
-            "cone_deg",
-            raw.cone_deg.as_ref().map(Spanned::span),
-            "swivel",
-        ),
-        (
-            "friction_coefficient",
-            raw.friction_coefficient.as_ref().map(Spanned::span),
-            "sliding",
-        ),
-        (
-            "preload_n",
-            raw.preload_n.as_ref().map(Spanned::span),
-            "retraction",
-        ),
-        (
-            "rate_n_per_mm",
-            raw.rate_n_per_mm.as_ref().map(Spanned::span),
-            "retraction",
-        ),
-        (
-            "travel_mm",
-            raw.travel_mm.as_ref().map(Spanned::span),
-            "retraction",
-        ),
-        (
+    let numbers = [
+        ("cone_deg", &raw.cone_deg, "swivel"),
+        ("friction_coefficient", &raw.friction_coefficient, "sliding"),
+        ("preload_n", &raw.preload_n, "retraction"),
+        ("rate_n_per_mm", &raw.rate_n_per_mm, "retraction"),
+        ("travel_mm", &raw.travel_mm, "retraction"),
+    ];
+    let own_keys = (numbers.iter())
+        .map(|(name, value, owner)| (*name, value.as_ref().map(Spanned::span), *owner))
+        .chain([(
             "stored_from",
             raw.stored_from.as_ref().map(Spanned::span),
             "retraction",
-        ),
-    ];
+        )]);
     let words: Vec<&toml::Value> = match raw.kind.as_ref().map(Spanned::get_ref) {
         None => Vec::new(),
         Some(toml::Value::Array(list)) => list.iter().collect(),
         Some(one) => vec![one],
     };
     let offered = |word: &str| words.iter().any(|w| w.as_str() == Some(word));
-    for (name, span, owner) in &own_keys {
+    for (name, span, owner) in own_keys {
         if let (Some(span), false) = (span, offered(owner)) {
             return Err(src.error(
-                span.clone(),
+                span,
                 format!("guides[{g}].{name}"),
                 format!("{name} is a {owner}'s: this guide offers no {owner} (kind = \"{owner}\")"),
             ));

@@ -87,21 +87,7 @@ pub fn solve_through_slide(
         )));
     }
     let mut solver = StaticSolver::default();
-    let (start_hold, end_hold) = (params.holds.start, params.holds.end);
-    let before = RodParameters {
-        holds: Holds {
-            start: start_hold,
-            end: Hold::Rotating,
-        },
-        ..*params
-    };
-    let after = RodParameters {
-        holds: Holds {
-            start: Hold::Rotating,
-            end: end_hold,
-        },
-        ..*params
-    };
+    let [before, after] = sides(&params.holds).map(|holds| RodParameters { holds, ..*params });
     let mut at = |split: f64| -> Result<(f64, [Equilibrium; 2]), StaticsError> {
         let first = piece(
             &mut solver,
@@ -247,10 +233,7 @@ pub fn solve_through_retraction(
         )));
     }
     let params = RodParameters {
-        holds: Holds {
-            start: Hold::Rotating,
-            end: params.holds.end,
-        },
+        holds: sides(&params.holds)[1],
         ..*params
     };
     // The stored cable given out, its weight counted at the outlet.
@@ -377,6 +360,21 @@ fn least_energy(
         }
     }
     Ok((best.1, evaluations))
+}
+
+/// How the sides of a piece held by its clamps as `holds` are held around a guide the cable
+/// slides (and turns) through: the side before it, the side after it.
+fn sides(holds: &Holds) -> [Holds; 2] {
+    [
+        Holds {
+            start: holds.start,
+            end: Hold::Rotating,
+        },
+        Holds {
+            start: Hold::Rotating,
+            end: holds.end,
+        },
+    ]
 }
 
 /// The equilibrium of a piece of `length_m` in `sub_segments` between `guides`, from the
@@ -804,33 +802,10 @@ impl SlideTrack {
         c: f64,
         options: &SolverOptions,
     ) -> Result<(f64, Vec<Equilibrium>), StaticsError> {
+        let [before, after] = sides(&params.holds);
         let ends: Vec<(Pose, Pose, Holds)> = match self.kind {
-            GuideKind::Retraction { .. } => vec![(
-                *through,
-                *end,
-                Holds {
-                    start: Hold::Rotating,
-                    end: params.holds.end,
-                },
-            )],
-            _ => vec![
-                (
-                    *start,
-                    *through,
-                    Holds {
-                        start: params.holds.start,
-                        end: Hold::Rotating,
-                    },
-                ),
-                (
-                    *through,
-                    *end,
-                    Holds {
-                        start: Hold::Rotating,
-                        end: params.holds.end,
-                    },
-                ),
-            ],
+            GuideKind::Retraction { .. } => vec![(*through, *end, after)],
+            _ => vec![(*start, *through, before), (*through, *end, after)],
         };
         let mut pieces = Vec::with_capacity(ends.len());
         let mut energy = 0.0;
