@@ -94,8 +94,8 @@ fn both_searches_find_the_same_path_under_a_flexing_radius() {
 }
 
 /// The bundled dress pack (a retraction on the upper arm, a sliding ring on the forearm, a
-/// rotating connector; its one searched clamp's sites 120 mm apart instead of 80 to keep the
-/// exhaustive run short): the pieces through the outlet and the ring are spans solved at their
+/// connector that may be rotating or a swivel: every kind; its one searched clamp's sites
+/// 120 mm apart instead of 80 to keep the exhaustive run short): the pieces through the outlet and the ring are spans solved at their
 /// split of least energy, and both searches find the same path through the same candidates.
 #[test]
 fn both_searches_find_the_same_path_through_sliding_guides() {
