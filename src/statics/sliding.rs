@@ -88,21 +88,32 @@ pub fn solve_through_slide(
     }
     let mut solver = StaticSolver::default();
     let [before, after] = sides(&params.holds).map(|holds| RodParameters { holds, ..*params });
+    // Each split starts from the least energy's pieces so far.
+    let mut best: Option<(f64, [Equilibrium; 2])> = None;
     let mut at = |split: f64| -> Result<(f64, [Equilibrium; 2]), StaticsError> {
+        let warm = best.as_ref().map(|(_, pieces)| pieces);
         let first = piece(
             &mut solver,
             &before,
             (start, &slide.guide),
-            split,
-            na,
+            (split, na),
+            warm.map(|p| &p[0]),
             options,
         )?;
         let rest = slide.total_m - split;
-        let second = piece(&mut solver, &after, (&slide.guide, end), rest, nb, options)?;
-        Ok((
-            first.energy.total_j() + second.energy.total_j(),
-            [first, second],
-        ))
+        let second = piece(
+            &mut solver,
+            &after,
+            (&slide.guide, end),
+            (rest, nb),
+            warm.map(|p| &p[1]),
+            options,
+        )?;
+        let energy = first.energy.total_j() + second.energy.total_j();
+        if best.as_ref().is_none_or(|(least, _)| energy < *least) {
+            best = Some((energy, [first.clone(), second.clone()]));
+        }
+        Ok((energy, [first, second]))
     };
     let (split_m, evaluations) = least_energy((low, high), &[], |split| Ok(at(split)?.0))?;
     let (energy_j, pieces) = at(split_m)?;
@@ -240,16 +251,21 @@ pub fn solve_through_retraction(
     let stored_per_m =
         -params.mass_per_length_kg_m * params.gravity_m_s2.dot(&unit.outlet.translation.vector);
     let mut solver = StaticSolver::default();
+    // Each travel starts from the least energy's piece so far.
+    let mut best: Option<(f64, Equilibrium)> = None;
     let mut at = |travel: f64| -> Result<(f64, Equilibrium), StaticsError> {
         let piece = piece(
             &mut solver,
             &params,
             (&unit.outlet, end),
-            rest_length_m + travel,
-            sub_segments,
+            (rest_length_m + travel, sub_segments),
+            best.as_ref().map(|(_, piece)| piece),
             options,
         )?;
         let energy = piece.energy.total_j() + unit.energy_j(travel) - stored_per_m * travel;
+        if best.as_ref().is_none_or(|(least, _)| energy < *least) {
+            best = Some((energy, piece.clone()));
+        }
         Ok((energy, piece))
     };
     // The stops within reach: zero travel (when the rest length reaches) and the full one.
@@ -377,28 +393,36 @@ fn sides(holds: &Holds) -> [Holds; 2] {
     ]
 }
 
-/// The equilibrium of a piece of `length_m` in `sub_segments` between `guides`, from the
-/// connected geometry.
+/// The equilibrium of a piece of `length_m` in `sub_segments` between `guides`: from `warm`
+/// (the nearest split's solution, re-pitched by the solver) when given and it converges,
+/// else from the connected geometry.
 fn piece(
     solver: &mut StaticSolver,
     params: &RodParameters,
     (start, end): (&Pose, &Pose),
-    length_m: f64,
-    sub_segments: usize,
+    (length_m, sub_segments): (f64, usize),
+    warm: Option<&Equilibrium>,
     options: &SolverOptions,
 ) -> Result<Equilibrium, StaticsError> {
     let pitch_m = length_m / sub_segments as f64;
+    let params = RodParameters { pitch_m, ..*params };
+    let far = FarEnd::Clamped(*end);
+    if let Some(warm) = warm.filter(|w| w.nodes.len() == sub_segments + 1)
+        && let Ok(solved) =
+            solver.solve(&params, start, &far, &warm.nodes, Some(warm.twist_rad), options)
+    {
+        return Ok(solved);
+    }
     let sag = sag_direction(&params.gravity_m_s2);
     let shape = connect(start, end, sub_segments, pitch_m, &sag).map_err(|e| {
         StaticsError::InvalidInput {
             what: format!("no start shape for a piece of {length_m:.4} m: {e}"),
         }
     })?;
-    let params = RodParameters { pitch_m, ..*params };
     solver.solve(
         &params,
         start,
-        &FarEnd::Clamped(*end),
+        &far,
         &shape.nodes,
         Some(shape.twist_correction_rad),
         options,
