@@ -393,6 +393,10 @@ fn sides(holds: &Holds) -> [Holds; 2] {
     ]
 }
 
+/// How near (relative) a piece's length must be to the warm start's for the search to start
+/// from it.
+const WARM_SHARE: f64 = 0.02;
+
 /// The equilibrium of a piece of `length_m` in `sub_segments` between `guides`: from `warm`
 /// (the nearest split's solution, re-pitched by the solver) when given and it converges,
 /// else from the connected geometry.
@@ -407,7 +411,13 @@ fn piece(
     let pitch_m = length_m / sub_segments as f64;
     let params = RodParameters { pitch_m, ..*params };
     let far = FarEnd::Clamped(*end);
-    if let Some(warm) = warm.filter(|w| w.nodes.len() == sub_segments + 1)
+    // Only a near length: a start shape far from its pitch costs Newton more than the
+    // connected geometry does.
+    let near = |w: &&Equilibrium| {
+        let warm_m: f64 = w.nodes.windows(2).map(|e| (e[1] - e[0]).norm()).sum();
+        w.nodes.len() == sub_segments + 1 && (warm_m - length_m).abs() <= WARM_SHARE * length_m
+    };
+    if let Some(warm) = warm.filter(near)
         && let Ok(solved) =
             solver.solve(&params, start, &far, &warm.nodes, Some(warm.twist_rad), options)
     {
