@@ -876,6 +876,7 @@ fn a_limp_cable_through_a_frictionless_ring_pulls_equally_on_both_sides() {
         guide: ring,
         total_m: total,
         sub_segments: (80, 40),
+        near_m: None,
     };
     let options = SolverOptions {
         force_tolerance_n: 1e-9,
@@ -968,7 +969,7 @@ fn a_retraction_spring_balances_the_hanging_cable_it_pulls_back() {
     // Between the stops: the tension of a 0.33 m catenary over 0.3 m is about 0.38 N.
     let spring = unit(0.2, 10.0);
     let solve = |unit: &RetractionUnit, end: &Pose, n: usize| {
-        solve_through_retraction(&params, unit, end, (rest, n), &options)
+        solve_through_retraction(&params, unit, end, (rest, n), None, &options)
     };
     let solved: Vec<_> = [60, 120, 240]
         .iter()
@@ -1053,6 +1054,7 @@ fn a_cable_followed_through_a_ring_slides_at_the_edge_of_its_friction() {
             (kind, 0),
             (&start, &ring, &end_at(0.2)),
             (sub_segments, pitch),
+            None,
             &options,
         )
         .unwrap_or_else(|e| panic!("{e}"));
@@ -1077,6 +1079,7 @@ fn a_cable_followed_through_a_ring_slides_at_the_edge_of_its_friction() {
         (GuideKind::Sliding { friction: 0.0 }, 0),
         (&start, &ring, &end_at(0.26)),
         (sub_segments, pitch),
+        None,
         &options,
     )
     .unwrap_or_else(|e| panic!("{e}"));

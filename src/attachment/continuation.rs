@@ -99,7 +99,12 @@ impl Evaluator<'_> {
         warm: Warm<'_>,
     ) -> Result<Solved, Check> {
         if self.setup.segments[m].through.is_some() {
-            return self.solve_through((m, holds), guides, sub_segments, scene);
+            // A sweep searches around the previous pose's split first.
+            let near = match warm {
+                Warm::Poses([(last, _), ..]) => last.slid_m,
+                _ => None,
+            };
+            return self.solve_through((m, holds), guides, (sub_segments, near), scene);
         }
         if self.method == ConnectMethod::Linear {
             self.count_static_solve(m);
@@ -110,6 +115,7 @@ impl Evaluator<'_> {
                 twist_rad: 0.0,
                 pitch_m: self.setup.cable.sub_segment_pitch_m,
                 from: None,
+                slid_m: None,
             });
         }
         let pitch = self.setup.cable.sub_segment_pitch_m;
@@ -194,6 +200,7 @@ impl Evaluator<'_> {
             twist_rad: solved.twist_rad,
             pitch_m: pitch,
             from: None,
+            slid_m: None,
         })
     }
 }

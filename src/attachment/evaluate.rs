@@ -624,6 +624,8 @@ pub(super) struct Solved {
     /// Where its nodes start when not at the segment's start clamp: a retraction's outlet
     /// (the cable stored in the unit behind it is not free).
     pub(super) from: Option<Pose>,
+    /// Through a sliding guide or out of a retraction: the split or travel (m).
+    pub(super) slid_m: Option<f64>,
 }
 
 /// The neighbouring solution a solve starts from, if any.

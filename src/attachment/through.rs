@@ -11,12 +11,14 @@ use crate::statics::{Holds, RodParameters, sliding};
 impl Evaluator<'_> {
     /// The equilibrium of a piece of segment `m` (a span through a sliding guide or a
     /// retraction's outlet) of `sub_segments` between `guides`, held by its clamps as
-    /// `holds`, in `scene`.
+    /// `holds`, in `scene`; searched around `near_m` first (a sweep's previous pose's split),
+    /// else over the whole range (the attachment test: a verdict that depends on nothing
+    /// else).
     pub(super) fn solve_through(
         &self,
         (m, holds): (usize, Holds),
         guides: &(Pose, Pose),
-        sub_segments: usize,
+        (sub_segments, near_m): (usize, Option<f64>),
         scene: &Scene<'_>,
     ) -> Result<Solved, Check> {
         let setup = self.setup;
@@ -40,6 +42,7 @@ impl Evaluator<'_> {
             (guide.configurations[0].kind, stored),
             (&guides.0, &through, &guides.1),
             (sub_segments, setup.cable.sub_segment_pitch_m),
+            near_m,
             &self.solver,
         );
         match solved {
@@ -51,6 +54,7 @@ impl Evaluator<'_> {
                     twist_rad: 0.0,
                     pitch_m: solved.pitch_m,
                     from: solved.from,
+                    slid_m: Some(solved.slid.reading().amount_m),
                 })
             }
             Err(e @ crate::statics::StaticsError::InvalidInput { .. }) => {

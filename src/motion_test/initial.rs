@@ -65,6 +65,7 @@ pub(super) fn equilibria(
                 (kind, stored),
                 (start, &through, end),
                 (planned.sub_segments, pitch),
+                None,
                 &SolverOptions::STRESS_CHECK,
             );
             match solved {

@@ -34,6 +34,9 @@ pub struct Slide {
     pub total_m: f64,
     /// Sub-segments of the piece before the guide and of the piece after it.
     pub sub_segments: (usize, usize),
+    /// A split to search around first (m): the previous pose's, in a sweep; the whole range
+    /// when the least lies at the edge of the window around it.
+    pub near_m: Option<f64>,
 }
 
 /// The equilibrium of two pieces through a sliding guide.
@@ -115,7 +118,8 @@ pub fn solve_through_slide(
         }
         Ok((energy, [first, second]))
     };
-    let (split_m, evaluations) = least_energy((low, high), &[], |split| Ok(at(split)?.0))?;
+    let (split_m, evaluations) =
+        least_near((low, high), slide.near_m, &[], |split| Ok(at(split)?.0))?;
     let (energy_j, pieces) = at(split_m)?;
     Ok(SlidEquilibrium {
         split_m,
@@ -221,6 +225,7 @@ pub fn solve_through_retraction(
     unit: &RetractionUnit,
     end: &Pose,
     (rest_length_m, sub_segments): (f64, usize),
+    near_m: Option<f64>,
     options: &SolverOptions,
 ) -> Result<RetractedEquilibrium, StaticsError> {
     let invalid = |what: String| StaticsError::InvalidInput { what };
@@ -274,7 +279,9 @@ pub fn solve_through_retraction(
         .filter(|&stop| stop >= low)
         .collect();
     let (travel_m, evaluations) = if low < unit.travel_max_m {
-        least_energy((low, unit.travel_max_m), &stops, |travel| Ok(at(travel)?.0))?
+        least_near((low, unit.travel_max_m), near_m, &stops, |travel| {
+            Ok(at(travel)?.0)
+        })?
     } else {
         (unit.travel_max_m, 0)
     };
@@ -285,6 +292,36 @@ pub fn solve_through_retraction(
         force_n: unit.force_n(travel_m),
         evaluations: evaluations + 1,
     })
+}
+
+/// Half the window around a previous split or travel searched first (m).
+const NEAR_WINDOW_M: f64 = 0.02;
+
+/// [`least_energy`] on the window of ±[`NEAR_WINDOW_M`] around `near` (within `[low, high]`)
+/// first, then on the whole range when the least lies at an edge of the window inside it.
+fn least_near(
+    (low, high): (f64, f64),
+    near: Option<f64>,
+    stops: &[f64],
+    mut energy: impl FnMut(f64) -> Result<f64, StaticsError>,
+) -> Result<(f64, usize), StaticsError> {
+    let Some(near) = near.filter(|n| n.is_finite()) else {
+        return least_energy((low, high), stops, energy);
+    };
+    let window = (
+        (near - NEAR_WINDOW_M).max(low),
+        (near + NEAR_WINDOW_M).min(high),
+    );
+    if window.0 >= window.1 {
+        return least_energy((low, high), stops, energy);
+    }
+    let (at, evaluations) = least_energy(window, stops, &mut energy)?;
+    let near_edge = |edge: f64| (at - edge).abs() <= 4.0 * SPLIT_TOLERANCE_M;
+    if (window.0 > low && near_edge(window.0)) || (window.1 < high && near_edge(window.1)) {
+        let (at, more) = least_energy((low, high), stops, energy)?;
+        return Ok((at, evaluations + more));
+    }
+    Ok((at, evaluations))
 }
 
 /// The argument of least `energy` on `[low, high]` (Brent's method: parabolic steps through
@@ -418,8 +455,14 @@ fn piece(
         w.nodes.len() == sub_segments + 1 && (warm_m - length_m).abs() <= WARM_SHARE * length_m
     };
     if let Some(warm) = warm.filter(near)
-        && let Ok(solved) =
-            solver.solve(&params, start, &far, &warm.nodes, Some(warm.twist_rad), options)
+        && let Ok(solved) = solver.solve(
+            &params,
+            start,
+            &far,
+            &warm.nodes,
+            Some(warm.twist_rad),
+            options,
+        )
     {
         return Ok(solved);
     }
@@ -511,12 +554,14 @@ pub struct ThroughEquilibrium {
 /// the guide `through` of `kind` (a sliding guide, or a retraction's outlet whose stored
 /// cable at rest is `stored_sub_segments` of them) to the clamp `end`. A sliding guide's
 /// pieces get sub-segments in proportion to their straight runs, then once more in
-/// proportion to the split found when their pitches differ by more than a quarter.
+/// proportion to the split found when their pitches differ by more than a quarter. `near_m`:
+/// a split or travel to search around first (a sweep's previous pose's).
 pub fn solve_through(
     params: &RodParameters,
     (kind, stored_sub_segments): (GuideKind, usize),
     (start, through, end): (&Pose, &Pose, &Pose),
     (sub_segments, pitch_m): (usize, f64),
+    near_m: Option<f64>,
     options: &SolverOptions,
 ) -> Result<ThroughEquilibrium, StaticsError> {
     let invalid = |what: String| StaticsError::InvalidInput { what };
@@ -540,6 +585,7 @@ pub fn solve_through(
                     guide: *through,
                     total_m,
                     sub_segments: (before, sub_segments - before),
+                    near_m,
                 };
                 let solved = solve_through_slide(params, start, &slide, end, options)?;
                 solves += 2 * solved.evaluations;
@@ -588,7 +634,8 @@ pub fn solve_through(
                 travel_max_m,
             };
             let rest_m = free as f64 * pitch_m;
-            let solved = solve_through_retraction(params, &unit, end, (rest_m, free), options)?;
+            let solved =
+                solve_through_retraction(params, &unit, end, (rest_m, free), near_m, options)?;
             Ok(ThroughEquilibrium {
                 nodes: solved.piece.nodes.clone(),
                 pitch_m: (rest_m + solved.travel_m) / free as f64,
