@@ -22,16 +22,14 @@ impl Evaluator<'_> {
         scene: &Scene<'_>,
     ) -> Result<Solved, Check> {
         let setup = self.setup;
-        let Some(g) = setup.segments[m].through else {
+        let Some((g, kind, stored)) = setup.slide_of(m) else {
             return Err(Check::fail(
                 Rejection::Diverged,
                 "not a piece through a sliding guide".into(),
                 None,
             ));
         };
-        let guide = &setup.guides[g];
         let through = setup.guide_world_pose(scene.link_poses, g, 0);
-        let stored = setup.segments[g - 1].range.min;
         let rod = RodParameters {
             gravity_m_s2: scene.gravity_m_s2,
             holds,
@@ -39,7 +37,7 @@ impl Evaluator<'_> {
         };
         let solved = sliding::solve_through(
             &rod,
-            (guide.configurations[0].kind, stored),
+            (kind, stored),
             (&guides.0, &through, &guides.1),
             (sub_segments, setup.cable.sub_segment_pitch_m),
             near_m,

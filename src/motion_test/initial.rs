@@ -56,10 +56,8 @@ pub(super) fn equilibria(
             },
             too_short,
         };
-        if let Some(g) = planned.through {
-            let kind = setup.guides[g].configurations[0].kind;
+        if let Some((g, kind, stored)) = setup.slide_of(segment) {
             let through = setup.guide_world_pose(links, g, 0);
-            let stored = setup.segments[g - 1].range.min;
             let solved = solve_through(
                 &planned.rod(&params),
                 (kind, stored),

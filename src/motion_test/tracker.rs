@@ -196,11 +196,11 @@ impl<'a> Tracker<'a> {
     fn keep_slides(&mut self, time_s: f64, measures: &[SegmentMeasure]) {
         let dt = time_s - self.last_time_s;
         for m in measures {
-            let (Some(reading), Some(g)) = (m.slid, self.setup.segments[m.segment].through) else {
+            let (Some(reading), Some((g, kind, _))) = (m.slid, self.setup.slide_of(m.segment))
+            else {
                 continue;
             };
             let guide = &self.setup.guides[g];
-            let kind = guide.configurations[0].kind;
             let travel_max_m = match kind {
                 GuideKind::Retraction { travel_max_m, .. } => Some(travel_max_m),
                 _ => None,

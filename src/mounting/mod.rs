@@ -509,8 +509,8 @@ pub fn mounting_plan(setup: &Setup, path: &CablePath) -> MountingPlan {
         .filter(|(_, pv)| pv.sub_segments > 0)
         .enumerate()
         .filter_map(|(piece, (m, _))| {
-            let g = setup.segments[m].through?;
-            Some(sliding_part(setup, g, piece, &link_poses))
+            let slide = setup.slide_of(m)?;
+            Some(sliding_part(setup, slide, piece, &link_poses))
         })
         .collect();
     let count = groups.len();
@@ -549,14 +549,19 @@ pub fn mounting_plan(setup: &Setup, path: &CablePath) -> MountingPlan {
     }
 }
 
-/// The sliding guide or retraction outlet `g` (its one configuration) on the plan's piece
-/// `piece`.
-fn sliding_part(setup: &Setup, g: usize, piece: usize, link_poses: &[Pose]) -> SlidingPart {
+/// The sliding guide or retraction outlet `g` (its one configuration) of `kind`, storing
+/// `stored` sub-segments at rest, on the plan's piece `piece`.
+fn sliding_part(
+    setup: &Setup,
+    (g, kind, stored): (usize, GuideKind, usize),
+    piece: usize,
+    link_poses: &[Pose],
+) -> SlidingPart {
     let guide = &setup.guides[g];
     let configuration = &guide.configurations[0];
     let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
     let in_body = guide.link_in_body * configuration.pose;
-    let (friction, retraction) = match configuration.kind {
+    let (friction, retraction) = match kind {
         GuideKind::Sliding { friction } => (Some(friction), None),
         GuideKind::Retraction {
             preload_n,
@@ -568,14 +573,14 @@ fn sliding_part(setup: &Setup, g: usize, piece: usize, link_poses: &[Pose]) -> S
                 preload_n,
                 rate_n_per_mm: rate_n_per_m * 1e-3,
                 travel_mm: travel_max_m * 1e3,
-                stored_mm: setup.segments[g - 1].range.min as f64 * pitch_mm,
+                stored_mm: stored as f64 * pitch_mm,
             }),
         ),
         _ => (None, None),
     };
     SlidingPart {
         guide: guide.name.clone(),
-        kind: configuration.kind.word(),
+        kind: kind.word(),
         link: setup.robot.links[guide.link].name.clone(),
         placement: configuration.name.clone(),
         xyz_mm: configuration.position_mm,

@@ -518,6 +518,18 @@ impl Setup {
             .all(|&g| (self.guides[g].configurations.iter()).all(|c| c.kind == GuideKind::Rigid))
     }
 
+    /// For segment `m` through a sliding guide or a retraction's outlet: that guide, its kind
+    /// and the cable a retraction stores at rest (sub-segments; 0 for a sliding guide).
+    pub fn slide_of(&self, m: usize) -> Option<(usize, GuideKind, usize)> {
+        let g = self.segments[m].through?;
+        let kind = self.guides[g].configurations.first()?.kind;
+        let stored = match kind {
+            GuideKind::Retraction { .. } => self.segments[g - 1].range.min,
+            _ => 0,
+        };
+        Some((g, kind, stored))
+    }
+
     /// Whether segment `m` has candidate lengths: not those on either side of a sliding guide
     /// or a retraction's outlet, which are one piece through it.
     pub fn has_candidates(&self, m: usize) -> bool {
