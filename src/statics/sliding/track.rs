@@ -164,7 +164,7 @@ impl SlideTrack {
         let twists: Vec<f64> = self.pieces.iter().map(|p| p.twist_rad).collect();
         let (low, high) = self.range(&guides);
         let c0 = self.coordinate.clamp(low, high);
-        let at = self.derivatives(params, (&guides, &carried, &twists), c0, options)?;
+        let at = self.derivatives(params, &guides, (&carried, &twists), c0, options)?;
         let mut next = c0;
         self.stop_force_n = 0.0;
         if let Some((slope, curvature)) = at.slope {
@@ -202,7 +202,8 @@ impl SlideTrack {
     fn derivatives(
         &mut self,
         params: &RodParameters,
-        (guides, carried, twists): (&(Pose, Pose, Pose), &[Vec<Point3<f64>>], &[f64]),
+        guides: &(Pose, Pose, Pose),
+        (carried, twists): (&[Vec<Point3<f64>>], &[f64]),
         c0: f64,
         options: &SolverOptions,
     ) -> Result<Derivatives, StaticsError> {
