@@ -214,14 +214,7 @@ fn a_mounting_measured_as_the_sheet_gives_it_is_the_path_the_solve_found() {
         path.to_str().expect("a UTF-8 path").to_string()
     };
     let measured = write("measured.toml", file(0.0, None));
-    let checked = run(&["check", &measured, pick, "--json"]);
-    assert_eq!(
-        checked.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&checked.stderr)
-    );
-    let checked: Value = serde_json::from_slice(&checked.stdout).unwrap_or_else(|e| panic!("{e}"));
+    let checked = check_holds(&measured, pick);
     assert_eq!(checked["ecpv"], solve_json["ecpv"]);
     for key in [
         "min_clearance_mm",
@@ -251,4 +244,63 @@ fn a_mounting_measured_as_the_sheet_gives_it_is_the_path_the_solve_found() {
         "{stderr}"
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The bundled dress pack's mounting as a fitter measures it — the retraction's inlet (a
+/// fitting) and the one clamp; the retraction's outlet and the ring are not clamps and get no
+/// mark — reads back into the path the solve found, through both sliding parts, and `check`
+/// gives the solve's margins.
+#[test]
+fn a_measured_dress_pack_skips_the_guides_the_cable_slides_through() {
+    let dir = tempfile::tempdir().unwrap();
+    let setup = root().join("robots/viper_s850/dress_pack.toml");
+    let setup_arg = setup.to_str().expect("a UTF-8 path");
+    let solved = run(&["solve", "--setup", setup_arg, PICK, "--json"]);
+    let solve_json: Value =
+        serde_json::from_slice(&solved.stdout).unwrap_or_else(|e| panic!("{e}"));
+    let mounting = &solve_json["mounting"];
+    let kinds: Vec<&str> = (mounting["sliding_parts"].as_array().expect("sliding parts"))
+        .iter()
+        .map(|p| p["kind"].as_str().expect("kind"))
+        .collect();
+    assert_eq!(kinds, ["retraction", "sliding"]);
+    let clamps = mounting["clamps"].as_array().expect("clamps");
+    let inlet = &clamps[0];
+    let clamp = &clamps[1];
+    let place = &clamp["place"];
+    let text = format!(
+        "setup = {setup_arg:?}\n\n[[clamps]]\nfitting = {:?}\nmark_mm = {:.0}\n\n[[clamps]]\n\
+         link = {:?}\nalong_mm = {:.0}\naround_deg = {:.0}\ncable_to_axis_deg = {:.0}\n\
+         cable_turn = {:?}\nmark_mm = {:.0}\n",
+        inlet["fitting"].as_str().expect("the inlet is a fitting"),
+        inlet["mark_mm"].as_f64().expect("mark"),
+        clamp["link"].as_str().expect("link"),
+        place["along_mm"].as_f64().expect("along"),
+        place["around_deg"].as_f64().expect("around"),
+        place["cable_to_axis_deg"].as_f64().expect("angle"),
+        place["cable_turn"].as_str().expect("turn"),
+        clamp["mark_mm"].as_f64().expect("mark"),
+    );
+    let path = dir.path().join("measured.toml");
+    std::fs::write(&path, text).unwrap_or_else(|e| panic!("{e}"));
+    let checked = check_holds(path.to_str().unwrap(), PICK);
+    assert_eq!(checked["ecpv"], solve_json["ecpv"]);
+    for key in ["min_clearance_mm", "min_bend_radius_mm"] {
+        assert_eq!(
+            checked["motions"][0][key], solve_json["motion_test"][key],
+            "{key}"
+        );
+    }
+}
+
+/// `check MOUNTING MOTION --json`, which must hold (exit 0): its JSON.
+fn check_holds(mounting: &str, motion: &str) -> Value {
+    let checked = run(&["check", mounting, motion, "--json"]);
+    assert_eq!(
+        checked.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&checked.stderr)
+    );
+    serde_json::from_slice(&checked.stdout).unwrap_or_else(|e| panic!("{e}"))
 }

@@ -278,7 +278,12 @@ impl MeasuredMounting {
                     self.nothing_near(setup, k, next, tolerance_mm, &place),
                 ));
             };
-            if let Some(skipped) = (next..g).find(|&s| !setup.guides[s].optional) {
+            // A guide the cable slides through is no clamp: nobody measures a mark there.
+            let measured_there = |s: usize| {
+                let guide = &setup.guides[s];
+                !guide.optional && !guide.kinds.iter().any(|k| k.slides())
+            };
+            if let Some(skipped) = (next..g).find(|&s| measured_there(s)) {
                 return Err(error(
                     line,
                     format!(
@@ -321,7 +326,8 @@ impl MeasuredMounting {
         // mounted at mark 0.
         for g in next..setup.guides.len() {
             let guide = &setup.guides[g];
-            match (guide.fixed, guide.optional) {
+            let slides = guide.kinds.iter().any(|k| k.slides());
+            match (guide.fixed, guide.optional || slides) {
                 (true, _) if g + 1 == setup.guides.len() => groups.push((vec![(g, 0)], 0.0, None)),
                 (_, true) => {}
                 _ => {
