@@ -281,8 +281,9 @@ fn a_rotating_clamp_between_two_pieces_shares_the_twist_by_their_lengths() {
 /// The bundled dress pack (`robots/viper_s850/dress_pack.toml`): a retraction on the upper
 /// arm, a sliding ring on the forearm. Its mistakes are refused naming the key and the reason:
 /// too little cable stored for the travel (with the count it needs), a stored length that is
-/// a window, an inlet that is not the guide before the outlet, a sliding guide next to an
-/// optional clamp, two places for a sliding guide.
+/// a window, a piece through the ring longer than a piece may be, an inlet that is not the
+/// guide before the outlet, a sliding guide next to an optional clamp, two places for a
+/// sliding guide.
 #[test]
 fn a_dress_pack_with_sliding_parts_is_checked_when_loaded() {
     let root = crate::common::root();
@@ -317,6 +318,11 @@ fn a_dress_pack_with_sliding_parts_is_checked_when_loaded() {
             stored,
             "lengths = { min = 40, max = 50, step = 1, allow_zero = false }",
             "one length (min = max, no allow_zero)",
+        ),
+        (
+            "lengths = { min = 15, max = 70, step = 1, allow_zero = false }",
+            "lengths = { min = 15, max = 9990, step = 1, allow_zero = false }",
+            "from G3 through S to G5 could be 10050 sub-segments long",
         ),
         (
             "stored_from = \"G1\"",

@@ -91,7 +91,19 @@ pub(super) fn spans(
             let skipped = b - 1;
             let slides = guides[skipped].kinds.iter().any(|k| k.slides());
             if slides && b == a + 2 {
-                spans.push(through(guides, &declared[a..b], skipped));
+                let piece = joined(guides, declared, (a, b), Some(skipped)).map_err(|max| {
+                    let kind = raw_guides[skipped].get_ref().kind.as_ref();
+                    src.error(
+                        kind.map_or(0..0, Spanned::span),
+                        format!("guides[{skipped}].kind"),
+                        format!(
+                            "the cable from {} through {} to {} could be {max} sub-segments \
+                             long, more than the {MAX_SUB_SEGMENTS} a piece may have",
+                            guides[a].name, guides[skipped].name, guides[b].name
+                        ),
+                    )
+                })?;
+                spans.push(piece);
                 break;
             }
             if !guides[skipped].optional {
@@ -109,56 +121,50 @@ pub(super) fn spans(
                     guides[skipped].name, guides[a].name, guides[b].name
                 )));
             }
-            let ranges = || declared[a..b].iter().map(|s| s.range);
-            let min: usize = ranges().map(|r| r.min).sum();
-            let max: usize = ranges().map(|r| r.max).sum();
-            if max > MAX_SUB_SEGMENTS {
-                return Err(fail(format!(
+            let span = joined(guides, declared, (a, b), None).map_err(|max| {
+                fail(format!(
                     "the cable from {} to {} without the clamps between could be {max} \
                      sub-segments long, more than the {MAX_SUB_SEGMENTS} a piece may have",
                     guides[a].name, guides[b].name
-                )));
-            }
-            let step = ranges().map(|r| r.step).fold(0, gcd);
-            spans.push(SegmentSpec {
-                guides: (a, b),
-                lengths: (min..=max).step_by(step).collect(),
-                intra_link: false,
-                range: LengthRange {
-                    min,
-                    max,
-                    step,
-                    allow_zero: false,
-                },
-                through: None,
-            });
+                ))
+            })?;
+            spans.push(span);
         }
     }
     Ok(spans)
 }
 
-/// The piece from guide `g − 1` through guide `g` (a sliding guide or a retraction's outlet)
-/// to guide `g + 1`: its lengths the sums of the two declared segments' `declared` (a
-/// retraction's stored cable at rest is the first one's only length), in steps of their
-/// steps' greatest common divisor. Both ends are mounted clamps on different links
-/// (checked with the guides).
-fn through(guides: &[Guide], declared: &[SegmentSpec], g: usize) -> SegmentSpec {
-    let ranges = || declared.iter().map(|s| s.range);
+/// The piece from guide `a` to guide `b` that stands for the declared segments between them
+/// (a span over optional guides, or the piece `through` a sliding guide or a retraction's
+/// outlet, whose stored cable at rest is the first segment's only length): its lengths the
+/// sums of their ranges, in steps of their steps' greatest common divisor (which divides ΔS
+/// as each of them does). `Err` with the longest sum when it is more than
+/// [`MAX_SUB_SEGMENTS`].
+fn joined(
+    guides: &[Guide],
+    declared: &[SegmentSpec],
+    (a, b): (usize, usize),
+    through: Option<usize>,
+) -> Result<SegmentSpec, usize> {
+    let ranges = || declared[a..b].iter().map(|s| s.range);
     let min: usize = ranges().map(|r| r.min).sum();
     let max: usize = ranges().map(|r| r.max).sum();
+    if max > MAX_SUB_SEGMENTS {
+        return Err(max);
+    }
     let step = ranges().map(|r| r.step).fold(0, gcd);
-    SegmentSpec {
-        guides: (g - 1, g + 1),
+    Ok(SegmentSpec {
+        guides: (a, b),
         lengths: (min..=max).step_by(step).collect(),
-        intra_link: guides[g - 1].body == guides[g + 1].body,
+        intra_link: guides[a].body == guides[b].body,
         range: LengthRange {
             min,
             max,
             step,
             allow_zero: false,
         },
-        through: Some(g),
-    }
+        through,
+    })
 }
 
 /// The segment from a retraction's inlet `a` to its outlet `b` is the cable stored in the

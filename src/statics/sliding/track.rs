@@ -183,13 +183,9 @@ impl SlideTrack {
                 next = (c0 + newton.clamp(-TRACK_MAX_MOVE_M, TRACK_MAX_MOVE_M)).clamp(low, high);
             }
         }
-        let pieces0 = at.pieces;
-        let solve = |track: &mut SlideTrack, c: f64| {
-            track.solve_at(params, &guides, (&carried, &twists), c, options)
-        };
         self.pieces = match next == c0 {
-            true => pieces0,
-            false => solve(self, next)?.1,
+            true => at.pieces,
+            false => (self.solve_at(params, &guides, (&carried, &twists), next, options)?).1,
         };
         self.coordinate = next;
         self.guides = guides;
