@@ -116,6 +116,8 @@ fn panels(test: &MotionTestReport, thresholds: &Thresholds, names: &PlotNames) -
 /// its stops, mm; its spring's force, N), over the motion.
 fn slide_panels(slide: &GuideSlide, names: &PlotNames) -> Vec<Panel> {
     let piece = names.piece(&slide.segment_name);
+    // Safe in SVG text, as the piece's name is.
+    let guide = crate::escape::terminal(&slide.guide);
     let series = |value: &dyn Fn(&SlidePoint) -> Option<f64>| -> Vec<Option<(f64, f64)>> {
         (slide.series.iter())
             .map(|p| value(p).map(|v| (p.time_s, v)))
@@ -123,7 +125,7 @@ fn slide_panels(slide: &GuideSlide, names: &PlotNames) -> Vec<Panel> {
     };
     match slide.travel_max_m {
         None => vec![Panel {
-            name: format!("cable before sliding guide {} ({piece})", slide.guide),
+            name: format!("cable before sliding guide {guide} ({piece})"),
             y_desc: "length (mm)".into(),
             points: series(&|p| Some(p.amount_m * 1e3)),
             color: RGBColor(127, 127, 127),
@@ -138,7 +140,7 @@ fn slide_panels(slide: &GuideSlide, names: &PlotNames) -> Vec<Panel> {
         }],
         Some(travel) => vec![
             Panel {
-                name: format!("travel of retraction {} ({piece})", slide.guide),
+                name: format!("travel of retraction {guide} ({piece})"),
                 y_desc: "cable pulled out (mm)".into(),
                 points: series(&|p| Some(p.amount_m * 1e3)),
                 color: RGBColor(230, 90, 5),
@@ -152,7 +154,7 @@ fn slide_panels(slide: &GuideSlide, names: &PlotNames) -> Vec<Panel> {
                 violation: None,
             },
             Panel {
-                name: format!("spring force of retraction {}", slide.guide),
+                name: format!("spring force of retraction {guide}"),
                 y_desc: "force (N)".into(),
                 points: series(&|p| p.force_n),
                 color: RGBColor(140, 60, 10),
