@@ -9,8 +9,8 @@ use crate::reference;
 use cable_dict::geometry::connect;
 use cable_dict::pose::{Pose, pose_from_xyz_rpy};
 use cable_dict::statics::{
-    Equilibrium, FarEnd, Hold, Holds, RodParameters, SolverOptions, StaticsError, clamp_loads,
-    potential_energy, solve_segment,
+    Equilibrium, FarEnd, Hold, Holds, PIN_STIFFNESS_PER_AXIAL, Pin, RodParameters, SolverOptions,
+    StaticSolver, StaticsError, clamp_loads, potential_energy, solve_segment,
 };
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -778,6 +778,82 @@ fn a_swivel_carries_no_moment_within_its_cone_and_holds_the_cable_at_its_edge() 
         midspan_sag(&coned)
     );
     assert!(error < 0.03, "{error}");
+}
+
+/// A cable clamped along +x at the origin, held at `a` = 0.4 m by a swivel clamp whose cone
+/// is `cone_rad` about +x, and free `b` = 0.2 m beyond it; the load makes the free cable's
+/// slope at the swivel 1e-3 rad (linear beam theory holds to ~1e-6 there, and the free end
+/// leaves no membrane tension). Returns the load (N/m), the cable's slope at the swivel
+/// (rad, + upwards) and the force the swivel holds the cable up with (N).
+fn overhang_through_swivel(cone_rad: f64) -> (f64, f64, f64) {
+    let (a, b) = (0.4, 0.2);
+    let slope = 1e-3;
+    let w = slope * 48.0 * EI / (a * (6.0 * b * b - a * a));
+    let params = cable(w / RHO);
+    let start = planar_guide(0.0, 0.0, 0.0, 0.0);
+    let node = 40;
+    let pin = Pin {
+        node,
+        position: Point3::new(a, 0.0, 0.0),
+        axis: Vector3::x(),
+        cone_rad,
+    };
+    let nodes = straight_nodes(Point3::origin(), Point3::new(a + b, 0.0, 0.0), 60);
+    let options = SolverOptions {
+        // The swivel's spring leaves a rounding floor of ~5e-9 N at 0.4 m from the origin.
+        force_tolerance_n: 1e-9,
+        max_iterations: 200,
+    };
+    let solution = StaticSolver::default()
+        .solve_pinned(
+            &params,
+            (&start, Some(&pin), &FarEnd::Free),
+            &nodes,
+            None,
+            &options,
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+    let n = &solution.nodes;
+    let tangent = (n[node + 1] - n[node - 1]).normalize();
+    let stiffness = PIN_STIFFNESS_PER_AXIAL * params.axial_stiffness_n / PITCH;
+    let held_up = -stiffness * (n[node].z - pin.position.z);
+    (w, tangent.z, held_up)
+}
+
+/// A swivel clamp between two pieces passes the cable's bending through and takes none: on
+/// a beam clamped at one end, propped by the swivel and overhanging beyond it, linear beam
+/// theory gives the slope there `w·a·(a² − 6b²)/48EI` (span and overhang `a`, `b`) and the
+/// prop's reaction `3wa/8 + wb + 3wb²/4a`; a cone of zero holds it level like a rigid
+/// clamp, and a cone of half the free slope holds it at the cone's edge. (Measured: slope
+/// within 0.3 %, reaction within 0.1 %, level within 3 % of the free slope.)
+#[test]
+fn a_swivel_between_two_pieces_passes_the_bending_through_and_holds_at_its_cone() {
+    let (a, b) = (0.4, 0.2);
+    let (w, slope, held_up) = overhang_through_swivel(PI);
+    let closed_form = w * a * (a * a - 6.0 * b * b) / (48.0 * EI);
+    let reaction = w * (3.0 * a / 8.0 + b + 3.0 * b * b / (4.0 * a));
+    println!(
+        "free swivel: slope {slope:.4e} rad vs {closed_form:.4e}; prop {held_up:.4e} N vs \
+         {reaction:.4e} N"
+    );
+    assert!(
+        (slope - closed_form).abs() < 0.02 * closed_form.abs(),
+        "{slope}"
+    );
+    assert!((held_up - reaction).abs() < 0.03 * reaction, "{held_up}");
+    let (_, level, _) = overhang_through_swivel(0.0);
+    println!("cone 0: slope {level:.3e} rad");
+    assert!(level.abs() < 0.05 * closed_form.abs(), "{level}");
+    let cone = 0.5 * closed_form.abs();
+    let (_, edge, _) = overhang_through_swivel(cone);
+    // The cone holds each of the node's two edges: the direction between them lies up to
+    // half a joint's turn inside it, `κl/2` with the curvature there `κ = (wb²/2)/EI`.
+    let half_turn = 0.5 * PITCH * (0.5 * w * b * b) / EI;
+    println!("cone {cone:.3e} rad: slope {edge:.4e} rad (half a joint's turn {half_turn:.2e})");
+    assert!(
+        edge.abs() < 1.05 * cone && edge.abs() > cone - half_turn - 0.05 * cone,
+        "{edge}"
+    );
 }
 
 /// A straight cable whose end clamp is turned by a quarter turn about the cable: held by

@@ -26,7 +26,7 @@ pub mod sliding;
 pub mod turns;
 
 pub use loads::{ClampLoad, clamp_loads};
-pub use rod::{EnergyTerms, Hold, Holds, RodParameters};
+pub use rod::{EnergyTerms, Hold, Holds, PIN_STIFFNESS_PER_AXIAL, Pin, RodParameters};
 
 use nalgebra::{Point3, Rotation3, Vector3};
 
@@ -159,13 +159,50 @@ impl StaticSolver {
         initial_twist_rad: Option<f64>,
         options: &SolverOptions,
     ) -> Result<Equilibrium, StaticsError> {
+        self.solve_pinned(
+            params,
+            (start, None, far_end),
+            initial_nodes,
+            initial_twist_rad,
+            options,
+        )
+    }
+
+    /// [`StaticSolver::solve`] with a swivel clamp `pin` holding one interior node between
+    /// the clamps `start` and `far_end` (a piece through a swivel clamp).
+    pub fn solve_pinned(
+        &mut self,
+        params: &RodParameters,
+        (start, pin, far_end): (&Pose, Option<&Pin>, &FarEnd),
+        initial_nodes: &[Point3<f64>],
+        initial_twist_rad: Option<f64>,
+        options: &SolverOptions,
+    ) -> Result<Equilibrium, StaticsError> {
         check_input(params, start, far_end, initial_nodes, options)?;
+        if let Some(pin) = pin {
+            let finite = pin
+                .position
+                .iter()
+                .chain(pin.axis.iter())
+                .all(|c| c.is_finite());
+            if !(finite && pin.node >= 1 && pin.node + 1 < initial_nodes.len()) {
+                return Err(StaticsError::InvalidInput {
+                    what: format!(
+                        "a swivel clamp must hold an interior node of a finite place: node {} \
+                         of {}",
+                        pin.node,
+                        initial_nodes.len()
+                    ),
+                });
+            }
+        }
         let rod = Rod::new(
             *params,
             *start,
             clamped_pose(far_end),
             initial_nodes.len() - 1,
-        );
+        )
+        .with_pin(pin.copied());
         let x = rod.free_coordinates(initial_nodes);
         let twist = match initial_twist_rad {
             Some(twist) => twist,

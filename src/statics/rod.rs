@@ -154,7 +154,34 @@ pub(crate) struct Rod {
     end: Option<Pose>,
     sub_segments: usize,
     inertia: Option<Inertia>,
+    pin: Option<Pin>,
 }
+
+/// A swivel clamp between the two ends of a piece: it holds node `node` at `position` and
+/// lets the cable's direction there turn freely within a cone of half-angle `cone_rad` about
+/// `axis` (held at the cone's edge beyond it) and the cable turn about its own axis — a ball
+/// joint the cable runs through, continuous: it carries force, no moment.
+///
+/// The node is held by a stiff spring, [`PIN_STIFFNESS_PER_AXIAL`] times a sub-segment's
+/// axial stiffness: it stays within `F·l / (100·EA)` of the clamp (0.1 µm for 10 N on a
+/// 10⁴ N cable at a 10 mm pitch), and the node keeps its place among the unknowns so that
+/// the structure of the problem, the dynamics and the solver stay those of a free piece.
+/// Beyond the cone each edge at the node bends against the cone's edge as it would against a
+/// clamp held there ([`cone_bending`], twice a joint's stiffness, as at a guide).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pin {
+    /// The node the clamp holds (`1 ≤ node < S`).
+    pub node: usize,
+    /// Where (m).
+    pub position: Point3<f64>,
+    /// The cone's axis: the clamp's +z (unit).
+    pub axis: Vector3<f64>,
+    /// Half-angle of the cone (rad); `≥ π` lets the direction turn every way.
+    pub cone_rad: f64,
+}
+
+/// The pin's spring over a sub-segment's axial stiffness `EA / l`.
+pub const PIN_STIFFNESS_PER_AXIAL: f64 = 100.0;
 
 /// The inertial term `½ Σ w_k |x_k − a_k|²` of an implicit time step, over the free nodes.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -223,7 +250,14 @@ impl Rod {
             end,
             sub_segments,
             inertia: None,
+            pin: None,
         }
+    }
+
+    /// The same rod with a swivel clamp holding one of its interior nodes.
+    pub(crate) fn with_pin(mut self, pin: Option<Pin>) -> Self {
+        self.pin = pin.filter(|p| p.node >= 1 && p.node < self.sub_segments);
+        self
     }
 
     /// The same rod with the inertial term of a time step (one weight per free node, three
@@ -326,6 +360,11 @@ impl Rod {
         scratch
             .free
             .extend((0..=self.sub_segments).map(|k| self.free_index(k).is_some()));
+        // A swivel clamp's node stays where the step puts it: its spring is far stiffer than
+        // the cable, so the lengths give way around it.
+        if let Some(pin) = &self.pin {
+            scratch.free[pin.node] = false;
+        }
         self.fill_nodes(trial, &mut scratch.nodes);
         if restore_lengths(
             &mut scratch.nodes,
@@ -407,9 +446,10 @@ impl Rod {
         let bend = self.add_joints(edges, twist, &mut assembly);
         let gravity = self.add_gravity(nodes, &mut assembly);
         let inertial = self.add_inertia(x, &mut assembly);
+        let (held, cone) = self.add_pin(nodes, edges, &mut assembly);
         out.terms = EnergyTerms {
-            stretch_j: stretch,
-            bending_j: bend,
+            stretch_j: stretch + held,
+            bending_j: bend + cone,
             twist_j: 0.5 * self.twist_stiffness() * twist * twist,
             gravity_j: gravity,
         };
@@ -502,6 +542,44 @@ impl Rod {
             }
         }
         energy
+    }
+
+    /// The swivel clamp's terms, if any: the spring holding its node and the bending of the
+    /// node's two edges against the cone's edge beyond it (J, J).
+    fn add_pin(
+        &self,
+        nodes: &[Point3<f64>],
+        edges: &[Edge],
+        assembly: &mut Assembly,
+    ) -> (f64, f64) {
+        let Some(pin) = &self.pin else {
+            return (0.0, 0.0);
+        };
+        let k = PIN_STIFFNESS_PER_AXIAL * self.params.axial_stiffness_n / self.params.pitch_m;
+        let offset = nodes[pin.node] - pin.position;
+        assembly.add_node_gradient(pin.node, &(k * offset));
+        if assembly.hessian.is_some() {
+            assembly.add_hessian_block(pin.node, pin.node, &Matrix3::from_diagonal_element(k));
+        }
+        let stiffness = 2.0 * self.params.bending_stiffness_n_m2 / self.params.pitch_m;
+        let with_hessian = assembly.hessian.is_some();
+        let guide = Side::Guide(
+            pin.axis,
+            Hold::Swivel {
+                cone_rad: pin.cone_rad,
+            },
+        );
+        let mut cone = 0.0;
+        for sides in [
+            (Side::Cable(pin.node - 1), guide),
+            (guide, Side::Cable(pin.node)),
+        ] {
+            let (a, b) = (side_edge(sides.0, edges), side_edge(sides.1, edges));
+            let derivatives = joint_bending(sides, (&a, &b), stiffness, with_hessian);
+            cone += derivatives.value;
+            assembly.add_joint(sides.0, sides.1, &derivatives);
+        }
+        (0.5 * k * offset.norm_squared(), cone)
     }
 
     /// The part of the potential energy that depends on the pose of the start clamp (or,

@@ -41,8 +41,34 @@ fn twisted_rod(end_free: bool) -> (Rod, Vec<f64>) {
     twisted_rod_held(end_free, Holds::RIGID)
 }
 
+/// Every case the derivative checks run: each of [`HOLDS`] with a clamped and a free end,
+/// and a swivel clamp holding node 4 (a little off it, its cone narrower than the turn of
+/// the node's edges from its axis) between rigid clamps and before a free end.
+fn cases() -> Vec<(bool, Holds, Option<Pin>)> {
+    let pin = Pin {
+        node: 4,
+        position: Point3::new(0.027, 0.011, 0.012),
+        axis: Vector3::new(0.9, 0.3, -0.3).normalize(),
+        cone_rad: 0.05,
+    };
+    let mut cases: Vec<(bool, Holds, Option<Pin>)> = [false, true]
+        .into_iter()
+        .flat_map(|f| HOLDS.map(|h| (f, h, None)))
+        .collect();
+    cases.extend([
+        (false, Holds::RIGID, Some(pin)),
+        (true, HOLDS[3], Some(pin)),
+    ]);
+    cases
+}
+
 /// [`twisted_rod`] with the clamps' holds `holds`.
 fn twisted_rod_held(end_free: bool, holds: Holds) -> (Rod, Vec<f64>) {
+    twisted_rod_pinned(end_free, holds, None)
+}
+
+/// [`twisted_rod_held`] with a swivel clamp `pin` between its ends.
+fn twisted_rod_pinned(end_free: bool, holds: Holds, pin: Option<Pin>) -> (Rod, Vec<f64>) {
     let start = pose_from_xyz_rpy([0.0; 3], [0.0, 1.2, 0.3]);
     let end = pose_from_xyz_rpy([0.05, 0.03, -0.02], [0.9, 2.0, -0.4]);
     let nodes: Vec<Point3<f64>> = (0..=8)
@@ -60,7 +86,8 @@ fn twisted_rod_held(end_free: bool, holds: Holds) -> (Rod, Vec<f64>) {
         start,
         (!end_free).then_some(end),
         8,
-    );
+    )
+    .with_pin(pin);
     let x = rod.free_coordinates(&nodes);
     (rod, x)
 }
@@ -99,11 +126,8 @@ fn the_test_swivels_bend_beyond_their_cones() {
 
 #[test]
 fn gradient_matches_finite_differences_of_the_energy() {
-    for (free, holds) in [false, true]
-        .into_iter()
-        .flat_map(|f| HOLDS.map(|h| (f, h)))
-    {
-        let (rod, x) = twisted_rod_held(free, holds);
+    for (free, holds, pin) in cases() {
+        let (rod, x) = twisted_rod_pinned(free, holds, pin);
         let at = rod.evaluate(&x, 0.0, None);
         let h = 1e-7;
         for i in 0..x.len() {
@@ -115,7 +139,7 @@ fn gradient_matches_finite_differences_of_the_energy() {
             let scale = super::newton::max_abs(&at.gradient);
             assert!(
                 (at.gradient[i] - numeric).abs() < 1e-6 * scale,
-                "free end {free}, {holds:?}, coordinate {i}: {} vs {numeric}",
+                "free end {free}, {holds:?}, {pin:?}, coordinate {i}: {} vs {numeric}",
                 at.gradient[i]
             );
         }
@@ -144,11 +168,8 @@ fn twist_gradient_matches_finite_differences_of_the_transported_twist() {
 
 #[test]
 fn hessian_matches_finite_differences_of_the_gradient() {
-    for (free, holds) in [false, true]
-        .into_iter()
-        .flat_map(|f| HOLDS.map(|h| (f, h)))
-    {
-        let (rod, x) = twisted_rod_held(free, holds);
+    for (free, holds, pin) in cases() {
+        let (rod, x) = twisted_rod_pinned(free, holds, pin);
         let n = x.len();
         let mut band = SymmetricBand::zeros(n);
         let at = rod.evaluate(&x, 0.0, Some(&mut band));
@@ -178,7 +199,21 @@ fn hessian_matches_finite_differences_of_the_gradient() {
         }
         assert!(
             worst < 1e-5 * scale,
-            "free end {free}, {holds:?}: {worst:e} of {scale:e}"
+            "free end {free}, {holds:?}, {pin:?}: {worst:e} of {scale:e}"
         );
+    }
+}
+
+/// The swivel clamp of [`cases`] bends the node's edges beyond its cone in the test
+/// configuration, so that the checks above see the cone's terms.
+#[test]
+fn the_test_pin_bends_beyond_its_cone() {
+    for (free, holds, pin) in cases() {
+        let Some(pin) = pin else { continue };
+        let bending = |cone_rad: f64| {
+            let (rod, x) = twisted_rod_pinned(free, holds, Some(Pin { cone_rad, ..pin }));
+            rod.evaluate(&x, 0.0, None).terms.bending_j
+        };
+        assert!(bending(pin.cone_rad) > bending(std::f64::consts::PI) + 1e-9);
     }
 }
