@@ -293,6 +293,58 @@ fn a_measured_dress_pack_skips_the_guides_the_cable_slides_through() {
     }
 }
 
+/// The forearm swivel's mounting as a fitter measures it — the clamp on link_3 and the
+/// swivel clamp at its mark — reads back into the path the solve found (one piece of the
+/// search through the swivel) with the solve's margins; a swivel measured 30 mm off its mark
+/// is refused with the mark the solve gave.
+#[test]
+fn a_measured_swivel_between_two_pieces_reads_back_at_its_mark() {
+    let dir = tempfile::tempdir().unwrap();
+    let setup = root().join("robots/viper_s850/swivel_forearm.toml");
+    let setup_arg = setup.to_str().expect("a UTF-8 path");
+    let solved = run(&["solve", "--setup", setup_arg, PICK, "--json"]);
+    let solve_json: Value =
+        serde_json::from_slice(&solved.stdout).unwrap_or_else(|e| panic!("{e}"));
+    let clamps = solve_json["mounting"]["clamps"].as_array().expect("clamps");
+    let (clamp, swivel) = (&clamps[0], &clamps[1]);
+    assert_eq!(swivel["kind"], "swivel");
+    let place = &clamp["place"];
+    let swivel_mark = swivel["mark_mm"].as_f64().expect("mark");
+    let measured = |mark_mm: f64| {
+        format!(
+            "setup = {setup_arg:?}\n\n[[clamps]]\nlink = {:?}\nalong_mm = {:.0}\n\
+             around_deg = {:.0}\ncable_to_axis_deg = {:.0}\ncable_turn = {:?}\nmark_mm = {:.0}\n\n\
+             [[clamps]]\nfitting = {:?}\nmark_mm = {mark_mm:.0}\n",
+            clamp["link"].as_str().expect("link"),
+            place["along_mm"].as_f64().expect("along"),
+            place["around_deg"].as_f64().expect("around"),
+            place["cable_to_axis_deg"].as_f64().expect("angle"),
+            place["cable_turn"].as_str().expect("turn"),
+            clamp["mark_mm"].as_f64().expect("mark"),
+            swivel["fitting"].as_str().expect("the swivel is a fitting"),
+        )
+    };
+    let path = dir.path().join("measured.toml");
+    std::fs::write(&path, measured(swivel_mark)).unwrap_or_else(|e| panic!("{e}"));
+    let checked = check_holds(path.to_str().unwrap(), PICK);
+    assert_eq!(checked["ecpv"], solve_json["ecpv"]);
+    for key in ["min_clearance_mm", "min_bend_radius_mm"] {
+        assert_eq!(
+            checked["motions"][0][key], solve_json["motion_test"][key],
+            "{key}"
+        );
+    }
+    std::fs::write(&path, measured(swivel_mark + 30.0)).unwrap_or_else(|e| panic!("{e}"));
+    let refused = run(&["check", path.to_str().unwrap(), PICK]);
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{stderr}");
+    let says = format!("mount it at mark {swivel_mark} mm");
+    assert!(
+        stderr.contains(&says) && stderr.contains("measured.toml"),
+        "{stderr}"
+    );
+}
+
 /// `check MOUNTING MOTION --json`, which must hold (exit 0): its JSON.
 fn check_holds(mounting: &str, motion: &str) -> Value {
     let checked = run(&["check", mounting, motion, "--json"]);

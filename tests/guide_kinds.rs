@@ -167,8 +167,9 @@ fn wrong_kinds_are_refused_with_the_key_and_the_reason() {
     }
 }
 
-/// A swivel between two pieces is refused (for now) naming the guide; a rotating clamp at
-/// the cable's end loads, and the setup's content hash changes with it.
+/// A swivel clamp between two pieces has one place and is its guide's only kind: offered
+/// beside a rigid clamp, or on a guide with sites, it is refused naming the guide; a
+/// rotating clamp at the cable's end loads, and the setup's content hash changes with it.
 #[test]
 fn a_kind_between_two_pieces_is_refused_and_one_at_the_end_changes_the_hash() {
     let root = crate::common::root();
@@ -179,14 +180,24 @@ fn a_kind_between_two_pieces_is_refused_and_one_at_the_end_changes_the_hash() {
         assert!(text.contains(&line));
         text.replacen(&line, &format!("{line}{keys}"), 1)
     };
-    let swivel = "kind = \"swivel\"\ncone_deg = 20.0\n";
-    let error = Setup::from_toml_str(&with("G2", swivel), &source)
-        .expect_err("refused")
-        .to_string();
-    assert!(
-        error.contains("guides[1].kind") && error.contains("G2 is between two pieces"),
-        "{error}"
-    );
+    for (keys, says) in [
+        (
+            "kind = [\"rigid\", \"swivel\"]\ncone_deg = 20.0\n",
+            "G2 is between two pieces of cable: a swivel clamp there is its only kind",
+        ),
+        (
+            "kind = \"swivel\"\ncone_deg = 20.0\n",
+            "places: a swivel guide has one",
+        ),
+    ] {
+        let error = Setup::from_toml_str(&with("G2", keys), &source)
+            .expect_err("refused")
+            .to_string();
+        assert!(
+            error.contains("guides[1].kind") && error.contains(says),
+            "{error}"
+        );
+    }
     let plain = Setup::from_toml_str(&text, &source).unwrap();
     let end = Setup::from_toml_str(&with("G4", "kind = \"rotating\"\n"), &source).unwrap();
     assert_eq!(end.guides[3].kinds, [GuideKind::Rotating]);
@@ -348,5 +359,44 @@ fn a_dress_pack_with_sliding_parts_is_checked_when_loaded() {
             .to_string();
         assert!(error.contains(says), "{to}: {error}");
         assert!(error.contains("dress_pack.toml:"), "{error}");
+    }
+}
+
+/// A swivel clamp between two pieces makes them one piece of the search (a span through it;
+/// the declared pieces either side have no candidates), held where the two length windows
+/// share the spare length in proportion to their widths, each within its window: checked
+/// against that rule by hand on the bundled forearm swivel with its first window narrowed to
+/// 200–400 mm (widths 20 and 60 sub-segments).
+#[test]
+fn a_swivel_between_two_pieces_holds_the_span_where_the_windows_share_the_spare_length() {
+    let source = crate::common::root().join("robots/viper_s850/swivel_forearm.toml");
+    let text = std::fs::read_to_string(&source).unwrap();
+    let narrowed = text.replacen(
+        "lengths = { min = 20, max = 80, step = 1, allow_zero = false }",
+        "lengths = { min = 20, max = 40, step = 1, allow_zero = false }",
+        1,
+    );
+    assert_ne!(narrowed, text);
+    let setup = Setup::from_toml_str(&narrowed, &source).unwrap_or_else(|e| panic!("{e}"));
+    assert!(!setup.has_candidates(0) && !setup.has_candidates(1));
+    let span = (0..setup.segment_count())
+        .find(|&m| setup.segments[m].through == Some(1))
+        .expect("the span through the swivel");
+    assert_eq!(setup.segment_guides(span), (0, 2));
+    assert_eq!(setup.segments[span].lengths.first(), Some(&40));
+    assert_eq!(setup.segments[span].lengths.last(), Some(&120));
+    assert!(
+        setup.slide_of(span).is_none(),
+        "a swivel is no sliding guide"
+    );
+    // (S, before): the spare S − 40 shared 20 : 60, rounded half up.
+    for (sub_segments, before) in [(40, 20), (100, 35), (102, 36), (120, 40)] {
+        let split = setup.swivel_of(span, sub_segments).expect("a swivel");
+        assert_eq!(
+            (split.guide, split.before),
+            (1, before),
+            "S = {sub_segments}"
+        );
+        assert!((split.cone_rad - 30f64.to_radians()).abs() < 1e-12);
     }
 }

@@ -124,3 +124,13 @@ fn both_searches_find_the_same_path_through_sliding_guides() {
     let outlet = &test.slides[0];
     assert!(outlet.least_m >= 0.0 && outlet.most_m <= 0.15);
 }
+
+/// The forearm swivel (a swivel clamp between two pieces: one piece of the search, held at
+/// the mark the length windows give): both searches find the same path through the same
+/// candidates, after failed motion tests.
+#[test]
+fn both_searches_find_the_same_path_through_a_swivel_clamp() {
+    let swivel = setup("robots/viper_s850/swivel_forearm.toml");
+    let motion = motion(&swivel, "motions/viper_s850/pick_and_place.csv");
+    same_answer(&swivel, &motion, "forearm swivel");
+}

@@ -99,12 +99,12 @@ impl Evaluator<'_> {
         warm: Warm<'_>,
     ) -> Result<Solved, Check> {
         if self.setup.segments[m].through.is_some() {
-            // A sweep searches around the previous pose's split first.
-            let near = match warm {
-                Warm::Poses([(last, _), ..]) => last.slid_m,
+            // A sweep starts from the previous pose's split or shape.
+            let last = match warm {
+                Warm::Poses([(last, _), ..]) => Some(last),
                 _ => None,
             };
-            return self.solve_through((m, holds), guides, (sub_segments, near), scene);
+            return self.solve_through((m, holds), guides, (sub_segments, last), scene);
         }
         if self.method == ConnectMethod::Linear {
             self.count_static_solve(m);

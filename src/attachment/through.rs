@@ -1,12 +1,15 @@
-//! The attachment test of a piece through a sliding guide or out of a retraction: the pieces
-//! on either side of the guide are one piece of the search (its length the total between
-//! the clamps), solved from scratch at every pose by the split (or travel) of least energy
-//! (docs/architecture.md, "Sliding guides and retractions").
+//! The attachment test of a piece through a sliding guide, out of a retraction or through a
+//! swivel clamp between two pieces: the pieces on either side of the guide are one piece of
+//! the search (its length the total between the clamps), solved from scratch at every pose
+//! by the split (or travel) of least energy (docs/architecture.md, "Sliding guides and
+//! retractions"), or, through a swivel clamp, as one cable held there at the split the setup
+//! gives ([`crate::setup::Setup::swivel_of`]), from the previous pose's shape in a sweep.
 
 use super::evaluate::{Evaluator, Scene, Solved};
 use super::verdict::{Check, Rejection};
 use crate::pose::Pose;
-use crate::statics::{Holds, RodParameters, sliding};
+use crate::statics::swivel::{SwivelThrough, solve_through_swivel};
+use crate::statics::{Holds, RodParameters, StaticSolver, StaticsError, sliding};
 
 impl Evaluator<'_> {
     /// The equilibrium of a piece of segment `m` (a span through a sliding guide or a
@@ -18,10 +21,40 @@ impl Evaluator<'_> {
         &self,
         (m, holds): (usize, Holds),
         guides: &(Pose, Pose),
-        (sub_segments, near_m): (usize, Option<f64>),
+        (sub_segments, last): (usize, Option<&Solved>),
         scene: &Scene<'_>,
     ) -> Result<Solved, Check> {
         let setup = self.setup;
+        let rod = RodParameters {
+            gravity_m_s2: scene.gravity_m_s2,
+            holds,
+            ..self.rod
+        };
+        if let Some(split) = setup.swivel_of(m, sub_segments) {
+            let swivel = SwivelThrough {
+                clamp: setup.guide_world_pose(scene.link_poses, split.guide, 0),
+                cone_rad: split.cone_rad,
+                sub_segments: (split.before, sub_segments - split.before),
+            };
+            self.count_static_solve(m);
+            let solved = solve_through_swivel(
+                &mut StaticSolver::default(),
+                &rod,
+                (&guides.0, &swivel, &guides.1),
+                last.map(|l| l.nodes.as_slice()),
+                &self.solver,
+            )
+            .map_err(rejected)?;
+            return Ok(Solved {
+                nodes: solved.nodes,
+                connected: Vec::new(),
+                twist_rad: solved.twist_rad,
+                pitch_m: setup.cable.sub_segment_pitch_m,
+                from: None,
+                slid_m: None,
+            });
+        }
+        let near_m = last.and_then(|l| l.slid_m);
         let Some((g, kind, stored)) = setup.slide_of(m) else {
             return Err(Check::fail(
                 Rejection::Diverged,
@@ -30,11 +63,6 @@ impl Evaluator<'_> {
             ));
         };
         let through = setup.guide_world_pose(scene.link_poses, g, 0);
-        let rod = RodParameters {
-            gravity_m_s2: scene.gravity_m_s2,
-            holds,
-            ..self.rod
-        };
         let solved = sliding::solve_through(
             &rod,
             (kind, stored),
@@ -43,22 +71,23 @@ impl Evaluator<'_> {
             near_m,
             &self.solver,
         );
-        match solved {
-            Ok(solved) => {
-                (0..solved.solves).for_each(|_| self.count_static_solve(m));
-                Ok(Solved {
-                    nodes: solved.nodes,
-                    connected: Vec::new(),
-                    twist_rad: 0.0,
-                    pitch_m: solved.pitch_m,
-                    from: solved.from,
-                    slid_m: Some(solved.slid.reading().amount_m),
-                })
-            }
-            Err(e @ crate::statics::StaticsError::InvalidInput { .. }) => {
-                Err(Check::fail(Rejection::TooShort, e.to_string(), None))
-            }
-            Err(e) => Err(Check::fail(Rejection::Diverged, e.to_string(), None)),
-        }
+        let solved = solved.map_err(rejected)?;
+        (0..solved.solves).for_each(|_| self.count_static_solve(m));
+        Ok(Solved {
+            nodes: solved.nodes,
+            connected: Vec::new(),
+            twist_rad: 0.0,
+            pitch_m: solved.pitch_m,
+            from: solved.from,
+            slid_m: Some(solved.slid.reading().amount_m),
+        })
+    }
+}
+
+/// A piece that cannot reach through its guide is too short; any other failure diverged.
+fn rejected(e: StaticsError) -> Check {
+    match e {
+        StaticsError::InvalidInput { .. } => Check::fail(Rejection::TooShort, e.to_string(), None),
+        _ => Check::fail(Rejection::Diverged, e.to_string(), None),
     }
 }

@@ -7,7 +7,7 @@ use crate::pose::Pose;
 use crate::statics::newton::{Workspace, minimize};
 use crate::statics::rod::{Inertia, Rod};
 use crate::statics::{
-    FarEnd, RodParameters, SolverOptions, StaticsError, check_input, clamped_pose,
+    FarEnd, Pin, RodParameters, SolverOptions, StaticsError, check_input, clamped_pose,
 };
 
 /// How a cable is stepped in time (SI units).
@@ -140,6 +140,8 @@ pub struct SegmentDynamics {
     twist_rad: f64,
     inertia: Inertia,
     workspace: Workspace,
+    /// A swivel clamp between the ends, if any: where it holds its node now.
+    pin: Option<Pin>,
 }
 
 impl SegmentDynamics {
@@ -186,7 +188,25 @@ impl SegmentDynamics {
             twist_rad,
             inertia,
             workspace: Workspace::default(),
+            pin: None,
         })
+    }
+
+    /// The same segment held between its ends by the swivel clamp `pin` (a piece through a
+    /// swivel clamp between two pieces).
+    pub fn with_pin(mut self, pin: Pin) -> Self {
+        self.pin = Some(pin);
+        self
+    }
+
+    /// Moves the swivel clamp, if any, to `clamp` (its origin and +z) for the next step: it
+    /// holds its node there through the whole step, as the end clamps hold theirs at the
+    /// step's end poses.
+    pub fn move_pin(&mut self, clamp: &Pose) {
+        if let Some(pin) = &mut self.pin {
+            pin.position = Point3::from(clamp.translation.vector);
+            pin.axis = clamp.rotation * nalgebra::Vector3::z();
+        }
     }
 
     /// Advances by `step_s` to the guide poses `start` and `far_end` (the poses at the end of
@@ -344,6 +364,7 @@ impl SegmentDynamics {
             clamped_pose(&far_end),
             self.sub_segments,
         )
+        .with_pin(self.pin)
     }
 
     /// Total twist Ψ between the guides (rad).

@@ -12,11 +12,11 @@ use crate::pose::Pose;
 use crate::rigid_chain::{CableWorld, ContactSummary, RigidChainError, SegmentShape};
 use crate::setup::Setup;
 use crate::statics::sliding::{SlideReading, SlideTrack, ThroughEquilibrium};
-use crate::statics::{Equilibrium, FarEnd, RodParameters, SolverOptions};
+use crate::statics::{Equilibrium, FarEnd, Pin, RodParameters, SolverOptions};
 use crate::stress::ClampZone;
 #[cfg(feature = "rigid-chain")]
 use crate::stress::GuideEnd;
-use nalgebra::Point3;
+use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
 
 /// One simulated segment after a step.
@@ -62,6 +62,9 @@ pub(super) struct Diverged {
 /// guide or out of a retraction) followed quasi-statically with its split carried.
 pub(super) enum Simulated {
     Dynamic(Box<SegmentDynamics>),
+    /// In motion between its clamps and held between them by a swivel clamp: that clamp's
+    /// link and its pose in that link's frame.
+    Pinned(Box<SegmentDynamics>, (usize, Pose)),
     Through {
         track: Box<SlideTrack>,
         /// The guide's link and its pose in that link's frame.
@@ -83,6 +86,13 @@ impl Simulated {
                 .step(start, FarEnd::Clamped(end), settings.time_step_s, settings)
                 .map(|_| ())
                 .map_err(|e| e.to_string()),
+            Simulated::Pinned(segment, (link, pose)) => {
+                segment.move_pin(&(links[*link] * *pose));
+                segment
+                    .step(start, FarEnd::Clamped(end), settings.time_step_s, settings)
+                    .map(|_| ())
+                    .map_err(|e| e.to_string())
+            }
             Simulated::Through {
                 track,
                 guide: (link, pose),
@@ -99,7 +109,7 @@ impl Simulated {
     /// Its state now.
     fn state(&self, pitch_m: f64) -> SegmentState {
         match self {
-            Simulated::Dynamic(segment) => SegmentState {
+            Simulated::Dynamic(segment) | Simulated::Pinned(segment, _) => SegmentState {
                 nodes: segment.nodes(),
                 pitch_m,
                 from: None,
@@ -184,16 +194,31 @@ impl Cable {
                         });
                         continue;
                     }
-                    match SegmentDynamics::at_rest(
+                    let segment = match SegmentDynamics::at_rest(
                         &params,
                         guides[j],
                         FarEnd::Clamped(guides[j + 1]),
                         &shape.nodes,
                         shape.twist_rad,
                     ) {
-                        Ok(segment) => segments.push(Simulated::Dynamic(Box::new(segment))),
+                        Ok(segment) => segment,
                         Err(e) => return Ok(Err(refused(e.to_string()))),
-                    }
+                    };
+                    segments.push(match planned.swivel {
+                        Some(split) => {
+                            let guide = &setup.guides[split.guide];
+                            let clamp = setup.guide_world_pose(links, split.guide, 0);
+                            let pin = Pin {
+                                node: split.before,
+                                position: Point3::from(clamp.translation.vector),
+                                axis: clamp.rotation * Vector3::z(),
+                                cone_rad: split.cone_rad,
+                            };
+                            let place = (guide.link, guide.configurations[0].pose);
+                            Simulated::Pinned(Box::new(segment.with_pin(pin)), place)
+                        }
+                        None => Simulated::Dynamic(Box::new(segment)),
+                    });
                 }
                 Ok(Ok(Cable::Implicit {
                     segments,

@@ -9,6 +9,7 @@ use crate::geometry::{ConnectError, connect, sag_direction};
 use crate::pose::Pose;
 use crate::setup::Setup;
 use crate::statics::sliding::{ThroughEquilibrium, solve_through};
+use crate::statics::swivel::{SwivelThrough, solve_through_swivel};
 use crate::statics::{
     Equilibrium, FarEnd, RodParameters, SolverOptions, StaticSolver, StaticsError,
 };
@@ -56,6 +57,35 @@ pub(super) fn equilibria(
             },
             too_short,
         };
+        if let Some(split) = planned.swivel {
+            let swivel = SwivelThrough {
+                clamp: setup.guide_world_pose(links, split.guide, 0),
+                cone_rad: split.cone_rad,
+                sub_segments: (split.before, planned.sub_segments - split.before),
+            };
+            let solved = solve_through_swivel(
+                &mut solver,
+                &planned.rod(&params),
+                (start, &swivel, end),
+                None,
+                &SolverOptions::STRESS_CHECK,
+            );
+            match solved {
+                Ok(equilibrium) => {
+                    shapes.push(equilibrium);
+                    throughs.push(None);
+                    continue;
+                }
+                Err(e @ StaticsError::InvalidInput { .. }) => {
+                    let cause = FailureCause::TooShort;
+                    return Ok(Err(no_start(cause, e.to_string(), None)));
+                }
+                Err(e @ StaticsError::NotConverged { .. }) => {
+                    let problem = format!("no static equilibrium: {e}");
+                    return Ok(Err(no_start(FailureCause::NoInitialShape, problem, None)));
+                }
+            }
+        }
         if let Some((g, kind, stored)) = setup.slide_of(segment) {
             let through = setup.guide_world_pose(links, g, 0);
             let solved = solve_through(

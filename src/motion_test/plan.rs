@@ -6,7 +6,7 @@ use super::MotionTestError;
 use crate::motion::Motion;
 use crate::path::CablePath;
 use crate::pose::Pose;
-use crate::setup::{Setup, turn_about_axis};
+use crate::setup::{Setup, SwivelSplit, turn_about_axis};
 use crate::statics::{Hold, Holds, RodParameters};
 use crate::stress::{ClampZone, GuideEnd};
 
@@ -27,6 +27,9 @@ pub(super) struct PlannedSegment {
     /// The sliding guide or retraction outlet it runs through, if any (index into the
     /// setup's guides): followed quasi-statically, its split carried step to step.
     pub through: Option<usize>,
+    /// The swivel clamp between two pieces it runs through, if any, and where it holds the
+    /// cable ([`Setup::swivel_of`]): simulated as one piece held there.
+    pub swivel: Option<SwivelSplit>,
 }
 
 impl PlannedSegment {
@@ -68,6 +71,7 @@ impl Plan {
                 end: (b, pv.end),
                 holds: Holds::of(setup.piece_kinds(m, (pv.start, pv.end))),
                 through: setup.segments[m].through,
+                swivel: setup.swivel_of(m, pv.sub_segments),
             });
         }
         if segments.is_empty() {

@@ -28,7 +28,7 @@
 
 use super::{LinkPlace, Turn, installation_link_poses, link_place};
 use crate::path::CablePath;
-use crate::setup::Setup;
+use crate::setup::{GuideKind, Setup};
 use serde::Deserialize;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -380,6 +380,52 @@ impl MeasuredMounting {
                 }
                 mounted.push(guide);
             }
+        }
+        // A swivel clamp between two pieces: its two pieces are one of the search's, held at
+        // the mark the setup's windows give.
+        let mut i = 1;
+        while i + 1 < mounted.len() {
+            let g = mounted[i].0;
+            let swivel = matches!(
+                setup.guides[g].configurations[0].kind,
+                GuideKind::Swivel { .. }
+            );
+            let span = (0..setup.segment_count())
+                .find(|&m| setup.segments[m].through == Some(g) && swivel);
+            let Some(m) = span else {
+                i += 1;
+                continue;
+            };
+            let (before, total) = (lengths[i - 1], lengths[i - 1] + lengths[i]);
+            let judged = setup
+                .swivel_of(m, total)
+                .map_or(before, |split| split.before);
+            if judged != before {
+                let line = groups
+                    .iter()
+                    .find(|(group, ..)| group[0].0 == g)
+                    .and_then(|g| g.2);
+                return Err(error(
+                    line,
+                    format!(
+                        "{} is a swivel clamp with {} mm of cable before it, but the search \
+                         judged the {} mm through it with {} mm before it (the setup's length \
+                         windows share the spare length): mount it at mark {} mm",
+                        setup.guides[g].name,
+                        before as f64 * pitch_mm,
+                        total as f64 * pitch_mm,
+                        judged as f64 * pitch_mm,
+                        groups
+                            .iter()
+                            .find(|(group, ..)| group[0].0 == g)
+                            .map_or(0.0, |g| g.1)
+                            + (before as f64 - judged as f64) * pitch_mm
+                    ),
+                ));
+            }
+            mounted.remove(i);
+            lengths[i - 1] = total;
+            lengths.remove(i);
         }
         let mut segments = Vec::with_capacity(mounted.len().saturating_sub(1));
         for pair in mounted.windows(2) {

@@ -282,7 +282,8 @@ pub struct MountedPiece {
     /// The joints it crosses, base side first (empty when both clamps are on one link).
     pub across_joints: Vec<String>,
     /// The setup's cable piece (`C3`) it is: pieces of 0 mm are inside a physical clamp, so
-    /// every mounted piece is one of the setup's.
+    /// every mounted piece is one of the setup's — but for the two either side of a swivel
+    /// clamp between them, which are one piece of the search (`C2–C3`) and bear its name.
     pub segment: String,
 }
 
@@ -388,9 +389,19 @@ impl MountingPlan {
     }
 
     /// The fitter's name of the setup's piece `segment` (`C3`): `piece 2 → gripper
-    /// connector`; `segment` itself for a piece not mounted (0 mm, or not on this path).
+    /// connector` (`pieces 1 → 2 → gripper connector` for the two either side of a swivel
+    /// clamp between them); `segment` itself for a piece not mounted (0 mm, or not on this
+    /// path).
     pub fn piece_words(&self, segment: &str) -> String {
+        let through = self.pieces.iter().filter(|p| p.segment == segment).count();
         match self.piece_of_segment(segment) {
+            // Through a swivel clamp: both pieces, `pieces 1 → swivel → gripper connector`.
+            Some(piece) if through > 1 => {
+                let names: Vec<String> = (piece.from_clamp..=piece.from_clamp + through)
+                    .filter_map(|i| self.clamps.get(i).map(PhysicalClamp::short_name))
+                    .collect();
+                format!("pieces {}", names.join(" → "))
+            }
             Some(piece) => format!("piece {}", self.piece_name(piece.from_clamp)),
             None => segment.to_string(),
         }
@@ -400,7 +411,23 @@ impl MountingPlan {
     /// (when known): `on piece 2 → gripper connector, 25 mm from clamp 2`, or `at clamp 2`
     /// for a 0 mm piece inside a clamp; `None` for a piece not on this path.
     pub fn place_on_cable(&self, segment: &str, along_mm: Option<f64>) -> Option<String> {
-        if let Some(piece) = self.piece_of_segment(segment) {
+        if let Some(mut piece) = self.piece_of_segment(segment) {
+            // Through a swivel clamp the search's piece is two mounted ones: a place is on
+            // the one it falls on, measured from that one's start; no place, on both.
+            let pieces = self.pieces.iter().filter(|p| p.segment == segment).count();
+            if along_mm.is_none() && pieces > 1 {
+                return Some(format!("on {}", self.piece_words(segment)));
+            }
+            let mut along_mm = along_mm;
+            for next in self.pieces.iter().filter(|p| p.segment == segment).skip(1) {
+                match along_mm {
+                    Some(along) if along > piece.length_mm => {
+                        along_mm = Some(along - piece.length_mm);
+                        piece = next;
+                    }
+                    _ => break,
+                }
+            }
             let mut words = format!("on piece {}", self.piece_name(piece.from_clamp));
             // A retraction's free piece is measured from its outlet (the cable behind it is
             // stored in the unit).
@@ -464,14 +491,27 @@ pub fn cut_words(plan: &MountingPlan) -> String {
 /// The mounting plan of `path` in `setup`.
 pub fn mounting_plan(setup: &Setup, path: &CablePath) -> MountingPlan {
     let pitch_mm = setup.cable.sub_segment_pitch_m * 1e3;
-    let mounted: Vec<(usize, usize)> = path
-        .guides(setup)
-        .zip(path.configurations.iter().copied())
-        .collect();
-    let segments: Vec<(String, f64)> = path
-        .pieces()
-        .map(|(m, pv)| (setup.segment_name(m), pv.sub_segments as f64 * pitch_mm))
-        .collect();
+    // The clamps and the pieces between them; a swivel clamp between two pieces is a clamp
+    // of its own with its mark, the two pieces either side bearing the span's name.
+    let mut mounted: Vec<(usize, usize)> = Vec::new();
+    let mut segments: Vec<(String, f64)> = Vec::new();
+    let mut pieces_of_path = path.pieces();
+    for guide in path.guides(setup).zip(path.configurations.iter().copied()) {
+        mounted.push(guide);
+        let Some((m, pv)) = pieces_of_path.next() else {
+            continue;
+        };
+        let name = setup.segment_name(m);
+        let length = |sub_segments: usize| sub_segments as f64 * pitch_mm;
+        match setup.swivel_of(m, pv.sub_segments) {
+            Some(split) if pv.sub_segments > 0 => {
+                segments.push((name.clone(), length(split.before)));
+                mounted.push((split.guide, 0));
+                segments.push((name, length(pv.sub_segments - split.before)));
+            }
+            _ => segments.push((name, length(pv.sub_segments))),
+        }
+    }
     let length_mm: f64 = segments.iter().map(|(_, l)| l).sum();
     let link_poses = installation_link_poses(setup);
     // Per physical clamp, the (guide, configuration) pairs it stands for.
@@ -506,10 +546,10 @@ pub fn mounting_plan(setup: &Setup, path: &CablePath) -> MountingPlan {
     }
     let sliding_parts = path
         .pieces()
-        .filter(|(_, pv)| pv.sub_segments > 0)
-        .enumerate()
-        .filter_map(|(piece, (m, _))| {
+        .filter_map(|(m, _)| {
             let slide = setup.slide_of(m)?;
+            let name = setup.segment_name(m);
+            let piece = pieces.iter().position(|p| p.segment == name)?;
             Some(sliding_part(setup, slide, piece, &link_poses))
         })
         .collect();

@@ -44,7 +44,6 @@ pub(super) fn build(
     }
     check_order(src, robot, raw, &guides)?;
     check_optional_ends(src, raw, &guides)?;
-    check_swivels_at_ends(src, raw, &guides)?;
     check_slides(src, raw, &guides)?;
     check_per_link(src, robot, raw, &guides, max_per_link)?;
     Ok(guides)
@@ -258,31 +257,6 @@ fn kinds(src: Source, g: usize, raw: &RawGuide) -> Result<Vec<GuideKind>, SetupE
     }
     kinds.sort_by_key(GuideKind::rank);
     Ok(kinds)
-}
-
-/// For now only the first and the last guide may be swivels: a swivel between two pieces
-/// lets one piece's bending pass into the other, which the solver does not model yet (a
-/// rotating clamp there shares the cable's turn between them: the motion test balances it).
-fn check_swivels_at_ends(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result<(), SetupError> {
-    let last = guides.len() - 1;
-    for (g, guide) in guides.iter().enumerate() {
-        let swivel = |k: &GuideKind| matches!(k, GuideKind::Swivel { .. });
-        if g == 0 || g == last || !guide.kinds.iter().any(swivel) {
-            continue;
-        }
-        let span = (raw.get_ref()[g].get_ref().kind.as_ref()).map_or(raw.span(), |k| k.span());
-        return Err(src.error(
-            span,
-            format!("guides[{g}].kind"),
-            format!(
-                "{} is between two pieces of cable: only the first and the last guide may be \
-                 swivel clamps in this version (one between two pieces passes its bending from \
-                 one to the other, which the solver does not model yet)",
-                guide.name
-            ),
-        ));
-    }
-    Ok(())
 }
 
 /// Gives each guide one configuration per pose and kind it offers, the kinds in the order
@@ -584,15 +558,26 @@ fn check_optional_ends(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result
     Ok(())
 }
 
-/// A guide the cable slides through (a sliding guide, a retraction's outlet) sits between
-/// two clamps that are always mounted, on different links (the two pieces through it are
-/// one piece of the search), and has one place (`fixed`, or one configuration): the
-/// search does not move it. A retraction's `stored_from` names the guide before it, its
-/// inlet, on its own link.
+/// A guide the cable runs through between two pieces that are one piece of the search (a
+/// sliding guide, a retraction's outlet, a swivel clamp between two pieces) sits between
+/// two clamps that are always mounted, has one place (`fixed`, or one configuration) and
+/// one kind: the search does not move it nor choose its kind. One the cable slides through
+/// has its two clamps on different links (else its split never changes). A retraction's
+/// `stored_from` names the guide before it, its inlet, on its own link.
+/// Whether the cable runs through guide `g` between two pieces that are one piece of the
+/// search: a sliding guide, a retraction's outlet, or a swivel clamp between two pieces.
+pub(super) fn runs_through(guides: &[Guide], g: usize) -> bool {
+    let between = g != 0 && g + 1 != guides.len();
+    let swivel = |k: &GuideKind| matches!(k, GuideKind::Swivel { .. });
+    (guides[g].kinds.iter()).any(|k| k.slides() || (between && swivel(k)))
+}
+
 fn check_slides(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result<(), SetupError> {
     let last = guides.len() - 1;
     for (g, guide) in guides.iter().enumerate() {
-        let Some(kind) = guide.kinds.iter().find(|k| k.slides()) else {
+        let swivel = |k: &&GuideKind| matches!(k, GuideKind::Swivel { .. });
+        let between = g != 0 && g != last;
+        let Some(kind) = (guide.kinds.iter()).find(|k| k.slides() || (between && swivel(k))) else {
             continue;
         };
         let entry = raw.get_ref()[g].get_ref();
@@ -601,6 +586,13 @@ fn check_slides(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result<(), Se
             Err(src.error(kind_span.clone(), format!("guides[{g}].kind"), problem))
         };
         let word = kind.word();
+        if guide.kinds.len() > 1 {
+            return refuse(format!(
+                "{} is between two pieces of cable: a {word} clamp there is its only kind in \
+                 this version (the pieces either side are one piece of the search through it)",
+                guide.name
+            ));
+        }
         if g == 0 || g == last {
             return refuse(format!(
                 "{} is the {} guide: a {word} guide sits between two clamps",
@@ -624,7 +616,7 @@ fn check_slides(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result<(), Se
         }
         for n in [g - 1, g + 1] {
             let neighbour = &guides[n];
-            if neighbour.optional || neighbour.kinds.iter().any(GuideKind::slides) {
+            if neighbour.optional || runs_through(guides, n) {
                 return refuse(format!(
                     "{} is next to {}, which is {}: the clamps on either side of a {word} guide \
                      are always mounted and hold the cable",
@@ -633,12 +625,12 @@ fn check_slides(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result<(), Se
                     if neighbour.optional {
                         "optional"
                     } else {
-                        "one the cable slides through"
+                        "one the cable runs through"
                     }
                 ));
             }
         }
-        if guides[g - 1].body == guides[g + 1].body {
+        if kind.slides() && guides[g - 1].body == guides[g + 1].body {
             return refuse(format!(
                 "{} and {} on either side of {} are on one link: the cable through a {word} \
                  guide between them cannot change its split as the robot moves",

@@ -273,6 +273,17 @@ impl GuideKind {
     }
 }
 
+/// Where a piece through a swivel clamp between two pieces is held ([`Setup::swivel_of`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SwivelSplit {
+    /// The swivel clamp (index into [`Setup::guides`]).
+    pub guide: usize,
+    /// Its cone's half-angle (rad).
+    pub cone_rad: f64,
+    /// Sub-segments of the piece before it: the clamp holds that node.
+    pub before: usize,
+}
+
 /// One candidate pose of a guide.
 #[derive(Debug, Clone)]
 pub struct GuideConfiguration {
@@ -338,10 +349,11 @@ pub struct SegmentSpec {
     pub intra_link: bool,
     /// The range as written.
     pub range: LengthRange,
-    /// For the piece through a sliding guide or a retraction's outlet, that guide (its only
-    /// configuration): the cable runs from `guides.0` through it to `guides.1`, its split
-    /// found by the solver. The declared segments on either side of such a guide have no
-    /// lengths: they are never pieces alone.
+    /// For the piece through a sliding guide, a retraction's outlet or a swivel clamp between
+    /// two pieces, that guide (its only configuration): the cable runs from `guides.0`
+    /// through it to `guides.1`, its split found by the solver (sliding, retraction) or
+    /// given by [`Setup::swivel_of`]. The declared segments on either side of such a guide
+    /// have no lengths: they are never pieces alone.
     pub through: Option<usize>,
 }
 
@@ -525,9 +537,43 @@ impl Setup {
         let kind = self.guides[g].configurations.first()?.kind;
         let stored = match kind {
             GuideKind::Retraction { .. } => self.segments[g - 1].range.min,
+            GuideKind::Swivel { .. } => return None,
             _ => 0,
         };
         Some((g, kind, stored))
+    }
+
+    /// For a piece of segment `m` through a swivel clamp between two pieces, `sub_segments`
+    /// long: the clamp, its cone and how much of the piece lies before it. The pieces either
+    /// side share what the piece has beyond their two shortest lengths in proportion to how
+    /// much their declared windows allow (`max − min`), each within its window: a window of
+    /// one length fixes that side. The swivel clamp is mounted at that mark; the search
+    /// judges the one split (docs/architecture.md, "A swivel clamp between two pieces").
+    pub fn swivel_of(&self, m: usize, sub_segments: usize) -> Option<SwivelSplit> {
+        let g = self.segments[m].through?;
+        let GuideKind::Swivel { cone_rad } = self.guides[g].configurations.first()?.kind else {
+            return None;
+        };
+        let (before, after) = (self.segments[g - 1].range, self.segments[g].range);
+        let spare = sub_segments.saturating_sub(before.min + after.min);
+        let (wide_before, wide) = (
+            before.max - before.min,
+            (before.max - before.min) + (after.max - after.min),
+        );
+        let share = match wide {
+            0 => 0,
+            _ => (spare * wide_before + wide / 2) / wide,
+        };
+        let first = (before.min + share)
+            .clamp(before.min, before.max)
+            .max(sub_segments.saturating_sub(after.max))
+            .min(sub_segments.saturating_sub(1))
+            .max(1);
+        Some(SwivelSplit {
+            guide: g,
+            cone_rad,
+            before: first,
+        })
     }
 
     /// Whether segment `m` has candidate lengths: not those on either side of a sliding guide

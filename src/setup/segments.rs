@@ -1,7 +1,7 @@
 //! Segments: one per pair of consecutive guides, with their candidate lengths.
 
 use super::error::Source;
-use super::guides::same_pose;
+use super::guides::{runs_through, same_pose};
 use super::raw::{RawGuide, RawLengths, RawSegment};
 use super::{Guide, GuideKind, LengthRange, MAX_SUB_SEGMENTS, SegmentSpec, SetupError};
 use toml::Spanned;
@@ -51,10 +51,9 @@ fn segment(
     }
     let zero = range.allow_zero.then_some(0);
     let series = (range.min..=range.max).step_by(range.step);
-    // The segments on either side of a guide the cable slides through are one piece: the
+    // The segments on either side of a guide the cable runs through are one piece: the
     // span through it.
-    let slides = |g: &Guide| g.kinds.iter().any(|k| k.slides());
-    let lengths = match slides(a) || slides(b) {
+    let lengths = match runs_through(guides, m) || runs_through(guides, m + 1) {
         true => Vec::new(),
         false => zero.into_iter().chain(series).collect(),
     };
@@ -89,8 +88,7 @@ pub(super) fn spans(
         // Every guide strictly between a and b is optional.
         for b in a + 2..guides.len() {
             let skipped = b - 1;
-            let slides = guides[skipped].kinds.iter().any(|k| k.slides());
-            if slides && b == a + 2 {
+            if runs_through(guides, skipped) && b == a + 2 {
                 let piece = joined(guides, declared, (a, b), Some(skipped)).map_err(|max| {
                     let kind = raw_guides[skipped].get_ref().kind.as_ref();
                     src.error(

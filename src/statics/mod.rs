@@ -23,6 +23,7 @@ pub(crate) mod newton;
 mod retract;
 pub(crate) mod rod;
 pub mod sliding;
+pub mod swivel;
 pub mod turns;
 
 pub use loads::{ClampLoad, clamp_loads};

@@ -292,11 +292,17 @@ impl Rod {
     /// Twist stiffness of the whole segment `kt / S` (N·m/rad); 0 for a free end or a clamp
     /// that lets the cable turn.
     pub(crate) fn twist_stiffness(&self) -> f64 {
-        if self.end.is_some() && !self.params.holds.free_twist() {
+        if self.end.is_some() && !self.twist_free() {
             self.params.torsion_stiffness_n_m2 / self.params.pitch_m / self.sub_segments as f64
         } else {
             0.0
         }
+    }
+
+    /// Whether the cable may turn about its axis somewhere between its end clamps: at a
+    /// clamp that lets it, or at a swivel clamp between them (no torque anywhere then).
+    fn twist_free(&self) -> bool {
+        self.params.holds.free_twist() || self.pin.is_some()
     }
 
     pub(crate) fn params(&self) -> &RodParameters {
@@ -429,7 +435,7 @@ impl Rod {
             if self.end.is_some() { coordinates } else { 0 },
         );
         let twist = match &self.end {
-            Some(_) if self.params.holds.free_twist() => 0.0,
+            Some(_) if self.twist_free() => 0.0,
             Some(end) => unwrap_near(self.transported_twist(edges, end), twist_reference),
             None => 0.0,
         };
@@ -616,7 +622,7 @@ impl Rod {
             energy += joint_bending((incoming, outgoing), (&a, &b), stiffness, false).value;
         }
         if let Some(end) = &self.end
-            && !self.params.holds.free_twist()
+            && !self.twist_free()
         {
             let twist = unwrap_near(self.transported_twist(&edges, end), twist_reference);
             energy += 0.5 * self.twist_stiffness() * twist * twist;
