@@ -389,6 +389,10 @@ fn a_swivel_between_two_pieces_holds_the_span_where_the_windows_share_the_spare_
         setup.slide_of(span).is_none(),
         "a swivel is no sliding guide"
     );
+    assert!(
+        !setup.segment_is_rigid(span),
+        "no dictionary answers for it"
+    );
     // (S, before): the spare S − 40 shared 20 : 60, rounded half up.
     for (sub_segments, before) in [(40, 20), (100, 35), (102, 36), (120, 40)] {
         let split = setup.swivel_of(span, sub_segments).expect("a swivel");

@@ -784,8 +784,9 @@ fn a_swivel_carries_no_moment_within_its_cone_and_holds_the_cable_at_its_edge() 
 /// is `cone_rad` about +x, and free `b` = 0.2 m beyond it; the load makes the free cable's
 /// slope at the swivel 1e-3 rad (linear beam theory holds to ~1e-6 there, and the free end
 /// leaves no membrane tension). Returns the load (N/m), the cable's slope at the swivel
-/// (rad, + upwards) and the force the swivel holds the cable up with (N).
-fn overhang_through_swivel(cone_rad: f64) -> (f64, f64, f64) {
+/// (rad, + upwards), the force the swivel holds the cable up with and the cable's pull on
+/// the clamp at the origin, upwards (N).
+fn overhang_through_swivel(cone_rad: f64) -> (f64, f64, f64, f64) {
     let (a, b) = (0.4, 0.2);
     let slope = 1e-3;
     let w = slope * 48.0 * EI / (a * (6.0 * b * b - a * a));
@@ -817,35 +818,49 @@ fn overhang_through_swivel(cone_rad: f64) -> (f64, f64, f64) {
     let tangent = (n[node + 1] - n[node - 1]).normalize();
     let stiffness = PIN_STIFFNESS_PER_AXIAL * params.axial_stiffness_n / PITCH;
     let held_up = -stiffness * (n[node].z - pin.position.z);
-    (w, tangent.z, held_up)
+    // The clamp's load from the terms at the clamp, the cable free to turn (the swivel).
+    let turning = RodParameters {
+        holds: params.holds.turning(),
+        ..params
+    };
+    let (clamp, _) = clamp_loads(&turning, &start, None, n, 0.0);
+    (w, tangent.z, held_up, clamp.force_n[2])
 }
 
 /// A swivel clamp between two pieces passes the cable's bending through and takes none: on
 /// a beam clamped at one end, propped by the swivel and overhanging beyond it, linear beam
 /// theory gives the slope there `w·a·(a² − 6b²)/48EI` (span and overhang `a`, `b`) and the
-/// prop's reaction `3wa/8 + wb + 3wb²/4a`; a cone of zero holds it level like a rigid
-/// clamp, and a cone of half the free slope holds it at the cone's edge. (Measured: slope
-/// within 0.3 %, reaction within 0.1 %, level within 3 % of the free slope.)
+/// prop's reaction `3wa/8 + wb + 3wb²/4a` (the clamp the rest of the weight: its load from
+/// the terms at the clamp, the cable free to turn); a cone of zero holds it level like a
+/// rigid clamp, and a cone of half the free slope holds it at the cone's edge. (Measured:
+/// slope within 0.3 %, reactions within 0.1 %, level within 3 % of the free slope.)
 #[test]
 fn a_swivel_between_two_pieces_passes_the_bending_through_and_holds_at_its_cone() {
     let (a, b) = (0.4, 0.2);
-    let (w, slope, held_up) = overhang_through_swivel(PI);
+    let (w, slope, held_up, on_clamp) = overhang_through_swivel(PI);
     let closed_form = w * a * (a * a - 6.0 * b * b) / (48.0 * EI);
     let reaction = w * (3.0 * a / 8.0 + b + 3.0 * b * b / (4.0 * a));
+    // The clamp carries the rest of the weight: the cable pulls it down by that much.
+    let clamp_reaction = w * (a + b) - reaction;
     println!(
         "free swivel: slope {slope:.4e} rad vs {closed_form:.4e}; prop {held_up:.4e} N vs \
-         {reaction:.4e} N"
+         {reaction:.4e} N; on the clamp {on_clamp:.4e} N vs {:.4e} N",
+        -clamp_reaction
+    );
+    assert!(
+        (on_clamp + clamp_reaction).abs() < 0.03 * clamp_reaction,
+        "{on_clamp}"
     );
     assert!(
         (slope - closed_form).abs() < 0.02 * closed_form.abs(),
         "{slope}"
     );
     assert!((held_up - reaction).abs() < 0.03 * reaction, "{held_up}");
-    let (_, level, _) = overhang_through_swivel(0.0);
+    let (_, level, ..) = overhang_through_swivel(0.0);
     println!("cone 0: slope {level:.3e} rad");
     assert!(level.abs() < 0.05 * closed_form.abs(), "{level}");
     let cone = 0.5 * closed_form.abs();
-    let (_, edge, _) = overhang_through_swivel(cone);
+    let (_, edge, ..) = overhang_through_swivel(cone);
     // The cone holds each of the node's two edges: the direction between them lies up to
     // half a joint's turn inside it, `κl/2` with the curvature there `κ = (wb²/2)/EI`.
     let half_turn = 0.5 * PITCH * (0.5 * w * b * b) / EI;

@@ -224,13 +224,18 @@ impl Context<'_> {
                 ),
                 false => Vec::new(),
             };
-            // The loads of a piece through a sliding guide are not one rod's between its clamps.
-            let rod = planned.through.is_none();
+            // The loads of a piece through a sliding guide are not one rod's between its
+            // clamps; through a swivel they are (its end clamps' terms do not reach the
+            // swivel's node), the cable free to turn.
+            let rod = planned.through.is_none() || planned.swivel.is_some();
             let loads = state
                 .twist_rad
                 .filter(|_| with_loads && rod)
                 .and_then(|twist| {
-                    let params = planned.rod(&params);
+                    let mut params = planned.rod(&params);
+                    if planned.swivel.is_some() {
+                        params.holds = params.holds.turning();
+                    }
                     let (start, end) =
                         clamp_loads(&params, &guides[j], Some(&guides[j + 1]), &nodes, twist);
                     Some((start, end?))

@@ -521,13 +521,15 @@ impl Setup {
         )
     }
 
-    /// Whether every clamp segment `m`'s pieces can end in is rigid (what a dictionary
-    /// answers for).
+    /// Whether every clamp segment `m`'s pieces can end in is rigid and nothing holds them
+    /// between (no swivel or sliding guide the piece runs through): what a dictionary
+    /// answers for.
     pub fn segment_is_rigid(&self, m: usize) -> bool {
         let (a, b) = self.segment_guides(m);
-        [a, b]
-            .iter()
-            .all(|&g| (self.guides[g].configurations.iter()).all(|c| c.kind == GuideKind::Rigid))
+        self.segments[m].through.is_none()
+            && [a, b].iter().all(|&g| {
+                (self.guides[g].configurations.iter()).all(|c| c.kind == GuideKind::Rigid)
+            })
     }
 
     /// For segment `m` through a sliding guide or a retraction's outlet: that guide, its kind

@@ -116,6 +116,19 @@ impl Holds {
         }
     }
 
+    /// The same holds with the cable free to turn between the clamps, as a swivel clamp
+    /// between them lets it: the start clamp's turn freed where it held it (its bending
+    /// unchanged). For the loads of a piece through a swivel, computed without the swivel.
+    pub fn turning(self) -> Holds {
+        Holds {
+            start: match self.start {
+                Hold::Rigid => Hold::Rotating,
+                other => other,
+            },
+            ..self
+        }
+    }
+
     /// Whether the piece's twist relaxes: one of its clamps lets the cable turn.
     pub fn free_twist(&self) -> bool {
         self.start.frees_twist() || self.end.frees_twist()
