@@ -70,21 +70,15 @@ pub(super) fn equilibria(
                 None,
                 &SolverOptions::STRESS_CHECK,
             );
-            match solved {
+            let (cause, problem) = match solved {
                 Ok(equilibrium) => {
                     shapes.push(equilibrium);
                     throughs.push(None);
                     continue;
                 }
-                Err(e @ StaticsError::InvalidInput { .. }) => {
-                    let cause = FailureCause::TooShort;
-                    return Ok(Err(no_start(cause, e.to_string(), None)));
-                }
-                Err(e @ StaticsError::NotConverged { .. }) => {
-                    let problem = format!("no static equilibrium: {e}");
-                    return Ok(Err(no_start(FailureCause::NoInitialShape, problem, None)));
-                }
-            }
+                Err(e) => through_failure(e),
+            };
+            return Ok(Err(no_start(cause, problem, None)));
         }
         if let Some((g, kind, stored)) = setup.slide_of(segment) {
             let through = setup.guide_world_pose(links, g, 0);
@@ -96,7 +90,7 @@ pub(super) fn equilibria(
                 None,
                 &SolverOptions::STRESS_CHECK,
             );
-            match solved {
+            let (cause, problem) = match solved {
                 Ok(solved) => {
                     shapes.push(Equilibrium {
                         nodes: solved.nodes.clone(),
@@ -109,15 +103,9 @@ pub(super) fn equilibria(
                     throughs.push(Some(solved));
                     continue;
                 }
-                Err(e @ StaticsError::InvalidInput { .. }) => {
-                    let cause = FailureCause::TooShort;
-                    return Ok(Err(no_start(cause, e.to_string(), None)));
-                }
-                Err(e @ StaticsError::NotConverged { .. }) => {
-                    let problem = format!("no static equilibrium: {e}");
-                    return Ok(Err(no_start(FailureCause::NoInitialShape, problem, None)));
-                }
-            }
+                Err(e) => through_failure(e),
+            };
+            return Ok(Err(no_start(cause, problem, None)));
         }
         let geometry = match connect(start, end, planned.sub_segments, pitch, &sag) {
             Ok(geometry) => geometry,
@@ -177,4 +165,16 @@ pub(super) fn equilibria(
         equilibria: shapes,
         throughs,
     }))
+}
+
+/// Why a piece through a guide has no initial shape: too short to reach through it, or no
+/// equilibrium.
+fn through_failure(e: StaticsError) -> (FailureCause, String) {
+    match e {
+        StaticsError::InvalidInput { .. } => (FailureCause::TooShort, e.to_string()),
+        StaticsError::NotConverged { .. } => (
+            FailureCause::NoInitialShape,
+            format!("no static equilibrium: {e}"),
+        ),
+    }
 }
