@@ -12,10 +12,11 @@ use crate::statics::swivel::{SwivelThrough, solve_through_swivel};
 use crate::statics::{Holds, RodParameters, StaticSolver, StaticsError, sliding};
 
 impl Evaluator<'_> {
-    /// The equilibrium of a piece of segment `m` (a span through a sliding guide or a
-    /// retraction's outlet) of `sub_segments` between `guides`, held by its clamps as
-    /// `holds`, in `scene`; searched around `near_m` first (a sweep's previous pose's split),
-    /// else over the whole range (the attachment test: a verdict that depends on nothing
+    /// The equilibrium of a piece of segment `m` (a span through a sliding guide, a
+    /// retraction's outlet or a swivel clamp) of `sub_segments` between `guides`, held by its
+    /// clamps as `holds`, in `scene`. In a sweep, `last` is the previous pose's: its split is
+    /// searched around first, or (swivel) its shape starts the solve; else the whole range,
+    /// or the connected geometry (the attachment test: a verdict that depends on nothing
     /// else).
     pub(super) fn solve_through(
         &self,

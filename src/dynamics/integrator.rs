@@ -204,8 +204,7 @@ impl SegmentDynamics {
     /// step's end poses.
     pub fn move_pin(&mut self, clamp: &Pose) {
         if let Some(pin) = &mut self.pin {
-            pin.position = Point3::from(clamp.translation.vector);
-            pin.axis = clamp.rotation * nalgebra::Vector3::z();
+            *pin = Pin::held_by(clamp, pin.node, pin.cone_rad);
         }
     }
 

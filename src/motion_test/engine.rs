@@ -16,7 +16,7 @@ use crate::statics::{Equilibrium, FarEnd, Pin, RodParameters, SolverOptions};
 use crate::stress::ClampZone;
 #[cfg(feature = "rigid-chain")]
 use crate::stress::GuideEnd;
-use nalgebra::{Point3, Vector3};
+use nalgebra::Point3;
 use rayon::prelude::*;
 
 /// One simulated segment after a step.
@@ -208,12 +208,7 @@ impl Cable {
                         Some(split) => {
                             let guide = &setup.guides[split.guide];
                             let clamp = setup.guide_world_pose(links, split.guide, 0);
-                            let pin = Pin {
-                                node: split.before,
-                                position: Point3::from(clamp.translation.vector),
-                                axis: clamp.rotation * Vector3::z(),
-                                cone_rad: split.cone_rad,
-                            };
+                            let pin = Pin::held_by(&clamp, split.before, split.cone_rad);
                             let place = (guide.link, guide.configurations[0].pose);
                             Simulated::Pinned(Box::new(segment.with_pin(pin)), place)
                         }

@@ -401,12 +401,10 @@ impl MeasuredMounting {
                 .swivel_of(m, total)
                 .map_or(before, |split| split.before);
             if judged != before {
-                let line = groups
-                    .iter()
-                    .find(|(group, ..)| group[0].0 == g)
-                    .and_then(|g| g.2);
+                let measured = groups.iter().find(|(group, ..)| group[0].0 == g);
+                let mark_mm = measured.map_or(0.0, |g| g.1);
                 return Err(error(
-                    line,
+                    measured.and_then(|g| g.2),
                     format!(
                         "{} is a swivel clamp with {} mm of cable before it, but the search \
                          judged the {} mm through it with {} mm before it (the setup's length \
@@ -415,11 +413,7 @@ impl MeasuredMounting {
                         before as f64 * pitch_mm,
                         total as f64 * pitch_mm,
                         judged as f64 * pitch_mm,
-                        groups
-                            .iter()
-                            .find(|(group, ..)| group[0].0 == g)
-                            .map_or(0.0, |g| g.1)
-                            + (before as f64 - judged as f64) * pitch_mm
+                        mark_mm + (before as f64 - judged as f64) * pitch_mm
                     ),
                 ));
             }

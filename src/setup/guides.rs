@@ -558,26 +558,29 @@ fn check_optional_ends(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result
     Ok(())
 }
 
+/// Whether the cable runs through guide `g` between two pieces that are one piece of the
+/// search: a sliding guide, a retraction's outlet, or a swivel clamp between two pieces.
+pub(super) fn runs_through(guides: &[Guide], g: usize) -> bool {
+    through_kind(guides, g).is_some()
+}
+
+/// The kind that makes the cable run through guide `g` ([`runs_through`]), if one does.
+fn through_kind(guides: &[Guide], g: usize) -> Option<&GuideKind> {
+    let between = g != 0 && g + 1 != guides.len();
+    let swivel = |k: &&GuideKind| matches!(k, GuideKind::Swivel { .. });
+    (guides[g].kinds.iter()).find(|k| k.slides() || (between && swivel(k)))
+}
+
 /// A guide the cable runs through between two pieces that are one piece of the search (a
 /// sliding guide, a retraction's outlet, a swivel clamp between two pieces) sits between
 /// two clamps that are always mounted, has one place (`fixed`, or one configuration) and
 /// one kind: the search does not move it nor choose its kind. One the cable slides through
 /// has its two clamps on different links (else its split never changes). A retraction's
 /// `stored_from` names the guide before it, its inlet, on its own link.
-/// Whether the cable runs through guide `g` between two pieces that are one piece of the
-/// search: a sliding guide, a retraction's outlet, or a swivel clamp between two pieces.
-pub(super) fn runs_through(guides: &[Guide], g: usize) -> bool {
-    let between = g != 0 && g + 1 != guides.len();
-    let swivel = |k: &GuideKind| matches!(k, GuideKind::Swivel { .. });
-    (guides[g].kinds.iter()).any(|k| k.slides() || (between && swivel(k)))
-}
-
 fn check_slides(src: Source, raw: &RawGuides, guides: &[Guide]) -> Result<(), SetupError> {
     let last = guides.len() - 1;
     for (g, guide) in guides.iter().enumerate() {
-        let swivel = |k: &&GuideKind| matches!(k, GuideKind::Swivel { .. });
-        let between = g != 0 && g != last;
-        let Some(kind) = (guide.kinds.iter()).find(|k| k.slides() || (between && swivel(k))) else {
+        let Some(kind) = through_kind(guides, g) else {
             continue;
         };
         let entry = raw.get_ref()[g].get_ref();

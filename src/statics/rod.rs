@@ -193,6 +193,19 @@ pub struct Pin {
     pub cone_rad: f64,
 }
 
+impl Pin {
+    /// The swivel clamp at the pose `clamp` (its origin, the cone about its +z) holding node
+    /// `node`.
+    pub fn held_by(clamp: &Pose, node: usize, cone_rad: f64) -> Pin {
+        Pin {
+            node,
+            position: Point3::from(clamp.translation.vector),
+            axis: clamp.rotation * Vector3::z(),
+            cone_rad,
+        }
+    }
+}
+
 /// The pin's spring over a sub-segment's axial stiffness `EA / l`.
 pub const PIN_STIFFNESS_PER_AXIAL: f64 = 100.0;
 

@@ -37,12 +37,7 @@ pub fn solve_through_swivel(
             what: "each side of a swivel clamp between two pieces needs sub-segments".into(),
         });
     }
-    let pin = Pin {
-        node: before,
-        position: Point3::from(swivel.clamp.translation.vector),
-        axis: swivel.clamp.rotation * nalgebra::Vector3::z(),
-        cone_rad: swivel.cone_rad,
-    };
+    let pin = Pin::held_by(&swivel.clamp, before, swivel.cone_rad);
     let far = FarEnd::Clamped(*end);
     if let Some(nodes) = warm.filter(|n| n.len() == before + after + 1)
         && let Ok(solved) =
