@@ -682,3 +682,57 @@ fn the_installation_sheet_and_the_view_agree_with_the_result() {
         }
     }
 }
+
+/// The 3D view of the bundled dress pack labels the retraction's outlet and the sliding ring
+/// after the clamps, by the names the answer gives them, at their places at the installation
+/// pose (the setup's fixed placements carried by the robot's forward kinematics).
+#[test]
+fn the_view_labels_the_guides_the_cable_slides_through() {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let report = dir.path().join("report");
+    let output = run(&[
+        "solve",
+        "--setup",
+        "robots/viper_s850/dress_pack.toml",
+        MOTION,
+        "--report",
+        report.to_str().expect("a UTF-8 path"),
+        "--quiet",
+    ]);
+    assert!(output.status.success(), "{output:?}");
+    let data = std::fs::read_to_string(report.join("view-data.js")).expect("view-data.js");
+    let json = data
+        .split_once("window.cableDictView = ")
+        .and_then(|(_, rest)| rest.trim_end().strip_suffix(';'))
+        .expect("the data assignment");
+    let view: Value = serde_json::from_str(json).expect("view data JSON");
+    let labels: Vec<&str> = (view["clamps"].as_array().expect("clamps").iter())
+        .map(|c| c["label"].as_str().expect("label"))
+        .collect();
+    assert_eq!(
+        labels[labels.len() - 2..],
+        ["retraction outlet R", "sliding guide S"],
+        "{labels:?}"
+    );
+    let setup = cable_dict::setup::Setup::from_file("robots/viper_s850/dress_pack.toml")
+        .expect("the dress pack");
+    let installed = &setup
+        .installation
+        .as_ref()
+        .expect("installation")
+        .link_poses;
+    let clamps = view["clamps"].as_array().expect("clamps");
+    for (name, clamp) in ["R", "S"].iter().zip(&clamps[clamps.len() - 2..]) {
+        let g = (setup.guides.iter())
+            .position(|g| g.name == *name)
+            .expect("guide");
+        let world = setup.guide_world_pose(installed, g, 0) * nalgebra::Point3::origin();
+        let shown = clamp["installation_m"].as_array().expect("installed place");
+        for (axis, value) in [world.x, world.z, -world.y].into_iter().enumerate() {
+            assert!(
+                (shown[axis].as_f64().expect("coordinate") - value).abs() < 1e-9,
+                "{name}"
+            );
+        }
+    }
+}

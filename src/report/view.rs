@@ -215,7 +215,9 @@ fn clip(
 }
 
 /// The guide mark of every physical clamp of the shown candidate, labelled as the mounting
-/// plan names it (guides joined by a 0 mm piece are one clamp; a fitting carries its name).
+/// plan names it (guides joined by a 0 mm piece are one clamp; a fitting carries its name),
+/// then of every sliding guide and retraction outlet the cable runs through (`sliding guide
+/// S`).
 fn clamp_marks<'s>(
     setup: &Setup,
     report: &SolveReport,
@@ -225,12 +227,12 @@ fn clamp_marks<'s>(
         return Vec::new();
     };
     let plan = mounting_plan(setup, &shown.path);
-    (plan.clamps.iter())
-        .filter_map(|clamp| {
-            let mark = spec.guides.iter().find(|m| m.clamp == clamp.guides[0])?;
-            Some((clamp.name(), mark))
-        })
-        .collect()
+    let mark = |guide: &str| spec.guides.iter().find(|m| m.clamp == guide);
+    let clamps =
+        (plan.clamps.iter()).filter_map(|clamp| Some((clamp.name(), mark(&clamp.guides[0])?)));
+    let parts =
+        (plan.sliding_parts.iter()).filter_map(|part| Some((part.name(), mark(&part.guide)?)));
+    clamps.chain(parts).collect()
 }
 
 /// Where `mark` is with the links at `poses`, in the glTF frame: the scene's root turns the
