@@ -273,7 +273,21 @@ fn a_measured_dress_pack_skips_the_guides_the_cable_slides_through() {
     );
     let path = dir.path().join("measured.toml");
     std::fs::write(&path, text).unwrap_or_else(|e| panic!("{e}"));
-    reads_back(&path, &solve_json);
+    let checked = reads_back(&path, &solve_json);
+    // Both runs followed the outlet and the ring alike, and say so in the JSON.
+    let guides = |slides: &Value| -> Vec<String> {
+        (slides.as_array().expect("slides").iter())
+            .map(|s| s["guide"].as_str().expect("guide").to_string())
+            .collect()
+    };
+    let solved_slides = &solve_json["motion_test"]["slides"];
+    assert_eq!(guides(solved_slides), ["R", "S"]);
+    let checked_slides = &checked["motions"][0]["slides"];
+    for key in ["least_m", "most_m", "first_m"] {
+        for i in 0..2 {
+            assert_eq!(checked_slides[i][key], solved_slides[i][key], "{key}");
+        }
+    }
 }
 
 /// A `[[clamps]]` entry of a measured mounting: the solve's `clamp` measured as the sheet
@@ -299,8 +313,8 @@ fn measured_fitting(clamp: &Value, mark_mm: f64) -> String {
 }
 
 /// `check` of the measured mounting at `path` holds on pick and place with the margins of
-/// the solve `solve_json`, on its path.
-fn reads_back(path: &std::path::Path, solve_json: &Value) {
+/// the solve `solve_json`, on its path: its JSON.
+fn reads_back(path: &std::path::Path, solve_json: &Value) -> Value {
     let checked = check_holds(path.to_str().expect("a UTF-8 path"), PICK);
     assert_eq!(checked["ecpv"], solve_json["ecpv"]);
     for key in ["min_clearance_mm", "min_bend_radius_mm"] {
@@ -309,6 +323,7 @@ fn reads_back(path: &std::path::Path, solve_json: &Value) {
             "{key}"
         );
     }
+    checked
 }
 
 /// The forearm swivel's mounting as a fitter measures it — the clamp on link_3 and the

@@ -208,6 +208,10 @@ pub fn write_motions(
             m.name,
             motion_verdict_words(limits, m, plan)
         )?;
+        // What the sliding parts did over it: how far the cable slid, a retraction's travel.
+        for row in (m.motion_test.iter()).flat_map(|t| t.slides.iter().map(slide_row)) {
+            writeln!(f, "  {:<width$}    {}: {}", "", row.name, row.short)?;
+        }
     }
     if binding.is_empty() {
         return Ok(());

@@ -3,7 +3,8 @@
 use super::super::diagnosis::Diagnosis;
 use super::data::*;
 use crate::motion_test::{
-    ClampLoadPeak, EngineKind, MotionTestReport, PieceTwist, PieceWorst, Worst,
+    ClampLoadPeak, ClampTurn, EngineKind, GuideSlide, MotionTestReport, PieceTwist, PieceWorst,
+    Worst,
 };
 use serde::Serialize;
 
@@ -42,6 +43,10 @@ struct TestJson<'a> {
     twists: Option<&'a [PieceTwist]>,
     /// Per clamp, the largest force and moment the cable puts on it.
     clamp_loads: Option<&'a [ClampLoadPeak]>,
+    /// Per rotating clamp between two pieces, the largest turn of the cable in it.
+    clamp_turns: Option<&'a [ClampTurn]>,
+    /// Per sliding guide and retraction outlet, how far the cable slid through it.
+    slides: Option<&'a [GuideSlide]>,
     simulated_s: Option<f64>,
     wall_time_s: Option<f64>,
 }
@@ -104,6 +109,8 @@ impl<'a> TestJson<'a> {
             worst_twist: report.and_then(|r| r.worst_twist.as_ref()),
             twists: report.map(|r| r.twists.as_slice()),
             clamp_loads: report.map(|r| r.clamp_loads.as_slice()),
+            clamp_turns: report.map(|r| r.clamp_turns.as_slice()),
+            slides: report.map(|r| r.slides.as_slice()),
             simulated_s: report.map(|r| r.simulated_s),
             wall_time_s: report.map(|r| r.wall_time_s),
         }
