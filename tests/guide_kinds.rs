@@ -404,3 +404,42 @@ fn a_swivel_between_two_pieces_holds_the_span_where_the_windows_share_the_spare_
         assert!((split.cone_rad - 30f64.to_radians()).abs() < 1e-12);
     }
 }
+
+/// Advice on a piece through a swivel names the keys of the declared pieces it sums: the
+/// forearm swivel with both windows one length each, the rigid answer's 280 + 340 mm, which
+/// is too short for some of its clamp pairs.
+#[test]
+fn advice_on_a_piece_through_a_swivel_names_the_windows_it_sums() {
+    let root = crate::common::root();
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(root.join("robots/viper_s850/swivel_forearm.toml"))
+        .unwrap()
+        .replace(
+            "robot = \"viper_s850.urdf\"",
+            &format!(
+                "robot = {:?}",
+                root.join("robots/viper_s850/viper_s850.urdf")
+            ),
+        )
+        .replace(
+            "cable = \"../../cables/",
+            &format!("cable = \"{}/cables/", root.display()),
+        )
+        .replacen("min = 20, max = 80", "min = 28, max = 28", 1)
+        .replacen("min = 20, max = 80", "min = 34, max = 34", 1);
+    let setup = dir.path().join("fixed.toml");
+    std::fs::write(&setup, text).unwrap();
+    let motion = root.join("motions/viper_s850/pick_and_place.csv");
+    let output = crate::common::run(&[
+        "solve",
+        "--setup",
+        setup.to_str().unwrap(),
+        motion.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.starts_with("unsolved"), "{stdout}");
+    assert!(
+        stdout.contains("(segments[0].lengths.max or segments[1].lengths.max)"),
+        "{stdout}"
+    );
+}

@@ -418,7 +418,8 @@ fn attachment_suggestions(
         if let Some(needs) = needs {
             out.push(format!(
                 "a longer length window: the nearest miss is {max_mm:.0} mm long, the \
-                 window's maximum, and {needs} (segments[{m}].lengths.max)"
+                 window's maximum, and {needs} ({})",
+                window_keys(setup, m, "max")
             ));
         }
     }
@@ -429,7 +430,8 @@ fn attachment_suggestions(
     if slack && nearest.length_mm <= min_mm && range.min > 1 {
         out.push(format!(
             "a shorter length window: the nearest miss is {min_mm:.0} mm long, the window's \
-             minimum (segments[{m}].lengths.min)"
+             minimum ({})",
+            window_keys(setup, m, "min")
         ));
     }
     if sets.d1 > 0 {
@@ -643,4 +645,15 @@ fn paths_failed(count: usize) -> String {
         1 => "1 path failed".into(),
         n => format!("{n} paths failed"),
     }
+}
+
+/// The setup keys of piece `m`'s length window's `end` (`min`, `max`): its own, or for a span
+/// (over optional clamps, or through a sliding guide or swivel) those of the declared pieces
+/// it sums — `segments[1].lengths.max or segments[2].lengths.max`.
+fn window_keys(setup: &Setup, m: usize, end: &str) -> String {
+    let (a, b) = setup.segment_guides(m);
+    (a..b)
+        .map(|d| format!("segments[{d}].lengths.{end}"))
+        .collect::<Vec<_>>()
+        .join(" or ")
 }

@@ -16,7 +16,9 @@
 //!   from the start guide's x axis, parallel-transported along the guide axes and every
 //!   edge, to the end guide's x axis. A free end carries no twist;
 //! - **gravity**: `−Σ m_k g·x_k`, a lumped mass `ρ l` per interior node, `ρ l / 2` at a free
-//!   end (the masses at clamped nodes do no work).
+//!   end (the masses at clamped nodes do no work);
+//! - **a swivel clamp between the ends** ([`Pin`]), if any: a stiff spring on the node it
+//!   holds, and the bending of that node's two edges beyond its cone; it frees the twist.
 //!
 //! The twist couples every node with every other through `Ψ`: its Hessian is the banded
 //! `(kt/S) Ψ ∇²Ψ` plus the rank-one `(kt/S) ∇Ψ ∇Ψᵀ`, which the Newton step handles by
