@@ -412,19 +412,7 @@ fn a_swivel_between_two_pieces_holds_the_span_where_the_windows_share_the_spare_
 fn advice_on_a_piece_through_a_swivel_names_the_windows_it_sums() {
     let root = crate::common::root();
     let dir = tempfile::tempdir().unwrap();
-    let text = std::fs::read_to_string(root.join("robots/viper_s850/swivel_forearm.toml"))
-        .unwrap()
-        .replace(
-            "robot = \"viper_s850.urdf\"",
-            &format!(
-                "robot = {:?}",
-                root.join("robots/viper_s850/viper_s850.urdf")
-            ),
-        )
-        .replace(
-            "cable = \"../../cables/",
-            &format!("cable = \"{}/cables/", root.display()),
-        )
+    let text = crate::common::viper_setup_text("swivel_forearm.toml")
         .replacen("min = 20, max = 80", "min = 28, max = 28", 1)
         .replacen("min = 20, max = 80", "min = 34, max = 34", 1);
     let setup = dir.path().join("fixed.toml");

@@ -612,12 +612,7 @@ fn the_installation_sheet_and_the_view_agree_with_the_result() {
     }
 
     // The view's labels: the same clamps, at their places at the motion's first pose.
-    let data = std::fs::read_to_string(report.join("view-data.js")).expect("view-data.js");
-    let json = data
-        .split_once("window.cableDictView = ")
-        .and_then(|(_, rest)| rest.trim_end().strip_suffix(';'))
-        .expect("the data assignment");
-    let view: Value = serde_json::from_str(json).expect("view data JSON");
+    let view = view_data(&report);
     // The piece that came within one cable diameter (8 mm) of the robot is drawn as tight.
     let worst = &result["motion_test"]["worst_clearance"];
     let clearance = worst["value"].as_f64().expect("clearance");
@@ -683,6 +678,16 @@ fn the_installation_sheet_and_the_view_agree_with_the_result() {
     }
 }
 
+/// The 3D view's data a report folder holds (`view-data.js`, its one assignment).
+fn view_data(report: &Path) -> Value {
+    let data = std::fs::read_to_string(report.join("view-data.js")).expect("view-data.js");
+    let json = data
+        .split_once("window.cableDictView = ")
+        .and_then(|(_, rest)| rest.trim_end().strip_suffix(';'))
+        .expect("the data assignment");
+    serde_json::from_str(json).expect("view data JSON")
+}
+
 /// The 3D view of the bundled dress pack labels the retraction's outlet and the sliding ring
 /// after the clamps, by the names the answer gives them, at their places at the installation
 /// pose (the setup's fixed placements carried by the robot's forward kinematics).
@@ -700,12 +705,7 @@ fn the_view_labels_the_guides_the_cable_slides_through() {
         "--quiet",
     ]);
     assert!(output.status.success(), "{output:?}");
-    let data = std::fs::read_to_string(report.join("view-data.js")).expect("view-data.js");
-    let json = data
-        .split_once("window.cableDictView = ")
-        .and_then(|(_, rest)| rest.trim_end().strip_suffix(';'))
-        .expect("the data assignment");
-    let view: Value = serde_json::from_str(json).expect("view data JSON");
+    let view = view_data(&report);
     let labels: Vec<&str> = (view["clamps"].as_array().expect("clamps").iter())
         .map(|c| c["label"].as_str().expect("label"))
         .collect();

@@ -15,8 +15,13 @@ pub fn run(args: &[&str]) -> Output {
 /// The text of the bundled robot-level setup `robots/viper_s850/pick_and_place.toml` with its
 /// robot and cable paths made absolute, so that it loads from any folder a test writes it to.
 pub fn bundled_setup_text() -> String {
+    viper_setup_text("pick_and_place.toml")
+}
+
+/// [`bundled_setup_text`] of the bundled Viper setup `file` (in `robots/viper_s850/`).
+pub fn viper_setup_text(file: &str) -> String {
     let root = root();
-    std::fs::read_to_string(root.join("robots/viper_s850/pick_and_place.toml"))
+    std::fs::read_to_string(root.join("robots/viper_s850").join(file))
         .expect("the bundled setup")
         .replace(
             "robot = \"viper_s850.urdf\"",
