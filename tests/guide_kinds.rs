@@ -362,6 +362,24 @@ fn a_dress_pack_with_sliding_parts_is_checked_when_loaded() {
     }
 }
 
+/// Beside a swivel clamp between two pieces (or any guide the cable runs through) no piece
+/// may be 0 mm: `allow_zero` there is refused, naming the key and the guide, not ignored.
+#[test]
+fn no_zero_length_beside_a_swivel_between_two_pieces() {
+    let source = crate::common::root().join("robots/viper_s850/swivel_forearm.toml");
+    let text = std::fs::read_to_string(&source).unwrap();
+    let zero = text.replacen("allow_zero = false", "allow_zero = true", 1);
+    assert_ne!(zero, text);
+    let error = Setup::from_toml_str(&zero, &source)
+        .expect_err("refused")
+        .to_string();
+    assert!(
+        error.contains("segments[0].lengths.allow_zero")
+            && error.contains("the cable runs on through G2"),
+        "{error}"
+    );
+}
+
 /// A swivel clamp between two pieces makes them one piece of the search (a span through it;
 /// the declared pieces either side have no candidates), held where the two length windows
 /// share the spare length in proportion to their widths, each within its window: checked

@@ -46,14 +46,26 @@ fn segment(
     let intra_link = a.body == b.body;
     let key = format!("segments[{m}].lengths");
     let range = length_range(src, &key, &raw.lengths, delta_s)?;
+    // The segments on either side of a guide the cable runs through are one piece: the
+    // span through it, never 0 mm on one side.
+    let through = [m, m + 1].into_iter().find(|&g| runs_through(guides, g));
+    if let (Some(g), true) = (through, range.allow_zero) {
+        return Err(src.error(
+            raw.lengths.allow_zero.span(),
+            format!("{key}.allow_zero"),
+            format!(
+                "the cable runs on through {}: {} to {} is one side of the piece through it, \
+                 which has cable on both sides (S = 0 is not offered here)",
+                guides[g].name, a.name, b.name
+            ),
+        ));
+    }
     if range.allow_zero {
         check_zero(src, &key, &raw.lengths, a, b, intra_link)?;
     }
     let zero = range.allow_zero.then_some(0);
     let series = (range.min..=range.max).step_by(range.step);
-    // The segments on either side of a guide the cable runs through are one piece: the
-    // span through it.
-    let lengths = match runs_through(guides, m) || runs_through(guides, m + 1) {
+    let lengths = match through.is_some() {
         true => Vec::new(),
         false => zero.into_iter().chain(series).collect(),
     };
