@@ -253,11 +253,7 @@ fn a_mounting_measured_as_the_sheet_gives_it_is_the_path_the_solve_found() {
 #[test]
 fn a_measured_dress_pack_skips_the_guides_the_cable_slides_through() {
     let dir = tempfile::tempdir().unwrap();
-    let setup = root().join("robots/viper_s850/dress_pack.toml");
-    let setup_arg = setup.to_str().expect("a UTF-8 path");
-    let solved = run(&["solve", "--setup", setup_arg, PICK, "--json"]);
-    let solve_json: Value =
-        serde_json::from_slice(&solved.stdout).unwrap_or_else(|e| panic!("{e}"));
+    let (setup_arg, solve_json) = solved_on_pick("robots/viper_s850/dress_pack.toml");
     let mounting = &solve_json["mounting"];
     let kinds: Vec<&str> = (mounting["sliding_parts"].as_array().expect("sliding parts"))
         .iter()
@@ -288,6 +284,15 @@ fn a_measured_dress_pack_skips_the_guides_the_cable_slides_through() {
             assert_eq!(checked_slides[i][key], solved_slides[i][key], "{key}");
         }
     }
+}
+
+/// The bundled setup `file`'s absolute path and its solve of pick and place, as JSON.
+fn solved_on_pick(file: &str) -> (String, Value) {
+    let setup = root().join(file);
+    let setup_arg = setup.to_str().expect("a UTF-8 path").to_string();
+    let solved = run(&["solve", "--setup", &setup_arg, PICK, "--json"]);
+    let json = serde_json::from_slice(&solved.stdout).unwrap_or_else(|e| panic!("{e}"));
+    (setup_arg, json)
 }
 
 /// A `[[clamps]]` entry of a measured mounting: the solve's `clamp` measured as the sheet
@@ -333,11 +338,7 @@ fn reads_back(path: &std::path::Path, solve_json: &Value) -> Value {
 #[test]
 fn a_measured_swivel_between_two_pieces_reads_back_at_its_mark() {
     let dir = tempfile::tempdir().unwrap();
-    let setup = root().join("robots/viper_s850/swivel_forearm.toml");
-    let setup_arg = setup.to_str().expect("a UTF-8 path");
-    let solved = run(&["solve", "--setup", setup_arg, PICK, "--json"]);
-    let solve_json: Value =
-        serde_json::from_slice(&solved.stdout).unwrap_or_else(|e| panic!("{e}"));
+    let (setup_arg, solve_json) = solved_on_pick("robots/viper_s850/swivel_forearm.toml");
     let clamps = solve_json["mounting"]["clamps"].as_array().expect("clamps");
     let (clamp, swivel) = (&clamps[0], &clamps[1]);
     assert_eq!(swivel["kind"], "swivel");

@@ -32,13 +32,9 @@ impl Evaluator<'_> {
             ..self.rod
         };
         if let Some(split) = setup.swivel_of(m, sub_segments) {
-            let swivel = SwivelThrough {
-                clamp: setup.guide_world_pose(scene.link_poses, split.guide, 0),
-                cone_rad: split.cone_rad,
-                sub_segments: (split.before, sub_segments - split.before),
-            };
-            self.count_static_solve(m);
-            let solved = solve_through_swivel(
+            let clamp = setup.guide_world_pose(scene.link_poses, split.guide, 0);
+            let swivel = SwivelThrough::new(clamp, &split, sub_segments);
+            let (solved, solves) = solve_through_swivel(
                 &mut StaticSolver::default(),
                 &rod,
                 (&guides.0, &swivel, &guides.1),
@@ -46,6 +42,7 @@ impl Evaluator<'_> {
                 &self.solver,
             )
             .map_err(rejected)?;
+            (0..solves).for_each(|_| self.count_static_solve(m));
             return Ok(Solved {
                 nodes: solved.nodes,
                 connected: Vec::new(),

@@ -12,7 +12,8 @@ use crate::pose::Pose;
 use crate::rigid_chain::{CableWorld, ContactSummary, RigidChainError, SegmentShape};
 use crate::setup::Setup;
 use crate::statics::sliding::{SlideReading, SlideTrack, ThroughEquilibrium};
-use crate::statics::{Equilibrium, FarEnd, Pin, RodParameters, SolverOptions};
+use crate::statics::swivel::SwivelThrough;
+use crate::statics::{Equilibrium, FarEnd, RodParameters, SolverOptions};
 use crate::stress::ClampZone;
 #[cfg(feature = "rigid-chain")]
 use crate::stress::GuideEnd;
@@ -61,10 +62,9 @@ pub(super) struct Diverged {
 /// One segment of the implicit engine: in motion between its clamps, or (through a sliding
 /// guide or out of a retraction) followed quasi-statically with its split carried.
 pub(super) enum Simulated {
-    Dynamic(Box<SegmentDynamics>),
-    /// In motion between its clamps and held between them by a swivel clamp: that clamp's
-    /// link and its pose in that link's frame.
-    Pinned(Box<SegmentDynamics>, (usize, Pose)),
+    /// In motion between its clamps; held between them by a swivel clamp, if any: that
+    /// clamp's link and its pose in that link's frame.
+    Dynamic(Box<SegmentDynamics>, Option<(usize, Pose)>),
     Through {
         track: Box<SlideTrack>,
         /// The guide's link and its pose in that link's frame.
@@ -82,12 +82,10 @@ impl Simulated {
         settings: &IntegratorSettings,
     ) -> Result<(), String> {
         match self {
-            Simulated::Dynamic(segment) => segment
-                .step(start, FarEnd::Clamped(end), settings.time_step_s, settings)
-                .map(|_| ())
-                .map_err(|e| e.to_string()),
-            Simulated::Pinned(segment, (link, pose)) => {
-                segment.move_pin(&(links[*link] * *pose));
+            Simulated::Dynamic(segment, swivel) => {
+                if let Some((link, pose)) = swivel {
+                    segment.move_pin(&(links[*link] * *pose));
+                }
                 segment
                     .step(start, FarEnd::Clamped(end), settings.time_step_s, settings)
                     .map(|_| ())
@@ -109,7 +107,7 @@ impl Simulated {
     /// Its state now.
     fn state(&self, pitch_m: f64) -> SegmentState {
         match self {
-            Simulated::Dynamic(segment) | Simulated::Pinned(segment, _) => SegmentState {
+            Simulated::Dynamic(segment, _) => SegmentState {
                 nodes: segment.nodes(),
                 pitch_m,
                 from: None,
@@ -204,15 +202,17 @@ impl Cable {
                         Ok(segment) => segment,
                         Err(e) => return Ok(Err(refused(e.to_string()))),
                     };
-                    segments.push(match planned.swivel {
-                        Some(split) => {
-                            let guide = &setup.guides[split.guide];
-                            let clamp = setup.guide_world_pose(links, split.guide, 0);
-                            let pin = Pin::held_by(&clamp, split.before, split.cone_rad);
-                            let place = (guide.link, guide.configurations[0].pose);
-                            Simulated::Pinned(Box::new(segment.with_pin(pin)), place)
+                    let swivel = planned.swivel.map(|split| {
+                        let clamp = setup.guide_world_pose(links, split.guide, 0);
+                        let pin = SwivelThrough::new(clamp, &split, planned.sub_segments).pin();
+                        let guide = &setup.guides[split.guide];
+                        (pin, (guide.link, guide.configurations[0].pose))
+                    });
+                    segments.push(match swivel {
+                        Some((pin, place)) => {
+                            Simulated::Dynamic(Box::new(segment.with_pin(pin)), Some(place))
                         }
-                        None => Simulated::Dynamic(Box::new(segment)),
+                        None => Simulated::Dynamic(Box::new(segment), None),
                     });
                 }
                 Ok(Ok(Cable::Implicit {

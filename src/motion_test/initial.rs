@@ -58,11 +58,8 @@ pub(super) fn equilibria(
             too_short,
         };
         if let Some(split) = planned.swivel {
-            let swivel = SwivelThrough {
-                clamp: setup.guide_world_pose(links, split.guide, 0),
-                cone_rad: split.cone_rad,
-                sub_segments: (split.before, planned.sub_segments - split.before),
-            };
+            let clamp = setup.guide_world_pose(links, split.guide, 0);
+            let swivel = SwivelThrough::new(clamp, &split, planned.sub_segments);
             let solved = solve_through_swivel(
                 &mut solver,
                 &planned.rod(&params),
@@ -71,7 +68,7 @@ pub(super) fn equilibria(
                 &SolverOptions::STRESS_CHECK,
             );
             let (cause, problem) = match solved {
-                Ok(equilibrium) => {
+                Ok((equilibrium, _)) => {
                     shapes.push(equilibrium);
                     throughs.push(None);
                     continue;

@@ -28,7 +28,7 @@
 
 use super::{LinkPlace, Turn, installation_link_poses, link_place};
 use crate::path::CablePath;
-use crate::setup::{GuideKind, Setup};
+use crate::setup::Setup;
 use serde::Deserialize;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -386,20 +386,14 @@ impl MeasuredMounting {
         let mut i = 1;
         while i + 1 < mounted.len() {
             let g = mounted[i].0;
-            let swivel = matches!(
-                setup.guides[g].configurations[0].kind,
-                GuideKind::Swivel { .. }
-            );
-            let span = (0..setup.segment_count())
-                .find(|&m| setup.segments[m].through == Some(g) && swivel);
-            let Some(m) = span else {
+            let (before, total) = (lengths[i - 1], lengths[i - 1] + lengths[i]);
+            let split = (0..setup.segment_count())
+                .find(|&m| setup.segments[m].through == Some(g))
+                .and_then(|m| setup.swivel_of(m, total));
+            let Some(judged) = split.map(|split| split.before) else {
                 i += 1;
                 continue;
             };
-            let (before, total) = (lengths[i - 1], lengths[i - 1] + lengths[i]);
-            let judged = setup
-                .swivel_of(m, total)
-                .map_or(before, |split| split.before);
             if judged != before {
                 let measured = groups.iter().find(|(group, ..)| group[0].0 == g);
                 let mark_mm = measured.map_or(0.0, |g| g.1);

@@ -7,6 +7,7 @@
 use super::{Equilibrium, FarEnd, Pin, RodParameters, SolverOptions, StaticSolver, StaticsError};
 use crate::geometry::{connect, sag_direction};
 use crate::pose::Pose;
+use crate::setup::SwivelSplit;
 use nalgebra::Point3;
 
 /// A swivel clamp between two pieces, where the cable runs through it.
@@ -20,30 +21,47 @@ pub struct SwivelThrough {
     pub sub_segments: (usize, usize),
 }
 
+impl SwivelThrough {
+    /// The swivel at `clamp` on a piece of `sub_segments`, held where `split` says.
+    pub fn new(clamp: Pose, split: &SwivelSplit, sub_segments: usize) -> SwivelThrough {
+        SwivelThrough {
+            clamp,
+            cone_rad: split.cone_rad,
+            sub_segments: (split.before, sub_segments.saturating_sub(split.before)),
+        }
+    }
+
+    /// How it holds the piece's node at the clamp.
+    pub fn pin(&self) -> Pin {
+        Pin::held_by(&self.clamp, self.sub_segments.0, self.cone_rad)
+    }
+}
+
 /// The equilibrium of the piece from the clamp `start` through `swivel` to the clamp `end`
-/// at the cable's pitch (`params.pitch_m`): from `warm` (`S + 1` nodes, e.g. the previous
-/// pose's, carried along) when given and it converges, else from the connected geometry of
-/// either side joined at the clamp along its axis.
+/// at the cable's pitch (`params.pitch_m`), and the static solves it took: from `warm`
+/// (`S + 1` nodes, e.g. the previous pose's, carried along) when given and it converges,
+/// else from the connected geometry of either side joined at the clamp along its axis.
 pub fn solve_through_swivel(
     solver: &mut StaticSolver,
     params: &RodParameters,
     (start, swivel, end): (&Pose, &SwivelThrough, &Pose),
     warm: Option<&[Point3<f64>]>,
     options: &SolverOptions,
-) -> Result<Equilibrium, StaticsError> {
+) -> Result<(Equilibrium, usize), StaticsError> {
     let (before, after) = swivel.sub_segments;
     if before == 0 || after == 0 {
         return Err(StaticsError::InvalidInput {
             what: "each side of a swivel clamp between two pieces needs sub-segments".into(),
         });
     }
-    let pin = Pin::held_by(&swivel.clamp, before, swivel.cone_rad);
+    let pin = swivel.pin();
     let far = FarEnd::Clamped(*end);
-    if let Some(nodes) = warm.filter(|n| n.len() == before + after + 1)
+    let warm = warm.filter(|n| n.len() == before + after + 1);
+    if let Some(nodes) = warm
         && let Ok(solved) =
             solver.solve_pinned(params, (start, Some(&pin), &far), nodes, None, options)
     {
-        return Ok(solved);
+        return Ok((solved, 1));
     }
     let sag = sag_direction(&params.gravity_m_s2);
     let side = |(a, b): (&Pose, &Pose), n: usize| {
@@ -60,5 +78,6 @@ pub fn solve_through_swivel(
         .chain(second.nodes.iter().skip(1))
         .copied()
         .collect();
-    solver.solve_pinned(params, (start, Some(&pin), &far), &nodes, None, options)
+    let solved = solver.solve_pinned(params, (start, Some(&pin), &far), &nodes, None, options)?;
+    Ok((solved, 1 + usize::from(warm.is_some())))
 }
